@@ -1,0 +1,48 @@
+//! Command-line interface (clap).
+
+mod spectrum;
+
+use clap::{Parser, Subcommand};
+
+/// spectrace: a spectral path tracer in physical units.
+///
+/// Wavelengths are in nm, radiance in W·m⁻²·sr⁻¹·nm⁻¹, luminance (Y) in cd/m².
+#[derive(Parser, Debug)]
+#[command(name = "spectrace", version, about, long_about = None)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Print a named spectrum at wavelengths, summarise it, or list every name.
+    ///
+    /// With wavelengths, prints one line per wavelength: the value (illuminants: relative SPD;
+    /// reflectances: factor in [0,1]; glasses: index n), or "n k" for metals. Wavelengths take a
+    /// unit ("587.56nm", "0.55 um"); a bare number is read as nm.
+    Spectrum(spectrum::SpectrumArgs),
+}
+
+/// An error for the user, printed after "error: ".
+#[derive(Debug, thiserror::Error)]
+pub enum CliError {
+    #[error(transparent)]
+    UnknownSpectrum(#[from] crate::spectrum::named::UnknownSpectrum),
+    #[error("wavelength {0}")]
+    Wavelength(crate::units::parse::QuantityError),
+    #[error("{0}")]
+    Usage(String),
+}
+
+/// Runs a parsed command line.
+pub fn run(cli: Cli) -> Result<(), CliError> {
+    match cli.command {
+        Some(Command::Spectrum(args)) => spectrum::run(args),
+        None => {
+            // Until the renderer exists, the main job summarises the spectral data.
+            spectrum::print_data_summary();
+            Ok(())
+        }
+    }
+}

@@ -1,0 +1,6 @@
+//! Colour science: CIE colour matching and photometric calibration ([`cie`]), RGB spaces and
+//! chromatic adaptation ([`spaces`]), CIELAB and CIEDE2000 ([`lab`]).
+
+pub mod cie;
+pub mod lab;
+pub mod spaces;

@@ -1,0 +1,13 @@
+//! spectrace: a spectral path tracer whose numbers mean something.
+//!
+//! See `ARCHITECTURE.md` for the module map.
+
+// uom's `quantity!`/`system!` macros need their helper macros in scope at the crate root.
+// Only `units` uses them.
+#[macro_use]
+extern crate uom;
+
+pub mod cli;
+pub mod colour;
+pub mod spectrum;
+pub mod units;

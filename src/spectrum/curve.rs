@@ -1,0 +1,230 @@
+//! Spectrum curves: functions of wavelength (nm) evaluated per sample in the render loop.
+
+use std::sync::Arc;
+
+use super::blackbody::Blackbody;
+use super::rgb2spec::SigmoidPolynomial;
+use super::sampled::{SampledSpectrum, SampledWavelengths};
+
+/// A piecewise-linear function of wavelength, from samples (λ_i in nm, v_i), strictly increasing
+/// in λ. Zero outside [λ_0, λ_last]. Uniformly spaced tables are evaluated in O(1).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PiecewiseLinear {
+    lambda: Vec<f32>,
+    value: Vec<f32>,
+    /// `Some(step)` when the λ_i are uniformly spaced by `step` nm.
+    uniform_step: Option<f32>,
+}
+
+/// Why a table of samples is not a valid piecewise-linear spectrum.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TableError {
+    #[error("a spectrum needs at least 2 samples, got {0}")]
+    TooFew(usize),
+    #[error("wavelengths and values differ in length ({0} vs {1})")]
+    LengthMismatch(usize, usize),
+    #[error("sample {index}: wavelength {lambda} nm is not greater than the previous one")]
+    NotIncreasing { index: usize, lambda: f32 },
+    #[error("sample {index}: value {value} at {lambda} nm is not finite")]
+    NonFinite {
+        index: usize,
+        lambda: f32,
+        value: f32,
+    },
+}
+
+impl PiecewiseLinear {
+    /// Builds the table; wavelengths in nm, strictly increasing, values finite.
+    pub fn new(lambda: Vec<f32>, value: Vec<f32>) -> Result<Self, TableError> {
+        if lambda.len() != value.len() {
+            return Err(TableError::LengthMismatch(lambda.len(), value.len()));
+        }
+        if lambda.len() < 2 {
+            return Err(TableError::TooFew(lambda.len()));
+        }
+        for i in 0..lambda.len() {
+            if !lambda[i].is_finite() || !value[i].is_finite() {
+                return Err(TableError::NonFinite {
+                    index: i,
+                    lambda: lambda[i],
+                    value: value[i],
+                });
+            }
+            if i > 0 && lambda[i] <= lambda[i - 1] {
+                return Err(TableError::NotIncreasing {
+                    index: i,
+                    lambda: lambda[i],
+                });
+            }
+        }
+        let step = (lambda[lambda.len() - 1] - lambda[0]) / (lambda.len() - 1) as f32;
+        let uniform = lambda
+            .iter()
+            .enumerate()
+            .all(|(i, &l)| (l - (lambda[0] + i as f32 * step)).abs() <= 1e-4 * step.max(1.0));
+        Ok(Self {
+            lambda,
+            value,
+            uniform_step: uniform.then_some(step),
+        })
+    }
+
+    pub fn wavelengths(&self) -> &[f32] {
+        &self.lambda
+    }
+    pub fn values(&self) -> &[f32] {
+        &self.value
+    }
+    /// (first, last) tabulated wavelength in nm.
+    pub fn domain(&self) -> (f32, f32) {
+        (self.lambda[0], self.lambda[self.lambda.len() - 1])
+    }
+
+    /// Linear interpolation at `lambda_nm`; 0 outside the tabulated domain.
+    #[inline]
+    pub fn eval(&self, lambda_nm: f32) -> f32 {
+        let n = self.lambda.len();
+        let (lo, hi) = (self.lambda[0], self.lambda[n - 1]);
+        if !(lambda_nm >= lo && lambda_nm <= hi) {
+            return 0.0;
+        }
+        let i = match self.uniform_step {
+            Some(step) => (((lambda_nm - lo) / step) as usize).min(n - 2),
+            None => self
+                .lambda
+                .partition_point(|&l| l <= lambda_nm)
+                .saturating_sub(1)
+                .min(n - 2),
+        };
+        let (l0, l1) = (self.lambda[i], self.lambda[i + 1]);
+        let t = ((lambda_nm - l0) / (l1 - l0)).clamp(0.0, 1.0);
+        self.value[i] + t * (self.value[i + 1] - self.value[i])
+    }
+
+    /// The same table with every value multiplied by `k`.
+    pub fn scaled(&self, k: f32) -> Self {
+        Self {
+            value: self.value.iter().map(|v| v * k).collect(),
+            ..self.clone()
+        }
+    }
+
+    /// Largest tabulated value.
+    pub fn max_value(&self) -> f32 {
+        self.value.iter().copied().fold(f32::NEG_INFINITY, f32::max)
+    }
+}
+
+/// A spectral curve. Its unit is set by where it is used: a reflectance (1), an emitter's
+/// spectral radiance (W·m⁻²·sr⁻¹·nm⁻¹), a relative spectral power distribution, …
+///
+/// A closed enum, matched in the hot loop; tables are shared behind `Arc`.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Spectrum {
+    /// The same value at every wavelength.
+    Constant(f32),
+    /// A measured or tabulated curve.
+    Piecewise(Arc<PiecewiseLinear>),
+    /// Planck's law times a scale (see [`Blackbody`]).
+    Blackbody(Blackbody),
+    /// `scale · s(c₀λ² + c₁λ + c₂)` from an RGB upsampled by the Jakob–Hanika method; with
+    /// `scale = 1` and an RGB in [0, 1] this is the bounded albedo variant.
+    Rgb { poly: SigmoidPolynomial, scale: f32 },
+    /// The unbounded RGB variant times an illuminant table: an emission spectrum whose colour is
+    /// the RGB under the colour space's white (see `rgb2spec`).
+    RgbIlluminant {
+        poly: SigmoidPolynomial,
+        scale: f32,
+        illuminant: Arc<PiecewiseLinear>,
+    },
+}
+
+impl Spectrum {
+    /// Value at `lambda_nm` (nm).
+    #[inline]
+    pub fn eval(&self, lambda_nm: f32) -> f32 {
+        match self {
+            Spectrum::Constant(c) => *c,
+            Spectrum::Piecewise(t) => t.eval(lambda_nm),
+            Spectrum::Blackbody(b) => b.eval(lambda_nm),
+            Spectrum::Rgb { poly, scale } => scale * poly.eval(lambda_nm),
+            Spectrum::RgbIlluminant {
+                poly,
+                scale,
+                illuminant,
+            } => scale * poly.eval(lambda_nm) * illuminant.eval(lambda_nm),
+        }
+    }
+
+    /// Values at the sampled wavelengths.
+    #[inline]
+    pub fn sample<const N: usize>(&self, w: &SampledWavelengths<N>) -> SampledSpectrum<N> {
+        SampledSpectrum(w.lambda.map(|l| self.eval(l)))
+    }
+
+    /// This curve multiplied by `k`.
+    pub fn scaled(&self, k: f32) -> Spectrum {
+        match self {
+            Spectrum::Constant(c) => Spectrum::Constant(c * k),
+            Spectrum::Piecewise(t) => Spectrum::Piecewise(Arc::new(t.scaled(k))),
+            Spectrum::Blackbody(b) => Spectrum::Blackbody(Blackbody {
+                scale: b.scale * k,
+                ..*b
+            }),
+            Spectrum::Rgb { poly, scale } => Spectrum::Rgb {
+                poly: *poly,
+                scale: scale * k,
+            },
+            Spectrum::RgbIlluminant {
+                poly,
+                scale,
+                illuminant,
+            } => Spectrum::RgbIlluminant {
+                poly: *poly,
+                scale: scale * k,
+                illuminant: illuminant.clone(),
+            },
+        }
+    }
+
+    /// ∫ S(λ) dλ over [`lo_nm`, `hi_nm`] by the trapezoid rule at `step_nm`, in the curve's unit
+    /// times nm.
+    pub fn integrate(&self, lo_nm: f32, hi_nm: f32, step_nm: f32) -> f64 {
+        let n = (((hi_nm - lo_nm) / step_nm).ceil() as usize).max(1);
+        let h = (hi_nm - lo_nm) as f64 / n as f64;
+        let f = |i: usize| self.eval((lo_nm as f64 + i as f64 * h) as f32) as f64;
+        let inner: f64 = (1..n).map(f).sum();
+        h * (inner + 0.5 * (f(0) + f(n)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn piecewise_interpolates_and_is_zero_outside() {
+        let t = PiecewiseLinear::new(vec![400.0, 500.0, 600.0], vec![0.0, 1.0, 3.0]).unwrap();
+        assert_eq!(t.eval(450.0), 0.5);
+        assert_eq!(t.eval(550.0), 2.0);
+        assert_eq!(t.eval(600.0), 3.0);
+        assert_eq!(t.eval(399.9), 0.0);
+        assert_eq!(t.eval(f32::NAN), 0.0);
+        let nu = PiecewiseLinear::new(vec![400.0, 410.0, 600.0], vec![0.0, 1.0, 20.0]).unwrap();
+        assert!((nu.eval(505.0) - 10.5).abs() < 1e-5);
+    }
+
+    #[test]
+    fn piecewise_rejects_bad_tables() {
+        assert!(PiecewiseLinear::new(vec![400.0], vec![1.0]).is_err());
+        assert!(PiecewiseLinear::new(vec![400.0, 400.0], vec![1.0, 1.0]).is_err());
+        assert!(PiecewiseLinear::new(vec![400.0, 500.0], vec![1.0, f32::NAN]).is_err());
+        assert!(PiecewiseLinear::new(vec![400.0, 500.0], vec![1.0]).is_err());
+    }
+
+    #[test]
+    fn integrate_constant() {
+        let s = Spectrum::Constant(2.0);
+        assert!((s.integrate(360.0, 830.0, 1.0) - 940.0).abs() < 1e-6);
+    }
+}

@@ -1,0 +1,375 @@
+//! Named spectra: `cie-d65`, `glass:N-BK7`, `metal:Au`, `colorchecker:dark-skin`,
+//! `blackbody:6500K`, … Looked up case-insensitively; an unknown name suggests the closest ones.
+
+use std::collections::BTreeMap;
+use std::sync::{Arc, OnceLock};
+
+use serde::Deserialize;
+
+use super::blackbody::Blackbody;
+use super::curve::Spectrum;
+use super::data::{Table, embedded, embedded_table, table_to_curve};
+use super::ior::{ComplexIor, Ior, Sellmeier};
+
+/// What a named curve means, which sets its unit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CurveKind {
+    /// A relative spectral power distribution (CIE illuminants: 100 at 560 nm).
+    Illuminant,
+    /// A reflectance factor in [0, 1].
+    Reflectance,
+    /// A CIE colour-matching function (dimensionless, ȳ(555 nm) = 1).
+    ColourMatching,
+    /// A peak-normalised Planck curve (maximum 1).
+    Blackbody,
+}
+
+/// A dielectric from `spectra/glass/sellmeier.toml`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Glass {
+    pub name: String,
+    pub ior: Ior,
+    /// Validity range of the formula, nm.
+    pub range_nm: (f32, f32),
+    /// Catalogue n_d at 587.56 nm (or computed, see `nd_source`).
+    pub nd: f64,
+    pub nd_source: String,
+    /// Catalogue Abbe number, when the catalogue gives one.
+    pub vd: Option<f64>,
+    pub source: String,
+}
+
+/// A conductor from `spectra/metals/`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Metal {
+    pub name: String,
+    pub ior: ComplexIor,
+    pub source: String,
+}
+
+/// The value a name stands for.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Named {
+    Curve {
+        spectrum: Spectrum,
+        kind: CurveKind,
+        source: String,
+    },
+    Dielectric(Glass),
+    Conductor(Metal),
+}
+
+/// A name that is not known, with the closest known names.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("unknown spectrum \"{name}\"{}", suggest(.suggestions))]
+pub struct UnknownSpectrum {
+    pub name: String,
+    pub suggestions: Vec<String>,
+}
+
+fn suggest(s: &[String]) -> String {
+    if s.is_empty() {
+        "; run `spectrace spectrum --list` for the names".into()
+    } else {
+        format!(
+            "; did you mean {}?",
+            s.iter()
+                .map(|n| format!("\"{n}\""))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )
+    }
+}
+
+struct Registry {
+    /// Lower-cased name → (display name, value).
+    entries: BTreeMap<String, (String, Named)>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GlassFile {
+    glass: Vec<GlassEntry>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct GlassEntry {
+    name: String,
+    #[serde(rename = "A")]
+    a: f64,
+    #[serde(rename = "B")]
+    b: Vec<f64>,
+    #[serde(rename = "C")]
+    c: Vec<f64>,
+    range_um: [f64; 2],
+    nd: f64,
+    nd_source: String,
+    vd: Option<f64>,
+    source: String,
+}
+
+fn source_line(t: &Table) -> String {
+    ["Source:", "Dataset:", "Paper:"]
+        .iter()
+        .find_map(|p| t.comment_starting(p))
+        .or_else(|| t.comments.first().map(String::as_str))
+        .unwrap_or("")
+        .to_string()
+}
+
+fn curve(file: (&str, &str), col: &str, kind: CurveKind) -> Named {
+    let t = embedded_table(file);
+    let i = t.column_index(col).unwrap_or(1);
+    let spectrum = match table_to_curve(&t, 0, i, file.0) {
+        Ok(c) => Spectrum::Piecewise(Arc::new(c)),
+        Err(e) => panic!("embedded data file is corrupt: {e}"), // ok: build-time invariant, tested
+    };
+    Named::Curve {
+        spectrum,
+        kind,
+        source: source_line(&t),
+    }
+}
+
+fn build() -> Registry {
+    let mut entries = BTreeMap::new();
+    let mut add = |name: String, v: Named| {
+        entries.insert(name.to_lowercase(), (name, v));
+    };
+    use embedded::*;
+    for (name, f) in [
+        ("cie-d65", CIE_D65),
+        ("cie-d50", CIE_D50),
+        ("cie-a", CIE_A),
+        ("cie-e", CIE_E),
+        ("cie-f2", CIE_F2),
+        ("cie-f11", CIE_F11),
+    ] {
+        add(name.into(), curve(f, "value", CurveKind::Illuminant));
+    }
+    for (name, col) in [("cie-x", "xbar"), ("cie-y", "ybar"), ("cie-z", "zbar")] {
+        add(
+            name.into(),
+            curve(CIE_1931_2DEG, col, CurveKind::ColourMatching),
+        );
+    }
+    let cc = embedded_table(COLORCHECKER);
+    for (i, patch) in cc.columns.iter().enumerate().skip(1) {
+        let spectrum = match table_to_curve(&cc, 0, i, COLORCHECKER.0) {
+            Ok(c) => Spectrum::Piecewise(Arc::new(c)),
+            Err(e) => panic!("embedded data file is corrupt: {e}"), // ok: build-time invariant
+        };
+        add(
+            format!("colorchecker:{patch}"),
+            Named::Curve {
+                spectrum,
+                kind: CurveKind::Reflectance,
+                source: source_line(&cc),
+            },
+        );
+    }
+    let glasses: GlassFile = match toml::from_str(GLASSES.1) {
+        Ok(g) => g,
+        Err(e) => panic!("embedded {} is corrupt: {e}", GLASSES.0), // ok: build-time invariant
+    };
+    for g in glasses.glass {
+        let mut s = Sellmeier {
+            a: g.a as f32,
+            b: [0.0; 4],
+            c: [0.0; 4],
+        };
+        for (i, (b, c)) in g.b.iter().zip(&g.c).take(4).enumerate() {
+            s.b[i] = *b as f32;
+            s.c[i] = *c as f32;
+        }
+        add(
+            format!("glass:{}", g.name),
+            Named::Dielectric(Glass {
+                name: g.name,
+                ior: Ior::Sellmeier(s),
+                range_nm: ((g.range_um[0] * 1e3) as f32, (g.range_um[1] * 1e3) as f32),
+                nd: g.nd,
+                nd_source: g.nd_source,
+                vd: g.vd,
+                source: g.source,
+            }),
+        );
+    }
+    for (name, f) in [
+        ("Au", METAL_AU),
+        ("Ag", METAL_AG),
+        ("Cu", METAL_CU),
+        ("Al", METAL_AL),
+    ] {
+        let t = embedded_table(f);
+        let (n, k) = match (table_to_curve(&t, 0, 1, f.0), table_to_curve(&t, 0, 2, f.0)) {
+            (Ok(n), Ok(k)) => (n, k),
+            (Err(e), _) | (_, Err(e)) => panic!("embedded data file is corrupt: {e}"), // ok: invariant
+        };
+        let ior = ComplexIor {
+            n: Arc::new(n),
+            k: Arc::new(k),
+        };
+        add(
+            format!("metal:{name}"),
+            Named::Conductor(Metal {
+                name: name.into(),
+                ior,
+                source: source_line(&t),
+            }),
+        );
+    }
+    Registry { entries }
+}
+
+fn registry() -> &'static Registry {
+    static R: OnceLock<Registry> = OnceLock::new();
+    R.get_or_init(build)
+}
+
+/// Every fixed name, in sorted order, with one word for its kind. `blackbody:<T>K` is listed as
+/// a pattern.
+pub fn names() -> Vec<(String, &'static str)> {
+    let mut v: Vec<(String, &'static str)> = registry()
+        .entries
+        .values()
+        .map(|(n, v)| {
+            let kind = match v {
+                Named::Curve {
+                    kind: CurveKind::Illuminant,
+                    ..
+                } => "illuminant (relative SPD)",
+                Named::Curve {
+                    kind: CurveKind::Reflectance,
+                    ..
+                } => "reflectance",
+                Named::Curve {
+                    kind: CurveKind::ColourMatching,
+                    ..
+                } => "CIE 1931 2° colour-matching function",
+                Named::Curve {
+                    kind: CurveKind::Blackbody,
+                    ..
+                } => "blackbody",
+                Named::Dielectric(_) => "dielectric index n(λ)",
+                Named::Conductor(_) => "conductor index n(λ), k(λ)",
+            };
+            (n.clone(), kind)
+        })
+        .collect();
+    v.push((
+        "blackbody:<T>K".into(),
+        "Planck curve at temperature T, peak-normalised",
+    ));
+    v
+}
+
+/// Looks a name up (case-insensitive).
+pub fn lookup(name: &str) -> Result<Named, UnknownSpectrum> {
+    let key = name.trim().to_lowercase();
+    if let Some((_, v)) = registry().entries.get(&key) {
+        return Ok(v.clone());
+    }
+    if let Some(t) = name.trim().strip_prefix("blackbody:") {
+        if let Ok(temp) = crate::units::parse::parse::<crate::units::ThermodynamicTemperature>(t) {
+            let k = crate::units::plain::kelvin_f32(temp);
+            if k > 0.0 {
+                return Ok(Named::Curve {
+                    spectrum: Spectrum::Blackbody(Blackbody::normalized(k)),
+                    kind: CurveKind::Blackbody,
+                    source: "Planck's law, 2019 SI constants".into(),
+                });
+            }
+        }
+    }
+    Err(UnknownSpectrum {
+        name: name.to_string(),
+        suggestions: closest(&key),
+    })
+}
+
+fn closest(key: &str) -> Vec<String> {
+    let mut scored: Vec<(f64, &String)> = registry()
+        .entries
+        .iter()
+        .map(|(k, (n, _))| {
+            // compare with and without the "family:" prefix, so "bk7" finds "glass:N-BK7"
+            let short = k.split_once(':').map_or(k.as_str(), |(_, s)| s);
+            let s = strsim::jaro_winkler(key, k).max(strsim::jaro_winkler(key, short));
+            (s, n)
+        })
+        .collect();
+    scored.sort_by(|a, b| b.0.total_cmp(&a.0));
+    scored
+        .into_iter()
+        .filter(|(s, _)| *s > 0.7)
+        .take(3)
+        .map(|(_, n)| n.clone())
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn looks_up_families() {
+        assert!(matches!(
+            lookup("cie-d65"),
+            Ok(Named::Curve {
+                kind: CurveKind::Illuminant,
+                ..
+            })
+        ));
+        assert!(matches!(lookup("glass:n-bk7"), Ok(Named::Dielectric(_))));
+        assert!(matches!(lookup("metal:Au"), Ok(Named::Conductor(_))));
+        assert!(matches!(
+            lookup("colorchecker:dark-skin"),
+            Ok(Named::Curve { .. })
+        ));
+        assert!(matches!(
+            lookup("blackbody:6500K"),
+            Ok(Named::Curve {
+                kind: CurveKind::Blackbody,
+                ..
+            })
+        ));
+        assert!(lookup("blackbody:-5K").is_err());
+        assert!(lookup("blackbody:6500 W").is_err());
+    }
+
+    #[test]
+    fn unknown_names_suggest() {
+        let e = lookup("glass:BK7").unwrap_err();
+        assert_eq!(
+            e.suggestions.first().map(String::as_str),
+            Some("glass:N-BK7"),
+            "{e}"
+        );
+        let e = lookup("cie-d56").unwrap_err();
+        assert!(e.suggestions.iter().any(|s| s == "cie-d65"), "{e}");
+        assert!(e.to_string().contains("did you mean"));
+    }
+
+    #[test]
+    fn lists_every_family() {
+        let n = names();
+        for want in [
+            "cie-d65",
+            "cie-f11",
+            "glass:N-BK7",
+            "glass:diamond",
+            "metal:Cu",
+            "colorchecker:cyan",
+        ] {
+            assert!(n.iter().any(|(k, _)| k == want), "{want} missing");
+        }
+        assert_eq!(
+            n.iter()
+                .filter(|(k, _)| k.starts_with("colorchecker:"))
+                .count(),
+            24
+        );
+    }
+}
