@@ -17,6 +17,7 @@ pub struct SpectrumArgs {
     #[arg(required_unless_present = "list")]
     pub name: Option<String>,
     /// Wavelengths, e.g. 587.56nm or "0.55 um" (a bare number is nm).
+    #[arg(allow_negative_numbers = true)]
     pub wavelengths: Vec<String>,
     /// List every named spectrum.
     #[arg(long)]
