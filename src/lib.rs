@@ -9,5 +9,11 @@ extern crate uom;
 
 pub mod cli;
 pub mod colour;
+pub mod geometry;
+pub mod light;
+pub mod loader;
+pub mod material;
+pub mod sampling;
+pub mod scene;
 pub mod spectrum;
 pub mod units;

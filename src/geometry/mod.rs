@@ -1,0 +1,5 @@
+//! Geometry: rays, frames, transforms, shapes, the BVH and cameras.
+
+pub mod frame;
+
+pub use frame::Frame;

@@ -1,0 +1,1 @@
+//! Lights in physical units.

@@ -1,0 +1,1 @@
+//! Scene files → a description with typed quantities and source locations.

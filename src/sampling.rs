@@ -1,0 +1,122 @@
+//! Warps from the unit square to directions and points, with their densities.
+//!
+//! Directions are in a local frame with the normal along +z. Densities are per unit solid angle
+//! (sr⁻¹) for directions and per unit area (m⁻²) for points. References: pbrt-v4 §A.5
+//! (Pharr, Jakob & Humphreys 2023), Shirley & Chiu 1997 (concentric disk).
+
+use glam::{Vec2, Vec3};
+use std::f32::consts::{FRAC_1_PI, FRAC_PI_2, FRAC_PI_4, PI};
+
+/// Shirley–Chiu concentric map from [0,1)² to the unit disk (area-preserving).
+#[inline]
+pub fn concentric_disk(u: Vec2) -> Vec2 {
+    let o = 2.0 * u - Vec2::ONE;
+    if o.x == 0.0 && o.y == 0.0 {
+        return Vec2::ZERO;
+    }
+    let (r, theta) = if o.x.abs() > o.y.abs() {
+        (o.x, FRAC_PI_4 * (o.y / o.x))
+    } else {
+        (o.y, FRAC_PI_2 - FRAC_PI_4 * (o.x / o.y))
+    };
+    r * Vec2::new(theta.cos(), theta.sin())
+}
+
+/// Cosine-weighted hemisphere direction (z ≥ 0); pdf = cos θ / π sr⁻¹.
+#[inline]
+pub fn cosine_hemisphere(u: Vec2) -> Vec3 {
+    let d = concentric_disk(u);
+    let z = (1.0 - d.length_squared()).max(0.0).sqrt();
+    Vec3::new(d.x, d.y, z)
+}
+
+/// Density of [`cosine_hemisphere`] at a direction with cos θ = `cos_theta`, sr⁻¹.
+#[inline]
+pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
+    cos_theta.max(0.0) * FRAC_1_PI
+}
+
+/// Uniform direction on the unit sphere; pdf = 1/(4π) sr⁻¹.
+#[inline]
+pub fn uniform_sphere(u: Vec2) -> Vec3 {
+    let z = 1.0 - 2.0 * u.x;
+    let r = (1.0 - z * z).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(r * phi.cos(), r * phi.sin(), z)
+}
+
+/// Density of [`uniform_sphere`], sr⁻¹.
+pub const UNIFORM_SPHERE_PDF: f32 = 1.0 / (4.0 * PI);
+
+/// Uniform direction in the cone around +z with cos θ ≥ `cos_max`; pdf = 1/(2π(1 − cos_max)).
+#[inline]
+pub fn uniform_cone(u: Vec2, cos_max: f32) -> Vec3 {
+    let cos_t = 1.0 - u.x * (1.0 - cos_max);
+    let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
+    let phi = 2.0 * PI * u.y;
+    Vec3::new(sin_t * phi.cos(), sin_t * phi.sin(), cos_t)
+}
+
+/// Density of [`uniform_cone`], sr⁻¹.
+#[inline]
+pub fn uniform_cone_pdf(cos_max: f32) -> f32 {
+    1.0 / (2.0 * PI * (1.0 - cos_max))
+}
+
+/// Uniform point on a triangle as barycentrics (b0, b1), b2 = 1 − b0 − b1 (Heitz 2019,
+/// "A Low-Distortion Map Between Triangle and Square").
+#[inline]
+pub fn uniform_triangle(u: Vec2) -> (f32, f32) {
+    let (b0, b1);
+    if u.x < u.y {
+        b0 = u.x / 2.0;
+        b1 = u.y - b0;
+    } else {
+        b1 = u.y / 2.0;
+        b0 = u.x - b1;
+    }
+    (b0, b1)
+}
+
+/// The power heuristic with β = 2 (Veach 1997, §9.2.4) for `nf` samples of pdf `f_pdf` against
+/// `ng` samples of pdf `g_pdf`.
+#[inline]
+pub fn power_heuristic(nf: f32, f_pdf: f32, ng: f32, g_pdf: f32) -> f32 {
+    let (f, g) = (nf * f_pdf, ng * g_pdf);
+    if f.is_infinite() {
+        return 1.0;
+    }
+    if f == 0.0 && g == 0.0 {
+        0.0
+    } else {
+        f * f / (f * f + g * g)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn warps_land_where_they_should() {
+        for i in 0..16 {
+            for j in 0..16 {
+                let u = Vec2::new((i as f32 + 0.5) / 16.0, (j as f32 + 0.5) / 16.0);
+                assert!(concentric_disk(u).length() <= 1.0 + 1e-6);
+                let h = cosine_hemisphere(u);
+                assert!(h.z >= 0.0 && (h.length() - 1.0).abs() < 1e-5);
+                assert!((uniform_sphere(u).length() - 1.0).abs() < 1e-5);
+                assert!(uniform_cone(u, 0.9).z >= 0.9 - 1e-6);
+                let (b0, b1) = uniform_triangle(u);
+                assert!(b0 >= 0.0 && b1 >= 0.0 && b0 + b1 <= 1.0 + 1e-6);
+            }
+        }
+    }
+
+    #[test]
+    fn power_heuristic_weights_sum_to_one() {
+        let a = power_heuristic(1.0, 0.3, 1.0, 0.7);
+        let b = power_heuristic(1.0, 0.7, 1.0, 0.3);
+        assert!((a + b - 1.0).abs() < 1e-6);
+    }
+}
