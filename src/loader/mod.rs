@@ -1,1 +1,40 @@
-//! Scene files → a description with typed quantities and source locations.
+//! Scene files → [`desc::SceneDesc`]: a description with typed `uom` quantities and the source
+//! location of every item. The format is TOML (see the README, "Scene format").
+//!
+//! Every error names the file, line and column, the field and what was expected
+//! ([`error::LoadError`]); unknown keys are errors.
+
+mod convert;
+pub mod desc;
+pub mod error;
+mod raw;
+
+use std::path::Path;
+
+pub use desc::SceneDesc;
+pub use error::{LoadError, Loc};
+
+/// Reads and validates a scene file.
+pub fn load(path: &Path) -> Result<SceneDesc, LoadError> {
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        LoadError::new(
+            path,
+            Loc { line: 0, col: 0 },
+            "",
+            format!("cannot read scene file: {e}"),
+        )
+    })?;
+    load_str(&text, path)
+}
+
+/// Validates scene text; `path` names it in errors and anchors relative paths.
+pub fn load_str(text: &str, path: &Path) -> Result<SceneDesc, LoadError> {
+    let raw: raw::RawScene = toml::from_str(text).map_err(|e| {
+        let loc = e
+            .span()
+            .map(|s| error::SourceMap::new(text).span(&s))
+            .unwrap_or(Loc { line: 1, col: 1 });
+        LoadError::new(path, loc, "", e.message().trim().to_string())
+    })?;
+    convert::convert(raw, path, text)
+}

@@ -1,0 +1,261 @@
+//! The scene description: what the file says, validated, with typed quantities (uom) and the
+//! source location of every item. `scene::build` turns it into a render-ready `Scene`.
+
+use std::path::PathBuf;
+
+use crate::spectrum::Spectrum;
+use crate::spectrum::ior::{ComplexIor, Ior};
+use crate::units::{
+    Angle, Illuminance, Irradiance, Length, Luminance, LuminousFlux, LuminousIntensity, Power,
+    Radiance, RadiantIntensity,
+};
+
+use super::error::Loc;
+
+/// A point or vector given in the scene's length unit, converted to lengths.
+pub type Point = [Length; 3];
+
+#[derive(Clone, Debug)]
+pub struct SceneDesc {
+    /// The scene file, as given.
+    pub path: PathBuf,
+    /// Shortest and longest simulated wavelength.
+    pub wavelength_range: [Length; 2],
+    pub camera: CameraDesc,
+    pub film: FilmDesc,
+    pub integrator: IntegratorDesc,
+    pub materials: Vec<MaterialDesc>,
+    pub shapes: Vec<ShapeDesc>,
+    pub lights: Vec<LightDesc>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FovAxis {
+    X,
+    Y,
+    Larger,
+    Smaller,
+}
+
+#[derive(Clone, Debug)]
+pub enum Projection {
+    /// Field of view along an axis.
+    Fov { fov: Angle, axis: FovAxis },
+    /// Focal length and sensor width (horizontal field of view 2·atan(w / 2f)).
+    Focal {
+        focal_length: Length,
+        sensor_width: Length,
+    },
+}
+
+#[derive(Clone, Debug)]
+pub enum CameraKind {
+    Perspective {
+        projection: Projection,
+    },
+    /// Thin lens: aperture radius = focal length / (2 · f-number). With a field of view, the focal
+    /// length is the one that gives that horizontal field of view on a 36 mm wide sensor.
+    ThinLens {
+        projection: Projection,
+        f_number: f64,
+        focus_distance: Length,
+    },
+    Orthographic {
+        view_width: Length,
+    },
+}
+
+#[derive(Clone, Debug)]
+pub struct CameraDesc {
+    pub kind: CameraKind,
+    pub eye: Point,
+    pub target: Point,
+    /// Dimensionless direction.
+    pub up: [f64; 3],
+    pub loc: Loc,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FilterDesc {
+    Box,
+    /// Gaussian with standard deviation `sigma` in pixels (radius 3σ).
+    Gaussian {
+        sigma: f64,
+    },
+}
+
+#[derive(Clone, Debug)]
+pub struct FilmDesc {
+    pub width: u32,
+    pub height: u32,
+    /// Samples per pixel.
+    pub spp: u32,
+    pub filter: FilterDesc,
+    /// Number of bins of the spectral EXR output (0: none).
+    pub spectral_bins: u32,
+    /// Exposure for the PNG preview in EV (None: automatic).
+    pub exposure_ev: Option<f64>,
+    pub loc: Loc,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum IntegratorKind {
+    Path,
+    Light,
+    Whitted,
+}
+
+#[derive(Clone, Debug)]
+pub struct IntegratorDesc {
+    pub kind: IntegratorKind,
+    pub max_depth: u32,
+}
+
+#[derive(Clone, Debug)]
+pub enum MaterialKind {
+    Diffuse {
+        reflectance: Spectrum,
+    },
+    Phong {
+        kd: Spectrum,
+        ks: Spectrum,
+        exponent: f64,
+    },
+    /// Smooth when `roughness` is None, else GGX with α = roughness.
+    Dielectric {
+        ior: Ior,
+        exterior_ior: f64,
+        roughness: Option<f64>,
+    },
+    Conductor {
+        ior: ComplexIor,
+        exterior_ior: f64,
+        roughness: Option<f64>,
+    },
+}
+
+#[derive(Clone, Debug)]
+pub struct MaterialDesc {
+    pub name: String,
+    pub kind: MaterialKind,
+    pub loc: Loc,
+}
+
+#[derive(Clone, Debug)]
+pub enum TransformStep {
+    Translate(Point),
+    Rotate {
+        axis: [f64; 3],
+        angle: Angle,
+    },
+    Scale([f64; 3]),
+    /// Row-major 4×4; the translation column is in the scene's length unit, converted to metres.
+    Matrix([f64; 16]),
+    LookAt {
+        eye: Point,
+        target: Point,
+        up: [f64; 3],
+    },
+}
+
+#[derive(Clone, Debug)]
+pub enum ShapeKind {
+    Sphere {
+        center: Point,
+        radius: Length,
+    },
+    /// The square [-1, 1]² in the object's z = 0 plane, normal +z, scaled by the length unit.
+    Rectangle,
+    /// The cube [-1, 1]³, scaled by the length unit.
+    Box,
+    /// The unit disk in the object's z = 0 plane, normal +z, scaled by the length unit.
+    Disk,
+    /// A Wavefront OBJ mesh; coordinates in the scene's length unit.
+    Obj {
+        path: PathBuf,
+    },
+}
+
+/// How much light an area emitter gives; its spectrum gives the shape.
+#[derive(Clone, Debug)]
+pub enum EmitAmount {
+    Radiance(Radiance),
+    Luminance(Luminance),
+    Power(Power),
+    LuminousFlux(LuminousFlux),
+    /// The spectrum is already spectral radiance in W·m⁻²·sr⁻¹·nm⁻¹; multiply by this.
+    Scale(f64),
+}
+
+#[derive(Clone, Debug)]
+pub struct EmissionDesc {
+    pub spectrum: Spectrum,
+    pub amount: EmitAmount,
+    pub two_sided: bool,
+    pub loc: Loc,
+}
+
+#[derive(Clone, Debug)]
+pub struct ShapeDesc {
+    pub kind: ShapeKind,
+    /// Applied in order, first to last, after converting the object to metres.
+    pub transform: Vec<TransformStep>,
+    /// Index into `SceneDesc::materials`; None for a pure emitter (black).
+    pub material: Option<usize>,
+    pub two_sided: bool,
+    pub emission: Option<EmissionDesc>,
+    /// Metres per scene length unit (for OBJ coordinates and unit shapes).
+    pub unit_m: f64,
+    pub loc: Loc,
+}
+
+/// How strong a point or spot light is.
+#[derive(Clone, Debug)]
+pub enum PointAmount {
+    Power(Power),
+    LuminousFlux(LuminousFlux),
+    Intensity(RadiantIntensity),
+    LuminousIntensity(LuminousIntensity),
+    /// The spectrum is already spectral intensity in W·sr⁻¹·nm⁻¹; multiply by this.
+    Scale(f64),
+}
+
+/// How strong a directional light is, measured on a plane perpendicular to it.
+#[derive(Clone, Debug)]
+pub enum DirectionalAmount {
+    Irradiance(Irradiance),
+    Illuminance(Illuminance),
+    /// The spectrum is already spectral irradiance in W·m⁻²·nm⁻¹; multiply by this.
+    Scale(f64),
+}
+
+#[derive(Clone, Debug)]
+pub enum LightKind {
+    Point {
+        position: Point,
+        amount: PointAmount,
+    },
+    /// Full intensity inside `falloff_start`, smoothstep to zero at `cone_angle` (half-angles).
+    Spot {
+        position: Point,
+        target: Point,
+        cone_angle: Angle,
+        falloff_start: Angle,
+        amount: PointAmount,
+    },
+    /// Light travelling along `direction` (dimensionless); a disk of `angular_diameter` if > 0.
+    Directional {
+        direction: [f64; 3],
+        angular_diameter: Angle,
+        amount: DirectionalAmount,
+    },
+    /// Uniform radiance from every direction.
+    Environment { amount: EmitAmount },
+}
+
+#[derive(Clone, Debug)]
+pub struct LightDesc {
+    pub kind: LightKind,
+    pub spectrum: Spectrum,
+    pub loc: Loc,
+}

@@ -1,0 +1,131 @@
+//! The scene file as TOML, before validation: every section is a flat struct with spans, and
+//! unknown keys are errors (`deny_unknown_fields`). `convert.rs` checks which keys apply to
+//! which `type` and turns values into typed quantities.
+
+use std::collections::BTreeMap;
+
+use serde::Deserialize;
+use toml::{Spanned, Value};
+
+pub type S<T> = Spanned<T>;
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawScene {
+    pub scene: Option<S<RawSettings>>,
+    pub camera: Option<S<RawCamera>>,
+    pub film: Option<S<RawFilm>>,
+    pub integrator: Option<S<RawIntegrator>>,
+    #[serde(default)]
+    pub materials: BTreeMap<S<String>, S<RawMaterial>>,
+    #[serde(default)]
+    pub shapes: Vec<S<RawShape>>,
+    #[serde(default)]
+    pub lights: Vec<S<RawLight>>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawSettings {
+    pub length_unit: Option<S<String>>,
+    pub wavelength_range: Option<S<Vec<S<Value>>>>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawCamera {
+    #[serde(rename = "type")]
+    pub kind: Option<S<String>>,
+    pub eye: Option<S<Value>>,
+    pub target: Option<S<Value>>,
+    pub up: Option<S<Value>>,
+    pub fov: Option<S<Value>>,
+    pub fov_axis: Option<S<String>>,
+    pub focal_length: Option<S<Value>>,
+    pub sensor_width: Option<S<Value>>,
+    pub f_number: Option<S<Value>>,
+    pub focus_distance: Option<S<Value>>,
+    pub view_width: Option<S<Value>>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawFilm {
+    pub width: Option<S<Value>>,
+    pub height: Option<S<Value>>,
+    pub spp: Option<S<Value>>,
+    pub filter: Option<S<String>>,
+    pub filter_radius: Option<S<Value>>,
+    pub spectral_bins: Option<S<Value>>,
+    pub exposure: Option<S<Value>>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawIntegrator {
+    #[serde(rename = "type")]
+    pub kind: Option<S<String>>,
+    pub max_depth: Option<S<Value>>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawMaterial {
+    #[serde(rename = "type")]
+    pub kind: Option<S<String>>,
+    pub reflectance: Option<S<Value>>,
+    pub kd: Option<S<Value>>,
+    pub ks: Option<S<Value>>,
+    pub exponent: Option<S<Value>>,
+    pub ior: Option<S<Value>>,
+    pub exterior_ior: Option<S<Value>>,
+    pub metal: Option<S<String>>,
+    pub eta: Option<S<Value>>,
+    pub k: Option<S<Value>>,
+    pub roughness: Option<S<Value>>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawShape {
+    #[serde(rename = "type")]
+    pub kind: Option<S<String>>,
+    pub material: Option<S<String>>,
+    pub file: Option<S<String>>,
+    pub center: Option<S<Value>>,
+    pub radius: Option<S<Value>>,
+    pub transform: Option<S<Vec<S<Value>>>>,
+    pub two_sided: Option<S<bool>>,
+    pub emission: Option<S<RawEmission>>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawEmission {
+    pub spectrum: Option<S<Value>>,
+    pub radiance: Option<S<Value>>,
+    pub luminance: Option<S<Value>>,
+    pub power: Option<S<Value>>,
+    pub scale: Option<S<Value>>,
+    pub two_sided: Option<S<bool>>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawLight {
+    #[serde(rename = "type")]
+    pub kind: Option<S<String>>,
+    pub spectrum: Option<S<Value>>,
+    pub position: Option<S<Value>>,
+    pub target: Option<S<Value>>,
+    pub direction: Option<S<Value>>,
+    pub power: Option<S<Value>>,
+    pub intensity: Option<S<Value>>,
+    pub radiance: Option<S<Value>>,
+    pub luminance: Option<S<Value>>,
+    pub irradiance: Option<S<Value>>,
+    pub scale: Option<S<Value>>,
+    pub cone_angle: Option<S<Value>>,
+    pub falloff_start: Option<S<Value>>,
+    pub angular_diameter: Option<S<Value>>,
+}

@@ -1,0 +1,91 @@
+//! Every file in `tests/bad_scenes/` fails to load with the error its header promises.
+//!
+//! Header lines `# expect: TEXT` list substrings the message must contain. A line marked
+//! `# <-- error` is where the error must point (line and column are always reported).
+
+use std::path::{Path, PathBuf};
+
+fn corpus() -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad_scenes");
+    let mut v: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("corpus folder")
+        .map(|e| e.expect("entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    v.sort();
+    v
+}
+
+fn load_and_build(path: &Path) -> Result<(), String> {
+    let desc = spectrace::loader::load(path).map_err(|e| {
+        assert!(
+            e.loc.line >= 1 && e.loc.col >= 1,
+            "{}: error without a position: {e}",
+            path.display()
+        );
+        e.to_string()
+    })?;
+    spectrace::scene::build(&desc)
+        .map(|_| ())
+        .map_err(|e| e.to_string())
+}
+
+#[test]
+fn every_bad_scene_errors_cleanly() {
+    let files = corpus();
+    assert!(files.len() >= 25, "the corpus has {} scenes", files.len());
+    let mut failures = Vec::new();
+    for path in &files {
+        let text = std::fs::read_to_string(path).expect("readable");
+        let expects: Vec<&str> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("# expect: "))
+            .collect();
+        assert!(
+            !expects.is_empty(),
+            "{} has no `# expect:` line",
+            path.display()
+        );
+        let marker = text
+            .lines()
+            .position(|l| l.contains("# <-- error"))
+            .map(|i| i + 1);
+        let result = std::panic::catch_unwind(|| load_and_build(path));
+        let msg = match result {
+            Err(_) => {
+                failures.push(format!("{}: PANICKED", path.display()));
+                continue;
+            }
+            Ok(Ok(())) => {
+                failures.push(format!("{}: loaded without error", path.display()));
+                continue;
+            }
+            Ok(Err(m)) => m,
+        };
+        let prefix = format!("{}:", path.display());
+        if !msg.starts_with(&prefix) {
+            failures.push(format!(
+                "{}: message does not start with the file name: {msg}",
+                path.display()
+            ));
+        }
+        for e in &expects {
+            if !msg.contains(e) {
+                failures.push(format!("{}: message lacks \"{e}\": {msg}", path.display()));
+            }
+        }
+        if let Some(line) = marker {
+            let want = format!("{prefix}{line}:");
+            if !msg.starts_with(&want) {
+                failures.push(format!("{}: expected line {line}: {msg}", path.display()));
+            }
+        }
+        println!("{msg}");
+    }
+    assert!(
+        failures.is_empty(),
+        "{} failures:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
