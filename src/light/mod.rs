@@ -1,1 +1,138 @@
-//! Lights in physical units.
+//! Lights in physical units. Each light is a spectral shape already multiplied by the physical
+//! scale that `scene::build` computed from the scene file (see `scene/build/lights.rs`), so the
+//! spectra here are absolute:
+//!
+//! | light | spectrum unit |
+//! | --- | --- |
+//! | point, spot | spectral intensity, W·sr⁻¹·nm⁻¹ |
+//! | area, environment | spectral radiance, W·m⁻²·sr⁻¹·nm⁻¹ |
+//! | directional | spectral irradiance on a plane perpendicular to it, W·m⁻²·nm⁻¹ |
+//!
+//! Sampling returns the radiance arriving at a reference point and the pdf of the direction
+//! per unit solid angle; delta lights (point, spot, collimated directional) return pdf 1 with
+//! `delta = true` and `li` = the irradiance-producing pseudo-radiance (I/r² or E).
+
+mod area;
+mod directional;
+mod environment;
+mod point;
+mod spot;
+
+pub use area::AreaLight;
+pub use directional::DirectionalLight;
+pub use environment::EnvironmentLight;
+pub use point::PointLight;
+pub use spot::SpotLight;
+
+use glam::{Vec2, Vec3};
+
+use crate::geometry::shape::Shape;
+use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum, WavelengthRange};
+
+/// A light sample seen from a reference point.
+#[derive(Clone, Copy, Debug)]
+pub struct LightSample<const N: usize> {
+    /// Unit direction from the reference point toward the light (world space).
+    pub wi: Vec3,
+    /// Radiance arriving along `-wi`, W·m⁻²·sr⁻¹·nm⁻¹ (delta lights: I/r² or E, W·m⁻²·nm⁻¹).
+    pub li: SampledSpectrum<N>,
+    /// Density of `wi` per unit solid angle, sr⁻¹ (1 for delta lights).
+    pub pdf: f32,
+    pub delta: bool,
+    /// Point on the light (for shadow rays), its absolute error bound and its normal. For
+    /// lights at infinity `distance` is infinite and `p` is unused.
+    pub p: Vec3,
+    pub p_error: Vec3,
+    pub n: Vec3,
+    /// Distance to `p`, m (infinite for lights at infinity).
+    pub distance: f32,
+}
+
+/// A light source: a closed enum matched in the render loop.
+#[derive(Clone, Debug)]
+pub enum Light {
+    Point(PointLight),
+    Spot(SpotLight),
+    Area(AreaLight),
+    Directional(DirectionalLight),
+    Environment(EnvironmentLight),
+}
+
+impl Light {
+    /// Samples incident light at `p`. `u` and `u_extra` are uniform in [0, 1).
+    /// Returns None when the sample carries no light (behind a one-sided emitter, outside a
+    /// spot's cone, degenerate geometry).
+    pub fn sample_li<const N: usize>(
+        &self,
+        shapes: &[Shape],
+        p: Vec3,
+        w: &SampledWavelengths<N>,
+        u: Vec2,
+        u_extra: f32,
+    ) -> Option<LightSample<N>> {
+        match self {
+            Light::Point(l) => l.sample_li(p, w),
+            Light::Spot(l) => l.sample_li(p, w),
+            Light::Area(l) => l.sample_li(shapes, p, w, u, u_extra),
+            Light::Directional(l) => l.sample_li(w, u),
+            Light::Environment(l) => l.sample_li(w, u),
+        }
+    }
+
+    /// Density per unit solid angle with which [`Light::sample_li`] at `p` would produce the
+    /// direction `wi` that reaches the light at `p_light` with normal `n_light` (for area
+    /// lights; ignored otherwise). 0 for delta lights.
+    pub fn pdf_li(&self, p: Vec3, wi: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
+        match self {
+            Light::Area(l) => l.pdf_li(p, wi, p_light, n_light),
+            Light::Directional(l) => l.pdf_li(wi),
+            Light::Environment(_) => crate::sampling::UNIFORM_SPHERE_PDF,
+            Light::Point(_) | Light::Spot(_) => 0.0,
+        }
+    }
+
+    /// Radiance leaving an area light's surface with geometric normal `n` toward `w_out`
+    /// (unit, pointing away from the surface), W·m⁻²·sr⁻¹·nm⁻¹. Zero for other lights.
+    pub fn emitted<const N: usize>(&self, n: Vec3, w_out: Vec3, w: &SampledWavelengths<N>) -> SampledSpectrum<N> {
+        match self {
+            Light::Area(l) => l.emitted(n, w_out, w),
+            _ => SampledSpectrum::zero(),
+        }
+    }
+
+    /// Radiance arriving along a ray that escapes the scene in direction `dir` (environment, and
+    /// the disk of a directional light with an angular diameter), W·m⁻²·sr⁻¹·nm⁻¹.
+    pub fn escaped<const N: usize>(&self, dir: Vec3, w: &SampledWavelengths<N>) -> SampledSpectrum<N> {
+        match self {
+            Light::Environment(l) => l.radiance.sample(w),
+            Light::Directional(l) => l.escaped(dir, w),
+            _ => SampledSpectrum::zero(),
+        }
+    }
+
+    /// Whether the light is a delta distribution in position or direction.
+    pub fn is_delta(&self) -> bool {
+        match self {
+            Light::Point(_) | Light::Spot(_) => true,
+            Light::Directional(l) => l.cos_half_angle >= 1.0,
+            Light::Area(_) | Light::Environment(_) => false,
+        }
+    }
+
+    /// Total emitted power over `range`, W. Lights at infinity count the power crossing a disk
+    /// of radius `scene_radius` (m) that faces them, as pbrt-v4 does for light selection.
+    pub fn power(&self, shapes: &[Shape], range: WavelengthRange, scene_radius: f32) -> f64 {
+        let band = |s: &Spectrum| s.integrate(range.min_nm, range.max_nm, 0.5);
+        let pi = std::f64::consts::PI;
+        match self {
+            Light::Point(l) => 4.0 * pi * band(&l.intensity),
+            Light::Spot(l) => l.solid_angle_factor() * band(&l.intensity),
+            Light::Area(l) => {
+                let sides = if l.two_sided { 2.0 } else { 1.0 };
+                sides * pi * shapes[l.shape as usize].area() as f64 * band(&l.radiance)
+            }
+            Light::Directional(l) => pi * (scene_radius as f64).powi(2) * band(&l.irradiance),
+            Light::Environment(l) => 4.0 * pi * pi * (scene_radius as f64).powi(2) * band(&l.radiance),
+        }
+    }
+}

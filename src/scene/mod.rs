@@ -1,10 +1,79 @@
-//! The immutable render-ready scene, and `build`, which makes it from a description.
+//! The immutable, render-ready scene: plain `f32` values in fixed units (nm, m, rad,
+//! W·m⁻²·sr⁻¹·nm⁻¹), closed enums, no strings or parameter maps. [`build`] makes it from a
+//! [`crate::loader::SceneDesc`] in one place.
 
-use crate::loader::{LoadError, SceneDesc};
+mod build;
 
-/// Placeholder until the build step lands.
-pub struct Scene;
+pub use build::build;
 
-pub fn build(_desc: &SceneDesc) -> Result<Scene, LoadError> {
-    Ok(Scene)
+use glam::Vec3;
+
+use crate::geometry::accel::Accel;
+use crate::geometry::camera::Camera;
+use crate::geometry::shape::Shape;
+use crate::light::Light;
+use crate::loader::desc::{FilterDesc, IntegratorKind};
+use crate::material::Material;
+use crate::spectrum::WavelengthRange;
+
+/// What a shape is made of: its material, whether both faces use it, and its emitter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Surface {
+    /// Index into [`Scene::materials`]; None for a black, purely emitting shape.
+    pub material: Option<u32>,
+    /// Whether the back face uses the material too (the integrator flips the shading frame).
+    pub two_sided: bool,
+    /// Index into [`Scene::lights`] of the shape's area light.
+    pub light: Option<u32>,
+}
+
+/// Film settings in plain units.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FilmSettings {
+    pub width: u32,
+    pub height: u32,
+    /// Samples per pixel.
+    pub spp: u32,
+    pub filter: FilterDesc,
+    /// Bins of the spectral EXR output (0: none).
+    pub spectral_bins: u32,
+    /// PNG exposure in EV (None: automatic).
+    pub exposure_ev: Option<f32>,
+}
+
+/// Integrator settings.
+#[derive(Clone, Debug, PartialEq)]
+pub struct IntegratorSettings {
+    pub kind: IntegratorKind,
+    pub max_depth: u32,
+}
+
+/// A render-ready scene. Shapes are in world space, metres.
+pub struct Scene {
+    pub shapes: Vec<Shape>,
+    /// One entry per shape.
+    pub surfaces: Vec<Surface>,
+    pub accel: Accel,
+    pub materials: Vec<Material>,
+    pub lights: Vec<Light>,
+    /// Emitted power of each light over the wavelength range, W (lights at infinity: through a
+    /// disk of the scene's radius), for light selection proportional to power.
+    pub light_power: Vec<f64>,
+    pub camera: Camera,
+    pub film: FilmSettings,
+    pub integrator: IntegratorSettings,
+    pub wavelengths: WavelengthRange,
+    /// Axis-aligned bounds of all shapes, m.
+    pub bounds: (Vec3, Vec3),
+}
+
+impl Scene {
+    /// Centre and radius (m) of a sphere bounding every shape.
+    pub fn bounding_sphere(&self) -> (Vec3, f32) {
+        let (lo, hi) = self.bounds;
+        if lo.x > hi.x {
+            return (Vec3::ZERO, 1.0);
+        }
+        ((lo + hi) * 0.5, ((hi - lo) * 0.5).length().max(1e-3))
+    }
 }

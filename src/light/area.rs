@@ -1,0 +1,78 @@
+//! Diffuse area emitter on any shape.
+
+use glam::{Vec2, Vec3};
+
+use super::LightSample;
+use crate::geometry::shape::Shape;
+use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
+
+/// A Lambertian emitter of uniform spectral radiance on shape `shape`. One-sided emitters emit
+/// on the side of the shape's geometric normal; power Φ = π·L·A (two-sided: 2π·L·A) per nm.
+#[derive(Clone, Debug)]
+pub struct AreaLight {
+    /// Index of the shape in `Scene::shapes`.
+    pub shape: u32,
+    /// Spectral radiance, W·m⁻²·sr⁻¹·nm⁻¹.
+    pub radiance: Spectrum,
+    pub two_sided: bool,
+}
+
+impl AreaLight {
+    /// Radiance leaving the surface (normal `n`) toward `w_out`.
+    pub fn emitted<const N: usize>(&self, n: Vec3, w_out: Vec3, w: &SampledWavelengths<N>) -> SampledSpectrum<N> {
+        if self.two_sided || n.dot(w_out) > 0.0 {
+            self.radiance.sample(w)
+        } else {
+            SampledSpectrum::zero()
+        }
+    }
+
+    /// Samples a point uniformly by area and converts its density to solid angle at `p`:
+    /// pdf_ω = pdf_A · r² / |cos θ_light| (Veach 1997, eq. 8.10).
+    pub fn sample_li<const N: usize>(
+        &self,
+        shapes: &[Shape],
+        p: Vec3,
+        w: &SampledWavelengths<N>,
+        u: Vec2,
+        u_extra: f32,
+    ) -> Option<LightSample<N>> {
+        let s = shapes[self.shape as usize].sample_area(u, u_extra);
+        let d = s.p - p;
+        let r2 = d.length_squared();
+        if r2 == 0.0 || s.pdf_area <= 0.0 {
+            return None;
+        }
+        let r = r2.sqrt();
+        let wi = d / r;
+        let cos_l = s.n.dot(-wi);
+        if cos_l == 0.0 || (!self.two_sided && cos_l < 0.0) {
+            return None;
+        }
+        let pdf = s.pdf_area * r2 / cos_l.abs();
+        if !pdf.is_finite() {
+            return None;
+        }
+        Some(LightSample {
+            wi,
+            li: self.radiance.sample(w),
+            pdf,
+            delta: false,
+            p: s.p,
+            p_error: s.p_error,
+            n: s.n,
+            distance: r,
+        })
+    }
+
+    /// Solid-angle density of reaching `p_light` (normal `n_light`) from `p` along `wi`, for a
+    /// uniform-by-area sample: r² / (|cos θ_light| · A).
+    pub fn pdf_li(&self, p: Vec3, wi: Vec3, p_light: Vec3, n_light: Vec3, area: f32) -> f32 {
+        let r2 = (p_light - p).length_squared();
+        let cos_l = n_light.dot(-wi).abs();
+        if cos_l == 0.0 || area <= 0.0 {
+            return 0.0;
+        }
+        r2 / (cos_l * area)
+    }
+}

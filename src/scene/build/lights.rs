@@ -1,0 +1,170 @@
+//! Lights: the exact physical scale of each light from what the scene file says.
+//!
+//! Each light is a spectral shape S(λ) times a scale k. With the band integral
+//! B = ∫ S dλ over the film's wavelength range and the luminous integral
+//! V = K_m ∫ S ȳ dλ over the same range (`../shared/PHYSICS.md`, "Photometric units"):
+//!
+//! | given | k |
+//! | --- | --- |
+//! | radiance L (W·m⁻²·sr⁻¹), intensity I (W/sr), irradiance E (W/m²) | L/B, I/B, E/B |
+//! | luminance (cd/m²), luminous intensity (cd), illuminance (lx) | value / V |
+//! | point power Φ (W or lm) | Φ/(4π B) or Φ/(4π V) |
+//! | spot power | Φ/(Ω B), Ω = 2π[(1 − cos θ_start) + (cos θ_start − cos θ_total)/2] |
+//! | area power | Φ/(π A B), two-sided Φ/(2π A B) (Φ = π L A) |
+//! | scale s | s (S is already absolute) |
+
+use glam::Vec3;
+
+use super::{surface, v3};
+use crate::colour::cie::{cmf, K_M};
+use crate::geometry::shape::Shape;
+use crate::geometry::Frame;
+use crate::light::{AreaLight, DirectionalLight, EnvironmentLight, Light, PointLight, SpotLight};
+use crate::loader::desc::{DirectionalAmount, EmitAmount, LightKind, PointAmount, SceneDesc};
+use crate::loader::{LoadError, Loc};
+use crate::scene::Surface;
+use crate::spectrum::{Spectrum, WavelengthRange};
+use crate::units::{
+    illuminance, irradiance, luminance, luminous_flux, luminous_intensity, plain, power, radiance,
+    radiant_intensity,
+};
+
+/// ∫ S dλ over the range, in S's unit × nm.
+pub fn band_integral(s: &Spectrum, r: WavelengthRange) -> f64 {
+    s.integrate(r.min_nm, r.max_nm, 0.25)
+}
+
+/// K_m ∫ S ȳ dλ over the range ∩ 360–830 nm, lm per (W per S's unit).
+pub fn luminous_integral(s: &Spectrum, r: WavelengthRange) -> f64 {
+    let (lo, hi) = (r.min_nm.max(360.0) as f64, r.max_nm.min(830.0) as f64);
+    if hi <= lo {
+        return 0.0;
+    }
+    let n = ((hi - lo) / 0.25).ceil() as usize;
+    let h = (hi - lo) / n as f64;
+    let f = |i: usize| {
+        let l = (lo + i as f64 * h) as f32;
+        s.eval(l) as f64 * cmf().y_bar(l) as f64
+    };
+    let inner: f64 = (1..n).map(f).sum();
+    K_M * h * (inner + 0.5 * (f(0) + f(n)))
+}
+
+enum Per {
+    /// Radiometric: divide by the band integral.
+    Band(f64),
+    /// Photometric: divide by the luminous integral.
+    Luminous(f64),
+    Scale(f64),
+}
+
+fn scaled(s: &Spectrum, per: Per, geometry: f64, r: WavelengthRange) -> Result<Spectrum, String> {
+    let k = match per {
+        Per::Band(v) => {
+            let b = band_integral(s, r) * geometry;
+            if !(b > 0.0) {
+                return Err(format!("the spectrum carries no power in {}–{} nm", r.min_nm, r.max_nm));
+            }
+            v / b
+        }
+        Per::Luminous(v) => {
+            let l = luminous_integral(s, r) * geometry;
+            if !(l > 0.0) {
+                return Err("the spectrum has no visible light, so a photometric amount cannot set its scale".into());
+            }
+            v / l
+        }
+        Per::Scale(v) => v,
+    };
+    if !k.is_finite() || k as f32 == f32::INFINITY {
+        return Err(format!("the light's scale ({k}) is not representable"));
+    }
+    Ok(s.scaled(k as f32))
+}
+
+fn emit(amount: &EmitAmount, area_factor: Option<f64>) -> Result<(Per, f64), String> {
+    Ok(match amount {
+        EmitAmount::Radiance(l) => (Per::Band(l.get::<radiance::watt_per_square_meter_steradian>()), 1.0),
+        EmitAmount::Luminance(l) => (Per::Luminous(l.get::<luminance::candela_per_square_meter>()), 1.0),
+        EmitAmount::Power(p) => (Per::Band(p.get::<power::watt>()), area_factor.ok_or("power needs an area")?),
+        EmitAmount::LuminousFlux(f) => (Per::Luminous(f.get::<luminous_flux::lumen>()), area_factor.ok_or("power needs an area")?),
+        EmitAmount::Scale(s) => (Per::Scale(*s), 1.0),
+    })
+}
+
+fn point_amount(a: &PointAmount, solid_angle: f64) -> (Per, f64) {
+    match a {
+        PointAmount::Power(p) => (Per::Band(p.get::<power::watt>()), solid_angle),
+        PointAmount::LuminousFlux(f) => (Per::Luminous(f.get::<luminous_flux::lumen>()), solid_angle),
+        PointAmount::Intensity(i) => (Per::Band(i.get::<radiant_intensity::watt_per_steradian>()), 1.0),
+        PointAmount::LuminousIntensity(i) => (Per::Luminous(i.get::<luminous_intensity::candela>()), 1.0),
+        PointAmount::Scale(s) => (Per::Scale(*s), 1.0),
+    }
+}
+
+/// All lights (scene lights, then one area light per emitting shape) and the surfaces table.
+pub(super) fn lights(desc: &SceneDesc, shapes: &[Shape], r: WavelengthRange) -> Result<(Vec<Light>, Vec<Surface>), LoadError> {
+    let err = |loc: Loc, field: String, msg: String| LoadError::new(&desc.path, loc, field, msg);
+    let mut lights = Vec::new();
+    for (i, l) in desc.lights.iter().enumerate() {
+        let field = format!("lights[{i}]");
+        let e = |m: String| err(l.loc, field.clone(), m);
+        let light = match &l.kind {
+            LightKind::Point { position, amount } => {
+                let (per, g) = point_amount(amount, 4.0 * std::f64::consts::PI);
+                Light::Point(PointLight { position: v3(position), intensity: scaled(&l.spectrum, per, g, r).map_err(e)? })
+            }
+            LightKind::Spot { position, target, cone_angle, falloff_start, amount } => {
+                let p = v3(position);
+                let axis = (v3(target) - p).normalize();
+                let mut spot = SpotLight {
+                    position: p,
+                    frame: Frame::from_normal(axis),
+                    intensity: Spectrum::Constant(0.0),
+                    cos_falloff_start: plain::radians(*falloff_start).cos(),
+                    cos_total: plain::radians(*cone_angle).cos(),
+                };
+                let (per, g) = point_amount(amount, spot.solid_angle_factor());
+                spot.intensity = scaled(&l.spectrum, per, g, r).map_err(e)?;
+                Light::Spot(spot)
+            }
+            LightKind::Directional { direction, angular_diameter, amount } => {
+                let d = Vec3::new(direction[0] as f32, direction[1] as f32, direction[2] as f32).normalize();
+                let per = match amount {
+                    DirectionalAmount::Irradiance(x) => Per::Band(x.get::<irradiance::watt_per_square_meter>()),
+                    DirectionalAmount::Illuminance(x) => Per::Luminous(x.get::<illuminance::lux>()),
+                    DirectionalAmount::Scale(s) => Per::Scale(*s),
+                };
+                Light::Directional(DirectionalLight {
+                    direction: d,
+                    irradiance: scaled(&l.spectrum, per, 1.0, r).map_err(e)?,
+                    cos_half_angle: (plain::radians(*angular_diameter) / 2.0).cos(),
+                    frame: Frame::from_normal(-d),
+                })
+            }
+            LightKind::Environment { amount } => {
+                let (per, g) = emit(amount, None).map_err(e)?;
+                Light::Environment(EnvironmentLight { radiance: scaled(&l.spectrum, per, g, r).map_err(e)? })
+            }
+        };
+        lights.push(light);
+    }
+    let mut surfaces = Vec::with_capacity(shapes.len());
+    for (i, (s, shape)) in desc.shapes.iter().zip(shapes).enumerate() {
+        let mut light = None;
+        if let Some(em) = &s.emission {
+            let area = shape.area() as f64;
+            let field = format!("shapes[{i}].emission");
+            if !(area > 0.0) {
+                return Err(err(em.loc, field, "the emitter has zero area".into()));
+            }
+            let sides = if em.two_sided { 2.0 } else { 1.0 };
+            let (per, g) = emit(&em.amount, Some(sides * std::f64::consts::PI * area)).map_err(|m| err(em.loc, field.clone(), m))?;
+            let radiance = scaled(&em.spectrum, per, g, r).map_err(|m| err(em.loc, field.clone(), m))?;
+            light = Some(lights.len());
+            lights.push(Light::Area(AreaLight { shape: i as u32, radiance, two_sided: em.two_sided }));
+        }
+        surfaces.push(surface(s.material, s.two_sided, light));
+    }
+    Ok((lights, surfaces))
+}

@@ -1,0 +1,149 @@
+//! `build`: the one place where a scene description becomes a render-ready [`Scene`]. Typed
+//! quantities leave the uom world here, through `units::plain`.
+
+mod lights;
+mod shapes;
+
+use glam::Vec3;
+
+use super::{FilmSettings, IntegratorSettings, Scene, Surface};
+use crate::geometry::accel::Accel;
+use crate::geometry::camera::{Camera, FovAxis as CamAxis};
+use crate::geometry::transform::Transform;
+use crate::loader::desc::{CameraKind, FovAxis, MaterialKind, Projection, SceneDesc};
+use crate::loader::{LoadError, Loc};
+use crate::material::{Conductor, Dielectric, Lambert, Material, Phong, RoughConductor, RoughDielectric};
+use crate::spectrum::WavelengthRange;
+use crate::units::plain;
+
+/// Builds the render-ready scene. Errors (a missing or malformed mesh, a zero-area emitter, a
+/// singular transform) name the scene file, the item's line and the field.
+pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
+    let err = |loc: Loc, field: String, msg: String| LoadError::new(&desc.path, loc, field, msg);
+    let range = WavelengthRange::new(plain::nm(desc.wavelength_range[0]), plain::nm(desc.wavelength_range[1]))
+        .map_err(|e| err(Loc { line: 1, col: 1 }, "scene.wavelength_range".into(), e.to_string()))?;
+
+    let materials = desc
+        .materials
+        .iter()
+        .map(|m| material(&m.kind).map_err(|e| err(m.loc, format!("materials.{}", m.name), e)))
+        .collect::<Result<Vec<_>, _>>()?;
+
+    let mut shape_list = Vec::with_capacity(desc.shapes.len());
+    for (i, s) in desc.shapes.iter().enumerate() {
+        shape_list.push(shapes::shape(s).map_err(|e| err(s.loc, format!("shapes[{i}]"), e))?);
+    }
+
+    let (lights, surfaces) = lights::lights(desc, &shape_list, range)?;
+    let accel = Accel::build(&shape_list);
+    let mut bounds = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    for s in &shape_list {
+        for p in 0..s.primitive_count() {
+            let (lo, hi) = s.primitive_aabb(p);
+            bounds = (bounds.0.min(lo), bounds.1.max(hi));
+        }
+    }
+    let radius = if bounds.0.x <= bounds.1.x { ((bounds.1 - bounds.0) * 0.5).length().max(1e-3) } else { 1.0 };
+    let light_power = lights.iter().map(|l| l.power(&shape_list, range, radius)).collect();
+    let camera = camera(desc).map_err(|e| err(desc.camera.loc, "camera".into(), e))?;
+    let f = &desc.film;
+    Ok(Scene {
+        shapes: shape_list,
+        surfaces,
+        accel,
+        materials,
+        lights,
+        light_power,
+        camera,
+        film: FilmSettings {
+            width: f.width,
+            height: f.height,
+            spp: f.spp,
+            filter: f.filter,
+            spectral_bins: f.spectral_bins,
+            exposure_ev: f.exposure_ev.map(|e| e as f32),
+        },
+        integrator: IntegratorSettings { kind: desc.integrator.kind, max_depth: desc.integrator.max_depth },
+        wavelengths: range,
+        bounds,
+    })
+}
+
+/// Surfaces per shape: filled by `lights` (which also knows the emitters).
+pub(super) fn surface(material: Option<usize>, two_sided: bool, light: Option<usize>) -> Surface {
+    Surface { material: material.map(|m| m as u32), two_sided, light: light.map(|l| l as u32) }
+}
+
+fn material(k: &MaterialKind) -> Result<Material, String> {
+    Ok(match k {
+        MaterialKind::Diffuse { reflectance } => Material::Diffuse(Lambert { reflectance: reflectance.clone() }),
+        MaterialKind::Phong { kd, ks, exponent } => Material::Phong(Phong::new(kd.clone(), ks.clone(), *exponent as f32)?),
+        MaterialKind::Dielectric { ior, exterior_ior, roughness: None } => {
+            Material::Dielectric(Dielectric { int_ior: ior.clone(), ext_ior: *exterior_ior as f32 })
+        }
+        MaterialKind::Dielectric { ior, exterior_ior, roughness: Some(a) } => Material::RoughDielectric(RoughDielectric {
+            int_ior: ior.clone(),
+            ext_ior: *exterior_ior as f32,
+            alpha: *a as f32,
+        }),
+        MaterialKind::Conductor { ior, exterior_ior, roughness: None } => {
+            Material::Conductor(Conductor { ior: ior.clone(), ext_ior: *exterior_ior as f32 })
+        }
+        MaterialKind::Conductor { ior, exterior_ior, roughness: Some(a) } => Material::RoughConductor(RoughConductor {
+            ior: ior.clone(),
+            ext_ior: *exterior_ior as f32,
+            alpha: *a as f32,
+        }),
+    })
+}
+
+fn v3(p: &crate::loader::desc::Point) -> Vec3 {
+    Vec3::new(plain::metres(p[0]), plain::metres(p[1]), plain::metres(p[2]))
+}
+
+fn camera(desc: &SceneDesc) -> Result<Camera, String> {
+    let c = &desc.camera;
+    let up = Vec3::new(c.up[0] as f32, c.up[1] as f32, c.up[2] as f32);
+    let to_world = Transform::look_at(v3(&c.eye), v3(&c.target), up).map_err(|e| e.to_string())?;
+    let (w, h) = (desc.film.width, desc.film.height);
+    let axis = |a: FovAxis| match a {
+        FovAxis::X => CamAxis::X,
+        FovAxis::Y => CamAxis::Y,
+        FovAxis::Larger => CamAxis::Larger,
+        FovAxis::Smaller => CamAxis::Smaller,
+    };
+    // Horizontal field of view of a projection, radians.
+    let horizontal = |fov: f32, a: FovAxis| -> f32 {
+        let aspect = w as f32 / h as f32;
+        let along_x = match a {
+            FovAxis::X => true,
+            FovAxis::Y => false,
+            FovAxis::Larger => w >= h,
+            FovAxis::Smaller => w < h,
+        };
+        if along_x { fov } else { 2.0 * ((fov / 2.0).tan() * aspect).atan() }
+    };
+    let r = match &c.kind {
+        CameraKind::Perspective { projection: Projection::Fov { fov, axis: a } } => {
+            Camera::perspective(to_world, plain::radians(*fov), axis(*a), w, h)
+        }
+        CameraKind::Perspective { projection: Projection::Focal { focal_length, sensor_width } } => {
+            Camera::perspective_focal(to_world, plain::metres(*focal_length), plain::metres(*sensor_width), w, h)
+        }
+        CameraKind::ThinLens { projection, f_number, focus_distance } => {
+            let (hfov, focal) = match projection {
+                Projection::Fov { fov, axis: a } => {
+                    let hf = horizontal(plain::radians(*fov), *a);
+                    (hf, 0.036 / (2.0 * (hf / 2.0).tan()))
+                }
+                Projection::Focal { focal_length, sensor_width } => {
+                    let f = plain::metres(*focal_length);
+                    (2.0 * (plain::metres(*sensor_width) / (2.0 * f)).atan(), f)
+                }
+            };
+            Camera::thin_lens(to_world, hfov, CamAxis::X, *f_number as f32, focal, plain::metres(*focus_distance), w, h)
+        }
+        CameraKind::Orthographic { view_width } => Camera::orthographic(to_world, plain::metres(*view_width), w, h),
+    };
+    r.map_err(|e| e.to_string())
+}
