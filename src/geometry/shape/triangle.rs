@@ -6,8 +6,10 @@
 //! functions at the origin then decide the hit; they are evaluated identically for the two
 //! triangles sharing an edge, so a ray through a shared edge or vertex cannot slip between them.
 //! If an edge function is exactly zero it is recomputed in f64, which is exact for products of
-//! f32 values. The hit distance is accepted only if it exceeds a conservative bound on its
-//! rounding error (pbrt-v4 §6.8.4), which keeps spawned rays from re-hitting their triangle.
+//! f32 values. A hit is accepted only if it is provably ahead of the origin: its distance
+//! exceeds a conservative bound on its rounding error (pbrt-v4 §6.8.4, tightened for sheared
+//! coordinates), or else the origin is provably off the triangle's plane and moving toward it.
+//! This keeps spawned rays from re-hitting their triangle.
 
 use crate::geometry::float::gamma;
 use crate::geometry::ray::Ray;
@@ -27,11 +29,9 @@ pub(crate) fn intersect_triangle(p: [Vec3; 3], ray: &Ray) -> Option<(f32, [f32; 
     let shear_y = -d.y / d.z;
     let scale_z = 1.0 / d.z;
 
-    // Vertices relative to the origin, permuted, sheared in x and y.
-    let q = p.map(|v| {
-        let v = permute(v - ray.o);
-        Vec3::new(v.x + shear_x * v.z, v.y + shear_y * v.z, v.z)
-    });
+    // Vertices relative to the origin, permuted, then sheared in x and y.
+    let rel = p.map(|v| permute(v - ray.o));
+    let q = rel.map(|v| Vec3::new(v.x + shear_x * v.z, v.y + shear_y * v.z, v.z));
 
     let edge = |a: Vec3, b: Vec3| a.x * b.y - a.y * b.x;
     let mut e = [edge(q[1], q[2]), edge(q[2], q[0]), edge(q[0], q[1])];
@@ -69,22 +69,58 @@ pub(crate) fn intersect_triangle(p: [Vec3; 3], ray: &Ray) -> Option<(f32, [f32; 
         return None;
     }
 
-    // Conservative bound on the rounding error of t (pbrt-v4 §6.8.4).
+    // Conservative bound on the rounding error of t (after pbrt-v4 §6.8.4). The sheared x and
+    // y carry the translation error of z scaled by the shear factor, so their bounds use
+    // |shear|·max|z| (pbrt bounds |shear| by 1, which rejects valid hits of grazing rays on
+    // large triangles at distances of metres).
     let max_abs = |f: fn(Vec3) -> f32| f(q[0]).abs().max(f(q[1]).abs()).max(f(q[2]).abs());
-    let max_z = z[0].abs().max(z[1].abs()).max(z[2].abs());
     let max_x = max_abs(|v| v.x);
     let max_y = max_abs(|v| v.y);
+    let max_rel_z = rel[0].z.abs().max(rel[1].z.abs()).max(rel[2].z.abs());
+    let max_z = z[0].abs().max(z[1].abs()).max(z[2].abs());
     let delta_z = gamma(3) * max_z;
-    let delta_x = gamma(5) * (max_x + max_z);
-    let delta_y = gamma(5) * (max_y + max_z);
+    let delta_x = gamma(5) * (max_x + 2.0 * shear_x.abs() * max_rel_z);
+    let delta_y = gamma(5) * (max_y + 2.0 * shear_y.abs() * max_rel_z);
     let delta_e = 2.0 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
     let max_e = e[0].abs().max(e[1].abs()).max(e[2].abs());
     let delta_t =
         3.0 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * inv_det.abs();
-    if !(t > delta_t) {
+    if !(t > delta_t || origin_clearly_in_front(p, ray)) {
         return None;
     }
     Some((t, [e[0] * inv_det, e[1] * inv_det, e[2] * inv_det]))
+}
+
+/// Second, independent test that a hit lies ahead of the origin, used when the bound on t is
+/// inconclusive (grazing rays on large triangles, where it is very loose): true if the origin's
+/// height above the triangle's plane is larger than its rounding error bound and the ray moves
+/// toward the plane. Like the t bound it never accepts a hit behind the origin, so a ray spawned
+/// off the surface still cannot re-hit it.
+#[cold]
+fn origin_clearly_in_front(p: [Vec3; 3], ray: &Ray) -> bool {
+    // Measure from the nearest vertex: the error grows with the distance.
+    let r = (0..3)
+        .min_by(|&a, &b| {
+            let (da, db) = (
+                (ray.o - p[a]).length_squared(),
+                (ray.o - p[b]).length_squared(),
+            );
+            da.total_cmp(&db)
+        })
+        .unwrap_or(0);
+    let (pr, pa, pb) = (p[r], p[(r + 1) % 3], p[(r + 2) % 3]);
+    let (e1, e2) = (pa - pr, pb - pr);
+    let n = e1.cross(e2);
+    // |n_i| ≤ n_abs_i, and the rounding error of n_i is bounded by γ(3)·n_abs_i.
+    let n_abs = Vec3::new(
+        (e1.y * e2.z).abs() + (e1.z * e2.y).abs(),
+        (e1.z * e2.x).abs() + (e1.x * e2.z).abs(),
+        (e1.x * e2.y).abs() + (e1.y * e2.x).abs(),
+    );
+    let w = ray.o - pr;
+    let height = w.dot(n);
+    let height_err = gamma(8) * w.abs().dot(n_abs);
+    height.abs() > height_err && height * ray.d.dot(n) < 0.0
 }
 
 /// The point with barycentrics `b` and its absolute error bound per axis (pbrt-v4 §6.8.5).
