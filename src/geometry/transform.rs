@@ -106,8 +106,9 @@ impl Transform {
     /// A transform from a column-major matrix (glam convention: `m * p` with column vectors).
     ///
     /// Errors if an entry is not finite, if the bottom row is not (0, 0, 0, 1) within 1e-6 (only
-    /// affine transforms are supported), or if the matrix is singular or so ill-conditioned that
-    /// `m · m⁻¹` differs from the identity by more than 1e-3.
+    /// affine transforms are supported), or if the matrix is numerically singular: determinant
+    /// zero, linear part's |det| ≤ f32::EPSILON × the product of its column lengths (columns
+    /// dependent to within rounding), or an inverse with `m · m⁻¹` off the identity by > 1e-3.
     pub fn from_matrix(m: Mat4) -> Result<Transform, GeometryError> {
         if !m.is_finite() {
             return Err(GeometryError::NotFinite {
@@ -129,7 +130,12 @@ impl Transform {
         m.w_axis.w = 1.0;
         let determinant = m.determinant();
         let inv = m.inverse();
+        // Relative volume of the column parallelepiped: below f32 precision, a rounding-sized
+        // change of the entries could make the matrix singular.
+        let lin = Mat3::from_mat4(m);
+        let col_norms = lin.x_axis.length() * lin.y_axis.length() * lin.z_axis.length();
         let singular = determinant == 0.0
+            || lin.determinant().abs() <= f32::EPSILON * col_norms
             || !inv.is_finite()
             || !(m * inv).abs_diff_eq(Mat4::IDENTITY, 1e-3)
             || !(inv * m).abs_diff_eq(Mat4::IDENTITY, 1e-3);
