@@ -111,7 +111,9 @@ impl RoughConductor {
         };
         let ggx = Ggx::new(self.alpha);
         let k = ggx.d(wm) * ggx.g(wo, wi) / (4.0 * wo.z * wi.z);
-        conductor_reflectance(&self.ior, self.ext_ior, wo.dot(wm), w) * k
+        // wo·wm = wi·wm; their mean keeps the rounding symmetric (exact reciprocity).
+        let cos = 0.5 * (wo.dot(wm) + wi.dot(wm));
+        conductor_reflectance(&self.ior, self.ext_ior, cos, w) * k
     }
 
     #[inline]

@@ -47,6 +47,22 @@ pub fn fresnel_dielectric(cos_theta_i: f32, eta: f32) -> f32 {
     0.5 * (rs + rp)
 }
 
+/// Unpolarised dielectric reflectance from *both* cosines of a refracted pair: |cos θᵢ| =
+/// `cos_i`, |cos θₜ| = `cos_t`, relative index `eta = n_t/n_i` (the PHYSICS.md forms divided by
+/// n_i). The caller guarantees that the pair obeys Snell's law.
+///
+/// Near the critical angle, seen from the denser side, [`fresnel_dielectric`] must recover
+/// cos θₜ = √(1 − sin²θᵢ/η²) through a catastrophic cancellation; when both directions are known
+/// (microfacet transmission) this form is well-conditioned, and it is symmetric under swapping
+/// the two sides, (cos_i, cos_t, eta) → (cos_t, cos_i, 1/eta).
+#[inline]
+pub fn fresnel_dielectric_pair(cos_i: f32, cos_t: f32, eta: f32) -> f32 {
+    let (ci, ct) = (cos_i.abs(), cos_t.abs());
+    let rs = (ci - eta * ct) / (ci + eta * ct);
+    let rp = (ct - eta * ci) / (ct + eta * ci);
+    0.5 * (rs * rs + rp * rp)
+}
+
 /// A complex number, only for the conductor Fresnel equations.
 #[derive(Clone, Copy, Debug)]
 struct Complex {

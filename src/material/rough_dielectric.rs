@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::fresnel::{fresnel_dielectric, reflect, refract};
+use super::fresnel::{fresnel_dielectric, fresnel_dielectric_pair, reflect, refract};
 use super::microfacet::Ggx;
 use super::{BsdfSample, TransportMode};
 use crate::spectrum::ior::Ior;
@@ -22,8 +22,9 @@ use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 ///   times 1/η'² in [`TransportMode::Radiance`], with
 ///   pdf = D_wo(wm)·(1 − F)·|wi·wm| / (wi·wm + wo·wm/η')²,
 ///
-/// where F = F(wo·wm) is the exact dielectric Fresnel term, D_wo the density of normals visible
-/// from `wo`, and the lobe is chosen with probability F(λ₀). Microfacets facing away from
+/// where F = F(wo·wm) is the exact dielectric Fresnel term (in `eval` evaluated from both
+/// microfacet cosines, see [`fresnel_dielectric_pair`]), D_wo the density of normals visible
+/// from `wo`, and the lobe is chosen with probability F(wo·wm) at λ₀. Microfacets facing away from
 /// either direction contribute nothing.
 ///
 /// The half vector, and hence the transmission direction, uses the hero wavelength's η: a
@@ -97,14 +98,30 @@ impl RoughDielectric {
         w: &SampledWavelengths<N>,
         mode: TransportMode,
     ) -> SampledSpectrum<N> {
-        let Some(h) = Self::half(wo, wi, self.eta(w.lambda[0])) else {
+        let eta_hero = self.eta(w.lambda[0]);
+        let Some(h) = Self::half(wo, wi, eta_hero) else {
             return SampledSpectrum::zero();
         };
         let ggx = Ggx::new(self.alpha);
         let dg = ggx.d(h.wm) * ggx.g(wo, wi);
         let (cos_om, cos_im) = (wo.dot(h.wm), wi.dot(h.wm));
         let cos2 = (wo.z * wi.z).abs();
-        let fr = w.lambda.map(|l| fresnel_dielectric(cos_om, self.eta(l)));
+        // Fresnel: for reflection at the mean of the two (equal) microfacet cosines, for
+        // transmission from both cosines of the refracted pair; both forms are symmetric in
+        // (wo, wi), which keeps the BSDF exactly reciprocal, and the pair form stays accurate
+        // near the critical angle. A secondary wavelength with another index only gets
+        // F(wo·wm) at its own η (its direction would differ; see the type's docs).
+        let cos_refl = 0.5 * (cos_om + cos_im);
+        let fr = w.lambda.map(|l| {
+            let eta = self.eta(l);
+            if h.reflection {
+                fresnel_dielectric(cos_refl, eta)
+            } else if eta == eta_hero {
+                fresnel_dielectric_pair(cos_om, cos_im, h.etap)
+            } else {
+                fresnel_dielectric(cos_om, eta)
+            }
+        });
         if h.reflection {
             return SampledSpectrum(fr) * (dg / (4.0 * cos2));
         }
