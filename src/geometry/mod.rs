@@ -1,5 +1,23 @@
 //! Geometry: rays, frames, transforms, shapes, the BVH and cameras.
+//!
+//! Units: metres and radians, `f32`. Shapes live in world space (transforms are applied when
+//! they are built). Intersections carry a conservative error bound on the hit point, and
+//! [`ray::spawn_ray`] uses it to start secondary rays without self-intersection (pbrt-v4 §6.8).
+//! Invalid user input gives a [`GeometryError`], never a panic.
 
+pub mod accel;
+pub mod camera;
+pub mod error;
+pub mod float;
 pub mod frame;
+pub mod ray;
+pub mod shape;
+pub mod transform;
 
+pub use accel::Accel;
+pub use camera::{Camera, FovAxis};
+pub use error::GeometryError;
 pub use frame::Frame;
+pub use ray::{Ray, offset_ray_origin, spawn_ray, spawn_ray_to};
+pub use shape::{Disk, Intersection, Mesh, PrimHit, Shape, Sphere, SurfaceSample};
+pub use transform::Transform;

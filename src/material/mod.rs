@@ -1,1 +1,187 @@
 //! Materials (BSDFs) evaluated per wavelength.
+//!
+//! # Conventions
+//!
+//! - **Directions** are in the local shading frame: the shading normal is +z. `wo` (towards the
+//!   viewer, or the previous vertex) and `wi` (towards the light, or the next vertex) both point
+//!   *away* from the surface and have unit length.
+//! - **Wavelengths** are in nm, carried as [`SampledWavelengths`]; index 0 is the hero wavelength.
+//! - **Values**: `eval` returns the BSDF f(wo, wi) in sr⁻¹ per wavelength. It does *not* include
+//!   the cosine |cos θᵢ| = |wi.z|; the integrator multiplies by it.
+//! - **Densities**: `pdf` is per unit solid angle (sr⁻¹) of `wi`, for the hero wavelength when the
+//!   material is dispersive.
+//! - **Delta lobes** (smooth [`Dielectric`], smooth [`Conductor`]): `eval` and `pdf` return 0.
+//!   `sample` returns `f = F/|cos θᵢ|` and as `pdf` the discrete probability of the chosen lobe,
+//!   with `specular = true`, so that `f·|cos θᵢ|/pdf` is the sample weight (pbrt's convention).
+//! - **Sides**: the opaque materials ([`Lambert`], [`Phong`], [`Conductor`], [`RoughConductor`])
+//!   are one-sided: they return 0 / `None` unless both `wo.z > 0` and `wi.z > 0`. The scene
+//!   flips the shading frame for two-sided surfaces. The dielectrics are two-sided: `wo.z > 0`
+//!   is outside (index `ext_ior`), `wo.z < 0` is inside (index `int_ior(λ)`).
+//! - **Non-symmetric scattering**: radiance crossing a refracting interface scales by
+//!   (n_wo/n_wi)² (PHYSICS.md, "Dielectrics"). In [`TransportMode::Radiance`] (paths from the
+//!   camera) the transmission terms carry this factor, 1/η² with η = n(wi side)/n(wo side); in
+//!   [`TransportMode::Importance`] (paths from lights) they do not. Equivalently,
+//!   f_Importance(wo, wi) = f_Radiance(wi, wo) (the adjoint BSDF).
+//! - **Dispersion**: when a sampled direction depends on wavelength (refraction through an
+//!   `Ior` with [`Ior::is_dispersive`](crate::spectrum::ior::Ior::is_dispersive)), the sample is
+//!   flagged `dispersive`; the caller must call
+//!   [`SampledWavelengths::terminate_secondary`], and only `f[0]` is meaningful. The same holds
+//!   for `eval` of a transmission pair (wo, wi on opposite sides) of a dispersive
+//!   [`RoughDielectric`]: only the hero value is meaningful (see [`Material::is_dispersive`]).
+//!
+//! All variants are plain data (`Spectrum`, `Ior`, `ComplexIor`, `f32`) in a closed enum; no call
+//! allocates.
+
+mod conductor;
+mod dielectric;
+pub mod fresnel;
+mod lambert;
+pub mod microfacet;
+mod phong;
+mod rough_dielectric;
+
+pub use conductor::{Conductor, RoughConductor};
+pub use dielectric::Dielectric;
+pub use lambert::Lambert;
+pub use phong::Phong;
+pub use rough_dielectric::RoughDielectric;
+
+use glam::{Vec2, Vec3};
+
+use crate::spectrum::{SampledSpectrum, SampledWavelengths};
+
+/// Which quantity a path carries, which decides whether refraction scales by 1/η².
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TransportMode {
+    /// Paths from the camera carrying radiance: transmission is scaled by 1/η², η = n_wi/n_wo.
+    Radiance,
+    /// Paths from the lights carrying importance (light tracing): no η² scaling.
+    Importance,
+}
+
+/// A direction drawn from a BSDF, with everything the integrator needs.
+#[derive(Clone, Copy, Debug)]
+pub struct BsdfSample<const N: usize> {
+    /// BSDF value in sr⁻¹ (no cosine); for a delta lobe F/|cos θᵢ|.
+    pub f: SampledSpectrum<N>,
+    /// Sampled direction, local frame, pointing away from the surface.
+    pub wi: Vec3,
+    /// Density in sr⁻¹ of `wi`, or for a delta lobe the discrete probability of choosing it.
+    pub pdf: f32,
+    /// Whether `wi` came from a delta lobe.
+    pub specular: bool,
+    /// Whether `wi` is on the other side of the surface from `wo`.
+    pub transmission: bool,
+    /// The direction depends on wavelength: the caller must terminate the secondary wavelengths;
+    /// `f` is valid for the hero wavelength (index 0) only.
+    pub dispersive: bool,
+    /// Relative index crossed, n(wi side)/n(wo side) at the hero wavelength (1 for reflection),
+    /// for Russian roulette (radiance scales by 1/eta² along the path).
+    pub eta: f32,
+}
+
+impl<const N: usize> BsdfSample<N> {
+    /// A reflection sample from a non-delta lobe.
+    #[inline]
+    pub(crate) fn reflection(f: SampledSpectrum<N>, wi: Vec3, pdf: f32) -> Self {
+        Self {
+            f,
+            wi,
+            pdf,
+            specular: false,
+            transmission: false,
+            dispersive: false,
+            eta: 1.0,
+        }
+    }
+}
+
+/// A surface material. Closed enum, matched per call.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Material {
+    Diffuse(Lambert),
+    Phong(Phong),
+    Dielectric(Dielectric),
+    RoughDielectric(RoughDielectric),
+    Conductor(Conductor),
+    RoughConductor(RoughConductor),
+}
+
+impl Material {
+    /// f(wo, wi) per wavelength in sr⁻¹, without the cosine. 0 for delta lobes.
+    #[inline]
+    pub fn eval<const N: usize>(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+        mode: TransportMode,
+    ) -> SampledSpectrum<N> {
+        match self {
+            Material::Diffuse(m) => m.eval(wo, wi, w),
+            Material::Phong(m) => m.eval(wo, wi, w),
+            Material::Dielectric(_) | Material::Conductor(_) => SampledSpectrum::zero(),
+            Material::RoughDielectric(m) => m.eval(wo, wi, w, mode),
+            Material::RoughConductor(m) => m.eval(wo, wi, w),
+        }
+    }
+
+    /// Density (sr⁻¹) with which [`Material::sample`] returns `wi` given `wo`, for the hero
+    /// wavelength. 0 for delta lobes.
+    #[inline]
+    pub fn pdf<const N: usize>(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+        _mode: TransportMode,
+    ) -> f32 {
+        match self {
+            Material::Diffuse(m) => m.pdf(wo, wi),
+            Material::Phong(m) => m.pdf(wo, wi, w),
+            Material::Dielectric(_) | Material::Conductor(_) => 0.0,
+            Material::RoughDielectric(m) => m.pdf(wo, wi, w),
+            Material::RoughConductor(m) => m.pdf(wo, wi),
+        }
+    }
+
+    /// Samples `wi` given `wo`: `uc` chooses a lobe, `u` the direction within it. `None` when
+    /// the sample carries no contribution (wrong side, below the horizon, degenerate `wo`).
+    #[inline]
+    pub fn sample<const N: usize>(
+        &self,
+        wo: Vec3,
+        w: &SampledWavelengths<N>,
+        uc: f32,
+        u: Vec2,
+        mode: TransportMode,
+    ) -> Option<BsdfSample<N>> {
+        match self {
+            Material::Diffuse(m) => m.sample(wo, w, u),
+            Material::Phong(m) => m.sample(wo, w, uc, u),
+            Material::Dielectric(m) => m.sample(wo, w, uc, mode),
+            Material::RoughDielectric(m) => m.sample(wo, w, uc, u, mode),
+            Material::Conductor(m) => m.sample(wo, w),
+            Material::RoughConductor(m) => m.sample(wo, w, u),
+        }
+    }
+
+    /// Whether the material has only delta lobes (smooth dielectric, smooth conductor), so that
+    /// light sampling (next-event estimation) is pointless.
+    #[inline]
+    pub fn is_specular(&self) -> bool {
+        matches!(self, Material::Dielectric(_) | Material::Conductor(_))
+    }
+
+    /// Whether transmission through this material depends on wavelength in direction, so that
+    /// a transmission event (sampled, or evaluated for light sampling) must terminate the
+    /// secondary wavelengths.
+    #[inline]
+    pub fn is_dispersive(&self) -> bool {
+        match self {
+            Material::Dielectric(m) => m.int_ior.is_dispersive(),
+            Material::RoughDielectric(m) => m.int_ior.is_dispersive(),
+            _ => false,
+        }
+    }
+}

@@ -1,0 +1,170 @@
+//! The bounding volume hierarchy over all primitives of all shapes. The only file that names
+//! `obvhs`.
+//!
+//! One binary BVH (obvhs' PLOC builder with reinsertion, `Bvh2`) indexes every primitive: the
+//! whole of each sphere and disk and each triangle of each mesh, so analytic shapes and
+//! triangles share one tree. The BVH does not own the shapes: the same slice must be passed to
+//! [`Accel::build`] and to the queries.
+//!
+//! Robustness. obvhs's own `Ray::new` clamps tiny direction components to 1/ε before inverting,
+//! which can cull boxes for rays almost parallel to an axis; rays here are built with exact
+//! reciprocals instead (±f32::MAX for zero components, so no 0·∞ NaN). Each primitive box is
+//! padded by 2⁻²⁰ of its largest coordinate so that rounding in the slab test cannot cull a
+//! primitive whose own (watertight, conservative) test would report a hit.
+
+use super::ray::Ray;
+use super::shape::{Intersection, PrimHit, Shape};
+use glam::{Vec3, Vec3A};
+use obvhs::BvhBuildParams;
+use obvhs::aabb::Aabb;
+use obvhs::bvh2::Bvh2;
+use obvhs::bvh2::builder::build_bvh2;
+use obvhs::ray::{Ray as BvhRay, RayHit};
+use std::time::Duration;
+
+/// Relative padding of primitive boxes.
+const BOX_PAD: f32 = 1.0 / (1 << 20) as f32;
+
+/// A (shape, primitive) pair, in BVH order.
+#[derive(Clone, Copy, Debug)]
+struct PrimRef {
+    shape: u32,
+    prim: u32,
+}
+
+/// The BVH over a slice of shapes.
+#[derive(Clone)]
+pub struct Accel {
+    /// `None` when there are no primitives.
+    bvh: Option<Bvh2>,
+    /// Indexed by the BVH's primitive ids (already permuted, so no indirection at query time).
+    prims: Vec<PrimRef>,
+}
+
+impl std::fmt::Debug for Accel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Accel")
+            .field("primitives", &self.prims.len())
+            .field("nodes", &self.bvh.as_ref().map_or(0, |b| b.nodes.len()))
+            .finish()
+    }
+}
+
+impl Accel {
+    /// Builds one BVH over all primitives of all `shapes` (fine with none). Primitives with
+    /// non-finite or empty bounds are left out.
+    pub fn build(shapes: &[Shape]) -> Accel {
+        let mut refs = Vec::new();
+        let mut boxes = Vec::new();
+        for (s, shape) in shapes.iter().enumerate() {
+            for i in 0..shape.primitive_count() {
+                let (lo, hi) = shape.primitive_aabb(i);
+                if !(lo.is_finite() && hi.is_finite() && lo.cmple(hi).all()) {
+                    continue;
+                }
+                let pad = lo.abs().max(hi.abs()).max_element() * BOX_PAD;
+                boxes.push(Aabb::new((lo - pad).into(), (hi + pad).into()));
+                refs.push(PrimRef {
+                    shape: s as u32,
+                    prim: i as u32,
+                });
+            }
+        }
+        if refs.is_empty() {
+            return Accel {
+                bvh: None,
+                prims: Vec::new(),
+            };
+        }
+        let bvh = build_bvh2(
+            &boxes,
+            BvhBuildParams::medium_build(),
+            &mut Duration::default(),
+        );
+        let prims = bvh
+            .primitive_indices
+            .iter()
+            .map(|&i| refs[i as usize])
+            .collect();
+        Accel {
+            bvh: Some(bvh),
+            prims,
+        }
+    }
+
+    /// Number of primitives indexed.
+    pub fn primitive_count(&self) -> usize {
+        self.prims.len()
+    }
+
+    /// World bounds (min, max) of everything indexed, m (slightly padded), or `None` if empty.
+    pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
+        let root = self.bvh.as_ref()?.nodes.first()?;
+        let b = root.aabb();
+        Some((b.min.into(), b.max.into()))
+    }
+
+    /// The closest hit of `ray` (unit `d`) with `t` in (0, `ray.t_max`), or `None`.
+    pub fn intersect(&self, shapes: &[Shape], ray: &Ray) -> Option<Intersection> {
+        let bvh = self.bvh.as_ref()?;
+        let bvh_ray = to_bvh_ray(ray)?;
+        let mut best: Option<(PrimRef, f32, PrimHit)> = None;
+        let mut hit = RayHit::none();
+        bvh.ray_traverse(bvh_ray, &mut hit, |r, id| {
+            let pr = self.prims[id];
+            match intersect_ref(shapes, pr, ray, r.tmax) {
+                Some((t, h)) => {
+                    best = Some((pr, t, h));
+                    t
+                }
+                None => f32::INFINITY,
+            }
+        });
+        let (pr, t, h) = best?;
+        let shape = shapes.get(pr.shape as usize)?;
+        Some(shape.interaction(pr.shape, pr.prim as usize, ray, t, &h))
+    }
+
+    /// Whether anything is hit with `t` in (0, `ray.t_max`) (shadow rays). Stops at the first
+    /// hit found.
+    pub fn occluded(&self, shapes: &[Shape], ray: &Ray) -> bool {
+        let (Some(bvh), Some(bvh_ray)) = (self.bvh.as_ref(), to_bvh_ray(ray)) else {
+            return false;
+        };
+        !bvh.ray_traverse_miss(bvh_ray, |r, id| {
+            intersect_ref(shapes, self.prims[id], ray, r.tmax).map_or(f32::INFINITY, |(t, _)| t)
+        })
+    }
+}
+
+#[inline]
+fn intersect_ref(shapes: &[Shape], pr: PrimRef, ray: &Ray, t_max: f32) -> Option<(f32, PrimHit)> {
+    let ray = Ray { t_max, ..*ray };
+    shapes
+        .get(pr.shape as usize)?
+        .intersect_primitive(pr.prim as usize, &ray)
+}
+
+/// The obvhs ray, with exact reciprocal directions. `None` for rays that cannot hit anything
+/// (t_max ≤ 0 or NaN, non-finite origin or direction).
+#[inline]
+fn to_bvh_ray(ray: &Ray) -> Option<BvhRay> {
+    if !(ray.t_max > 0.0) || !ray.o.is_finite() || !ray.d.is_finite() {
+        return None;
+    }
+    let recip = |x: f32| {
+        let r = 1.0 / x;
+        if r.is_finite() {
+            r
+        } else {
+            f32::MAX.copysign(x)
+        }
+    };
+    Some(BvhRay {
+        origin: Vec3A::from(ray.o),
+        direction: Vec3A::from(ray.d),
+        inv_direction: Vec3A::new(recip(ray.d.x), recip(ray.d.y), recip(ray.d.z)),
+        tmin: 0.0,
+        tmax: ray.t_max,
+    })
+}

@@ -1,0 +1,162 @@
+//! Shapes: spheres, disks and triangle meshes, stored in world space.
+//!
+//! Each [`Shape`] is a set of *primitives* (1 for a sphere or disk, one per triangle for a mesh)
+//! that the BVH indexes. Intersection is split in two steps so that the BVH stays cheap:
+//! [`Shape::intersect_primitive`] returns the distance and a small [`PrimHit`] record, and
+//! [`Shape::interaction`] turns the closest one into a full [`Intersection`] (point with error
+//! bound, normals, uv) once traversal is over.
+//!
+//! Conventions: metres, radians; normals are unit; the geometric normal is the shape's outward or
+//! front-face normal and is *not* flipped toward the ray. All intersection tests are two-sided.
+
+mod disk;
+mod mesh;
+mod obj;
+mod sphere;
+mod triangle;
+
+pub use disk::Disk;
+pub use mesh::Mesh;
+pub use sphere::Sphere;
+
+use super::ray::Ray;
+use glam::{Vec2, Vec3};
+
+/// A shape in world space. The closed set of shapes the renderer knows.
+#[derive(Clone, Debug)]
+pub enum Shape {
+    Sphere(Sphere),
+    Disk(Disk),
+    Mesh(Mesh),
+}
+
+/// A point sampled on a surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceSample {
+    /// Position, m.
+    pub p: Vec3,
+    /// Absolute error bound of `p` per axis, m (for [`super::ray::spawn_ray_to`]).
+    pub p_error: Vec3,
+    /// Unit geometric normal, outward / front face.
+    pub n: Vec3,
+    /// Density of the sample with respect to surface area, m⁻².
+    pub pdf_area: f32,
+}
+
+/// What [`Shape::intersect_primitive`] remembers about a hit for [`Shape::interaction`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PrimHit {
+    Sphere,
+    /// Local disk coordinates: the hit is `centre + a·u + b·v` with a² + b² ≤ 1.
+    Disk {
+        a: f32,
+        b: f32,
+    },
+    /// Barycentric coordinates of the hit with respect to the triangle's vertices 0, 1, 2.
+    Triangle {
+        b: [f32; 3],
+    },
+}
+
+/// A ray–surface intersection.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Intersection {
+    /// Distance along the ray, m.
+    pub t: f32,
+    /// Hit point, m (on the surface, recomputed from surface coordinates, not `o + t·d`).
+    pub p: Vec3,
+    /// Absolute error bound of `p` per axis, m.
+    pub p_error: Vec3,
+    /// Unit geometric normal: the shape's outward / front-face normal, NOT flipped toward the ray.
+    pub n_geom: Vec3,
+    /// Unit shading normal: interpolated vertex normal if the mesh has normals, else `n_geom`.
+    /// Always in the same hemisphere as `n_geom`.
+    pub n_shading: Vec3,
+    /// Surface parameterisation, see each shape.
+    pub uv: Vec2,
+    /// Index of the shape in the slice given to the BVH.
+    pub shape: u32,
+    /// Primitive within the shape (triangle index for meshes, 0 otherwise).
+    pub prim: u32,
+}
+
+impl Shape {
+    /// Surface area, m².
+    pub fn area(&self) -> f32 {
+        match self {
+            Shape::Sphere(s) => s.area(),
+            Shape::Disk(d) => d.area(),
+            Shape::Mesh(m) => m.area(),
+        }
+    }
+
+    /// A point uniformly distributed by area over the whole shape, from `u` in [0,1)² (and, for
+    /// meshes, `u_extra` in [0,1) to pick the triangle by area). `pdf_area = 1 / area`, m⁻².
+    pub fn sample_area(&self, u: Vec2, u_extra: f32) -> SurfaceSample {
+        match self {
+            Shape::Sphere(s) => s.sample_area(u),
+            Shape::Disk(d) => d.sample_area(u),
+            Shape::Mesh(m) => m.sample_area(u, u_extra),
+        }
+    }
+
+    /// Number of primitives the BVH indexes: 1 for spheres and disks, triangles for meshes.
+    pub fn primitive_count(&self) -> usize {
+        match self {
+            Shape::Sphere(_) | Shape::Disk(_) => 1,
+            Shape::Mesh(m) => m.triangle_count(),
+        }
+    }
+
+    /// World-space bounds (min, max) of primitive `i`, m. An out-of-range `i` gives an empty box
+    /// (min = +∞, max = −∞).
+    pub fn primitive_aabb(&self, i: usize) -> (Vec3, Vec3) {
+        match self {
+            Shape::Sphere(s) if i == 0 => s.aabb(),
+            Shape::Disk(d) if i == 0 => d.aabb(),
+            Shape::Mesh(m) if i < m.triangle_count() => m.triangle_aabb(i),
+            _ => (Vec3::INFINITY, Vec3::NEG_INFINITY),
+        }
+    }
+
+    /// Closest intersection of `ray` with primitive `i`, with `t` in (0, `ray.t_max`). `ray.d`
+    /// must be unit. `None` for a miss or an out-of-range `i`. Tests are two-sided and
+    /// conservative: a ray that starts on the surface (within its error bound) and leaves it
+    /// does not hit it again.
+    #[inline]
+    pub fn intersect_primitive(&self, i: usize, ray: &Ray) -> Option<(f32, PrimHit)> {
+        match self {
+            Shape::Sphere(s) if i == 0 => s.intersect(ray).map(|t| (t, PrimHit::Sphere)),
+            Shape::Disk(d) if i == 0 => d.intersect(ray),
+            Shape::Mesh(m) if i < m.triangle_count() => m.intersect_triangle(i, ray),
+            _ => None,
+        }
+    }
+
+    /// The full [`Intersection`] for a hit `(t, hit)` of `ray` on primitive `prim` found by
+    /// [`Shape::intersect_primitive`]; `shape_id` is stored in the result. A `hit` of another shape kind is a caller bug; the
+    /// result is then a valid point of this primitive but otherwise unspecified (no panic).
+    pub fn interaction(
+        &self,
+        shape_id: u32,
+        prim: usize,
+        ray: &Ray,
+        t: f32,
+        hit: &PrimHit,
+    ) -> Intersection {
+        let mut it = match (self, hit) {
+            (Shape::Sphere(s), _) => s.interaction(ray.at(t)),
+            (Shape::Disk(d), PrimHit::Disk { a, b }) => d.interaction(*a, *b),
+            (Shape::Disk(d), _) => {
+                let (a, b) = d.local_coords(ray.at(t));
+                d.interaction(a, b)
+            }
+            (Shape::Mesh(m), PrimHit::Triangle { b }) => m.interaction(prim, *b),
+            (Shape::Mesh(m), _) => m.interaction(prim, [1.0 / 3.0; 3]),
+        };
+        it.t = t;
+        it.shape = shape_id;
+        it.prim = prim as u32;
+        it
+    }
+}

@@ -1,0 +1,206 @@
+//! Spheres, kept as a world-space centre and radius.
+
+use super::{Intersection, SurfaceSample};
+use crate::geometry::error::{GeometryError, check_finite3, check_positive};
+use crate::geometry::float::gamma;
+use crate::geometry::ray::Ray;
+use crate::geometry::transform::Transform;
+use crate::sampling::uniform_sphere;
+use glam::{Mat3, Vec2, Vec3};
+use std::f32::consts::PI;
+
+/// A sphere in world space. Its normal points outward. Its uv is (φ/2π, θ/π) in the spherical
+/// coordinates of its object frame (θ from object +z, φ from object +x toward +y).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sphere {
+    center: Vec3,
+    radius: f32,
+    /// Object-to-world rotation (orthonormal columns), used only for uv.
+    frame: Mat3,
+}
+
+impl Sphere {
+    /// A sphere of `radius` (m, > 0) at `center` (m). Errors for non-finite input or a radius
+    /// ≤ 0.
+    pub fn new(center: Vec3, radius: f32) -> Result<Sphere, GeometryError> {
+        check_finite3("sphere centre", center)?;
+        check_positive("sphere radius", radius)?;
+        Ok(Sphere {
+            center,
+            radius,
+            frame: Mat3::IDENTITY,
+        })
+    }
+
+    /// The object-space sphere of `radius` at the origin, transformed. Only similarity
+    /// transforms (rotation, translation, uniform scale, mirroring) are supported: non-uniform
+    /// scaling or shear would make an ellipsoid and gives [`GeometryError::NonUniformScale`].
+    pub fn with_transform(transform: &Transform, radius: f32) -> Result<Sphere, GeometryError> {
+        check_positive("sphere radius", radius)?;
+        let lin = Mat3::from_mat4(transform.matrix());
+        let cols = [lin.x_axis, lin.y_axis, lin.z_axis];
+        let scales = cols.map(Vec3::length);
+        let s = (scales[0] + scales[1] + scales[2]) / 3.0;
+        let tol = 1e-4 * s;
+        let similar = scales.iter().all(|l| (l - s).abs() <= tol)
+            && cols[0].dot(cols[1]).abs() <= tol * s
+            && cols[1].dot(cols[2]).abs() <= tol * s
+            && cols[0].dot(cols[2]).abs() <= tol * s;
+        if !similar {
+            return Err(GeometryError::NonUniformScale { scales });
+        }
+        let center = check_finite3("sphere centre", transform.point(Vec3::ZERO))?;
+        let radius = check_positive("transformed sphere radius", radius * s)?;
+        Ok(Sphere {
+            center,
+            radius,
+            frame: lin * (1.0 / s),
+        })
+    }
+
+    /// Centre, m.
+    pub fn center(&self) -> Vec3 {
+        self.center
+    }
+
+    /// Radius, m.
+    pub fn radius(&self) -> f32 {
+        self.radius
+    }
+
+    /// Surface area 4πr², m².
+    pub fn area(&self) -> f32 {
+        4.0 * PI * self.radius * self.radius
+    }
+
+    pub(crate) fn aabb(&self) -> (Vec3, Vec3) {
+        let r = Vec3::splat(self.radius);
+        (self.center - r, self.center + r)
+    }
+
+    /// Nearest root in (0, t_max) of |o + t d − c|² = r².
+    ///
+    /// Robustness: `c_ = |o − c|² − r²` decides whether the origin is outside (> 0) or inside;
+    /// if |c_| is within its rounding error bound the origin is *on* the sphere, and then only a
+    /// ray going inward (b = (o − c)·d clearly < 0) can hit it, at the far root. A ray spawned
+    /// from the surface and leaving it therefore never re-hits. The discriminant uses the
+    /// perpendicular distance of the line from the centre (Haines et al., Ray Tracing Gems ch. 7)
+    /// to avoid cancellation.
+    #[inline]
+    pub(crate) fn intersect(&self, ray: &Ray) -> Option<f32> {
+        let r = self.radius;
+        let oc = ray.o - self.center;
+        let a = ray.d.length_squared();
+        let b = oc.dot(ray.d);
+        let f = oc - ray.d * (b / a);
+        let f_len = f.length();
+        let disc = a * ((r - f_len) * (r + f_len));
+        if !(disc >= 0.0) {
+            return None;
+        }
+        let oc_len = oc.length();
+        let c = (oc_len - r) * (oc_len + r);
+        let c_err = gamma(8) * oc_len * (oc_len + r);
+        let sq = disc.sqrt();
+        let q = if b > 0.0 { -(b + sq) } else { sq - b };
+        if c.abs() <= c_err {
+            // Origin on the surface: only an inward ray hits, at the far root q / a.
+            let b_err = gamma(4) * oc_len * a.sqrt();
+            if b >= -b_err {
+                return None;
+            }
+            let t = q / a;
+            return (t > 0.0 && t < ray.t_max).then_some(t);
+        }
+        if q == 0.0 {
+            return None;
+        }
+        let (t0, t1) = (q / a, c / q);
+        let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
+        if near > 0.0 {
+            (near < ray.t_max).then_some(near)
+        } else if far > 0.0 {
+            (far < ray.t_max).then_some(far)
+        } else {
+            None
+        }
+    }
+
+    /// The surface point in direction `p_obj` from the centre (any non-zero length), its error
+    /// bound and the outward normal.
+    fn surface_point(&self, p_obj: Vec3) -> (Vec3, Vec3, Vec3) {
+        let len = p_obj.length();
+        let dir = if len > 0.0 && len.is_finite() {
+            p_obj / len
+        } else {
+            self.frame.z_axis.normalize_or(Vec3::Z)
+        };
+        let p_obj = dir * self.radius;
+        let p = self.center + p_obj;
+        let p_error = gamma(6) * p_obj.abs() + gamma(1) * p.abs();
+        (p, p_error, dir)
+    }
+
+    pub(crate) fn interaction(&self, p_approx: Vec3) -> Intersection {
+        let (p, p_error, n) = self.surface_point(p_approx - self.center);
+        let local = self.frame.transpose() * n;
+        let mut phi = local.y.atan2(local.x);
+        if phi < 0.0 {
+            phi += 2.0 * PI;
+        }
+        let theta = local.z.clamp(-1.0, 1.0).acos();
+        Intersection {
+            t: 0.0,
+            p,
+            p_error,
+            n_geom: n,
+            n_shading: n,
+            uv: Vec2::new(phi / (2.0 * PI), theta / PI),
+            shape: 0,
+            prim: 0,
+        }
+    }
+
+    pub(crate) fn sample_area(&self, u: Vec2) -> SurfaceSample {
+        let (p, p_error, n) = self.surface_point(uniform_sphere(u));
+        SurfaceSample {
+            p,
+            p_error,
+            n,
+            pdf_area: 1.0 / self.area(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hits_from_outside_and_inside() {
+        let s = Sphere::new(Vec3::new(0.0, 0.0, 5.0), 1.0).unwrap();
+        let t = s.intersect(&Ray::new(Vec3::ZERO, Vec3::Z)).unwrap();
+        assert!((t - 4.0).abs() < 1e-5);
+        let t = s
+            .intersect(&Ray::new(Vec3::new(0.0, 0.0, 5.0), Vec3::Z))
+            .unwrap();
+        assert!((t - 1.0).abs() < 1e-5);
+        assert!(s.intersect(&Ray::new(Vec3::ZERO, -Vec3::Z)).is_none());
+        assert!(
+            s.intersect(&Ray::new(Vec3::new(2.0, 0.0, 0.0), Vec3::Z))
+                .is_none()
+        );
+    }
+
+    #[test]
+    fn rejects_ellipsoids_and_bad_radii() {
+        let t = Transform::scale(Vec3::new(1.0, 2.0, 1.0)).unwrap();
+        assert!(matches!(
+            Sphere::with_transform(&t, 1.0),
+            Err(GeometryError::NonUniformScale { .. })
+        ));
+        assert!(Sphere::new(Vec3::ZERO, 0.0).is_err());
+        assert!(Sphere::new(Vec3::ZERO, f32::NAN).is_err());
+        assert!(Sphere::new(Vec3::new(f32::INFINITY, 0.0, 0.0), 1.0).is_err());
+    }
+}

@@ -1,0 +1,169 @@
+//! Watertight ray–triangle intersection.
+//!
+//! Woop, Benthin & Wald, "Watertight Ray/Triangle Intersection", JCGT 2(1), 2013: the triangle
+//! is translated to the ray origin, the axes are permuted so that the ray's largest direction
+//! component is z, and the vertices are sheared so that the ray becomes the +z axis. The 2D edge
+//! functions at the origin then decide the hit; they are evaluated identically for the two
+//! triangles sharing an edge, so a ray through a shared edge or vertex cannot slip between them.
+//! If an edge function is exactly zero it is recomputed in f64, which is exact for products of
+//! f32 values. A hit is accepted only if it is provably ahead of the origin: its distance
+//! exceeds a conservative bound on its rounding error (pbrt-v4 §6.8.4, tightened for sheared
+//! coordinates), or else the origin is provably off the triangle's plane and moving toward it.
+//! This keeps spawned rays from re-hitting their triangle.
+
+use crate::geometry::float::gamma;
+use crate::geometry::ray::Ray;
+use glam::Vec3;
+
+/// Intersects `ray` with the triangle `p` (either winding). Returns the distance `t` in
+/// (0, `ray.t_max`) and the barycentric coordinates of the hit for vertices 0, 1, 2.
+#[inline]
+pub(crate) fn intersect_triangle(p: [Vec3; 3], ray: &Ray) -> Option<(f32, [f32; 3])> {
+    let kz = ray.d.abs().max_position();
+    let kx = if kz == 2 { 0 } else { kz + 1 };
+    let ky = if kx == 2 { 0 } else { kx + 1 };
+    let permute = |v: Vec3| Vec3::new(v[kx], v[ky], v[kz]);
+
+    let d = permute(ray.d);
+    let shear_x = -d.x / d.z;
+    let shear_y = -d.y / d.z;
+    let scale_z = 1.0 / d.z;
+
+    // Vertices relative to the origin, permuted, then sheared in x and y.
+    let rel = p.map(|v| permute(v - ray.o));
+    let q = rel.map(|v| Vec3::new(v.x + shear_x * v.z, v.y + shear_y * v.z, v.z));
+
+    let edge = |a: Vec3, b: Vec3| a.x * b.y - a.y * b.x;
+    let mut e = [edge(q[1], q[2]), edge(q[2], q[0]), edge(q[0], q[1])];
+    if e.contains(&0.0) {
+        let edge64 = |a: Vec3, b: Vec3| {
+            (f64::from(a.x) * f64::from(b.y) - f64::from(a.y) * f64::from(b.x)) as f32
+        };
+        e = [edge64(q[1], q[2]), edge64(q[2], q[0]), edge64(q[0], q[1])];
+    }
+    let any_neg = e.iter().any(|&x| x < 0.0);
+    let any_pos = e.iter().any(|&x| x > 0.0);
+    if any_neg && any_pos {
+        return None;
+    }
+    let det = e[0] + e[1] + e[2];
+
+    let z = [q[0].z * scale_z, q[1].z * scale_z, q[2].z * scale_z];
+    let t_scaled = e[0] * z[0] + e[1] * z[1] + e[2] * z[2];
+    // t = t_scaled / det must lie in (0, t_max); compare without dividing.
+    if det < 0.0 {
+        if t_scaled >= 0.0 || t_scaled < ray.t_max * det {
+            return None;
+        }
+    } else if det > 0.0 {
+        if t_scaled <= 0.0 || t_scaled > ray.t_max * det {
+            return None;
+        }
+    } else {
+        return None; // zero (edge-on or degenerate) or NaN
+    }
+
+    let inv_det = 1.0 / det;
+    let t = t_scaled * inv_det;
+    if !(t < ray.t_max) {
+        return None;
+    }
+
+    // Conservative bound on the rounding error of t (after pbrt-v4 §6.8.4). The sheared x and
+    // y carry the translation error of z scaled by the shear factor, so their bounds use
+    // |shear|·max|z| (pbrt bounds |shear| by 1, which rejects valid hits of grazing rays on
+    // large triangles at distances of metres).
+    let max_abs = |f: fn(Vec3) -> f32| f(q[0]).abs().max(f(q[1]).abs()).max(f(q[2]).abs());
+    let max_x = max_abs(|v| v.x);
+    let max_y = max_abs(|v| v.y);
+    let max_rel_z = rel[0].z.abs().max(rel[1].z.abs()).max(rel[2].z.abs());
+    let max_z = z[0].abs().max(z[1].abs()).max(z[2].abs());
+    let delta_z = gamma(3) * max_z;
+    let delta_x = gamma(5) * (max_x + 2.0 * shear_x.abs() * max_rel_z);
+    let delta_y = gamma(5) * (max_y + 2.0 * shear_y.abs() * max_rel_z);
+    let delta_e = 2.0 * (gamma(2) * max_x * max_y + delta_y * max_x + delta_x * max_y);
+    let max_e = e[0].abs().max(e[1].abs()).max(e[2].abs());
+    let delta_t =
+        3.0 * (gamma(3) * max_e * max_z + delta_e * max_z + delta_z * max_e) * inv_det.abs();
+    if !(t > delta_t || origin_clearly_in_front(p, ray)) {
+        return None;
+    }
+    Some((t, [e[0] * inv_det, e[1] * inv_det, e[2] * inv_det]))
+}
+
+/// Second, independent test that a hit lies ahead of the origin, used when the bound on t is
+/// inconclusive (grazing rays on large triangles, where it is very loose): true if the origin's
+/// height above the triangle's plane is larger than its rounding error bound and the ray moves
+/// toward the plane. Like the t bound it never accepts a hit behind the origin, so a ray spawned
+/// off the surface still cannot re-hit it.
+#[cold]
+fn origin_clearly_in_front(p: [Vec3; 3], ray: &Ray) -> bool {
+    // Measure from the nearest vertex: the error grows with the distance.
+    let r = (0..3)
+        .min_by(|&a, &b| {
+            let (da, db) = (
+                (ray.o - p[a]).length_squared(),
+                (ray.o - p[b]).length_squared(),
+            );
+            da.total_cmp(&db)
+        })
+        .unwrap_or(0);
+    let (pr, pa, pb) = (p[r], p[(r + 1) % 3], p[(r + 2) % 3]);
+    let (e1, e2) = (pa - pr, pb - pr);
+    let n = e1.cross(e2);
+    // |n_i| ≤ n_abs_i, and the rounding error of n_i is bounded by γ(3)·n_abs_i.
+    let n_abs = Vec3::new(
+        (e1.y * e2.z).abs() + (e1.z * e2.y).abs(),
+        (e1.z * e2.x).abs() + (e1.x * e2.z).abs(),
+        (e1.x * e2.y).abs() + (e1.y * e2.x).abs(),
+    );
+    let w = ray.o - pr;
+    let height = w.dot(n);
+    let height_err = gamma(8) * w.abs().dot(n_abs);
+    height.abs() > height_err && height * ray.d.dot(n) < 0.0
+}
+
+/// The point with barycentrics `b` and its absolute error bound per axis (pbrt-v4 §6.8.5).
+#[inline]
+pub(crate) fn barycentric_point(p: [Vec3; 3], b: [f32; 3]) -> (Vec3, Vec3) {
+    let (w0, w1, w2) = (p[0] * b[0], p[1] * b[1], p[2] * b[2]);
+    let point = w0 + w1 + w2;
+    let error = gamma(7) * (w0.abs() + w1.abs() + w2.abs());
+    (point, error)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TRI: [Vec3; 3] = [
+        Vec3::new(0.0, 0.0, 0.0),
+        Vec3::new(1.0, 0.0, 0.0),
+        Vec3::new(0.0, 1.0, 0.0),
+    ];
+
+    #[test]
+    fn hit_and_barycentrics() {
+        let ray = Ray::new(Vec3::new(0.25, 0.5, 2.0), -Vec3::Z);
+        let (t, b) = intersect_triangle(TRI, &ray).unwrap();
+        assert!((t - 2.0).abs() < 1e-6);
+        assert!((b[0] - 0.25).abs() < 1e-6 && (b[1] - 0.25).abs() < 1e-6);
+        assert!((b[2] - 0.5).abs() < 1e-6);
+        let (p, err) = barycentric_point(TRI, b);
+        assert!(
+            (p - Vec3::new(0.25, 0.5, 0.0))
+                .abs()
+                .cmple(err + 1e-7)
+                .all()
+        );
+    }
+
+    #[test]
+    fn misses_outside_behind_and_beyond_t_max() {
+        assert!(intersect_triangle(TRI, &Ray::new(Vec3::new(0.6, 0.6, 1.0), -Vec3::Z)).is_none());
+        assert!(intersect_triangle(TRI, &Ray::new(Vec3::new(0.2, 0.2, 1.0), Vec3::Z)).is_none());
+        let mut ray = Ray::new(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z);
+        ray.t_max = 0.5;
+        assert!(intersect_triangle(TRI, &ray).is_none());
+    }
+}

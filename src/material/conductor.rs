@@ -1,0 +1,148 @@
+//! Conductors (metals): the smooth mirror and the GGX rough conductor, both with the exact
+//! complex Fresnel reflectance per wavelength.
+
+use glam::{Vec2, Vec3};
+
+use super::BsdfSample;
+use super::fresnel::{fresnel_conductor, reflect};
+use super::microfacet::Ggx;
+use crate::spectrum::ior::ComplexIor;
+use crate::spectrum::{SampledSpectrum, SampledWavelengths};
+
+/// Fresnel reflectance of a conductor of index `ior(λ)` = n + ik in a medium of index `ext` at
+/// every sampled wavelength.
+#[inline]
+fn conductor_reflectance<const N: usize>(
+    ior: &ComplexIor,
+    ext: f32,
+    cos_theta_i: f32,
+    w: &SampledWavelengths<N>,
+) -> SampledSpectrum<N> {
+    SampledSpectrum(w.lambda.map(|l| {
+        let (n, k) = ior.eval(l);
+        fresnel_conductor(cos_theta_i, n / ext, k / ext)
+    }))
+}
+
+/// A smooth metal: delta reflection wi = (−wo.x, −wo.y, wo.z) with f = F(λ)/cos θᵢ and pdf 1,
+/// F the exact unpolarised conductor Fresnel term for n(λ) + ik(λ) relative to `ext_ior`.
+///
+/// One-sided: `None` unless `wo.z > 0`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Conductor {
+    pub ior: ComplexIor,
+    /// Index of the outside medium.
+    pub ext_ior: f32,
+}
+
+impl Conductor {
+    pub fn new(ior: ComplexIor, ext_ior: f32) -> Self {
+        Self { ior, ext_ior }
+    }
+
+    #[inline]
+    pub fn sample<const N: usize>(
+        &self,
+        wo: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> Option<BsdfSample<N>> {
+        if wo.z <= 0.0 {
+            return None;
+        }
+        let wi = Vec3::new(-wo.x, -wo.y, wo.z);
+        let f = conductor_reflectance(&self.ior, self.ext_ior, wo.z, w) / wi.z;
+        Some(BsdfSample {
+            f,
+            wi,
+            pdf: 1.0,
+            specular: true,
+            transmission: false,
+            dispersive: false,
+            eta: 1.0,
+        })
+    }
+}
+
+/// A rough metal: GGX microfacets (roughness `alpha`, clamped to at least
+/// [`MIN_ALPHA`](super::microfacet::MIN_ALPHA)) with height-correlated Smith G and the exact
+/// conductor Fresnel term:
+///
+/// f = D(wm)·G(wo, wi)·F(wo·wm) / (4 cos θₒ cos θᵢ), wm = normalize(wo + wi),
+///
+/// sampled through the visible normals from `wo`: pdf = D_wo(wm)/(4 wo·wm). Reflections below
+/// the horizon are rejected (`None`). Reciprocal. One-sided: zero unless `wo.z > 0` and
+/// `wi.z > 0`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RoughConductor {
+    pub ior: ComplexIor,
+    pub ext_ior: f32,
+    /// GGX roughness α.
+    pub alpha: f32,
+}
+
+impl RoughConductor {
+    pub fn new(ior: ComplexIor, ext_ior: f32, alpha: f32) -> Self {
+        Self {
+            ior,
+            ext_ior,
+            alpha,
+        }
+    }
+
+    /// The half vector, or `None` if the pair cannot reflect.
+    #[inline]
+    fn half(wo: Vec3, wi: Vec3) -> Option<Vec3> {
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return None;
+        }
+        let wm = (wo + wi).try_normalize()?;
+        (wm.dot(wo) > 0.0).then_some(wm)
+    }
+
+    #[inline]
+    pub fn eval<const N: usize>(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
+        let Some(wm) = Self::half(wo, wi) else {
+            return SampledSpectrum::zero();
+        };
+        let ggx = Ggx::new(self.alpha);
+        let k = ggx.d(wm) * ggx.g(wo, wi) / (4.0 * wo.z * wi.z);
+        // wo·wm = wi·wm; their mean keeps the rounding symmetric (exact reciprocity).
+        let cos = 0.5 * (wo.dot(wm) + wi.dot(wm));
+        conductor_reflectance(&self.ior, self.ext_ior, cos, w) * k
+    }
+
+    #[inline]
+    pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
+        let Some(wm) = Self::half(wo, wi) else {
+            return 0.0;
+        };
+        Ggx::new(self.alpha).visible_normal_pdf(wo, wm) / (4.0 * wo.dot(wm))
+    }
+
+    #[inline]
+    pub fn sample<const N: usize>(
+        &self,
+        wo: Vec3,
+        w: &SampledWavelengths<N>,
+        u: Vec2,
+    ) -> Option<BsdfSample<N>> {
+        if wo.z <= 0.0 {
+            return None;
+        }
+        let wm = Ggx::new(self.alpha).sample_visible_normal(wo, u);
+        let wi = reflect(wo, wm);
+        if wi.z <= 0.0 {
+            return None;
+        }
+        let pdf = self.pdf(wo, wi);
+        if !(pdf > 0.0 && pdf.is_finite()) {
+            return None;
+        }
+        Some(BsdfSample::reflection(self.eval(wo, wi, w), wi, pdf))
+    }
+}

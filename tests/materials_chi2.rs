@@ -1,0 +1,256 @@
+//! χ² goodness of fit of every non-delta BSDF sampler against its own `pdf`, over incident
+//! directions (normal, 45°, grazing 85°, from outside and inside for the dielectric) and hero
+//! wavelengths. Family-wise significance 0.01 with the Šidák correction over all cases.
+
+#[path = "support/chi2.rs"]
+mod chi2;
+mod support;
+
+use std::sync::Arc;
+
+use chi2::{Chi2Outcome, Grid, chi2_test, gamma_q, ln_gamma, sidak};
+use glam::{Vec2, Vec3};
+use spectrace::material::{
+    Lambert, Material, Phong, RoughConductor, RoughDielectric, TransportMode,
+};
+use spectrace::spectrum::named::{Named, lookup};
+use spectrace::spectrum::{PiecewiseLinear, SampledWavelengths, Spectrum};
+use support::Rng;
+
+const SAMPLES: usize = 1_000_000;
+
+fn bk7() -> spectrace::spectrum::ior::Ior {
+    match lookup("glass:N-BK7") {
+        Ok(Named::Dielectric(g)) => g.ior,
+        other => panic!("{other:?}"),
+    }
+}
+
+fn gold() -> spectrace::spectrum::ior::ComplexIor {
+    match lookup("metal:Au") {
+        Ok(Named::Conductor(m)) => m.ior,
+        other => panic!("{other:?}"),
+    }
+}
+
+/// Direction at polar angle `theta_deg` from +z (or from −z if `below`), azimuth `phi` rad.
+fn dir(theta_deg: f32, phi: f32, below: bool) -> Vec3 {
+    let t = theta_deg.to_radians();
+    let z = if below { -t.cos() } else { t.cos() };
+    Vec3::new(t.sin() * phi.cos(), t.sin() * phi.sin(), z)
+}
+
+fn wavelengths(hero: f32) -> SampledWavelengths<4> {
+    let mut lambda = [hero; 4];
+    for (j, l) in lambda.iter_mut().enumerate().skip(1) {
+        *l = 360.0 + (hero - 360.0 + 117.5 * j as f32) % 470.0;
+    }
+    SampledWavelengths {
+        lambda,
+        pdf: [1.0 / 470.0; 4],
+    }
+}
+
+struct Case {
+    name: String,
+    material: Material,
+    wo: Vec3,
+    w: SampledWavelengths<4>,
+    grid: Grid,
+}
+
+const COARSE: Grid = Grid {
+    n_cos: 10,
+    n_phi: 20,
+    both_hemispheres: false,
+};
+const FINE: Grid = Grid {
+    n_cos: 20,
+    n_phi: 40,
+    both_hemispheres: false,
+};
+
+fn cases() -> Vec<Case> {
+    let mut v = Vec::new();
+    let angles = [0.0f32, 45.0, 85.0];
+    let phi = 0.7;
+    for &t in &angles {
+        v.push(Case {
+            name: format!("Lambert θo={t}"),
+            material: Material::Diffuse(Lambert::new(Spectrum::Constant(0.8))),
+            wo: dir(t, phi, false),
+            w: wavelengths(550.0),
+            grid: COARSE,
+        });
+    }
+    for (n, grid) in [(1.0f32, COARSE), (10.0, COARSE), (100.0, FINE)] {
+        for &t in &angles {
+            let m = Phong::new(Spectrum::Constant(0.0), Spectrum::Constant(1.0), n).unwrap();
+            v.push(Case {
+                name: format!("Phong specular n={n} θo={t}"),
+                material: Material::Phong(m),
+                wo: dir(t, phi, false),
+                w: wavelengths(500.0),
+                grid,
+            });
+        }
+    }
+    // Mixed lobes with spectrally varying kd/ks: the lobe choice uses several wavelengths.
+    let ramp = |a: f32, b: f32| {
+        Spectrum::Piecewise(Arc::new(
+            PiecewiseLinear::new(vec![360.0, 830.0], vec![a, b]).unwrap(),
+        ))
+    };
+    for &t in &angles {
+        let m = Phong::new(ramp(0.2, 0.6), ramp(0.7, 0.3), 20.0).unwrap();
+        v.push(Case {
+            name: format!("Phong mixed n=20 θo={t}"),
+            material: Material::Phong(m),
+            wo: dir(t, phi, false),
+            w: wavelengths(600.0),
+            grid: COARSE,
+        });
+    }
+    let heroes = [450.0f32, 550.0, 650.0];
+    let mut h = 0;
+    for alpha in [0.1f32, 0.5] {
+        for below in [false, true] {
+            for &t in &angles {
+                let grid = Grid {
+                    both_hemispheres: true,
+                    ..if alpha < 0.2 { FINE } else { COARSE }
+                };
+                v.push(Case {
+                    name: format!(
+                        "RoughDielectric BK7 α={alpha} θo={t} {} λ={}",
+                        if below { "inside" } else { "outside" },
+                        heroes[h % 3]
+                    ),
+                    material: Material::RoughDielectric(RoughDielectric::new(bk7(), 1.0, alpha)),
+                    wo: dir(t, phi, below),
+                    w: wavelengths(heroes[h % 3]),
+                    grid,
+                });
+                h += 1;
+            }
+        }
+    }
+    for alpha in [0.1f32, 0.5] {
+        for &t in &angles {
+            v.push(Case {
+                name: format!("RoughConductor Au α={alpha} θo={t}"),
+                material: Material::RoughConductor(RoughConductor::new(gold(), 1.0, alpha)),
+                wo: dir(t, phi, false),
+                w: wavelengths(heroes[h % 3]),
+                grid: if alpha < 0.2 { FINE } else { COARSE },
+            });
+            h += 1;
+        }
+    }
+    v
+}
+
+fn run(m: &Material, wo: Vec3, w: &SampledWavelengths<4>, grid: Grid, seed: u64) -> Chi2Outcome {
+    let mut rng = Rng::new(seed);
+    let mode = TransportMode::Radiance;
+    chi2_test(
+        grid,
+        SAMPLES,
+        || {
+            let uc = rng.uniform();
+            let u = Vec2::new(rng.uniform(), rng.uniform());
+            m.sample(wo, w, uc, u, mode).map(|s| s.wi)
+        },
+        |d| m.pdf(wo, d, w, mode) as f64,
+    )
+}
+
+#[test]
+fn chi2_every_sampler_matches_its_pdf() {
+    let cases = cases();
+    let level = sidak(0.01, cases.len());
+    let mut failures = Vec::new();
+    let mut p_min = f64::INFINITY;
+    let mut p_max: f64 = 0.0;
+    for (k, c) in cases.iter().enumerate() {
+        let r = run(&c.material, c.wo, &c.w, c.grid, 0x5EED_0000 + k as u64);
+        println!(
+            "{:<55} χ²={:>9.2} dof={:>4} p={:.4} ∫pdf={:.5} rejected={}",
+            c.name, r.chi2, r.dof, r.p_value, r.integral, r.rejected
+        );
+        p_min = p_min.min(r.p_value);
+        p_max = p_max.max(r.p_value);
+        if r.p_value < level || r.in_empty_cells > 0 || r.integral > 1.0 + 1e-3 {
+            failures.push(format!("{}: {r:?}", c.name));
+        }
+    }
+    println!(
+        "{} cases, per-case level {level:.2e}, p in [{p_min:.4}, {p_max:.4}]",
+        cases.len()
+    );
+    assert!(failures.is_empty(), "χ² failures:\n{}", failures.join("\n"));
+}
+
+/// The test has power: a sampler checked against a slightly different density is rejected.
+#[test]
+fn chi2_rejects_a_mismatched_pdf() {
+    let mut rng = Rng::new(7);
+    let w = wavelengths(550.0);
+    let wo = dir(45.0, 0.3, false);
+    let sampled = Material::RoughConductor(RoughConductor::new(gold(), 1.0, 0.5));
+    let claimed = Material::RoughConductor(RoughConductor::new(gold(), 1.0, 0.55));
+    let mode = TransportMode::Radiance;
+    let r = chi2_test(
+        COARSE,
+        SAMPLES,
+        || {
+            let u = Vec2::new(rng.uniform(), rng.uniform());
+            sampled.sample(wo, &w, 0.5, u, mode).map(|s| s.wi)
+        },
+        |d| claimed.pdf(wo, d, &w, mode) as f64,
+    );
+    assert!(r.p_value < 1e-6, "{r:?}");
+    // Phong sampled with exponent 10 but claiming the density of exponent 11.
+    let sampled = Material::Phong(
+        Phong::new(Spectrum::Constant(0.0), Spectrum::Constant(1.0), 10.0).unwrap(),
+    );
+    let claimed = Material::Phong(
+        Phong::new(Spectrum::Constant(0.0), Spectrum::Constant(1.0), 11.0).unwrap(),
+    );
+    let r = chi2_test(
+        COARSE,
+        SAMPLES,
+        || {
+            let u = Vec2::new(rng.uniform(), rng.uniform());
+            sampled.sample(wo, &w, 0.5, u, mode).map(|s| s.wi)
+        },
+        |d| claimed.pdf(wo, d, &w, mode) as f64,
+    );
+    assert!(r.p_value < 1e-6, "{r:?}");
+}
+
+/// The p-value machinery against tabulated values.
+#[test]
+fn incomplete_gamma_matches_tables() {
+    // ln Γ at integers and half-integers.
+    assert!((ln_gamma(5.0) - 24f64.ln()).abs() < 1e-12);
+    assert!((ln_gamma(0.5) - std::f64::consts::PI.sqrt().ln()).abs() < 1e-12);
+    assert!((ln_gamma(10.5) - 1_133_278.388_7f64.ln()).abs() < 1e-9);
+    // Q(1, x) = e^{−x}.
+    for x in [0.1, 1.0, 3.0, 10.0, 50.0] {
+        let e = (-x as f64).exp();
+        assert!((gamma_q(1.0, x) - e).abs() / e < 1e-10, "Q(1, {x})");
+    }
+    // χ² upper 1 % critical values (NIST/SEMATECH e-Handbook, table 1.3.6.7.4).
+    for (dof, crit) in [(1.0, 6.635), (2.0, 9.210), (10.0, 23.209), (100.0, 135.807)] {
+        let p = gamma_q(0.5 * dof, 0.5 * crit);
+        assert!((p - 0.01).abs() < 2e-5, "dof {dof}: p = {p}");
+    }
+    // and the 5 % ones
+    for (dof, crit) in [(5.0, 11.070), (30.0, 43.773), (50.0, 67.505)] {
+        let p = gamma_q(0.5 * dof, 0.5 * crit);
+        assert!((p - 0.05).abs() < 1e-4, "dof {dof}: p = {p}");
+    }
+    assert!((sidak(0.01, 1) - 0.01).abs() < 1e-15);
+    assert!((1.0 - (1.0 - sidak(0.01, 40)).powi(40) - 0.01).abs() < 1e-12);
+}
