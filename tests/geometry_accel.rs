@@ -25,7 +25,7 @@ fn rand_transform(rng: &mut Rng, scale_lo: f32, scale_hi: f32, mirror: bool) -> 
     }
     Transform::scale(s)
         .unwrap()
-        .then(&Transform::rotate(rand_dir(rng), rng.uniform() * 6.28).unwrap())
+        .then(&Transform::rotate(rand_dir(rng), rng.uniform() * std::f32::consts::TAU).unwrap())
         .then(&Transform::translate(rand_vec(rng, -8.0, 8.0)).unwrap())
 }
 

@@ -50,6 +50,11 @@ fn centre_ray_goes_forward_and_edges_match_the_fov() {
         (FovAxis::Smaller, horizontal_for_y, fov),
     ] {
         let cam = Camera::perspective(view(), fov, axis, W, H).unwrap();
+        let to_target = (Vec3::new(-1.0, 0.5, -3.0) - Vec3::new(2.0, 1.0, 5.0)).normalize();
+        assert!(
+            (cam.forward() - to_target).length() < 1e-6,
+            "forward points at the target"
+        );
         let c = cam.generate_ray(centre(), Vec2::ZERO);
         assert!(
             (c.d - cam.forward()).length() < 1e-6,

@@ -2,7 +2,7 @@
 
 use glam::{Vec2, Vec3};
 use spectrace::geometry::{Accel, GeometryError, Mesh, Ray, Shape, Transform};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Writes `text` to a fresh file under Cargo's per-test temporary directory.
 fn write_obj(name: &str, text: &str) -> PathBuf {
@@ -13,7 +13,7 @@ fn write_obj(name: &str, text: &str) -> PathBuf {
     path
 }
 
-fn load(path: &PathBuf) -> Result<Mesh, GeometryError> {
+fn load(path: &Path) -> Result<Mesh, GeometryError> {
     Mesh::load_obj(path, &Transform::identity())
 }
 

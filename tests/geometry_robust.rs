@@ -329,7 +329,7 @@ fn spawned_rays_do_not_rehit_a_large_tilted_disk() {
             let d = geo::direction_at_elevation(
                 it.n_geom,
                 side * grazing(&mut rng),
-                rng.uniform() * 6.3,
+                rng.uniform() * std::f32::consts::TAU,
             );
             if let Some(h) = accel.intersect(&shapes, &spawn_ray(it.p, it.p_error, it.n_geom, d)) {
                 rehits.push(h.t);

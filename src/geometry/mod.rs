@@ -5,6 +5,10 @@
 //! [`ray::spawn_ray`] uses it to start secondary rays without self-intersection (pbrt-v4 §6.8).
 //! Invalid user input gives a [`GeometryError`], never a panic.
 
+// `!(a > b)` is used on purpose throughout: unlike `a <= b` it is also true when a value is NaN,
+// so NaN input falls on the "no hit" / "invalid" side.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 pub mod accel;
 pub mod camera;
 pub mod error;

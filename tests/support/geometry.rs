@@ -24,7 +24,7 @@ pub fn fan(n: usize, radius: f32, transform: &Transform) -> Mesh {
 
 /// sin and cos with exact values on multiples of π/4 (n divisible by 8).
 fn exact_sin_cos(k: usize, n: usize, phi: f32) -> (f32, f32) {
-    if n % 8 == 0 && k % (n / 8) == 0 {
+    if n.is_multiple_of(8) && k.is_multiple_of(n / 8) {
         let h = std::f32::consts::FRAC_1_SQRT_2;
         let table = [
             (0.0, 1.0),

@@ -17,10 +17,11 @@ impl Mesh {
     /// normals (the shading normal falls back to the geometric one) and zero uvs. Coordinates are
     /// taken as metres, uvs as written in the file.
     ///
-    /// Errors name the path: "cannot open mesh <path>: <io error>" if the file cannot be opened
-    /// or read, "malformed OBJ <path>: <tobj's message>" if it cannot be parsed (e.g. a bad
-    /// number or a face index out of range), and "malformed OBJ <path>: mesh ..." if the data is
-    /// invalid for [`Mesh::new`] (no faces, non-finite values, zero area).
+    /// Errors name the path: `cannot open mesh <path>: <io error>` if the file cannot be opened
+    /// or read, `malformed OBJ <path>: <tobj's message>` if it cannot be parsed (e.g. a bad
+    /// number or a face index out of range), and `malformed OBJ <path>: mesh ...` if the data is
+    /// invalid for [`Mesh::new`] (no faces, non-finite values, zero area). Unknown statements are
+    /// ignored, as tobj does.
     pub fn load_obj(path: &Path, transform: &Transform) -> Result<Mesh, GeometryError> {
         let open_error = |source| GeometryError::MeshOpen {
             path: path.to_path_buf(),
