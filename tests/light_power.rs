@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 use glam::{Vec2, Vec3};
-use spectrace::colour::cie::{cmf, K_M};
+use spectrace::colour::cie::{K_M, cmf};
 use spectrace::light::Light;
 use spectrace::scene::Scene;
 use spectrace::spectrum::SampledWavelengths;
@@ -26,25 +26,32 @@ reflectance = 0.5
 
 fn scene(body: &str) -> Scene {
     let text = format!("{HEAD}\n{body}");
-    let desc = spectrace::loader::load_str(&text, Path::new("inline.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let desc = spectrace::loader::load_str(&text, Path::new("inline.toml"))
+        .unwrap_or_else(|e| panic!("{e}"));
     spectrace::scene::build(&desc).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn at(l: f32) -> SampledWavelengths<1> {
-    SampledWavelengths { lambda: [l], pdf: [1.0] }
+    SampledWavelengths {
+        lambda: [l],
+        pdf: [1.0],
+    }
 }
 
-/// ∫ g(λ) dλ over 360–830 nm by the trapezoid rule at 0.1 nm, with the photometric weight
+/// ∫ g(λ) dλ over 360–830 nm by the midpoint rule at 0.01 nm, with the photometric weight
 /// K_m ȳ(λ) when `lumens`.
 fn over_lambda(lumens: bool, g: impl Fn(f32) -> f64) -> f64 {
-    let n = 4700;
-    let h = 0.1;
-    (0..=n)
+    let n = 47_000;
+    let h = 0.01;
+    (0..n)
         .map(|i| {
-            let l = 360.0 + i as f32 * h as f32;
-            let w = if i == 0 || i == n { 0.5 } else { 1.0 };
-            let y = if lumens { K_M * cmf().y_bar(l) as f64 } else { 1.0 };
-            w * h * y * g(l)
+            let l = (360.0 + (i as f64 + 0.5) * h) as f32;
+            let y = if lumens {
+                K_M * cmf().y_bar(l) as f64
+            } else {
+                1.0
+            };
+            h * y * g(l)
         })
         .sum()
 }
@@ -58,7 +65,12 @@ fn over_sphere(f: impl Fn(Vec3) -> f64, n_theta: usize, n_phi: usize) -> f64 {
         let r = (1.0 - z * z).sqrt();
         for j in 0..n_phi {
             let phi = (j as f64 + 0.5) * dphi;
-            acc += f(Vec3::new((r * phi.cos()) as f32, (r * phi.sin()) as f32, z as f32)) * dz * dphi;
+            acc += f(Vec3::new(
+                (r * phi.cos()) as f32,
+                (r * phi.sin()) as f32,
+                z as f32,
+            )) * dz
+                * dphi;
         }
     }
     acc
@@ -66,11 +78,10 @@ fn over_sphere(f: impl Fn(Vec3) -> f64, n_theta: usize, n_phi: usize) -> f64 {
 
 /// Intensity of a point-like light toward `dir`, per nm: li · r² at distance r.
 fn intensity(s: &Scene, light: &Light, dir: Vec3, l: f32) -> f64 {
-    let Light::Point(_) | Light::Spot(_) = light else { panic!("not point-like") };
     let pos = match light {
         Light::Point(p) => p.position,
         Light::Spot(p) => p.position,
-        _ => unreachable!(),
+        _ => panic!("not point-like"),
     };
     let r = 3.0;
     match light.sample_li(&s.shapes, pos + dir * r, &at(l), Vec2::ZERO, 0.0) {
@@ -80,13 +91,20 @@ fn intensity(s: &Scene, light: &Light, dir: Vec3, l: f32) -> f64 {
 }
 
 fn assert_close(got: f64, want: f64, what: &str) {
-    assert!(((got - want) / want).abs() < 1e-3, "{what}: integrated {got}, stated {want}");
+    assert!(
+        ((got - want) / want).abs() < 1e-3,
+        "{what}: integrated {got}, stated {want}"
+    );
 }
 
 #[test]
 fn point_light_watts_and_lumens() {
     for (amount, lumens, want) in [("\"100 W\"", false, 100.0), ("\"800 lm\"", true, 800.0)] {
-        for spectrum in ["\"blackbody:3000K\"", "\"cie-f11\"", "{ samples = [[500, 1], [600, 3]] }"] {
+        for spectrum in [
+            "\"blackbody:3000K\"",
+            "\"cie-f11\"",
+            "{ samples = [[500, 1], [600, 3]] }",
+        ] {
             let s = scene(&format!(
                 "[[shapes]]\ntype = \"sphere\"\nradius = 1\nmaterial = \"grey\"\n[[lights]]\ntype = \"point\"\nposition = [5, 5, 5]\nspectrum = {spectrum}\npower = {amount}\n"
             ));
@@ -110,14 +128,23 @@ fn spot_light_power_includes_the_falloff() {
         let axis = Vec3::new(0.0, -1.0, 0.0);
         let on_axis = over_lambda(lumens, |l| intensity(&s, light, axis, l));
         let i550 = intensity(&s, light, axis, 550.0);
-        let profile = over_sphere(|d| intensity(&s, light, d, 550.0) / i550, 4000, 8);
+        // the sphere grid's pole on the spot's axis (−y): (x, y, z) ↦ (x, −z, y)
+        let profile = over_sphere(
+            |d| intensity(&s, light, Vec3::new(d.x, -d.z, d.y), 550.0) / i550,
+            4000,
+            8,
+        );
         assert_close(on_axis * profile, want, &format!("spot {amount}"));
     }
 }
 
 /// ∫ L(ω) |cos θ| dω over the sphere around normal `n` for an area light at wavelength `l`.
 fn exitance(light: &Light, n: Vec3, l: f32) -> f64 {
-    over_sphere(|d| light.emitted(n, d, &at(l))[0] as f64 * (d.dot(n).abs() as f64), 400, 16)
+    over_sphere(
+        |d| light.emitted(n, d, &at(l))[0] as f64 * (d.dot(n).abs() as f64),
+        400,
+        16,
+    )
 }
 
 #[test]
@@ -126,7 +153,10 @@ fn area_light_power_radiance_and_luminance() {
     let rect_area = 1.0;
     let sphere_area = 4.0 * PI * 0.09;
     for (shape, area) in [
-        ("type = \"rectangle\"\ntransform = [{ scale = 0.5 }]", rect_area),
+        (
+            "type = \"rectangle\"\ntransform = [{ scale = 0.5 }]",
+            rect_area,
+        ),
         ("type = \"sphere\"\nradius = 0.3", sphere_area),
     ] {
         for (emission, lumens, want, per_area) in [
@@ -139,7 +169,11 @@ fn area_light_power_radiance_and_luminance() {
             let s = scene(&format!(
                 "[[shapes]]\n{shape}\nemission = {{ spectrum = \"cie-a\", {emission} }}\n[[lights]]\ntype = \"point\"\nposition = [5, 5, 5]\npower = \"1 W\"\n"
             ));
-            let light = s.lights.iter().find(|l| matches!(l, Light::Area(_))).expect("area light");
+            let light = s
+                .lights
+                .iter()
+                .find(|l| matches!(l, Light::Area(_)))
+                .expect("area light");
             let n = Vec3::Z;
             if per_area {
                 // radiance along the normal, integrated over λ
@@ -150,7 +184,11 @@ fn area_light_power_radiance_and_luminance() {
                 let m550 = exitance(light, n, 550.0);
                 let l550 = light.emitted(n, n, &at(550.0))[0] as f64;
                 let band = over_lambda(lumens, |l| light.emitted(n, n, &at(l))[0] as f64);
-                assert_close(m550 / l550 * band * area, want, &format!("{shape}: {emission}"));
+                assert_close(
+                    m550 / l550 * band * area,
+                    want,
+                    &format!("{shape}: {emission}"),
+                );
             }
         }
     }
@@ -165,7 +203,11 @@ fn directional_and_environment() {
          [[lights]]\ntype = \"environment\"\nspectrum = \"cie-d65\"\nluminance = \"5 cd/m^2\"\n",
     );
     let p = Vec3::ZERO;
-    let e = over_lambda(false, |l| s.lights[0].sample_li(&s.shapes, p, &at(l), Vec2::ZERO, 0.0).map_or(0.0, |x| x.li[0] as f64));
+    let e = over_lambda(false, |l| {
+        s.lights[0]
+            .sample_li(&s.shapes, p, &at(l), Vec2::ZERO, 0.0)
+            .map_or(0.0, |x| x.li[0] as f64)
+    });
     assert_close(e, 1000.0, "directional irradiance");
     // the sun disk: uniform radiance inside the 0.265° half-angle, none outside, so
     // E⊥ = L · ∫_cone cos θ dω = L · π sin²α (closed form), integrated over λ with K_m ȳ.
@@ -176,9 +218,17 @@ fn directional_and_environment() {
     let centre = sun.escaped(up, &at(550.0))[0];
     for k in 0..50 {
         let t = 0.98 * alpha * k as f64 / 49.0;
-        assert_eq!(sun.escaped(dir(t), &at(550.0))[0], centre, "not uniform at {t} rad");
+        assert_eq!(
+            sun.escaped(dir(t), &at(550.0))[0],
+            centre,
+            "not uniform at {t} rad"
+        );
     }
-    assert_eq!(sun.escaped(dir(1.05 * alpha), &at(550.0))[0], 0.0, "light outside the disk");
+    assert_eq!(
+        sun.escaped(dir(1.05 * alpha), &at(550.0))[0],
+        0.0,
+        "light outside the disk"
+    );
     let lum = over_lambda(true, |l| sun.escaped(up, &at(l))[0] as f64);
     assert_close(lum * PI * alpha.sin().powi(2), 100_000.0, "sun illuminance");
     let env = over_lambda(true, |l| s.lights[2].escaped(Vec3::X, &at(l))[0] as f64);

@@ -25,7 +25,12 @@ fn example_scenes_load_and_build() {
         let scene = build(&desc).unwrap_or_else(|e| panic!("{e}"));
         assert!(!scene.lights.is_empty(), "{}", p.display());
         assert_eq!(scene.surfaces.len(), scene.shapes.len());
-        assert!(scene.light_power.iter().all(|w| w.is_finite() && *w > 0.0), "{}: {:?}", p.display(), scene.light_power);
+        assert!(
+            scene.light_power.iter().all(|w| w.is_finite() && *w > 0.0),
+            "{}: {:?}",
+            p.display(),
+            scene.light_power
+        );
     }
 }
 
@@ -36,11 +41,26 @@ fn cornell_box_is_in_millimetres() {
     // the classic box is 556 mm wide, 548.8 mm high, 559.2 mm deep
     let (lo, hi) = scene.bounds;
     let size = hi - lo;
-    assert!((size.x - 0.556).abs() < 1e-4 && (size.y - 0.5488).abs() < 1e-4 && (size.z - 0.5592).abs() < 1e-4, "{size}");
+    assert!(
+        (size.x - 0.556).abs() < 1e-4
+            && (size.y - 0.5488).abs() < 1e-4
+            && (size.z - 0.5592).abs() < 1e-4,
+        "{size}"
+    );
     // the ceiling light: 130 mm × 105 mm, 60 W
-    let light = scene.lights.iter().position(|l| matches!(l, Light::Area(_))).expect("area light");
-    let Light::Area(a) = &scene.lights[light] else { unreachable!() };
+    let light = scene
+        .lights
+        .iter()
+        .position(|l| matches!(l, Light::Area(_)))
+        .expect("area light");
+    let Light::Area(a) = &scene.lights[light] else {
+        unreachable!()
+    };
     let area = scene.shapes[a.shape as usize].area();
     assert!((area - 0.130 * 0.105).abs() < 1e-6, "{area}");
-    assert!((scene.light_power[light] - 60.0).abs() < 0.06, "{}", scene.light_power[light]);
+    assert!(
+        (scene.light_power[light] - 60.0).abs() < 0.06,
+        "{}",
+        scene.light_power[light]
+    );
 }

@@ -19,7 +19,12 @@ pub struct AreaLight {
 
 impl AreaLight {
     /// Radiance leaving the surface (normal `n`) toward `w_out`.
-    pub fn emitted<const N: usize>(&self, n: Vec3, w_out: Vec3, w: &SampledWavelengths<N>) -> SampledSpectrum<N> {
+    pub fn emitted<const N: usize>(
+        &self,
+        n: Vec3,
+        w_out: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
         if self.two_sided || n.dot(w_out) > 0.0 {
             self.radiance.sample(w)
         } else {

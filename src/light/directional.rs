@@ -16,41 +16,83 @@ pub struct DirectionalLight {
     pub direction: Vec3,
     /// Spectral irradiance on a perpendicular plane, W·m⁻²·nm⁻¹.
     pub irradiance: Spectrum,
-    /// cos α of the disk's angular radius; 1 for a collimated (delta) light.
-    pub cos_half_angle: f32,
+    /// 1 − cos α of the disk's angular radius α (0 for a collimated, delta light), computed in
+    /// f64 so that the sun's 0.27° stays accurate.
+    pub one_minus_cos: f32,
     /// Frame around the direction toward the light (−`direction`).
     pub frame: Frame,
 }
 
 impl DirectionalLight {
-    /// Radiance of the disk, W·m⁻²·sr⁻¹·nm⁻¹ per unit irradiance: 1/(π sin²α).
-    fn disk_radiance_factor(&self) -> f32 {
-        let sin2 = 1.0 - self.cos_half_angle * self.cos_half_angle;
-        1.0 / (std::f32::consts::PI * sin2)
+    /// A light along `direction` (normalised here) with angular radius `alpha_rad`.
+    pub fn new(direction: Vec3, irradiance: Spectrum, alpha_rad: f64) -> Self {
+        let d = direction.normalize();
+        let omc = 2.0 * (alpha_rad / 2.0).sin().powi(2);
+        Self {
+            direction: d,
+            irradiance,
+            one_minus_cos: omc as f32,
+            frame: Frame::from_normal(-d),
+        }
     }
 
-    pub fn sample_li<const N: usize>(&self, w: &SampledWavelengths<N>, u: Vec2) -> Option<LightSample<N>> {
-        let (wi, li, pdf, delta) = if self.cos_half_angle >= 1.0 {
+    pub fn is_delta(&self) -> bool {
+        self.one_minus_cos <= 0.0
+    }
+
+    /// Radiance of the disk per unit irradiance, sr⁻¹: 1/(π sin²α), sin²α = (1−c)(1+c).
+    fn disk_radiance_factor(&self) -> f32 {
+        let omc = self.one_minus_cos as f64;
+        (1.0 / (std::f64::consts::PI * omc * (2.0 - omc))) as f32
+    }
+
+    fn in_disk(&self, dir: Vec3) -> bool {
+        !self.is_delta() && 1.0 - dir.dot(self.frame.n) <= self.one_minus_cos
+    }
+
+    pub fn sample_li<const N: usize>(
+        &self,
+        w: &SampledWavelengths<N>,
+        u: Vec2,
+    ) -> Option<LightSample<N>> {
+        let (wi, li, pdf, delta) = if self.is_delta() {
             (-self.direction, self.irradiance.sample(w), 1.0, true)
         } else {
-            let local = uniform_cone(u, self.cos_half_angle);
-            let wi = self.frame.to_world(local);
-            (wi, self.irradiance.sample(w) * self.disk_radiance_factor(), uniform_cone_pdf(self.cos_half_angle), false)
+            let wi = self.frame.to_world(uniform_cone(u, self.one_minus_cos));
+            (
+                wi,
+                self.irradiance.sample(w) * self.disk_radiance_factor(),
+                uniform_cone_pdf(self.one_minus_cos),
+                false,
+            )
         };
-        Some(LightSample { wi, li, pdf, delta, p: Vec3::ZERO, p_error: Vec3::ZERO, n: Vec3::ZERO, distance: f32::INFINITY })
+        Some(LightSample {
+            wi,
+            li,
+            pdf,
+            delta,
+            p: Vec3::ZERO,
+            p_error: Vec3::ZERO,
+            n: Vec3::ZERO,
+            distance: f32::INFINITY,
+        })
     }
 
     pub fn pdf_li(&self, wi: Vec3) -> f32 {
-        if self.cos_half_angle < 1.0 && wi.dot(self.frame.n) >= self.cos_half_angle {
-            uniform_cone_pdf(self.cos_half_angle)
+        if self.in_disk(wi) {
+            uniform_cone_pdf(self.one_minus_cos)
         } else {
             0.0
         }
     }
 
     /// Radiance seen along an escaping ray in direction `dir` (only for a finite disk).
-    pub fn escaped<const N: usize>(&self, dir: Vec3, w: &SampledWavelengths<N>) -> SampledSpectrum<N> {
-        if self.cos_half_angle < 1.0 && dir.dot(self.frame.n) >= self.cos_half_angle {
+    pub fn escaped<const N: usize>(
+        &self,
+        dir: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
+        if self.in_disk(dir) {
             self.irradiance.sample(w) * self.disk_radiance_factor()
         } else {
             SampledSpectrum::zero()

@@ -4,7 +4,7 @@
 use glam::{Vec2, Vec3};
 
 use super::LightSample;
-use crate::sampling::{uniform_sphere, UNIFORM_SPHERE_PDF};
+use crate::sampling::{UNIFORM_SPHERE_PDF, uniform_sphere};
 use crate::spectrum::{SampledWavelengths, Spectrum};
 
 /// Uniform spectral radiance from every direction at infinity, W·m⁻²·sr⁻¹·nm⁻¹.
@@ -15,7 +15,11 @@ pub struct EnvironmentLight {
 
 impl EnvironmentLight {
     /// Uniform direction on the sphere, pdf 1/(4π) sr⁻¹.
-    pub fn sample_li<const N: usize>(&self, w: &SampledWavelengths<N>, u: Vec2) -> Option<super::LightSample<N>> {
+    pub fn sample_li<const N: usize>(
+        &self,
+        w: &SampledWavelengths<N>,
+        u: Vec2,
+    ) -> Option<super::LightSample<N>> {
         Some(LightSample {
             wi: uniform_sphere(u),
             li: self.radiance.sample(w),

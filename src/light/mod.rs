@@ -82,9 +82,9 @@ impl Light {
     /// Density per unit solid angle with which [`Light::sample_li`] at `p` would produce the
     /// direction `wi` that reaches the light at `p_light` with normal `n_light` (for area
     /// lights; ignored otherwise). 0 for delta lights.
-    pub fn pdf_li(&self, p: Vec3, wi: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
+    pub fn pdf_li(&self, shapes: &[Shape], p: Vec3, wi: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
         match self {
-            Light::Area(l) => l.pdf_li(p, wi, p_light, n_light),
+            Light::Area(l) => l.pdf_li(p, wi, p_light, n_light, shapes[l.shape as usize].area()),
             Light::Directional(l) => l.pdf_li(wi),
             Light::Environment(_) => crate::sampling::UNIFORM_SPHERE_PDF,
             Light::Point(_) | Light::Spot(_) => 0.0,
@@ -93,7 +93,12 @@ impl Light {
 
     /// Radiance leaving an area light's surface with geometric normal `n` toward `w_out`
     /// (unit, pointing away from the surface), W·m⁻²·sr⁻¹·nm⁻¹. Zero for other lights.
-    pub fn emitted<const N: usize>(&self, n: Vec3, w_out: Vec3, w: &SampledWavelengths<N>) -> SampledSpectrum<N> {
+    pub fn emitted<const N: usize>(
+        &self,
+        n: Vec3,
+        w_out: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
         match self {
             Light::Area(l) => l.emitted(n, w_out, w),
             _ => SampledSpectrum::zero(),
@@ -102,7 +107,11 @@ impl Light {
 
     /// Radiance arriving along a ray that escapes the scene in direction `dir` (environment, and
     /// the disk of a directional light with an angular diameter), W·m⁻²·sr⁻¹·nm⁻¹.
-    pub fn escaped<const N: usize>(&self, dir: Vec3, w: &SampledWavelengths<N>) -> SampledSpectrum<N> {
+    pub fn escaped<const N: usize>(
+        &self,
+        dir: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
         match self {
             Light::Environment(l) => l.radiance.sample(w),
             Light::Directional(l) => l.escaped(dir, w),
@@ -114,7 +123,7 @@ impl Light {
     pub fn is_delta(&self) -> bool {
         match self {
             Light::Point(_) | Light::Spot(_) => true,
-            Light::Directional(l) => l.cos_half_angle >= 1.0,
+            Light::Directional(l) => l.is_delta(),
             Light::Area(_) | Light::Environment(_) => false,
         }
     }
@@ -132,7 +141,9 @@ impl Light {
                 sides * pi * shapes[l.shape as usize].area() as f64 * band(&l.radiance)
             }
             Light::Directional(l) => pi * (scene_radius as f64).powi(2) * band(&l.irradiance),
-            Light::Environment(l) => 4.0 * pi * pi * (scene_radius as f64).powi(2) * band(&l.radiance),
+            Light::Environment(l) => {
+                4.0 * pi * pi * (scene_radius as f64).powi(2) * band(&l.radiance)
+            }
         }
     }
 }

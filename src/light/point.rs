@@ -17,7 +17,11 @@ pub struct PointLight {
 
 impl PointLight {
     /// Irradiance-producing sample at `p`: li = I / r² (W·m⁻²·nm⁻¹), pdf 1, delta.
-    pub fn sample_li<const N: usize>(&self, p: Vec3, w: &SampledWavelengths<N>) -> Option<LightSample<N>> {
+    pub fn sample_li<const N: usize>(
+        &self,
+        p: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> Option<LightSample<N>> {
         let d = self.position - p;
         let r2 = d.length_squared();
         if r2 == 0.0 {

@@ -32,7 +32,11 @@ fn smoothstep(x: f32, a: f32, b: f32) -> f32 {
 impl SpotLight {
     /// Relative intensity in direction `dir` (unit, world), in [0, 1].
     pub fn falloff(&self, dir: Vec3) -> f32 {
-        smoothstep(self.frame.n.dot(dir), self.cos_total, self.cos_falloff_start)
+        smoothstep(
+            self.frame.n.dot(dir),
+            self.cos_total,
+            self.cos_falloff_start,
+        )
     }
 
     /// ∫ falloff dω over the sphere, sr: 2π[(1 − cos_start) + (cos_start − cos_total)/2]
@@ -42,7 +46,11 @@ impl SpotLight {
         2.0 * std::f64::consts::PI * ((1.0 - cs) + (cs - ct) / 2.0)
     }
 
-    pub fn sample_li<const N: usize>(&self, p: Vec3, w: &SampledWavelengths<N>) -> Option<LightSample<N>> {
+    pub fn sample_li<const N: usize>(
+        &self,
+        p: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> Option<LightSample<N>> {
         let d = self.position - p;
         let r2 = d.length_squared();
         if r2 == 0.0 {

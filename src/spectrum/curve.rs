@@ -187,14 +187,56 @@ impl Spectrum {
         }
     }
 
-    /// ∫ S(λ) dλ over [`lo_nm`, `hi_nm`] by the trapezoid rule at `step_nm`, in the curve's unit
-    /// times nm.
+    /// The wavelengths (nm) where this curve may have a kink or a jump: a table's samples.
+    fn breakpoints(&self) -> &[f32] {
+        match self {
+            Spectrum::Piecewise(t) => t.wavelengths(),
+            Spectrum::RgbIlluminant { illuminant, .. } => illuminant.wavelengths(),
+            _ => &[],
+        }
+    }
+
+    /// ∫ S(λ) w(λ) dλ over [`lo_nm`, `hi_nm`], in S's unit × w's unit × nm.
+    ///
+    /// Two-point Gauss–Legendre on every interval between the curve's own breakpoints and the
+    /// multiples of `step_nm`. It never evaluates at a breakpoint, so a table's jump to zero at
+    /// its ends is integrated exactly, and it is exact whenever S·w is a cubic on each interval
+    /// (a piecewise-linear table times a weight that is linear between multiples of `step_nm`,
+    /// such as the 1 nm CIE functions).
+    pub fn integrate_weighted(
+        &self,
+        lo_nm: f32,
+        hi_nm: f32,
+        step_nm: f32,
+        w: impl Fn(f32) -> f64,
+    ) -> f64 {
+        if !(hi_nm > lo_nm) || !(step_nm > 0.0) {
+            return 0.0;
+        }
+        let (lo, hi, step) = (lo_nm as f64, hi_nm as f64, step_nm as f64);
+        let mut points: Vec<f64> = ((lo / step).ceil() as i64..=(hi / step).floor() as i64)
+            .map(|k| k as f64 * step)
+            .chain(self.breakpoints().iter().map(|&l| l as f64))
+            .filter(|&l| l > lo && l < hi)
+            .chain([lo, hi])
+            .collect();
+        points.sort_by(f64::total_cmp);
+        points.dedup();
+        let g = 0.5 / 3f64.sqrt();
+        points
+            .windows(2)
+            .map(|ab| {
+                let (a, b) = (ab[0], ab[1]);
+                let (m, h) = (0.5 * (a + b), b - a);
+                let f = |x: f64| self.eval(x as f32) as f64 * w(x as f32);
+                0.5 * h * (f(m - g * h) + f(m + g * h))
+            })
+            .sum()
+    }
+
+    /// ∫ S(λ) dλ over [`lo_nm`, `hi_nm`] (see [`Spectrum::integrate_weighted`]).
     pub fn integrate(&self, lo_nm: f32, hi_nm: f32, step_nm: f32) -> f64 {
-        let n = (((hi_nm - lo_nm) / step_nm).ceil() as usize).max(1);
-        let h = (hi_nm - lo_nm) as f64 / n as f64;
-        let f = |i: usize| self.eval((lo_nm as f64 + i as f64 * h) as f32) as f64;
-        let inner: f64 = (1..n).map(f).sum();
-        h * (inner + 0.5 * (f(0) + f(n)))
+        self.integrate_weighted(lo_nm, hi_nm, step_nm, |_| 1.0)
     }
 }
 
@@ -223,8 +265,20 @@ mod tests {
     }
 
     #[test]
-    fn integrate_constant() {
+    fn integrate_is_exact_for_tables_with_jumps() {
         let s = Spectrum::Constant(2.0);
         assert!((s.integrate(360.0, 830.0, 1.0) - 940.0).abs() < 1e-6);
+        // zero outside 500–600 nm, linear from 1 to 3 inside: exactly 200 nm
+        let t = Spectrum::Piecewise(Arc::new(
+            PiecewiseLinear::new(vec![500.0, 600.0], vec![1.0, 3.0]).unwrap(),
+        ));
+        assert!((t.integrate(360.0, 830.0, 0.25) - 200.0).abs() < 1e-4);
+        assert!((t.integrate(550.0, 830.0, 7.0) - 125.0).abs() < 1e-4);
+        // times a linear weight: ∫_500^600 (1 + (λ−500)/50) λ dλ
+        let exact = {
+            let f = |l: f64| l * l / 2.0 + (l * l * l / 3.0 - 500.0 * l * l / 2.0) / 50.0;
+            f(600.0) - f(500.0)
+        };
+        assert!((t.integrate_weighted(360.0, 830.0, 1.0, |l| l as f64) / exact - 1.0).abs() < 1e-6);
     }
 }

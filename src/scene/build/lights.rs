@@ -16,9 +16,9 @@
 use glam::Vec3;
 
 use super::{surface, v3};
-use crate::colour::cie::{cmf, K_M};
-use crate::geometry::shape::Shape;
+use crate::colour::cie::{K_M, cmf};
 use crate::geometry::Frame;
+use crate::geometry::shape::Shape;
 use crate::light::{AreaLight, DirectionalLight, EnvironmentLight, Light, PointLight, SpotLight};
 use crate::loader::desc::{DirectionalAmount, EmitAmount, LightKind, PointAmount, SceneDesc};
 use crate::loader::{LoadError, Loc};
@@ -31,23 +31,14 @@ use crate::units::{
 
 /// ∫ S dλ over the range, in S's unit × nm.
 pub fn band_integral(s: &Spectrum, r: WavelengthRange) -> f64 {
-    s.integrate(r.min_nm, r.max_nm, 0.25)
+    s.integrate(r.min_nm, r.max_nm, 1.0)
 }
 
 /// K_m ∫ S ȳ dλ over the range ∩ 360–830 nm, lm per (W per S's unit).
 pub fn luminous_integral(s: &Spectrum, r: WavelengthRange) -> f64 {
-    let (lo, hi) = (r.min_nm.max(360.0) as f64, r.max_nm.min(830.0) as f64);
-    if hi <= lo {
-        return 0.0;
-    }
-    let n = ((hi - lo) / 0.25).ceil() as usize;
-    let h = (hi - lo) / n as f64;
-    let f = |i: usize| {
-        let l = (lo + i as f64 * h) as f32;
-        s.eval(l) as f64 * cmf().y_bar(l) as f64
-    };
-    let inner: f64 = (1..n).map(f).sum();
-    K_M * h * (inner + 0.5 * (f(0) + f(n)))
+    K_M * s.integrate_weighted(r.min_nm.max(360.0), r.max_nm.min(830.0), 1.0, |l| {
+        cmf().y_bar(l) as f64
+    })
 }
 
 enum Per {
@@ -63,7 +54,10 @@ fn scaled(s: &Spectrum, per: Per, geometry: f64, r: WavelengthRange) -> Result<S
         Per::Band(v) => {
             let b = band_integral(s, r) * geometry;
             if !(b > 0.0) {
-                return Err(format!("the spectrum carries no power in {}–{} nm", r.min_nm, r.max_nm));
+                return Err(format!(
+                    "the spectrum carries no power in {}–{} nm",
+                    r.min_nm, r.max_nm
+                ));
             }
             v / b
         }
@@ -84,10 +78,22 @@ fn scaled(s: &Spectrum, per: Per, geometry: f64, r: WavelengthRange) -> Result<S
 
 fn emit(amount: &EmitAmount, area_factor: Option<f64>) -> Result<(Per, f64), String> {
     Ok(match amount {
-        EmitAmount::Radiance(l) => (Per::Band(l.get::<radiance::watt_per_square_meter_steradian>()), 1.0),
-        EmitAmount::Luminance(l) => (Per::Luminous(l.get::<luminance::candela_per_square_meter>()), 1.0),
-        EmitAmount::Power(p) => (Per::Band(p.get::<power::watt>()), area_factor.ok_or("power needs an area")?),
-        EmitAmount::LuminousFlux(f) => (Per::Luminous(f.get::<luminous_flux::lumen>()), area_factor.ok_or("power needs an area")?),
+        EmitAmount::Radiance(l) => (
+            Per::Band(l.get::<radiance::watt_per_square_meter_steradian>()),
+            1.0,
+        ),
+        EmitAmount::Luminance(l) => (
+            Per::Luminous(l.get::<luminance::candela_per_square_meter>()),
+            1.0,
+        ),
+        EmitAmount::Power(p) => (
+            Per::Band(p.get::<power::watt>()),
+            area_factor.ok_or("power needs an area")?,
+        ),
+        EmitAmount::LuminousFlux(f) => (
+            Per::Luminous(f.get::<luminous_flux::lumen>()),
+            area_factor.ok_or("power needs an area")?,
+        ),
         EmitAmount::Scale(s) => (Per::Scale(*s), 1.0),
     })
 }
@@ -95,15 +101,26 @@ fn emit(amount: &EmitAmount, area_factor: Option<f64>) -> Result<(Per, f64), Str
 fn point_amount(a: &PointAmount, solid_angle: f64) -> (Per, f64) {
     match a {
         PointAmount::Power(p) => (Per::Band(p.get::<power::watt>()), solid_angle),
-        PointAmount::LuminousFlux(f) => (Per::Luminous(f.get::<luminous_flux::lumen>()), solid_angle),
-        PointAmount::Intensity(i) => (Per::Band(i.get::<radiant_intensity::watt_per_steradian>()), 1.0),
-        PointAmount::LuminousIntensity(i) => (Per::Luminous(i.get::<luminous_intensity::candela>()), 1.0),
+        PointAmount::LuminousFlux(f) => {
+            (Per::Luminous(f.get::<luminous_flux::lumen>()), solid_angle)
+        }
+        PointAmount::Intensity(i) => (
+            Per::Band(i.get::<radiant_intensity::watt_per_steradian>()),
+            1.0,
+        ),
+        PointAmount::LuminousIntensity(i) => {
+            (Per::Luminous(i.get::<luminous_intensity::candela>()), 1.0)
+        }
         PointAmount::Scale(s) => (Per::Scale(*s), 1.0),
     }
 }
 
 /// All lights (scene lights, then one area light per emitting shape) and the surfaces table.
-pub(super) fn lights(desc: &SceneDesc, shapes: &[Shape], r: WavelengthRange) -> Result<(Vec<Light>, Vec<Surface>), LoadError> {
+pub(super) fn lights(
+    desc: &SceneDesc,
+    shapes: &[Shape],
+    r: WavelengthRange,
+) -> Result<(Vec<Light>, Vec<Surface>), LoadError> {
     let err = |loc: Loc, field: String, msg: String| LoadError::new(&desc.path, loc, field, msg);
     let mut lights = Vec::new();
     for (i, l) in desc.lights.iter().enumerate() {
@@ -112,9 +129,18 @@ pub(super) fn lights(desc: &SceneDesc, shapes: &[Shape], r: WavelengthRange) -> 
         let light = match &l.kind {
             LightKind::Point { position, amount } => {
                 let (per, g) = point_amount(amount, 4.0 * std::f64::consts::PI);
-                Light::Point(PointLight { position: v3(position), intensity: scaled(&l.spectrum, per, g, r).map_err(e)? })
+                Light::Point(PointLight {
+                    position: v3(position),
+                    intensity: scaled(&l.spectrum, per, g, r).map_err(e)?,
+                })
             }
-            LightKind::Spot { position, target, cone_angle, falloff_start, amount } => {
+            LightKind::Spot {
+                position,
+                target,
+                cone_angle,
+                falloff_start,
+                amount,
+            } => {
                 let p = v3(position);
                 let axis = (v3(target) - p).normalize();
                 let mut spot = SpotLight {
@@ -128,23 +154,36 @@ pub(super) fn lights(desc: &SceneDesc, shapes: &[Shape], r: WavelengthRange) -> 
                 spot.intensity = scaled(&l.spectrum, per, g, r).map_err(e)?;
                 Light::Spot(spot)
             }
-            LightKind::Directional { direction, angular_diameter, amount } => {
-                let d = Vec3::new(direction[0] as f32, direction[1] as f32, direction[2] as f32).normalize();
+            LightKind::Directional {
+                direction,
+                angular_diameter,
+                amount,
+            } => {
+                let d = Vec3::new(
+                    direction[0] as f32,
+                    direction[1] as f32,
+                    direction[2] as f32,
+                )
+                .normalize();
                 let per = match amount {
-                    DirectionalAmount::Irradiance(x) => Per::Band(x.get::<irradiance::watt_per_square_meter>()),
+                    DirectionalAmount::Irradiance(x) => {
+                        Per::Band(x.get::<irradiance::watt_per_square_meter>())
+                    }
                     DirectionalAmount::Illuminance(x) => Per::Luminous(x.get::<illuminance::lux>()),
                     DirectionalAmount::Scale(s) => Per::Scale(*s),
                 };
-                Light::Directional(DirectionalLight {
-                    direction: d,
-                    irradiance: scaled(&l.spectrum, per, 1.0, r).map_err(e)?,
-                    cos_half_angle: (plain::radians(*angular_diameter) / 2.0).cos(),
-                    frame: Frame::from_normal(-d),
-                })
+                let alpha = plain::radians(*angular_diameter) as f64 / 2.0;
+                Light::Directional(DirectionalLight::new(
+                    d,
+                    scaled(&l.spectrum, per, 1.0, r).map_err(e)?,
+                    alpha,
+                ))
             }
             LightKind::Environment { amount } => {
                 let (per, g) = emit(amount, None).map_err(e)?;
-                Light::Environment(EnvironmentLight { radiance: scaled(&l.spectrum, per, g, r).map_err(e)? })
+                Light::Environment(EnvironmentLight {
+                    radiance: scaled(&l.spectrum, per, g, r).map_err(e)?,
+                })
             }
         };
         lights.push(light);
@@ -159,10 +198,16 @@ pub(super) fn lights(desc: &SceneDesc, shapes: &[Shape], r: WavelengthRange) -> 
                 return Err(err(em.loc, field, "the emitter has zero area".into()));
             }
             let sides = if em.two_sided { 2.0 } else { 1.0 };
-            let (per, g) = emit(&em.amount, Some(sides * std::f64::consts::PI * area)).map_err(|m| err(em.loc, field.clone(), m))?;
-            let radiance = scaled(&em.spectrum, per, g, r).map_err(|m| err(em.loc, field.clone(), m))?;
+            let (per, g) = emit(&em.amount, Some(sides * std::f64::consts::PI * area))
+                .map_err(|m| err(em.loc, field.clone(), m))?;
+            let radiance =
+                scaled(&em.spectrum, per, g, r).map_err(|m| err(em.loc, field.clone(), m))?;
             light = Some(lights.len());
-            lights.push(Light::Area(AreaLight { shape: i as u32, radiance, two_sided: em.two_sided }));
+            lights.push(Light::Area(AreaLight {
+                shape: i as u32,
+                radiance,
+                two_sided: em.two_sided,
+            }));
         }
         surfaces.push(surface(s.material, s.two_sided, light));
     }

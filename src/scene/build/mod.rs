@@ -12,7 +12,9 @@ use crate::geometry::camera::{Camera, FovAxis as CamAxis};
 use crate::geometry::transform::Transform;
 use crate::loader::desc::{CameraKind, FovAxis, MaterialKind, Projection, SceneDesc};
 use crate::loader::{LoadError, Loc};
-use crate::material::{Conductor, Dielectric, Lambert, Material, Phong, RoughConductor, RoughDielectric};
+use crate::material::{
+    Conductor, Dielectric, Lambert, Material, Phong, RoughConductor, RoughDielectric,
+};
 use crate::spectrum::WavelengthRange;
 use crate::units::plain;
 
@@ -20,8 +22,17 @@ use crate::units::plain;
 /// singular transform) name the scene file, the item's line and the field.
 pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
     let err = |loc: Loc, field: String, msg: String| LoadError::new(&desc.path, loc, field, msg);
-    let range = WavelengthRange::new(plain::nm(desc.wavelength_range[0]), plain::nm(desc.wavelength_range[1]))
-        .map_err(|e| err(Loc { line: 1, col: 1 }, "scene.wavelength_range".into(), e.to_string()))?;
+    let range = WavelengthRange::new(
+        plain::nm(desc.wavelength_range[0]),
+        plain::nm(desc.wavelength_range[1]),
+    )
+    .map_err(|e| {
+        err(
+            Loc { line: 1, col: 1 },
+            "scene.wavelength_range".into(),
+            e.to_string(),
+        )
+    })?;
 
     let materials = desc
         .materials
@@ -43,8 +54,15 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
             bounds = (bounds.0.min(lo), bounds.1.max(hi));
         }
     }
-    let radius = if bounds.0.x <= bounds.1.x { ((bounds.1 - bounds.0) * 0.5).length().max(1e-3) } else { 1.0 };
-    let light_power = lights.iter().map(|l| l.power(&shape_list, range, radius)).collect();
+    let radius = if bounds.0.x <= bounds.1.x {
+        ((bounds.1 - bounds.0) * 0.5).length().max(1e-3)
+    } else {
+        1.0
+    };
+    let light_power = lights
+        .iter()
+        .map(|l| l.power(&shape_list, range, radius))
+        .collect();
     let camera = camera(desc).map_err(|e| err(desc.camera.loc, "camera".into(), e))?;
     let f = &desc.film;
     Ok(Scene {
@@ -63,7 +81,10 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
             spectral_bins: f.spectral_bins,
             exposure_ev: f.exposure_ev.map(|e| e as f32),
         },
-        integrator: IntegratorSettings { kind: desc.integrator.kind, max_depth: desc.integrator.max_depth },
+        integrator: IntegratorSettings {
+            kind: desc.integrator.kind,
+            max_depth: desc.integrator.max_depth,
+        },
         wavelengths: range,
         bounds,
     })
@@ -71,25 +92,51 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
 
 /// Surfaces per shape: filled by `lights` (which also knows the emitters).
 pub(super) fn surface(material: Option<usize>, two_sided: bool, light: Option<usize>) -> Surface {
-    Surface { material: material.map(|m| m as u32), two_sided, light: light.map(|l| l as u32) }
+    Surface {
+        material: material.map(|m| m as u32),
+        two_sided,
+        light: light.map(|l| l as u32),
+    }
 }
 
 fn material(k: &MaterialKind) -> Result<Material, String> {
     Ok(match k {
-        MaterialKind::Diffuse { reflectance } => Material::Diffuse(Lambert { reflectance: reflectance.clone() }),
-        MaterialKind::Phong { kd, ks, exponent } => Material::Phong(Phong::new(kd.clone(), ks.clone(), *exponent as f32)?),
-        MaterialKind::Dielectric { ior, exterior_ior, roughness: None } => {
-            Material::Dielectric(Dielectric { int_ior: ior.clone(), ext_ior: *exterior_ior as f32 })
+        MaterialKind::Diffuse { reflectance } => Material::Diffuse(Lambert {
+            reflectance: reflectance.clone(),
+        }),
+        MaterialKind::Phong { kd, ks, exponent } => {
+            Material::Phong(Phong::new(kd.clone(), ks.clone(), *exponent as f32)?)
         }
-        MaterialKind::Dielectric { ior, exterior_ior, roughness: Some(a) } => Material::RoughDielectric(RoughDielectric {
+        MaterialKind::Dielectric {
+            ior,
+            exterior_ior,
+            roughness: None,
+        } => Material::Dielectric(Dielectric {
+            int_ior: ior.clone(),
+            ext_ior: *exterior_ior as f32,
+        }),
+        MaterialKind::Dielectric {
+            ior,
+            exterior_ior,
+            roughness: Some(a),
+        } => Material::RoughDielectric(RoughDielectric {
             int_ior: ior.clone(),
             ext_ior: *exterior_ior as f32,
             alpha: *a as f32,
         }),
-        MaterialKind::Conductor { ior, exterior_ior, roughness: None } => {
-            Material::Conductor(Conductor { ior: ior.clone(), ext_ior: *exterior_ior as f32 })
-        }
-        MaterialKind::Conductor { ior, exterior_ior, roughness: Some(a) } => Material::RoughConductor(RoughConductor {
+        MaterialKind::Conductor {
+            ior,
+            exterior_ior,
+            roughness: None,
+        } => Material::Conductor(Conductor {
+            ior: ior.clone(),
+            ext_ior: *exterior_ior as f32,
+        }),
+        MaterialKind::Conductor {
+            ior,
+            exterior_ior,
+            roughness: Some(a),
+        } => Material::RoughConductor(RoughConductor {
             ior: ior.clone(),
             ext_ior: *exterior_ior as f32,
             alpha: *a as f32,
@@ -98,7 +145,11 @@ fn material(k: &MaterialKind) -> Result<Material, String> {
 }
 
 fn v3(p: &crate::loader::desc::Point) -> Vec3 {
-    Vec3::new(plain::metres(p[0]), plain::metres(p[1]), plain::metres(p[2]))
+    Vec3::new(
+        plain::metres(p[0]),
+        plain::metres(p[1]),
+        plain::metres(p[2]),
+    )
 }
 
 fn camera(desc: &SceneDesc) -> Result<Camera, String> {
@@ -121,29 +172,61 @@ fn camera(desc: &SceneDesc) -> Result<Camera, String> {
             FovAxis::Larger => w >= h,
             FovAxis::Smaller => w < h,
         };
-        if along_x { fov } else { 2.0 * ((fov / 2.0).tan() * aspect).atan() }
+        if along_x {
+            fov
+        } else {
+            2.0 * ((fov / 2.0).tan() * aspect).atan()
+        }
     };
     let r = match &c.kind {
-        CameraKind::Perspective { projection: Projection::Fov { fov, axis: a } } => {
-            Camera::perspective(to_world, plain::radians(*fov), axis(*a), w, h)
-        }
-        CameraKind::Perspective { projection: Projection::Focal { focal_length, sensor_width } } => {
-            Camera::perspective_focal(to_world, plain::metres(*focal_length), plain::metres(*sensor_width), w, h)
-        }
-        CameraKind::ThinLens { projection, f_number, focus_distance } => {
+        CameraKind::Perspective {
+            projection: Projection::Fov { fov, axis: a },
+        } => Camera::perspective(to_world, plain::radians(*fov), axis(*a), w, h),
+        CameraKind::Perspective {
+            projection:
+                Projection::Focal {
+                    focal_length,
+                    sensor_width,
+                },
+        } => Camera::perspective_focal(
+            to_world,
+            plain::metres(*focal_length),
+            plain::metres(*sensor_width),
+            w,
+            h,
+        ),
+        CameraKind::ThinLens {
+            projection,
+            f_number,
+            focus_distance,
+        } => {
             let (hfov, focal) = match projection {
                 Projection::Fov { fov, axis: a } => {
                     let hf = horizontal(plain::radians(*fov), *a);
                     (hf, 0.036 / (2.0 * (hf / 2.0).tan()))
                 }
-                Projection::Focal { focal_length, sensor_width } => {
+                Projection::Focal {
+                    focal_length,
+                    sensor_width,
+                } => {
                     let f = plain::metres(*focal_length);
                     (2.0 * (plain::metres(*sensor_width) / (2.0 * f)).atan(), f)
                 }
             };
-            Camera::thin_lens(to_world, hfov, CamAxis::X, *f_number as f32, focal, plain::metres(*focus_distance), w, h)
+            Camera::thin_lens(
+                to_world,
+                hfov,
+                CamAxis::X,
+                *f_number as f32,
+                focal,
+                plain::metres(*focus_distance),
+                w,
+                h,
+            )
         }
-        CameraKind::Orthographic { view_width } => Camera::orthographic(to_world, plain::metres(*view_width), w, h),
+        CameraKind::Orthographic { view_width } => {
+            Camera::orthographic(to_world, plain::metres(*view_width), w, h)
+        }
     };
     r.map_err(|e| e.to_string())
 }

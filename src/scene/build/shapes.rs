@@ -12,7 +12,11 @@ use crate::units::plain;
 fn transform(s: &ShapeDesc, unit_scale: bool) -> Result<Transform, String> {
     let e = |r: Result<Transform, crate::geometry::GeometryError>| r.map_err(|e| e.to_string());
     let u = s.unit_m as f32;
-    let mut t = if unit_scale { e(Transform::scale(Vec3::splat(u)))? } else { Transform::identity() };
+    let mut t = if unit_scale {
+        e(Transform::scale(Vec3::splat(u)))?
+    } else {
+        Transform::identity()
+    };
     for step in &s.transform {
         let next = match step {
             TransformStep::Translate(p) => e(Transform::translate(v3(p)))?,
@@ -20,7 +24,11 @@ fn transform(s: &ShapeDesc, unit_scale: bool) -> Result<Transform, String> {
                 Vec3::new(axis[0] as f32, axis[1] as f32, axis[2] as f32),
                 plain::radians(*angle),
             ))?,
-            TransformStep::Scale(k) => e(Transform::scale(Vec3::new(k[0] as f32, k[1] as f32, k[2] as f32)))?,
+            TransformStep::Scale(k) => e(Transform::scale(Vec3::new(
+                k[0] as f32,
+                k[1] as f32,
+                k[2] as f32,
+            )))?,
             TransformStep::Matrix(m) => {
                 let mut cols = [0.0f32; 16];
                 for r in 0..4 {
@@ -50,15 +58,23 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
             let t = transform(s, false)?;
             let c = t.point(v3(center));
             let axes = [Vec3::X, Vec3::Y, Vec3::Z].map(|a| t.vector(a).length());
-            if (axes[0] - axes[1]).abs() > 1e-5 * axes[0] || (axes[0] - axes[2]).abs() > 1e-5 * axes[0] {
+            if (axes[0] - axes[1]).abs() > 1e-5 * axes[0]
+                || (axes[0] - axes[2]).abs() > 1e-5 * axes[0]
+            {
                 return Err("a sphere's transform must scale uniformly (non-uniform scale would make an ellipsoid)".into());
             }
-            Shape::Sphere(Sphere::new(c, plain::metres(*radius) * axes[0]).map_err(|e| e.to_string())?)
+            Shape::Sphere(
+                Sphere::new(c, plain::metres(*radius) * axes[0]).map_err(|e| e.to_string())?,
+            )
         }
-        ShapeKind::Rectangle => Shape::Mesh(Mesh::rectangle(&transform(s, true)?).map_err(|e| e.to_string())?),
-        ShapeKind::Box => Shape::Mesh(Mesh::cuboid(&transform(s, true)?).map_err(|e| e.to_string())?),
-        ShapeKind::Disk => Shape::Disk(Disk::new(&transform(s, true)?, 1.0).map_err(|e| e.to_string())?),
-        ShapeKind::Obj { path } => Shape::Mesh(Mesh::load_obj(path, &transform(s, true)?).map_err(|e| e.to_string())?),
+        ShapeKind::Rectangle => Shape::Mesh(Mesh::rectangle(&transform(s, true)?)),
+        ShapeKind::Box => Shape::Mesh(Mesh::cuboid(&transform(s, true)?)),
+        ShapeKind::Disk => {
+            Shape::Disk(Disk::new(&transform(s, true)?, 1.0).map_err(|e| e.to_string())?)
+        }
+        ShapeKind::Obj { path } => {
+            Shape::Mesh(Mesh::load_obj(path, &transform(s, true)?).map_err(|e| e.to_string())?)
+        }
     };
     if !(shape.area() > 0.0) {
         return Err("the shape has zero area".into());
