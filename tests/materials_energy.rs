@@ -257,7 +257,7 @@ fn smooth_dielectric_reflection_plus_transmission_is_one() {
     for below in [false, true] {
         for t in [0.0, 20.0, 40.0, 41.5, 45.0, 70.0, 89.0] {
             let wo = dir(t, below);
-            let cos = (t as f64).to_radians().cos();
+            let cos = t.to_radians().cos();
             for mode in [IMP, RAD] {
                 let r = m.sample(wo, &w, 0.0, Vec2::ZERO, mode).unwrap();
                 assert!(!r.transmission && r.specular);

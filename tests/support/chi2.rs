@@ -74,13 +74,12 @@ pub struct Chi2Outcome {
 
 /// 1D adaptive Simpson on [a, b].
 fn simpson(f: &dyn Fn(f64) -> f64, a: f64, b: f64, eps: f64, depth: u32) -> f64 {
+    /// One panel: its ends (x, f(x)), the value at its midpoint, and its Simpson estimate.
     fn rec(
         f: &dyn Fn(f64) -> f64,
-        a: f64,
-        b: f64,
-        fa: f64,
+        (a, fa): (f64, f64),
+        (b, fb): (f64, f64),
         fm: f64,
-        fb: f64,
         whole: f64,
         eps: f64,
         depth: u32,
@@ -94,8 +93,8 @@ fn simpson(f: &dyn Fn(f64) -> f64, a: f64, b: f64, eps: f64, depth: u32) -> f64 
         if depth == 0 || delta.abs() <= 15.0 * eps {
             return left + right + delta / 15.0;
         }
-        rec(f, a, m, fa, flm, fm, left, 0.5 * eps, depth - 1)
-            + rec(f, m, b, fm, frm, fb, right, 0.5 * eps, depth - 1)
+        rec(f, (a, fa), (m, fm), flm, left, 0.5 * eps, depth - 1)
+            + rec(f, (m, fm), (b, fb), frm, right, 0.5 * eps, depth - 1)
     }
     // Start from 4 panels so that a narrow peak is not missed by the first estimate.
     let n = 4;
@@ -106,7 +105,7 @@ fn simpson(f: &dyn Fn(f64) -> f64, a: f64, b: f64, eps: f64, depth: u32) -> f64 
             let xm = 0.5 * (x0 + x1);
             let (f0, fm, f1) = (f(x0), f(xm), f(x1));
             let whole = (x1 - x0) / 6.0 * (f0 + 4.0 * fm + f1);
-            rec(f, x0, x1, f0, fm, f1, whole, eps / n as f64, depth)
+            rec(f, (x0, f0), (x1, f1), fm, whole, eps / n as f64, depth)
         })
         .sum()
 }
