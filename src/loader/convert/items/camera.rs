@@ -1,0 +1,314 @@
+//! `[camera]`, `[film]` and `[integrator]`.
+
+use super::*;
+
+pub(super) fn camera(cx: &Cx<'_>, c: &S<RawCamera>) -> R<CameraDesc> {
+    let sp = c.span();
+    let c = c.get_ref();
+    let kind_s = c
+        .kind
+        .as_ref()
+        .map(|k| k.get_ref().as_str())
+        .unwrap_or("perspective");
+    let all = present!(c; kind, eye, target, up, fov, fov_axis, focal_length, sensor_width, f_number, focus_distance, view_width);
+    let projection = |cx: &Cx<'_>| -> R<Projection> {
+        match (&c.fov, &c.focal_length) {
+            (Some(_), Some(f)) => Err(cx.err(
+                &f.span(),
+                "camera.focal_length",
+                "give either `fov` or `focal_length` (with `sensor_width`), not both",
+            )),
+            (Some(fov), None) => fov_projection(cx, fov, &c.fov_axis),
+            (None, Some(f)) => {
+                let focal_length = cx.length(f, "camera.focal_length")?;
+                let sensor_width = match &c.sensor_width {
+                    Some(w) => cx.length(w, "camera.sensor_width")?,
+                    None => Length::new::<length::millimeter>(36.0),
+                };
+                for (l, v, n) in [
+                    (focal_length, f, "focal_length"),
+                    (
+                        sensor_width,
+                        c.sensor_width.as_ref().unwrap_or(f),
+                        "sensor_width",
+                    ),
+                ] {
+                    if !(l.get::<length::meter>() > 0.0) {
+                        return Err(cx.err(
+                            &v.span(),
+                            format!("camera.{n}"),
+                            "expected a positive length",
+                        ));
+                    }
+                }
+                Ok(Projection::Focal {
+                    focal_length,
+                    sensor_width,
+                })
+            }
+            (None, None) => Err(cx.err(
+                &sp,
+                "camera.fov",
+                "missing; expected `fov` (e.g. \"40 deg\") or `focal_length` (e.g. \"50 mm\")",
+            )),
+        }
+    };
+    let kind = match kind_s {
+        "perspective" => {
+            cx.only(
+                "a perspective camera",
+                "camera",
+                &all,
+                &[
+                    "kind",
+                    "eye",
+                    "target",
+                    "up",
+                    "fov",
+                    "fov_axis",
+                    "focal_length",
+                    "sensor_width",
+                ],
+            )?;
+            CameraKind::Perspective {
+                projection: projection(cx)?,
+            }
+        }
+        "thinlens" => {
+            cx.only(
+                "a thinlens camera",
+                "camera",
+                &all,
+                &[
+                    "kind",
+                    "eye",
+                    "target",
+                    "up",
+                    "fov",
+                    "fov_axis",
+                    "focal_length",
+                    "sensor_width",
+                    "f_number",
+                    "focus_distance",
+                ],
+            )?;
+            let projection = projection(cx)?;
+            let n = cx.required(
+                &c.f_number,
+                &sp,
+                "camera.f_number",
+                "a positive number, e.g. 2.8",
+            )?;
+            let f_number = cx.positive(n, "camera.f_number")?;
+            let fd = cx.required(
+                &c.focus_distance,
+                &sp,
+                "camera.focus_distance",
+                "a positive length, e.g. \"3 m\"",
+            )?;
+            let focus_distance = cx.length(fd, "camera.focus_distance")?;
+            if !(focus_distance.get::<length::meter>() > 0.0) {
+                return Err(cx.err(
+                    &fd.span(),
+                    "camera.focus_distance",
+                    "expected a positive length",
+                ));
+            }
+            CameraKind::ThinLens {
+                projection,
+                f_number,
+                focus_distance,
+            }
+        }
+        "orthographic" => {
+            cx.only(
+                "an orthographic camera",
+                "camera",
+                &all,
+                &["kind", "eye", "target", "up", "view_width"],
+            )?;
+            let w = cx.required(&c.view_width, &sp, "camera.view_width", "a positive length")?;
+            let view_width = cx.length(w, "camera.view_width")?;
+            if !(view_width.get::<length::meter>() > 0.0) {
+                return Err(cx.err(&w.span(), "camera.view_width", "expected a positive length"));
+            }
+            CameraKind::Orthographic { view_width }
+        }
+        other => {
+            let span = c.kind.as_ref().map(|k| k.span()).unwrap_or(sp.clone());
+            return Err(cx.err(&span, "camera.type", format!("unknown camera type \"{other}\"; expected perspective, thinlens or orthographic")));
+        }
+    };
+    let eye = cx.point(
+        cx.required(&c.eye, &sp, "camera.eye", "a position [x, y, z]")?,
+        "camera.eye",
+    )?;
+    let target = cx.point(
+        cx.required(&c.target, &sp, "camera.target", "a position [x, y, z]")?,
+        "camera.target",
+    )?;
+    let up = match &c.up {
+        Some(u) => cx.vec3(u, "camera.up")?,
+        None => [0.0, 1.0, 0.0],
+    };
+    let d: Vec<f64> = (0..3)
+        .map(|i| (target[i] - eye[i]).get::<length::meter>())
+        .collect();
+    let dl = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    if dl == 0.0 {
+        let span = c.target.as_ref().map(|t| t.span()).unwrap_or(sp.clone());
+        return Err(cx.err(
+            &span,
+            "camera.target",
+            "the target equals the eye; the camera has no view direction",
+        ));
+    }
+    let ul = (up[0] * up[0] + up[1] * up[1] + up[2] * up[2]).sqrt();
+    let cross = [
+        d[1] * up[2] - d[2] * up[1],
+        d[2] * up[0] - d[0] * up[2],
+        d[0] * up[1] - d[1] * up[0],
+    ];
+    let cl = (cross[0] * cross[0] + cross[1] * cross[1] + cross[2] * cross[2]).sqrt();
+    if ul == 0.0 || cl <= 1e-6 * dl * ul {
+        let span = c.up.as_ref().map(|u| u.span()).unwrap_or(sp.clone());
+        return Err(cx.err(
+            &span,
+            "camera.up",
+            "`up` is zero or parallel to the view direction",
+        ));
+    }
+    Ok(CameraDesc {
+        kind,
+        eye,
+        target,
+        up,
+        loc: cx.src.span(&sp),
+    })
+}
+
+pub(super) fn fov_projection(
+    cx: &Cx<'_>,
+    fov: &S<Value>,
+    axis: &Option<S<String>>,
+) -> R<Projection> {
+    let a: Angle = cx.quantity(fov, "camera.fov")?;
+    let deg = a.get::<angle::degree>();
+    if !(deg > 0.0 && deg < 180.0) {
+        return Err(cx.err(
+            &fov.span(),
+            "camera.fov",
+            format!(
+                "expected an angle between 0 and 180 deg, found {} deg",
+                round9(deg)
+            ),
+        ));
+    }
+    let axis = match axis.as_ref().map(|a| (a.get_ref().as_str(), a.span())) {
+        None | Some(("x", _)) => FovAxis::X,
+        Some(("y", _)) => FovAxis::Y,
+        Some(("larger", _)) => FovAxis::Larger,
+        Some(("smaller", _)) => FovAxis::Smaller,
+        Some((other, span)) => {
+            return Err(cx.err(
+                &span,
+                "camera.fov_axis",
+                format!("\"{other}\": expected x, y, larger or smaller"),
+            ));
+        }
+    };
+    Ok(Projection::Fov { fov: a, axis })
+}
+
+/// Largest accepted image side and pixel count.
+const MAX_SIDE: i64 = 32_768;
+const MAX_PIXELS: i64 = 1 << 28;
+
+pub(super) fn film(cx: &Cx<'_>, f: Option<&S<RawFilm>>) -> R<FilmDesc> {
+    let mut d = FilmDesc {
+        width: 512,
+        height: 512,
+        spp: 16,
+        filter: FilterDesc::Gaussian { sigma: 0.5 },
+        spectral_bins: 0,
+        exposure_ev: None,
+        loc: Default::default(),
+    };
+    let Some(f) = f else { return Ok(d) };
+    d.loc = cx.src.span(&f.span());
+    let f = f.get_ref();
+    if let Some(w) = &f.width {
+        d.width = cx.int(w, "film.width", 1, MAX_SIDE)? as u32;
+    }
+    if let Some(h) = &f.height {
+        d.height = cx.int(h, "film.height", 1, MAX_SIDE)? as u32;
+    }
+    if (d.width as i64) * (d.height as i64) > MAX_PIXELS {
+        let span = f
+            .height
+            .as_ref()
+            .or(f.width.as_ref())
+            .map(|v| v.span())
+            .unwrap_or(WHOLE_FILE);
+        return Err(cx.err(
+            &span,
+            "film",
+            format!(
+                "{}×{} pixels is more than the {MAX_PIXELS} supported",
+                d.width, d.height
+            ),
+        ));
+    }
+    if let Some(s) = &f.spp {
+        d.spp = cx.int(s, "film.spp", 1, 1 << 24)? as u32;
+    }
+    if let Some(b) = &f.spectral_bins {
+        d.spectral_bins = cx.int(b, "film.spectral_bins", 0, 1000)? as u32;
+    }
+    if let Some(e) = &f.exposure {
+        d.exposure_ev = Some(cx.number(e, "film.exposure")?);
+    }
+    let sigma = match &f.filter_radius {
+        Some(r) => cx.positive(r, "film.filter_radius")? / 3.0,
+        None => 0.5,
+    };
+    d.filter = match f.filter.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
+        None | Some(("gaussian", _)) => FilterDesc::Gaussian { sigma },
+        Some(("box", _)) => FilterDesc::Box,
+        Some((o, span)) => {
+            return Err(cx.err(
+                &span,
+                "film.filter",
+                format!("\"{o}\": expected box or gaussian"),
+            ));
+        }
+    };
+    Ok(d)
+}
+
+pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<IntegratorDesc> {
+    let mut d = IntegratorDesc {
+        kind: IntegratorKind::Path,
+        max_depth: 16,
+    };
+    let Some(i) = i else { return Ok(d) };
+    let i = i.get_ref();
+    if let Some(k) = &i.kind {
+        d.kind = match k.get_ref().as_str() {
+            "path" => IntegratorKind::Path,
+            "light" => IntegratorKind::Light,
+            "whitted" => IntegratorKind::Whitted,
+            o => {
+                return Err(cx.err(
+                    &k.span(),
+                    "integrator.type",
+                    format!("\"{o}\": expected path, light or whitted"),
+                ));
+            }
+        };
+    }
+    if let Some(m) = &i.max_depth {
+        d.max_depth = cx.int(m, "integrator.max_depth", 1, 1024)? as u32;
+    }
+    Ok(d)
+}

@@ -1,0 +1,268 @@
+//! `[[lights]]`: point, spot, directional and environment lights.
+
+use super::*;
+
+pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
+    let sp = l.span();
+    let f = format!("lights[{i}]");
+    let l = l.get_ref();
+    let all = present!(l; kind, spectrum, position, target, direction, power, intensity, radiance, luminance, irradiance, scale, cone_angle, falloff_start, angular_diameter);
+    let ty = cx.required(
+        &l.kind,
+        &sp,
+        &format!("{f}.type"),
+        "point, spot, directional or environment",
+    )?;
+    let spectrum = match &l.spectrum {
+        Some(s) => cx.spectrum(s, &format!("{f}.spectrum"), SpectrumUse::Emission)?,
+        None => Spectrum::Constant(1.0),
+    };
+    let pos = |cx: &Cx<'_>| {
+        cx.point(
+            cx.required(
+                &l.position,
+                &sp,
+                &format!("{f}.position"),
+                "a position [x, y, z]",
+            )?,
+            &format!("{f}.position"),
+        )
+    };
+    let point_amount = |cx: &Cx<'_>| -> R<PointAmount> {
+        let (which, v) = one_amount(
+            cx,
+            &sp,
+            &f,
+            &[
+                ("power", &l.power),
+                ("intensity", &l.intensity),
+                ("scale", &l.scale),
+            ],
+        )?;
+        let field = format!("{f}.{which}");
+        let (amount, si) = match which {
+            "power" => match cx.quantity_of(v, &field, &[D::Power, D::LuminousFlux])? {
+                (D::Power, w) => (PointAmount::Power(Power::new::<power::watt>(w)), w),
+                (_, lm) => (
+                    PointAmount::LuminousFlux(LuminousFlux::new::<luminous_flux::lumen>(lm)),
+                    lm,
+                ),
+            },
+            "intensity" => {
+                match cx.quantity_of(v, &field, &[D::RadiantIntensity, D::LuminousIntensity])? {
+                    (D::RadiantIntensity, w) => (
+                        PointAmount::Intensity(RadiantIntensity::new::<
+                            radiant_intensity::watt_per_steradian,
+                        >(w)),
+                        w,
+                    ),
+                    (_, cd) => (
+                        PointAmount::LuminousIntensity(LuminousIntensity::new::<
+                            luminous_intensity::candela,
+                        >(cd)),
+                        cd,
+                    ),
+                }
+            }
+            _ => {
+                let s = cx.number(v, &field)?;
+                (PointAmount::Scale(s), s)
+            }
+        };
+        if si < 0.0 {
+            return Err(cx.err(
+                &v.span(),
+                field,
+                format!("light cannot be negative, found {si}"),
+            ));
+        }
+        Ok(amount)
+    };
+    let kind = match ty.get_ref().as_str() {
+        "point" => {
+            cx.only(
+                "a point light",
+                &f,
+                &all,
+                &[
+                    "kind",
+                    "spectrum",
+                    "position",
+                    "power",
+                    "intensity",
+                    "scale",
+                ],
+            )?;
+            LightKind::Point {
+                position: pos(cx)?,
+                amount: point_amount(cx)?,
+            }
+        }
+        "spot" => {
+            cx.only(
+                "a spot light",
+                &f,
+                &all,
+                &[
+                    "kind",
+                    "spectrum",
+                    "position",
+                    "target",
+                    "power",
+                    "intensity",
+                    "scale",
+                    "cone_angle",
+                    "falloff_start",
+                ],
+            )?;
+            let position = pos(cx)?;
+            let t = cx.required(
+                &l.target,
+                &sp,
+                &format!("{f}.target"),
+                "the point the spot aims at",
+            )?;
+            let target = cx.point(t, &format!("{f}.target"))?;
+            if (0..3).all(|k| target[k] == position[k]) {
+                return Err(cx.err(
+                    &t.span(),
+                    format!("{f}.target"),
+                    "the target equals the position",
+                ));
+            }
+            let c = cx.required(
+                &l.cone_angle,
+                &sp,
+                &format!("{f}.cone_angle"),
+                "the cone's half-angle, e.g. \"30 deg\"",
+            )?;
+            let cone_angle: Angle = cx.quantity(c, &format!("{f}.cone_angle"))?;
+            let cd = cone_angle.get::<angle::degree>();
+            if !(cd > 0.0 && cd <= 90.0) {
+                return Err(cx.err(
+                    &c.span(),
+                    format!("{f}.cone_angle"),
+                    format!(
+                        "expected a half-angle in (0, 90] deg, found {} deg",
+                        round9(cd)
+                    ),
+                ));
+            }
+            let falloff_start = match &l.falloff_start {
+                Some(fs) => {
+                    let a: Angle = cx.quantity(fs, &format!("{f}.falloff_start"))?;
+                    let d = a.get::<angle::degree>();
+                    if !(0.0..=cd).contains(&d) {
+                        return Err(cx.err(
+                            &fs.span(),
+                            format!("{f}.falloff_start"),
+                            format!(
+                                "expected 0 to cone_angle ({} deg), found {} deg",
+                                round9(cd),
+                                round9(d)
+                            ),
+                        ));
+                    }
+                    a
+                }
+                None => cone_angle,
+            };
+            LightKind::Spot {
+                position,
+                target,
+                cone_angle,
+                falloff_start,
+                amount: point_amount(cx)?,
+            }
+        }
+        "directional" | "sun" => {
+            cx.only(
+                "a directional light",
+                &f,
+                &all,
+                &[
+                    "kind",
+                    "spectrum",
+                    "direction",
+                    "irradiance",
+                    "scale",
+                    "angular_diameter",
+                ],
+            )?;
+            let d = cx.required(
+                &l.direction,
+                &sp,
+                &format!("{f}.direction"),
+                "the direction light travels, [x, y, z]",
+            )?;
+            let direction = cx.vec3(d, &format!("{f}.direction"))?;
+            if direction == [0.0; 3] {
+                return Err(cx.err(&d.span(), format!("{f}.direction"), "the direction is zero"));
+            }
+            let angular_diameter = match &l.angular_diameter {
+                Some(a) => {
+                    let q: Angle = cx.quantity(a, &format!("{f}.angular_diameter"))?;
+                    let deg = q.get::<angle::degree>();
+                    if !(0.0..=30.0).contains(&deg) {
+                        return Err(cx.err(
+                            &a.span(),
+                            format!("{f}.angular_diameter"),
+                            format!("expected 0 to 30 deg, found {} deg", round9(deg)),
+                        ));
+                    }
+                    q
+                }
+                None => Angle::new::<angle::radian>(0.0),
+            };
+            let (which, v) = one_amount(
+                cx,
+                &sp,
+                &f,
+                &[("irradiance", &l.irradiance), ("scale", &l.scale)],
+            )?;
+            let field = format!("{f}.{which}");
+            let amount = if which == "irradiance" {
+                match cx.quantity_of(v, &field, &[D::Irradiance, D::Illuminance])? {
+                    (D::Irradiance, e) => DirectionalAmount::Irradiance(Irradiance::new::<
+                        irradiance::watt_per_square_meter,
+                    >(e)),
+                    (_, lx) => {
+                        DirectionalAmount::Illuminance(Illuminance::new::<illuminance::lux>(lx))
+                    }
+                }
+            } else {
+                DirectionalAmount::Scale(cx.number(v, &field)?)
+            };
+            LightKind::Directional {
+                direction,
+                angular_diameter,
+                amount,
+            }
+        }
+        "environment" => {
+            cx.only(
+                "an environment light",
+                &f,
+                &all,
+                &["kind", "spectrum", "radiance", "luminance", "scale"],
+            )?;
+            LightKind::Environment {
+                amount: emit_amount(cx, &sp, &f, &l.radiance, &l.luminance, &None, &l.scale)?,
+            }
+        }
+        o => {
+            return Err(cx.err(
+                &ty.span(),
+                format!("{f}.type"),
+                format!(
+                    "unknown light type \"{o}\"; expected point, spot, directional or environment"
+                ),
+            ));
+        }
+    };
+    Ok(LightDesc {
+        kind,
+        spectrum,
+        loc: cx.src.span(&sp),
+    })
+}

@@ -1,0 +1,292 @@
+//! `[[shapes]]`: geometry, transforms and emission.
+
+use super::*;
+
+pub(super) fn transform(cx: &Cx<'_>, t: &S<Vec<S<Value>>>, field: &str) -> R<Vec<TransformStep>> {
+    let mut out = Vec::new();
+    for (i, step) in t.get_ref().iter().enumerate() {
+        let f = format!("{field}[{i}]");
+        let Value::Table(tab) = step.get_ref() else {
+            return Err(cx.err(
+                &step.span(),
+                &f,
+                "expected a table like { translate = [x, y, z] }",
+            ));
+        };
+        if tab.len() != 1 {
+            return Err(cx.err(
+                &step.span(),
+                &f,
+                "each transform step has exactly one of translate, rotate, scale, matrix, look_at",
+            ));
+        }
+        let (key, val) = tab
+            .iter()
+            .next()
+            .map(|(k, v)| (k.as_str(), v.clone()))
+            .unwrap_or(("", Value::Boolean(false)));
+        let v = S::new(step.span(), val);
+        let f = format!("{f}.{key}");
+        out.push(match key {
+            "translate" => TransformStep::Translate(cx.point(&v, &f)?),
+            "scale" => {
+                let s = match v.get_ref() {
+                    Value::Array(_) => cx.vec3(&v, &f)?,
+                    _ => [cx.number(&v, &f)?; 3],
+                };
+                if s.iter().any(|x| *x == 0.0) {
+                    return Err(cx.err(&step.span(), &f, "a scale factor of 0 flattens the shape"));
+                }
+                TransformStep::Scale(s)
+            }
+            "rotate" => {
+                let Value::Table(r) = v.get_ref() else {
+                    return Err(cx.err(&step.span(), &f, "expected { axis = [x, y, z], angle = \"30 deg\" }"));
+                };
+                let get = |k: &str| r.get(k).cloned().map(|x| S::new(step.span(), x));
+                if let Some(k) = r.keys().find(|k| *k != "axis" && *k != "angle") {
+                    return Err(cx.err(&step.span(), format!("{f}.{k}"), "unknown key; expected axis and angle"));
+                }
+                let axis = cx.vec3(&get("axis").ok_or_else(|| cx.err(&step.span(), &f, "missing axis"))?, &format!("{f}.axis"))?;
+                if axis == [0.0; 3] {
+                    return Err(cx.err(&step.span(), format!("{f}.axis"), "the rotation axis is zero"));
+                }
+                let angle: Angle = cx.quantity(&get("angle").ok_or_else(|| cx.err(&step.span(), &f, "missing angle"))?, &format!("{f}.angle"))?;
+                TransformStep::Rotate { axis, angle }
+            }
+            "matrix" => {
+                let Value::Array(a) = v.get_ref() else {
+                    return Err(cx.err(&step.span(), &f, "expected 16 numbers, row-major"));
+                };
+                if a.len() != 16 {
+                    return Err(cx.err(&step.span(), &f, format!("expected 16 numbers, row-major; found {}", a.len())));
+                }
+                let mut m = [0.0; 16];
+                for (k, x) in a.iter().enumerate() {
+                    m[k] = cx.number(&S::new(step.span(), x.clone()), &format!("{f}[{k}]"))?;
+                }
+                TransformStep::Matrix(m)
+            }
+            "look_at" => {
+                let Value::Table(r) = v.get_ref() else {
+                    return Err(cx.err(&step.span(), &f, "expected { eye = [..], target = [..], up = [..] }"));
+                };
+                let get = |k: &str| {
+                    r.get(k).cloned().map(|x| S::new(step.span(), x)).ok_or_else(|| cx.err(&step.span(), format!("{f}.{k}"), "missing"))
+                };
+                TransformStep::LookAt {
+                    eye: cx.point(&get("eye")?, &format!("{f}.eye"))?,
+                    target: cx.point(&get("target")?, &format!("{f}.target"))?,
+                    up: cx.vec3(&get("up")?, &format!("{f}.up"))?,
+                }
+            }
+            o => {
+                return Err(cx.err(&step.span(), &f, format!("unknown transform `{o}`; expected translate, rotate, scale, matrix or look_at")));
+            }
+        });
+    }
+    Ok(out)
+}
+
+pub(super) fn shape(
+    cx: &Cx<'_>,
+    i: usize,
+    s: &S<RawShape>,
+    material_names: &[&str],
+) -> R<ShapeDesc> {
+    let sp = s.span();
+    let f = format!("shapes[{i}]");
+    let s = s.get_ref();
+    let all = present!(s; kind, material, file, center, radius, transform, two_sided, emission);
+    let ty = cx.required(
+        &s.kind,
+        &sp,
+        &format!("{f}.type"),
+        "sphere, rectangle, box, disk or obj",
+    )?;
+    let common = ["kind", "material", "transform", "two_sided", "emission"];
+    let with = |extra: &[&'static str]| -> Vec<&'static str> {
+        common.iter().chain(extra).copied().collect()
+    };
+    let kind = match ty.get_ref().as_str() {
+        "sphere" => {
+            cx.only("a sphere", &f, &all, &with(&["center", "radius"]))?;
+            let center = match &s.center {
+                Some(c) => cx.point(c, &format!("{f}.center"))?,
+                None => [Length::new::<length::meter>(0.0); 3],
+            };
+            let r = cx.required(&s.radius, &sp, &format!("{f}.radius"), "a positive length")?;
+            let radius = cx.length(r, &format!("{f}.radius"))?;
+            if !(radius.get::<length::meter>() > 0.0) {
+                return Err(cx.err(
+                    &r.span(),
+                    format!("{f}.radius"),
+                    format!(
+                        "expected a positive radius, found {}",
+                        radius.get::<length::meter>() / cx.unit_m
+                    ),
+                ));
+            }
+            ShapeKind::Sphere { center, radius }
+        }
+        "rectangle" => {
+            cx.only("a rectangle", &f, &all, &with(&[]))?;
+            ShapeKind::Rectangle
+        }
+        "box" => {
+            cx.only("a box", &f, &all, &with(&[]))?;
+            ShapeKind::Box
+        }
+        "disk" => {
+            cx.only("a disk", &f, &all, &with(&[]))?;
+            ShapeKind::Disk
+        }
+        "obj" => {
+            cx.only("an obj mesh", &f, &all, &with(&["file"]))?;
+            let p = cx.required(&s.file, &sp, &format!("{f}.file"), "a path to a .obj file")?;
+            ShapeKind::Obj {
+                path: cx.path(p.get_ref()),
+            }
+        }
+        o => {
+            return Err(cx.err(
+                &ty.span(),
+                format!("{f}.type"),
+                format!("unknown shape type \"{o}\"; expected sphere, rectangle, box, disk or obj"),
+            ));
+        }
+    };
+    let transform = match &s.transform {
+        Some(t) => transform(cx, t, &format!("{f}.transform"))?,
+        None => Vec::new(),
+    };
+    let material = match &s.material {
+        Some(m) => Some(
+            material_names
+                .iter()
+                .position(|n| *n == m.get_ref())
+                .ok_or_else(|| {
+                    cx.err(
+                        &m.span(),
+                        format!("{f}.material"),
+                        format!(
+                            "refers to material \"{}\", which is not defined; defined: {}",
+                            m.get_ref(),
+                            if material_names.is_empty() {
+                                "none".to_string()
+                            } else {
+                                material_names.join(", ")
+                            }
+                        ),
+                    )
+                })?,
+        ),
+        None => None,
+    };
+    let emission = match &s.emission {
+        Some(e) => Some(emission(cx, e, &format!("{f}.emission"))?),
+        None => None,
+    };
+    if material.is_none() && emission.is_none() {
+        return Err(cx.err(
+            &sp,
+            &f,
+            "a shape needs a `material`, an `emission`, or both",
+        ));
+    }
+    Ok(ShapeDesc {
+        kind,
+        transform,
+        material,
+        two_sided: s.two_sided.as_ref().is_some_and(|b| *b.get_ref()),
+        emission,
+        unit_m: cx.unit_m,
+        loc: cx.src.span(&sp),
+    })
+}
+
+/// Exactly one of the listed amount keys.
+pub(super) fn one_amount<'v>(
+    cx: &Cx<'_>,
+    span: &Range<usize>,
+    field: &str,
+    opts: &[(&'static str, &'v Option<S<Value>>)],
+) -> R<(&'static str, &'v S<Value>)> {
+    let given: Vec<_> = opts
+        .iter()
+        .filter_map(|(n, v)| v.as_ref().map(|v| (*n, v)))
+        .collect();
+    let names = opts.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(", ");
+    match given.as_slice() {
+        [one] => Ok(*one),
+        [] => Err(cx.err(span, field, format!("missing; give exactly one of {names}"))),
+        [_, second, ..] => Err(cx.err(
+            &second.1.span(),
+            format!("{field}.{}", second.0),
+            format!("give exactly one of {names}"),
+        )),
+    }
+}
+
+pub(super) fn emission(cx: &Cx<'_>, e: &S<RawEmission>, f: &str) -> R<EmissionDesc> {
+    let sp = e.span();
+    let e = e.get_ref();
+    let spectrum = match &e.spectrum {
+        Some(s) => cx.spectrum(s, &format!("{f}.spectrum"), SpectrumUse::Emission)?,
+        None => Spectrum::Constant(1.0),
+    };
+    let amount = emit_amount(cx, &sp, f, &e.radiance, &e.luminance, &e.power, &e.scale)?;
+    Ok(EmissionDesc {
+        spectrum,
+        amount,
+        two_sided: e.two_sided.as_ref().is_some_and(|b| *b.get_ref()),
+        loc: cx.src.span(&sp),
+    })
+}
+
+pub(super) fn emit_amount(
+    cx: &Cx<'_>,
+    sp: &Range<usize>,
+    f: &str,
+    radiance: &Option<S<Value>>,
+    luminance: &Option<S<Value>>,
+    power: &Option<S<Value>>,
+    scale: &Option<S<Value>>,
+) -> R<EmitAmount> {
+    let (which, v) = one_amount(
+        cx,
+        sp,
+        f,
+        &[
+            ("radiance", radiance),
+            ("luminance", luminance),
+            ("power", power),
+            ("scale", scale),
+        ],
+    )?;
+    let field = format!("{f}.{which}");
+    let amount = match which {
+        "radiance" => EmitAmount::Radiance(cx.quantity::<Radiance>(v, &field)?),
+        "luminance" => EmitAmount::Luminance(cx.quantity::<Luminance>(v, &field)?),
+        "power" => match cx.quantity_of(v, &field, &[D::Power, D::LuminousFlux])? {
+            (D::Power, w) => EmitAmount::Power(Power::new::<power::watt>(w)),
+            (_, lm) => EmitAmount::LuminousFlux(LuminousFlux::new::<luminous_flux::lumen>(lm)),
+        },
+        _ => EmitAmount::Scale(cx.number(v, &field)?),
+    };
+    let si = match &amount {
+        EmitAmount::Radiance(r) => r.get::<radiance::watt_per_square_meter_steradian>(),
+        EmitAmount::Luminance(l) => l.get::<luminance::candela_per_square_meter>(),
+        EmitAmount::Power(p) => p.get::<power::watt>(),
+        EmitAmount::LuminousFlux(p) => p.get::<luminous_flux::lumen>(),
+        EmitAmount::Scale(s) => *s,
+    };
+    if si < 0.0 {
+        return Err(cx.err(
+            &v.span(),
+            field,
+            format!("light cannot be negative, found {si}"),
+        ));
+    }
+    Ok(amount)
+}
