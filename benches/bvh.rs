@@ -5,10 +5,10 @@
 use std::hint::black_box;
 use std::path::Path;
 
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use glam::{Vec2, Vec3};
-use spectrace::geometry::{spawn_ray_to, Ray};
-use spectrace::scene::{build, Scene};
+use spectrace::geometry::{Ray, spawn_ray_to};
+use spectrace::scene::{Scene, build};
 
 fn cornell(extra: &str) -> Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell.toml");
@@ -21,7 +21,9 @@ fn mixed() -> Scene {
     let mut extra = String::new();
     for i in 0..64 {
         let (x, z) = (60.0 + (i % 8) as f32 * 60.0, 60.0 + (i / 8) as f32 * 60.0);
-        extra += &format!("\n[[shapes]]\ntype = \"sphere\"\ncenter = [{x}, 420, {z}]\nradius = 18\nmaterial = \"white\"\n");
+        extra += &format!(
+            "\n[[shapes]]\ntype = \"sphere\"\ncenter = [{x}, 420, {z}]\nradius = 18\nmaterial = \"white\"\n"
+        );
     }
     for i in 0..16 {
         let (x, z) = (80.0 + (i % 4) as f32 * 120.0, 80.0 + (i / 4) as f32 * 120.0);
@@ -37,14 +39,20 @@ fn camera_rays(s: &Scene) -> Vec<Ray> {
     let (fw, fh) = (s.film.width as f32, s.film.height as f32);
     (0..w * h)
         .map(|i| {
-            let raster = Vec2::new(((i % w) as f32 + 0.5) * fw / w as f32, ((i / w) as f32 + 0.5) * fh / h as f32);
+            let raster = Vec2::new(
+                ((i % w) as f32 + 0.5) * fw / w as f32,
+                ((i / w) as f32 + 0.5) * fh / h as f32,
+            );
             s.camera.generate_ray(raster, Vec2::splat(0.5))
         })
         .collect()
 }
 
 fn bench(c: &mut Criterion) {
-    for (name, scene) in [("cornell_triangles", cornell("")), ("cornell_mixed", mixed())] {
+    for (name, scene) in [
+        ("cornell_triangles", cornell("")),
+        ("cornell_mixed", mixed()),
+    ] {
         let rays = camera_rays(&scene);
         let light = Vec3::new(0.278, 0.5486, 0.2795);
         let shadow: Vec<Ray> = rays
@@ -55,11 +63,20 @@ fn bench(c: &mut Criterion) {
         let mut g = c.benchmark_group(name);
         g.throughput(Throughput::Elements(rays.len() as u64));
         g.bench_function("closest_hit", |b| {
-            b.iter(|| rays.iter().filter(|r| scene.accel.intersect(&scene.shapes, black_box(r)).is_some()).count())
+            b.iter(|| {
+                rays.iter()
+                    .filter(|r| scene.accel.intersect(&scene.shapes, black_box(r)).is_some())
+                    .count()
+            })
         });
         g.throughput(Throughput::Elements(shadow.len() as u64));
         g.bench_function("any_hit", |b| {
-            b.iter(|| shadow.iter().filter(|r| scene.accel.occluded(&scene.shapes, black_box(r))).count())
+            b.iter(|| {
+                shadow
+                    .iter()
+                    .filter(|r| scene.accel.occluded(&scene.shapes, black_box(r)))
+                    .count()
+            })
         });
         g.finish();
     }

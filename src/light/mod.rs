@@ -48,6 +48,33 @@ pub struct LightSample<const N: usize> {
     pub distance: f32,
 }
 
+/// The sample of a point-like light at `position` seen from `p`: `intensity(wi)` gives the
+/// spectral intensity (W·sr⁻¹·nm⁻¹) toward the receiver for the direction `wi` from `p` to the
+/// light (None: no light that way); li = I / r², pdf 1, delta.
+fn point_like_sample<const N: usize>(
+    position: Vec3,
+    p: Vec3,
+    intensity: impl FnOnce(Vec3) -> Option<SampledSpectrum<N>>,
+) -> Option<LightSample<N>> {
+    let d = position - p;
+    let r2 = d.length_squared();
+    if r2 == 0.0 {
+        return None;
+    }
+    let r = r2.sqrt();
+    let wi = d / r;
+    Some(LightSample {
+        wi,
+        li: intensity(wi)? * (1.0 / r2),
+        pdf: 1.0,
+        delta: true,
+        p: position,
+        p_error: Vec3::ZERO,
+        n: Vec3::ZERO,
+        distance: r,
+    })
+}
+
 /// A light source: a closed enum matched in the render loop.
 #[derive(Clone, Debug)]
 pub enum Light {

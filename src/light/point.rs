@@ -22,21 +22,6 @@ impl PointLight {
         p: Vec3,
         w: &SampledWavelengths<N>,
     ) -> Option<LightSample<N>> {
-        let d = self.position - p;
-        let r2 = d.length_squared();
-        if r2 == 0.0 {
-            return None;
-        }
-        let r = r2.sqrt();
-        Some(LightSample {
-            wi: d / r,
-            li: self.intensity.sample(w) * (1.0 / r2),
-            pdf: 1.0,
-            delta: true,
-            p: self.position,
-            p_error: Vec3::ZERO,
-            n: Vec3::ZERO,
-            distance: r,
-        })
+        super::point_like_sample(self.position, p, |_| Some(self.intensity.sample(w)))
     }
 }

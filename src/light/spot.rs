@@ -46,31 +46,15 @@ impl SpotLight {
         2.0 * std::f64::consts::PI * ((1.0 - cs) + (cs - ct) / 2.0)
     }
 
+    /// Irradiance-producing sample at `p`: li = I·falloff / r²; None outside the cone.
     pub fn sample_li<const N: usize>(
         &self,
         p: Vec3,
         w: &SampledWavelengths<N>,
     ) -> Option<LightSample<N>> {
-        let d = self.position - p;
-        let r2 = d.length_squared();
-        if r2 == 0.0 {
-            return None;
-        }
-        let r = r2.sqrt();
-        let wi = d / r;
-        let f = self.falloff(-wi);
-        if f == 0.0 {
-            return None;
-        }
-        Some(LightSample {
-            wi,
-            li: self.intensity.sample(w) * (f / r2),
-            pdf: 1.0,
-            delta: true,
-            p: self.position,
-            p_error: Vec3::ZERO,
-            n: Vec3::ZERO,
-            distance: r,
+        super::point_like_sample(self.position, p, |wi| {
+            let f = self.falloff(-wi);
+            (f > 0.0).then(|| self.intensity.sample(w) * f)
         })
     }
 }
