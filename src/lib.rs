@@ -9,10 +9,14 @@ extern crate uom;
 
 pub mod cli;
 pub mod colour;
+pub mod film;
 pub mod geometry;
+pub mod integrator;
 pub mod light;
 pub mod loader;
 pub mod material;
+pub mod render;
+pub mod sampler;
 pub mod sampling;
 pub mod scene;
 pub mod spectrum;

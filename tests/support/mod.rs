@@ -51,6 +51,8 @@ impl Csv {
 }
 
 /// A small deterministic generator (SplitMix64) for Monte Carlo checks.
+pub mod render;
+
 pub struct Rng(u64);
 
 impl Rng {

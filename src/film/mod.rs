@@ -1,0 +1,239 @@
+//! The film: turns spectral radiance samples into CIE XYZ (Y in cd/m²), linear sRGB on the
+//! same absolute scale, band radiance L (W·m⁻²·sr⁻¹) and optional spectral bins
+//! (W·m⁻²·sr⁻¹·nm⁻¹), per pixel.
+//!
+//! Estimator (`../shared/PHYSICS.md`, "Monte Carlo estimate"): a sample with wavelengths λ_j of
+//! pdf p_j and radiance L_j contributes XYZ = K_m · (1/N) Σ_j L_j (x̄, ȳ, z̄)(λ_j) / p_j and
+//! L = (1/N) Σ_j L_j / p_j; wavelengths with p_j = 0 (terminated secondaries) are dropped, and
+//! the hero's pdf was divided by N when they were terminated, so the estimate stays unbiased.
+
+mod filter;
+
+pub use filter::Filter;
+
+use crate::colour::cie::{K_M, cmf};
+use crate::colour::spaces::xyz_to_srgb;
+use crate::spectrum::{SampledSpectrum, SampledWavelengths, WavelengthRange};
+
+/// Per-pixel sums of sample estimates, in f64.
+#[derive(Clone, Debug, Default)]
+pub struct PixelSums {
+    /// Σ XYZ estimates, cd/m².
+    pub xyz: [f64; 3],
+    /// Σ band radiance estimates, W·m⁻²·sr⁻¹.
+    pub band: f64,
+    /// Number of samples that reached the pixel (NaN/∞ samples are not counted).
+    pub count: u32,
+}
+
+/// Spectral bins of the film's wavelength range.
+#[derive(Clone, Debug)]
+pub struct Bins {
+    pub range: WavelengthRange,
+    pub count: usize,
+}
+
+impl Bins {
+    pub fn width(&self) -> f32 {
+        self.range.width() / self.count as f32
+    }
+    /// Bin of `lambda_nm`, if inside the range.
+    #[inline]
+    pub fn index(&self, lambda_nm: f32) -> Option<usize> {
+        let t = (lambda_nm - self.range.min_nm) / self.width();
+        (t >= 0.0 && lambda_nm <= self.range.max_nm).then(|| (t as usize).min(self.count - 1))
+    }
+    /// Centre wavelength of bin `i`, nm.
+    pub fn centre(&self, i: usize) -> f32 {
+        self.range.min_nm + (i as f32 + 0.5) * self.width()
+    }
+}
+
+/// A finished image: per-pixel means, row-major, top row first.
+#[derive(Clone, Debug)]
+pub struct Image {
+    pub width: usize,
+    pub height: usize,
+    /// CIE 1931 XYZ, Y = luminance in cd/m².
+    pub xyz: Vec<[f32; 3]>,
+    /// Linear sRGB (D65), same absolute scale as XYZ.
+    pub rgb: Vec<[f32; 3]>,
+    /// Radiance integrated over the film's wavelength range, W·m⁻²·sr⁻¹.
+    pub band: Vec<f32>,
+    /// Mean spectral radiance per bin, W·m⁻²·sr⁻¹·nm⁻¹: `spectral[b][pixel]`.
+    pub spectral: Vec<Vec<f32>>,
+    pub bins: Option<Bins>,
+}
+
+/// Accumulation for one rectangle of pixels (a tile), written by one thread.
+#[derive(Clone, Debug)]
+pub struct Tile {
+    pub x0: u32,
+    pub y0: u32,
+    pub width: u32,
+    pub height: u32,
+    pub pixels: Vec<PixelSums>,
+    /// Σ per-bin estimates, `bins × pixels` (empty without spectral output).
+    pub spectral: Vec<f64>,
+    nbins: usize,
+}
+
+impl Tile {
+    pub fn new(x0: u32, y0: u32, width: u32, height: u32, nbins: usize) -> Self {
+        let n = (width * height) as usize;
+        Self {
+            x0,
+            y0,
+            width,
+            height,
+            pixels: vec![PixelSums::default(); n],
+            spectral: vec![0.0; n * nbins],
+            nbins,
+        }
+    }
+
+    /// Adds one sample's radiance (W·m⁻²·sr⁻¹·nm⁻¹ at each wavelength) to pixel (x, y) in image
+    /// coordinates. Returns false, adding nothing, if any value is NaN or infinite.
+    #[inline]
+    pub fn add<const N: usize>(
+        &mut self,
+        x: u32,
+        y: u32,
+        w: &SampledWavelengths<N>,
+        l: &SampledSpectrum<N>,
+        bins: Option<&Bins>,
+    ) -> bool {
+        if !l.is_finite() {
+            return false;
+        }
+        let i = ((y - self.y0) * self.width + (x - self.x0)) as usize;
+        let p = &mut self.pixels[i];
+        let inv_n = 1.0 / N as f64;
+        for j in 0..N {
+            if w.pdf[j] == 0.0 {
+                continue;
+            }
+            let v = l[j] as f64 / w.pdf[j] as f64 * inv_n;
+            let c = cmf().eval(w.lambda[j]);
+            p.xyz[0] += K_M * v * c[0] as f64;
+            p.xyz[1] += K_M * v * c[1] as f64;
+            p.xyz[2] += K_M * v * c[2] as f64;
+            p.band += v;
+            if let Some(b) = bins {
+                if let Some(k) = b.index(w.lambda[j]) {
+                    self.spectral[i * self.nbins + k] += v / b.width() as f64;
+                }
+            }
+        }
+        p.count += 1;
+        true
+    }
+}
+
+/// The whole film: settings and the accumulated sums of every pixel.
+#[derive(Clone, Debug)]
+pub struct Film {
+    pub width: u32,
+    pub height: u32,
+    pub filter: Filter,
+    pub range: WavelengthRange,
+    pub bins: Option<Bins>,
+    sums: Vec<PixelSums>,
+    spectral: Vec<f64>,
+}
+
+impl Film {
+    pub fn new(
+        width: u32,
+        height: u32,
+        filter: Filter,
+        range: WavelengthRange,
+        spectral_bins: u32,
+    ) -> Self {
+        let n = (width * height) as usize;
+        let bins = (spectral_bins > 0).then(|| Bins {
+            range,
+            count: spectral_bins as usize,
+        });
+        let nb = bins.as_ref().map_or(0, |b| b.count);
+        Self {
+            width,
+            height,
+            filter,
+            range,
+            bins,
+            sums: vec![PixelSums::default(); n],
+            spectral: vec![0.0; n * nb],
+        }
+    }
+
+    /// An empty tile for the rectangle at (x0, y0) of the given size.
+    pub fn tile(&self, x0: u32, y0: u32, width: u32, height: u32) -> Tile {
+        Tile::new(
+            x0,
+            y0,
+            width,
+            height,
+            self.bins.as_ref().map_or(0, |b| b.count),
+        )
+    }
+
+    /// Adds a tile's sums into the film. Tiles cover disjoint pixels, so the order does not
+    /// matter and the result is the same for any number of threads.
+    pub fn merge(&mut self, t: &Tile) {
+        let nb = self.bins.as_ref().map_or(0, |b| b.count);
+        for ty in 0..t.height {
+            for tx in 0..t.width {
+                let src = (ty * t.width + tx) as usize;
+                let dst = ((t.y0 + ty) * self.width + t.x0 + tx) as usize;
+                let (a, b) = (&mut self.sums[dst], &t.pixels[src]);
+                for k in 0..3 {
+                    a.xyz[k] += b.xyz[k];
+                }
+                a.band += b.band;
+                a.count += b.count;
+                for k in 0..nb {
+                    self.spectral[dst * nb + k] += t.spectral[src * nb + k];
+                }
+            }
+        }
+    }
+
+    /// Number of samples in pixel (x, y).
+    pub fn samples_at(&self, x: u32, y: u32) -> u32 {
+        self.sums[(y * self.width + x) as usize].count
+    }
+
+    /// Per-pixel means. Pixels without samples (a render stopped early) are 0, never NaN.
+    pub fn image(&self) -> Image {
+        let n = (self.width * self.height) as usize;
+        let nb = self.bins.as_ref().map_or(0, |b| b.count);
+        let mut xyz = Vec::with_capacity(n);
+        let mut rgb = Vec::with_capacity(n);
+        let mut band = Vec::with_capacity(n);
+        let mut spectral = vec![Vec::with_capacity(n); nb];
+        for (i, s) in self.sums.iter().enumerate() {
+            let inv = if s.count > 0 {
+                1.0 / s.count as f64
+            } else {
+                0.0
+            };
+            let m = s.xyz.map(|v| v * inv);
+            xyz.push(m.map(|v| v as f32));
+            rgb.push(xyz_to_srgb(m).map(|v| v as f32));
+            band.push((s.band * inv) as f32);
+            for (k, sp) in spectral.iter_mut().enumerate() {
+                sp.push((self.spectral[i * nb + k] * inv) as f32);
+            }
+        }
+        Image {
+            width: self.width as usize,
+            height: self.height as usize,
+            xyz,
+            rgb,
+            band,
+            spectral,
+            bins: self.bins.clone(),
+        }
+    }
+}

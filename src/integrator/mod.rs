@@ -1,0 +1,172 @@
+//! Integrators: `path` (unidirectional path tracing with next-event estimation and multiple
+//! importance sampling), `whitted` (the lecture notes' model evaluated literally), and the shared
+//! pieces: light selection proportional to power, shading frames, shadow tests.
+//!
+//! An integrator returns the spectral radiance arriving along a camera ray at the path's
+//! wavelengths, W·m⁻²·sr⁻¹·nm⁻¹. It may terminate the secondary wavelengths; the film then
+//! drops them (their pdf is 0).
+
+mod path;
+mod whitted;
+
+use glam::Vec3;
+
+use crate::geometry::{Frame, Intersection, Ray, spawn_ray, spawn_ray_to};
+use crate::light::LightSample;
+use crate::loader::desc::IntegratorKind;
+use crate::material::Material;
+use crate::sampler::Sampler;
+use crate::scene::Scene;
+use crate::spectrum::{SampledSpectrum, SampledWavelengths};
+
+/// Chooses lights with probability proportional to their emitted power.
+#[derive(Clone, Debug)]
+pub struct LightSelector {
+    cdf: Vec<f64>,
+    prob: Vec<f32>,
+}
+
+impl LightSelector {
+    pub fn new(power: &[f64]) -> Self {
+        let total: f64 = power.iter().map(|p| p.max(0.0)).sum();
+        let n = power.len();
+        let weights: Vec<f64> = if total > 0.0 {
+            power.iter().map(|p| p.max(0.0) / total).collect()
+        } else {
+            vec![1.0 / n.max(1) as f64; n]
+        };
+        let mut cdf = Vec::with_capacity(n);
+        let mut acc = 0.0;
+        for w in &weights {
+            acc += w;
+            cdf.push(acc);
+        }
+        Self {
+            cdf,
+            prob: weights.iter().map(|&w| w as f32).collect(),
+        }
+    }
+
+    /// A light index and its probability, from `u` in [0, 1); None if there are no lights.
+    #[inline]
+    pub fn pick(&self, u: f32) -> Option<(usize, f32)> {
+        if self.cdf.is_empty() {
+            return None;
+        }
+        let i = self
+            .cdf
+            .partition_point(|&c| c <= u as f64)
+            .min(self.cdf.len() - 1);
+        (self.prob[i] > 0.0).then_some((i, self.prob[i]))
+    }
+
+    /// Probability of choosing light `i`.
+    #[inline]
+    pub fn prob(&self, i: usize) -> f32 {
+        self.prob[i]
+    }
+}
+
+/// Everything an integrator reads: the scene and its light selector.
+pub struct Integrator<'a> {
+    pub scene: &'a Scene,
+    pub lights: LightSelector,
+    pub kind: IntegratorKind,
+    pub max_depth: u32,
+}
+
+impl<'a> Integrator<'a> {
+    pub fn new(scene: &'a Scene, kind: IntegratorKind, max_depth: u32) -> Self {
+        Self {
+            scene,
+            lights: LightSelector::new(&scene.light_power),
+            kind,
+            max_depth,
+        }
+    }
+
+    /// Radiance along `ray` at the wavelengths `w` (which may be terminated to the hero).
+    pub fn radiance<const N: usize>(
+        &self,
+        ray: Ray,
+        w: &mut SampledWavelengths<N>,
+        s: &mut Sampler,
+    ) -> SampledSpectrum<N> {
+        match self.kind {
+            IntegratorKind::Path | IntegratorKind::Light => path::radiance(self, ray, w, s),
+            IntegratorKind::Whitted => whitted::radiance(self, ray, w, s, 0),
+        }
+    }
+}
+
+/// The shading situation at a surface hit, seen from the incoming ray.
+pub(crate) struct Shading<'a> {
+    pub material: &'a Material,
+    pub frame: Frame,
+    /// Geometric normal on the side the material uses (flipped for a two-sided back face).
+    pub n_geom: Vec3,
+}
+
+impl Shading<'_> {
+    /// The geometric normal flipped to the side of `dir`, for offsetting rays that leave there.
+    #[inline]
+    pub fn n_geom_toward(&self, dir: Vec3) -> Vec3 {
+        if self.n_geom.dot(dir) < 0.0 {
+            -self.n_geom
+        } else {
+            self.n_geom
+        }
+    }
+}
+
+impl Integrator<'_> {
+    /// Material and frame at `hit` for a ray travelling along `dir`; None for a black emitter.
+    pub(crate) fn shading(&self, hit: &Intersection, dir: Vec3) -> Option<Shading<'_>> {
+        let surf = &self.scene.surfaces[hit.shape as usize];
+        let material = &self.scene.materials[surf.material? as usize];
+        let (mut ng, mut ns) = (hit.n_geom, hit.n_shading);
+        let transmissive = matches!(
+            material,
+            Material::Dielectric(_) | Material::RoughDielectric(_)
+        );
+        if surf.two_sided && !transmissive && ng.dot(-dir) < 0.0 {
+            ng = -ng;
+            ns = -ns;
+        }
+        Some(Shading {
+            material,
+            frame: Frame::from_normal(ns),
+            n_geom: ng,
+        })
+    }
+
+    /// Whether the light sample `ls` is blocked as seen from `hit`.
+    pub(crate) fn occluded<const N: usize>(
+        &self,
+        hit: &Intersection,
+        n: Vec3,
+        ls: &LightSample<N>,
+    ) -> bool {
+        let ray = if ls.distance.is_finite() {
+            spawn_ray_to(hit.p, hit.p_error, n, ls.p, ls.p_error, ls.n)
+        } else {
+            spawn_ray(hit.p, hit.p_error, n, ls.wi)
+        };
+        self.scene.accel.occluded(&self.scene.shapes, &ray)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn selector_is_proportional_to_power() {
+        let s = LightSelector::new(&[1.0, 3.0, 0.0]);
+        assert_eq!(s.pick(0.1), Some((0, 0.25)));
+        assert_eq!(s.pick(0.5), Some((1, 0.75)));
+        assert_eq!(s.pick(0.999), Some((1, 0.75)));
+        assert_eq!(s.prob(2), 0.0);
+        assert!(LightSelector::new(&[]).pick(0.3).is_none());
+    }
+}

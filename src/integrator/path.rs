@@ -1,0 +1,150 @@
+//! Unidirectional path tracing: next-event estimation with multiple importance sampling
+//! (power heuristic, Veach 1997 §9.2), BSDF sampling, Russian roulette (pbrt-v4 §13.1.5), delta
+//! lights and delta BSDFs handled exactly, lights chosen in proportion to their power.
+//! Refraction through a dispersive interface terminates the secondary wavelengths
+//! (Wilkie et al. 2014 §4.2).
+
+use glam::Vec3;
+
+use super::Integrator;
+use crate::geometry::{Ray, spawn_ray};
+use crate::material::TransportMode;
+use crate::sampler::Sampler;
+use crate::sampling::power_heuristic;
+use crate::spectrum::{SampledSpectrum, SampledWavelengths};
+
+/// Radiance along `ray`, W·m⁻²·sr⁻¹·nm⁻¹ at the wavelengths `w`.
+pub(super) fn radiance<const N: usize>(
+    it: &Integrator<'_>,
+    mut ray: Ray,
+    w: &mut SampledWavelengths<N>,
+    s: &mut Sampler,
+) -> SampledSpectrum<N> {
+    let scene = it.scene;
+    let mut l = SampledSpectrum::<N>::zero();
+    let mut beta = SampledSpectrum::<N>::splat(1.0);
+    // the previous vertex, for MIS of emitters hit by BSDF sampling
+    let mut prev_p = ray.o;
+    let mut prev_pdf = 0.0f32;
+    let mut specular_bounce = true; // the camera ray counts as "specular": no MIS
+    let mut eta_scale = 1.0f32;
+    let mut depth = 0u32;
+    loop {
+        let Some(hit) = scene.accel.intersect(&scene.shapes, &ray) else {
+            // Escaped: environment and sun disks, MIS-weighted against BSDF sampling.
+            for (i, light) in scene.lights.iter().enumerate() {
+                let le = light.escaped(ray.d, w);
+                if le.is_zero() {
+                    continue;
+                }
+                let wgt = if specular_bounce {
+                    1.0
+                } else {
+                    let pl = it.lights.prob(i)
+                        * light.pdf_li(&scene.shapes, prev_p, ray.d, Vec3::ZERO, Vec3::ZERO);
+                    power_heuristic(1.0, prev_pdf, 1.0, pl)
+                };
+                l += beta * le * wgt;
+            }
+            break;
+        };
+        let surf = scene.surfaces[hit.shape as usize];
+        // Emission at the hit, MIS-weighted against light sampling from the previous vertex.
+        if let Some(li) = surf.light {
+            let light = &scene.lights[li as usize];
+            let le = light.emitted(hit.n_geom, -ray.d, w);
+            if !le.is_zero() {
+                let wgt = if specular_bounce {
+                    1.0
+                } else {
+                    let pl = it.lights.prob(li as usize)
+                        * light.pdf_li(&scene.shapes, prev_p, ray.d, hit.p, hit.n_geom);
+                    power_heuristic(1.0, prev_pdf, 1.0, pl)
+                };
+                l += beta * le * wgt;
+            }
+        }
+        if depth == it.max_depth {
+            break;
+        }
+        depth += 1;
+        let Some(sh) = it.shading(&hit, ray.d) else {
+            break;
+        };
+        let wo = sh.frame.to_local(-ray.d);
+        if sh.material.is_dispersive() && !sh.material.is_specular() {
+            // a rough dispersive interface: its transmission lobe depends on λ
+            w.terminate_secondary();
+        }
+
+        // Next-event estimation.
+        if !sh.material.is_specular() {
+            let u_light = s.get_1d();
+            let (u, u_extra) = (s.get_2d(), s.get_1d());
+            if let Some((li, p_sel)) = it.lights.pick(u_light) {
+                let light = &scene.lights[li];
+                if let Some(ls) = light.sample_li(&scene.shapes, hit.p, w, u, u_extra) {
+                    let wi = sh.frame.to_local(ls.wi);
+                    let f = sh.material.eval(wo, wi, w, TransportMode::Radiance) * wi.z.abs();
+                    if !f.is_zero()
+                        && !ls.li.is_zero()
+                        && !it.occluded(&hit, sh.n_geom_toward(ls.wi), &ls)
+                    {
+                        let p_light = p_sel * ls.pdf;
+                        let wgt = if ls.delta {
+                            1.0
+                        } else {
+                            power_heuristic(
+                                1.0,
+                                p_light,
+                                1.0,
+                                sh.material.pdf(wo, wi, w, TransportMode::Radiance),
+                            )
+                        };
+                        l += beta * f * ls.li * (wgt / p_light);
+                    }
+                }
+            }
+        } else {
+            // keep the dimension layout fixed
+            s.get_1d();
+            s.get_2d();
+            s.get_1d();
+        }
+
+        // BSDF sampling.
+        let (uc, u2) = (s.get_1d(), s.get_2d());
+        let Some(bs) = sh.material.sample(wo, w, uc, u2, TransportMode::Radiance) else {
+            break;
+        };
+        if bs.pdf <= 0.0 || bs.f.is_zero() {
+            break;
+        }
+        if bs.dispersive {
+            w.terminate_secondary();
+        }
+        beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
+        if bs.transmission {
+            eta_scale *= bs.eta * bs.eta;
+        }
+        specular_bounce = bs.specular;
+        prev_pdf = bs.pdf;
+        prev_p = hit.p;
+        let wi = sh.frame.to_world(bs.wi);
+        ray = spawn_ray(hit.p, hit.p_error, sh.n_geom_toward(wi), wi);
+
+        // Russian roulette on the throughput, corrected for radiance scaling by η².
+        let rr = (beta * eta_scale).max_component();
+        if rr < 1.0 && depth > 1 {
+            let q = (1.0 - rr).max(0.0);
+            if s.get_1d() < q {
+                break;
+            }
+            beta /= 1.0 - q;
+        }
+        if beta.is_zero() {
+            break;
+        }
+    }
+    l
+}
