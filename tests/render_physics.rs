@@ -11,10 +11,11 @@ use support::render::{mean, render_with, scene_from};
 const CIE_Y_INTEGRAL: f64 = 106.856895;
 const K_M: f64 = 683.002;
 
-/// A closed sphere of albedo ρ emitting Le everywhere, camera inside: L = Le/(1 − ρ).
+/// A closed sphere of albedo ρ emitting Le everywhere, camera inside: L = Le/(1 − ρ), for
+/// camera paths (`path`) and light paths (`light`).
 #[test]
-fn furnace_path() {
-    for rho in [0.5, 0.8] {
+fn furnace_path_and_light() {
+    for (integrator, rho) in [("path", 0.5), ("path", 0.8), ("light", 0.5), ("light", 0.8)] {
         let s = scene_from(&format!(
             r#"
 [camera]
@@ -26,6 +27,7 @@ width = 16
 height = 16
 spp = 256
 [integrator]
+type = "{integrator}"
 max_depth = 1000
 [materials.m]
 type = "diffuse"

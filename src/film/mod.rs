@@ -22,8 +22,9 @@ pub struct PixelSums {
     pub xyz: [f64; 3],
     /// Σ band radiance estimates, W·m⁻²·sr⁻¹.
     pub band: f64,
-    /// Number of samples that reached the pixel (NaN/∞ samples are not counted).
-    pub count: u32,
+    /// Number of samples that reached the pixel (NaN/∞ samples are not counted); for light
+    /// tracing, the number of light paths traced in all.
+    pub count: u64,
 }
 
 /// Spectral bins of the film's wavelength range.
@@ -128,6 +129,25 @@ impl Tile {
         p.count += 1;
         true
     }
+
+    /// Adds a light-tracing splat to pixel (x, y) without counting a sample; the film divides
+    /// by the number of light paths instead (see [`Film::set_path_count`]). Returns false,
+    /// adding nothing, for NaN or infinite values.
+    #[inline]
+    pub fn splat<const N: usize>(
+        &mut self,
+        x: u32,
+        y: u32,
+        w: &SampledWavelengths<N>,
+        l: &SampledSpectrum<N>,
+        bins: Option<&Bins>,
+    ) -> bool {
+        if !self.add(x, y, w, l, bins) {
+            return false;
+        }
+        self.pixels[((y - self.y0) * self.width + (x - self.x0)) as usize].count -= 1;
+        true
+    }
 }
 
 /// The whole film: settings and the accumulated sums of every pixel.
@@ -199,8 +219,16 @@ impl Film {
         }
     }
 
+    /// Sets every pixel's sample count to the number of light paths traced, so that splatted
+    /// sums become radiance estimates.
+    pub fn set_path_count(&mut self, paths: u64) {
+        for p in &mut self.sums {
+            p.count = paths;
+        }
+    }
+
     /// Number of samples in pixel (x, y).
-    pub fn samples_at(&self, x: u32, y: u32) -> u32 {
+    pub fn samples_at(&self, x: u32, y: u32) -> u64 {
         self.sums[(y * self.width + x) as usize].count
     }
 

@@ -85,6 +85,22 @@ impl Film {
     }
 }
 
+/// How a world point connects to a pinhole camera, for light tracing.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CameraConnection {
+    /// Raster position where the point appears, pixels.
+    pub raster: Vec2,
+    /// Unit direction from the point toward the pinhole (world).
+    pub wi: Vec3,
+    /// Distance to the pinhole, m.
+    pub distance: f32,
+    /// Pixel measurement weight: N_pixels / (A · cos³θ · d²), with A the image area on the
+    /// plane z = 1 and θ the angle to the view axis. A particle of spectral power β arriving
+    /// with BSDF value f and cosine |cos θ_x| adds β·f·|cos θ_x|·weight / N_paths to the pixel's
+    /// radiance (pbrt-v4 §5.1.4, W_e = 1/(A cos⁴θ) with the solid-angle pdf d²/cos θ).
+    pub weight: f32,
+}
+
 /// Pinhole perspective camera.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Perspective {
@@ -220,6 +236,36 @@ impl Camera {
                 Ray::new(c.to_world.point(xy.extend(0.0)), c.to_world.vector(Vec3::Z))
             }
         }
+    }
+
+    /// Where the world point `p` appears on a pinhole perspective camera, or None if it is
+    /// behind the camera, outside the image, or the camera is not a pinhole.
+    pub fn connect(&self, p: Vec3) -> Option<CameraConnection> {
+        let Camera::Perspective(c) = self else {
+            return None;
+        };
+        let pc = c.to_world.inverse().point(p);
+        if !(pc.z > 0.0) {
+            return None;
+        }
+        let d = pc.length();
+        let cos = pc.z / d;
+        let xy = pc.truncate() / pc.z;
+        let ndc = -xy / c.film.half;
+        let size = Vec2::new(c.film.width as f32, c.film.height as f32);
+        let raster = (ndc + Vec2::ONE) * 0.5 * size;
+        if !(raster.x >= 0.0 && raster.y >= 0.0 && raster.x < size.x && raster.y < size.y) {
+            return None;
+        }
+        let area = 4.0 * c.film.half.x * c.film.half.y;
+        let weight = size.x * size.y / (area * cos * cos * cos * d * d);
+        let eye = c.to_world.point(Vec3::ZERO);
+        Some(CameraConnection {
+            raster,
+            wi: (eye - p) / d,
+            distance: d,
+            weight,
+        })
     }
 
     fn parts(&self) -> (&Transform, &Film) {

@@ -6,6 +6,7 @@
 //! wavelengths, W·m⁻²·sr⁻¹·nm⁻¹. It may terminate the secondary wavelengths; the film then
 //! drops them (their pdf is 0).
 
+pub mod light;
 mod path;
 mod whitted;
 
@@ -93,6 +94,7 @@ impl<'a> Integrator<'a> {
         s: &mut Sampler,
     ) -> SampledSpectrum<N> {
         match self.kind {
+            // `light` traces from the lights (see `light::trace`); camera rays use `path`
             IntegratorKind::Path | IntegratorKind::Light => path::radiance(self, ray, w, s),
             IntegratorKind::Whitted => whitted::radiance(self, ray, w, s, 0),
         }

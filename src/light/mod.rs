@@ -7,18 +7,21 @@
 //! | point, spot | spectral intensity, W·sr⁻¹·nm⁻¹ |
 //! | area, environment | spectral radiance, W·m⁻²·sr⁻¹·nm⁻¹ |
 //! | directional | spectral irradiance on a plane perpendicular to it, W·m⁻²·nm⁻¹ |
+//! | beam | total spectral power, W·nm⁻¹ |
 //!
 //! Sampling returns the radiance arriving at a reference point and the pdf of the direction
 //! per unit solid angle; delta lights (point, spot, collimated directional) return pdf 1 with
 //! `delta = true` and `li` = the irradiance-producing pseudo-radiance (I/r² or E).
 
 mod area;
+mod beam;
 mod directional;
 mod environment;
 mod point;
 mod spot;
 
 pub use area::AreaLight;
+pub use beam::BeamLight;
 pub use directional::DirectionalLight;
 pub use environment::EnvironmentLight;
 pub use point::PointLight;
@@ -83,6 +86,7 @@ pub enum Light {
     Area(AreaLight),
     Directional(DirectionalLight),
     Environment(EnvironmentLight),
+    Beam(BeamLight),
 }
 
 impl Light {
@@ -103,6 +107,7 @@ impl Light {
             Light::Area(l) => l.sample_li(shapes, p, w, u, u_extra),
             Light::Directional(l) => l.sample_li(w, u),
             Light::Environment(l) => l.sample_li(w, u),
+            Light::Beam(l) => l.sample_li(p, w),
         }
     }
 
@@ -114,7 +119,7 @@ impl Light {
             Light::Area(l) => l.pdf_li(p, wi, p_light, n_light, shapes[l.shape as usize].area()),
             Light::Directional(l) => l.pdf_li(wi),
             Light::Environment(_) => crate::sampling::UNIFORM_SPHERE_PDF,
-            Light::Point(_) | Light::Spot(_) => 0.0,
+            Light::Point(_) | Light::Spot(_) | Light::Beam(_) => 0.0,
         }
     }
 
@@ -149,7 +154,7 @@ impl Light {
     /// Whether the light is a delta distribution in position or direction.
     pub fn is_delta(&self) -> bool {
         match self {
-            Light::Point(_) | Light::Spot(_) => true,
+            Light::Point(_) | Light::Spot(_) | Light::Beam(_) => true,
             Light::Directional(l) => l.is_delta(),
             Light::Area(_) | Light::Environment(_) => false,
         }
@@ -158,7 +163,7 @@ impl Light {
     /// Total emitted power over `range`, W. Lights at infinity count the power crossing a disk
     /// of radius `scene_radius` (m) that faces them, as pbrt-v4 does for light selection.
     pub fn power(&self, shapes: &[Shape], range: WavelengthRange, scene_radius: f32) -> f64 {
-        let band = |s: &Spectrum| s.integrate(range.min_nm, range.max_nm, 0.5);
+        let band = |s: &Spectrum| s.integrate(range.min_nm, range.max_nm, 1.0);
         let pi = std::f64::consts::PI;
         match self {
             Light::Point(l) => 4.0 * pi * band(&l.intensity),
@@ -171,6 +176,7 @@ impl Light {
             Light::Environment(l) => {
                 4.0 * pi * pi * (scene_radius as f64).powi(2) * band(&l.radiance)
             }
+            Light::Beam(l) => band(&l.power),
         }
     }
 }

@@ -251,6 +251,14 @@ pub enum LightKind {
     },
     /// Uniform radiance from every direction.
     Environment { amount: EmitAmount },
+    /// A collimated beam leaving a disk of `radius` at `position` toward `target`; `amount` is
+    /// its total power (W or lm) or a scale of a spectrum already in W·nm⁻¹.
+    Beam {
+        position: Point,
+        target: Point,
+        radius: Length,
+        amount: PointAmount,
+    },
 }
 
 #[derive(Clone, Debug)]

@@ -128,4 +128,5 @@ pub struct RawLight {
     pub cone_angle: Option<S<Value>>,
     pub falloff_start: Option<S<Value>>,
     pub angular_diameter: Option<S<Value>>,
+    pub radius: Option<S<Value>>,
 }

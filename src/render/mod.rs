@@ -70,6 +70,8 @@ pub struct RenderStats {
 pub enum RenderError {
     #[error("cannot start {threads} render threads: {message}")]
     Threads { threads: usize, message: String },
+    #[error("the `light` integrator connects to a pinhole camera; use a perspective camera")]
+    Camera,
 }
 
 /// Renders `scene`. `cancel` stops the render between tiles; `progress(done, total)` is called
@@ -120,6 +122,22 @@ pub fn render(
     }
     let mut spp_done = 0;
     let mut partial = false;
+    if opts.integrator == IntegratorKind::Light {
+        let film = film.into_inner().unwrap_or_else(|p| p.into_inner());
+        if !matches!(scene.camera, crate::geometry::Camera::Perspective(_)) {
+            return Err(RenderError::Camera);
+        }
+        return render_light(
+            opts,
+            film,
+            &integrator,
+            &lambda,
+            &pool,
+            cancel,
+            progress,
+            start,
+        );
+    }
     for (a, b) in passes {
         if cancel.load(Ordering::Relaxed) {
             partial = true;
@@ -185,6 +203,90 @@ pub fn render(
         elapsed: start.elapsed(),
         partial: partial || cancel.load(Ordering::Relaxed),
         spp_done,
+    };
+    Ok((film, stats))
+}
+
+/// Light tracing: `spp × pixels` paths in a fixed number of chunks, each splatting into its own
+/// full-image tile; chunks are merged in order, so the image does not depend on the threads.
+#[allow(clippy::too_many_arguments)]
+fn render_light(
+    opts: &RenderOptions,
+    mut film: Film,
+    integrator: &Integrator<'_>,
+    lambda: &WavelengthSampler,
+    pool: &rayon::ThreadPool,
+    cancel: &AtomicBool,
+    progress: &(dyn Fn(u64, u64) + Sync),
+    start: Instant,
+) -> Result<(Film, RenderStats), RenderError> {
+    const CHUNKS: u64 = 8;
+    let (w, h) = (film.width, film.height);
+    let pixels = w as u64 * h as u64;
+    let total = pixels * opts.spp as u64;
+    let bins = film.bins.clone();
+    let done = AtomicU64::new(0);
+    let (nan, inf) = (AtomicU64::new(0), AtomicU64::new(0));
+    let tiles: Vec<(crate::film::Tile, u64)> = pool.install(|| {
+        (0..CHUNKS)
+            .into_par_iter()
+            .map(|c| {
+                let mut tile = film.tile(0, 0, w, h);
+                let (lo, hi) = (total * c / CHUNKS, total * (c + 1) / CHUNKS);
+                let mut traced = 0;
+                for i in lo..hi {
+                    if (i - lo) % 4096 == 0 {
+                        if cancel.load(Ordering::Relaxed) {
+                            break;
+                        }
+                        let n = done.fetch_add(4096.min(hi - i), Ordering::Relaxed);
+                        progress(n, total);
+                    }
+                    let px = i % pixels;
+                    let mut s = Sampler::new(
+                        opts.seed ^ 0x4c49_4748,
+                        (px % w as u64) as u32,
+                        (px / w as u64) as u32,
+                        (i / pixels) as u32,
+                    );
+                    let mut wl: SampledWavelengths<N_WAVELENGTHS> = lambda.sample(s.get_1d());
+                    crate::integrator::light::trace(
+                        integrator,
+                        &mut wl,
+                        &mut s,
+                        &mut |raster, wl, l| {
+                            let (x, y) =
+                                ((raster.x as u32).min(w - 1), (raster.y as u32).min(h - 1));
+                            if !tile.splat(x, y, wl, &l, bins.as_ref()) {
+                                let counter = if l.0.iter().any(|v| v.is_nan()) {
+                                    &nan
+                                } else {
+                                    &inf
+                                };
+                                counter.fetch_add(1, Ordering::Relaxed);
+                            }
+                        },
+                    );
+                    traced += 1;
+                }
+                (tile, traced)
+            })
+            .collect()
+    });
+    let mut paths = 0;
+    for (tile, traced) in &tiles {
+        film.merge(tile);
+        paths += traced;
+    }
+    film.set_path_count(paths.max(1));
+    let partial = paths < total || cancel.load(Ordering::Relaxed);
+    let stats = RenderStats {
+        samples: paths,
+        nan_samples: nan.load(Ordering::Relaxed),
+        inf_samples: inf.load(Ordering::Relaxed),
+        elapsed: start.elapsed(),
+        partial,
+        spp_done: (paths / pixels) as u32,
     };
     Ok((film, stats))
 }

@@ -11,6 +11,7 @@
 //! | point power Φ (W or lm) | Φ/(4π B) or Φ/(4π V) |
 //! | spot power | Φ/(Ω B), Ω = 2π[(1 − cos θ_start) + (cos θ_start − cos θ_total)/2] |
 //! | area power | Φ/(π A B), two-sided Φ/(2π A B) (Φ = π L A) |
+//! | beam power Φ (W or lm) | Φ/B or Φ/V (spread over the beam's disk) |
 //! | scale s | s (S is already absolute) |
 
 use glam::Vec3;
@@ -19,7 +20,9 @@ use super::{surface, v3};
 use crate::colour::cie::{K_M, cmf};
 use crate::geometry::Frame;
 use crate::geometry::shape::Shape;
-use crate::light::{AreaLight, DirectionalLight, EnvironmentLight, Light, PointLight, SpotLight};
+use crate::light::{
+    AreaLight, BeamLight, DirectionalLight, EnvironmentLight, Light, PointLight, SpotLight,
+};
 use crate::loader::desc::{DirectionalAmount, EmitAmount, LightKind, PointAmount, SceneDesc};
 use crate::loader::{LoadError, Loc};
 use crate::scene::Surface;
@@ -178,6 +181,21 @@ pub(super) fn lights(
                     scaled(&l.spectrum, per, 1.0, r).map_err(e)?,
                     alpha,
                 ))
+            }
+            LightKind::Beam {
+                position,
+                target,
+                radius,
+                amount,
+            } => {
+                let p = v3(position);
+                let (per, _) = point_amount(amount, 1.0);
+                Light::Beam(BeamLight {
+                    center: p,
+                    frame: Frame::from_normal((v3(target) - p).normalize()),
+                    radius: plain::metres(*radius),
+                    power: scaled(&l.spectrum, per, 1.0, r).map_err(e)?,
+                })
             }
             LightKind::Environment { amount } => {
                 let (per, g) = emit(amount, None).map_err(e)?;

@@ -6,12 +6,12 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
     let sp = l.span();
     let f = format!("lights[{i}]");
     let l = l.get_ref();
-    let all = present!(l; kind, spectrum, position, target, direction, power, intensity, radiance, luminance, irradiance, scale, cone_angle, falloff_start, angular_diameter);
+    let all = present!(l; kind, spectrum, position, target, direction, power, intensity, radiance, luminance, irradiance, scale, cone_angle, falloff_start, angular_diameter, radius);
     let ty = cx.required(
         &l.kind,
         &sp,
         &format!("{f}.type"),
-        "point, spot, directional or environment",
+        "point, spot, directional, environment or beam",
     )?;
     let spectrum = match &l.spectrum {
         Some(s) => cx.spectrum(s, &format!("{f}.spectrum"), SpectrumUse::Emission)?,
@@ -250,12 +250,65 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
                 amount: emit_amount(cx, &sp, &f, &l.radiance, &l.luminance, &None, &l.scale)?,
             }
         }
+        "beam" => {
+            cx.only(
+                "a beam light",
+                &f,
+                &all,
+                &[
+                    "kind", "spectrum", "position", "target", "radius", "power", "scale",
+                ],
+            )?;
+            let position = pos(cx)?;
+            let t = cx.required(
+                &l.target,
+                &sp,
+                &format!("{f}.target"),
+                "the point the beam aims at",
+            )?;
+            let target = cx.point(t, &format!("{f}.target"))?;
+            if (0..3).all(|k| target[k] == position[k]) {
+                return Err(cx.err(
+                    &t.span(),
+                    format!("{f}.target"),
+                    "the target equals the position",
+                ));
+            }
+            let r = cx.required(
+                &l.radius,
+                &sp,
+                &format!("{f}.radius"),
+                "the beam radius, a positive length",
+            )?;
+            let radius = cx.length(r, &format!("{f}.radius"))?;
+            if !(radius.get::<length::meter>() > 0.0) {
+                return Err(cx.err(
+                    &r.span(),
+                    format!("{f}.radius"),
+                    "expected a positive radius",
+                ));
+            }
+            if l.intensity.is_some() {
+                let span = l.intensity.as_ref().map(|v| v.span()).unwrap_or(sp.clone());
+                return Err(cx.err(
+                    &span,
+                    format!("{f}.intensity"),
+                    "a beam has a power, not an intensity",
+                ));
+            }
+            LightKind::Beam {
+                position,
+                target,
+                radius,
+                amount: point_amount(cx)?,
+            }
+        }
         o => {
             return Err(cx.err(
                 &ty.span(),
                 format!("{f}.type"),
                 format!(
-                    "unknown light type \"{o}\"; expected point, spot, directional or environment"
+                    "unknown light type \"{o}\"; expected point, spot, directional, environment or beam"
                 ),
             ));
         }

@@ -1,0 +1,188 @@
+//! Light tracing (particle tracing): paths start at the lights, bounce through specular and
+//! glossy interactions, and every diffuse or glossy vertex is connected to a pinhole camera
+//! (Veach 1997 §10.2, the t = 1 strategies of bidirectional path tracing; pbrt-v4's
+//! LightPathIntegrator). It renders
+//! caustics that `path` cannot, such as a collimated beam refracted by a prism onto a screen.
+//!
+//! Supported emitters: area, point, spot, beam and directional (as a beam as wide as the
+//! scene). Environment lights are not traced. The camera must be a pinhole.
+
+use glam::{Vec2, Vec3};
+
+use super::Integrator;
+use crate::geometry::{Frame, Ray, spawn_ray, spawn_ray_to};
+use crate::light::Light;
+use crate::material::TransportMode;
+use crate::sampler::Sampler;
+use crate::sampling::{
+    UNIFORM_SPHERE_PDF, cosine_hemisphere, uniform_cone, uniform_cone_pdf, uniform_sphere,
+};
+use crate::spectrum::{SampledSpectrum, SampledWavelengths};
+
+/// Traces one light path and calls `splat` for every camera connection.
+pub fn trace<const N: usize>(
+    it: &Integrator<'_>,
+    w: &mut SampledWavelengths<N>,
+    s: &mut Sampler,
+    splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, SampledSpectrum<N>),
+) {
+    let scene = it.scene;
+    let Some((li, p_sel)) = it.lights.pick(s.get_1d()) else {
+        return;
+    };
+    let (u1, u2, u3) = (s.get_2d(), s.get_2d(), s.get_1d());
+    let camera = &scene.camera;
+    // emission: origin (with error and normal for offsetting), direction, particle weight
+    let (origin, p_error, n0, dir, mut beta) = match &scene.lights[li] {
+        Light::Area(a) => {
+            let shape = &scene.shapes[a.shape as usize];
+            let ps = shape.sample_area(u1, u3);
+            if ps.pdf_area <= 0.0 {
+                return;
+            }
+            let le = a.radiance.sample(w);
+            // t = 1: the emitter seen directly by the camera
+            if let Some(c) = camera.connect(ps.p) {
+                let cos = ps.n.dot(c.wi);
+                if (a.two_sided || cos > 0.0)
+                    && !occluded_to_camera(it, ps.p, ps.p_error, ps.n, camera.position())
+                {
+                    splat(
+                        c.raster,
+                        w,
+                        le * (cos.abs() * c.weight / (p_sel * ps.pdf_area)),
+                    );
+                }
+            }
+            let (n, sides) = if a.two_sided && u2.x < 0.5 {
+                (-ps.n, 2.0)
+            } else if a.two_sided {
+                (ps.n, 2.0)
+            } else {
+                (ps.n, 1.0)
+            };
+            let u2 = Vec2::new(
+                if a.two_sided {
+                    (u2.x * 2.0).fract()
+                } else {
+                    u2.x
+                },
+                u2.y,
+            );
+            let d = Frame::from_normal(n).to_world(cosine_hemisphere(u2));
+            (
+                ps.p,
+                ps.p_error,
+                n,
+                d,
+                le * (std::f32::consts::PI * sides / (p_sel * ps.pdf_area)),
+            )
+        }
+        Light::Point(l) => {
+            let d = uniform_sphere(u1);
+            (
+                l.position,
+                Vec3::ZERO,
+                Vec3::ZERO,
+                d,
+                l.intensity.sample(w) * (1.0 / (p_sel * UNIFORM_SPHERE_PDF)),
+            )
+        }
+        Light::Spot(l) => {
+            let omc = 1.0 - l.cos_total;
+            let d = l.frame.to_world(uniform_cone(u1, omc));
+            let f = l.falloff(d);
+            (
+                l.position,
+                Vec3::ZERO,
+                Vec3::ZERO,
+                d,
+                l.intensity.sample(w) * (f / (p_sel * uniform_cone_pdf(omc))),
+            )
+        }
+        Light::Beam(b) => {
+            let (o, d, power) = b.sample_emission(u1, w);
+            (o, Vec3::ZERO, Vec3::ZERO, d, power * (1.0 / p_sel))
+        }
+        Light::Directional(l) => {
+            let (c, r) = scene.bounding_sphere();
+            let f = Frame::from_normal(l.direction);
+            let disk = crate::sampling::concentric_disk(u1) * r;
+            let o = c - l.direction * (2.0 * r) + f.s * disk.x + f.t * disk.y;
+            let area = std::f32::consts::PI * r * r;
+            (
+                o,
+                Vec3::ZERO,
+                Vec3::ZERO,
+                l.direction,
+                l.irradiance.sample(w) * (area / p_sel),
+            )
+        }
+        Light::Environment(_) => return,
+    };
+    if beta.is_zero() {
+        return;
+    }
+    let beta0 = beta.max_component();
+    let mut ray = if n0 == Vec3::ZERO {
+        Ray::new(origin, dir)
+    } else {
+        spawn_ray(origin, p_error, n0, dir)
+    };
+    for depth in 0..it.max_depth {
+        let Some(hit) = scene.accel.intersect(&scene.shapes, &ray) else {
+            break;
+        };
+        let Some(sh) = it.shading(&hit, ray.d) else {
+            break;
+        };
+        // wo points back toward where the light came from (pbrt's convention for importance)
+        let wo = sh.frame.to_local(-ray.d);
+        if sh.material.is_dispersive() && !sh.material.is_specular() {
+            w.terminate_secondary();
+        }
+        if !sh.material.is_specular() {
+            if let Some(c) = camera.connect(hit.p) {
+                let wc = sh.frame.to_local(c.wi);
+                let f = sh.material.eval(wo, wc, w, TransportMode::Importance);
+                if !f.is_zero()
+                    && !occluded_to_camera(
+                        it,
+                        hit.p,
+                        hit.p_error,
+                        sh.n_geom_toward(c.wi),
+                        camera.position(),
+                    )
+                {
+                    splat(c.raster, w, beta * f * (wc.z.abs() * c.weight));
+                }
+            }
+        }
+        let (uc, u) = (s.get_1d(), s.get_2d());
+        let Some(bs) = sh.material.sample(wo, w, uc, u, TransportMode::Importance) else {
+            break;
+        };
+        if bs.pdf <= 0.0 || bs.f.is_zero() {
+            break;
+        }
+        if bs.dispersive {
+            w.terminate_secondary();
+        }
+        beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
+        let wi = sh.frame.to_world(bs.wi);
+        ray = spawn_ray(hit.p, hit.p_error, sh.n_geom_toward(wi), wi);
+        // Russian roulette on the throughput relative to the particle's starting weight
+        if depth > 1 {
+            let q = (1.0 - beta.max_component() / beta0).max(0.0);
+            if s.get_1d() < q {
+                break;
+            }
+            beta /= 1.0 - q;
+        }
+    }
+}
+
+fn occluded_to_camera(it: &Integrator<'_>, p: Vec3, p_error: Vec3, n: Vec3, eye: Vec3) -> bool {
+    let ray = spawn_ray_to(p, p_error, n, eye, Vec3::ZERO, Vec3::ZERO);
+    it.scene.accel.occluded(&it.scene.shapes, &ray)
+}
