@@ -10,6 +10,7 @@ extern crate uom;
 pub mod cli;
 pub mod colour;
 pub mod geometry;
+pub mod image_io;
 pub mod light;
 pub mod loader;
 pub mod material;
