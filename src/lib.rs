@@ -11,6 +11,7 @@ pub mod cli;
 pub mod colour;
 pub mod film;
 pub mod geometry;
+pub mod image_io;
 pub mod integrator;
 pub mod light;
 pub mod loader;

@@ -1,0 +1,169 @@
+//! Writing float32 scanline OpenEXR files, plain and spectral.
+
+use std::collections::HashSet;
+use std::path::Path;
+
+use exr::prelude::{
+    AnyChannel, AnyChannels, Blocks, Compression, Encoding, FlatSamples, Image, Layer, LineOrder,
+    SmallVec, WritableImage,
+};
+
+use super::exr_attrs::{check_name, layer_attributes, to_text};
+use super::spectral_names::{self, EMISSIVE_UNITS, SPECTRAL_LAYOUT_VERSION};
+use super::{AttrValue, Channel, ImageError, invalid, pixel_count, write_atomically};
+
+/// Lossless for float32 (unlike PXR24 or B44), widely supported, and compact.
+const ENCODING: Encoding = Encoding {
+    compression: Compression::ZIP16,
+    blocks: Blocks::ScanLines,
+    line_order: LineOrder::Increasing,
+};
+
+/// Writes a single-layer, scanline, float32 EXR (ZIP-compressed, lossless) with `channels` and
+/// the extra header `attributes`, atomically (see [`write_atomically`]).
+///
+/// Fails before touching the disk if the image is empty, a channel does not hold exactly
+/// `width * height` values, two channels share a name, a value is NaN or infinite (the error
+/// names the channel and the pixel), or an attribute is invalid: given twice, a reserved
+/// OpenEXR name such as `channels`, or a standard one with the wrong type (`owner`, `software`,
+/// `comments`, … are text; `expTime`, `aperture`, `whiteLuminance`, … are floats).
+/// EXR stores channels sorted by name; [`super::read_exr`] returns them by name.
+pub fn write_exr(
+    path: &Path,
+    width: usize,
+    height: usize,
+    channels: &[Channel],
+    attributes: &[(&str, AttrValue)],
+) -> Result<(), ImageError> {
+    let pixels = pixel_count(path, width, height)?;
+    if i32::try_from(width).is_err() || i32::try_from(height).is_err() {
+        return Err(invalid(path, format!("image size {width}×{height} is too large for EXR")));
+    }
+    if channels.is_empty() {
+        return Err(invalid(path, "an EXR file needs at least one channel"));
+    }
+    let mut names = HashSet::new();
+    for c in channels {
+        check_name(path, "channel", c.name)?;
+        if !names.insert(c.name) {
+            return Err(invalid(path, format!("channel `{}` is given twice", c.name)));
+        }
+        check_pixels(path, width, pixels, c)?;
+    }
+    let layer_attributes = layer_attributes(path, attributes)?;
+
+    let list: SmallVec<[AnyChannel<FlatSamples>; 4]> = channels
+        .iter()
+        .map(|c| AnyChannel::new(to_text(c.name), FlatSamples::F32(c.data.to_vec())))
+        .collect();
+    let layer = Layer::new((width, height), layer_attributes, ENCODING, AnyChannels::sort(list));
+    let image = Image::from_layer(layer);
+    write_atomically(path, |out| {
+        image.write().to_buffered(out).map_err(|e| ImageError::Codec {
+            path: path.to_path_buf(),
+            action: "cannot encode EXR",
+            source: Box::new(e),
+        })
+    })
+}
+
+/// Writes a spectral EXR in the layout of Fichet, Pacanowski and Wilkie, "An OpenEXR Layout for
+/// Spectral Images" (JCGT 10(3), 2021): one emissive channel per bin, named `S0.<λ>nm` with a
+/// comma as decimal separator and six decimals (`S0.552,500000nm`), the attributes
+/// `spectralLayoutVersion` = `"1.0"` and `emissiveUnits` = `"W.m^-2.sr^-1"`, and the channels in
+/// `extra` beside them (typically an `R`, `G`, `B` preview that ordinary viewers show).
+///
+/// **Units.** `wavelengths_nm[i]` is the centre of bin `i`, and `bins[i]` holds the *spectral*
+/// radiance in W·m⁻²·sr⁻¹·nm⁻¹ averaged over that bin — a density, not the bin's integral.
+/// The band radiance in W·m⁻²·sr⁻¹ is Σᵢ `bins[i]` · Δλᵢ. This is the layout's convention: the
+/// `emissiveUnits` string names the radiometric quantity (radiance, W.m^-2.sr^-1) and each
+/// channel holds its density per unit of the channel name's wavelength unit (here nm), as the
+/// layout's reference implementation and pbrt-v4's spectral film write it. The same convention
+/// applies to the `S0.` channels this module reads back.
+///
+/// Fails like [`write_exr`], and also if `wavelengths_nm` and `bins` differ in length or are
+/// empty, if the wavelengths are not finite, positive and strictly increasing, if a wavelength
+/// does not survive six decimals unchanged, if an `extra` channel's name is itself a spectral
+/// channel name, or if `attributes` repeats `spectralLayoutVersion` or `emissiveUnits`.
+pub fn write_spectral_exr(
+    path: &Path,
+    width: usize,
+    height: usize,
+    wavelengths_nm: &[f32],
+    bins: &[&[f32]],
+    extra: &[Channel],
+    attributes: &[(&str, AttrValue)],
+) -> Result<(), ImageError> {
+    if wavelengths_nm.len() != bins.len() {
+        return Err(invalid(
+            path,
+            format!("{} wavelengths for {} spectral bins", wavelengths_nm.len(), bins.len()),
+        ));
+    }
+    if bins.is_empty() {
+        return Err(invalid(path, "a spectral EXR needs at least one spectral bin"));
+    }
+    for (i, wl) in wavelengths_nm.iter().enumerate() {
+        if !(wl.is_finite() && *wl > 0.0) {
+            return Err(invalid(path, format!("wavelength {i} is {wl} nm, not positive")));
+        }
+        if i > 0 && *wl <= wavelengths_nm[i - 1] {
+            return Err(invalid(
+                path,
+                format!(
+                    "wavelengths must increase strictly: {} nm then {wl} nm",
+                    wavelengths_nm[i - 1]
+                ),
+            ));
+        }
+    }
+    for c in extra {
+        if spectral_names::parse_channel_name(c.name).is_some() {
+            return Err(invalid(
+                path,
+                format!("extra channel `{}` would read as a spectral channel", c.name),
+            ));
+        }
+    }
+    let names = wavelengths_nm
+        .iter()
+        .map(|&wl| spectral_names::channel_name(path, wl))
+        .collect::<Result<Vec<_>, _>>()?;
+    let mut channels: Vec<Channel> = names
+        .iter()
+        .zip(bins)
+        .map(|(name, data)| Channel { name, data })
+        .collect();
+    channels.extend_from_slice(extra);
+
+    let mut all_attributes = vec![
+        ("spectralLayoutVersion", AttrValue::Text(SPECTRAL_LAYOUT_VERSION.into())),
+        ("emissiveUnits", AttrValue::Text(EMISSIVE_UNITS.into())),
+    ];
+    all_attributes.extend(attributes.iter().cloned());
+    write_exr(path, width, height, &channels, &all_attributes)
+}
+
+/// Checks a channel's length and that every value is finite.
+fn check_pixels(path: &Path, width: usize, pixels: usize, c: &Channel) -> Result<(), ImageError> {
+    if c.data.len() != pixels {
+        return Err(invalid(
+            path,
+            format!(
+                "channel `{}` holds {} values, the image has {pixels} pixels",
+                c.name,
+                c.data.len()
+            ),
+        ));
+    }
+    match c.data.iter().position(|v| !v.is_finite()) {
+        None => Ok(()),
+        Some(i) => Err(ImageError::NonFinite {
+            path: path.to_path_buf(),
+            channel: c.name.to_string(),
+            x: i % width,
+            y: i / width,
+            value: c.data[i],
+        }),
+    }
+}
