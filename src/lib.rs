@@ -15,6 +15,7 @@ pub mod image_io;
 pub mod integrator;
 pub mod light;
 pub mod loader;
+pub mod output;
 pub mod material;
 pub mod render;
 pub mod sampler;

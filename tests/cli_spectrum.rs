@@ -97,8 +97,8 @@ fn bad_wavelength_is_a_clear_error() {
 }
 
 #[test]
-fn no_arguments_prints_the_data_summary() {
-    let (ok, out, _) = spectrace(&[]);
+fn spectrum_without_a_name_prints_the_data_summary() {
+    let (ok, out, _) = spectrace(&["spectrum"]);
     assert!(
         ok && out.contains("∫ȳ") && out.contains("glass:N-BK7"),
         "{out}"

@@ -1,12 +1,16 @@
 //! Command-line interface (clap).
 
+mod progress;
+mod render;
 mod spectrum;
 
 use clap::{Parser, Subcommand};
 
 /// spectrace: a spectral path tracer in physical units.
 ///
-/// Wavelengths are in nm, radiance in W·m⁻²·sr⁻¹·nm⁻¹, luminance (Y) in cd/m².
+/// Wavelengths are in nm, radiance in W·m⁻²·sr⁻¹·nm⁻¹, luminance (Y) in cd/m². Without a
+/// command, renders the built-in default scene (a white beam through a BK7 prism) to
+/// spectrace.exr and spectrace.png in the current folder.
 #[derive(Parser, Debug)]
 #[command(name = "spectrace", version, about, long_about = None)]
 pub struct Cli {
@@ -22,6 +26,8 @@ pub enum Command {
     /// reflectances: factor in [0,1]; glasses: index n), or "n k" for metals. Wavelengths take a
     /// unit ("587.56nm", "0.55 um"); a bare number is read as nm.
     Spectrum(spectrum::SpectrumArgs),
+    /// Render a scene file to EXR and PNG.
+    Render(render::RenderArgs),
 }
 
 /// An error for the user, printed after "error: ".
@@ -33,16 +39,17 @@ pub enum CliError {
     Wavelength(crate::units::parse::QuantityError),
     #[error("{0}")]
     Usage(String),
+    #[error(transparent)]
+    Scene(#[from] crate::loader::LoadError),
+    #[error(transparent)]
+    Image(#[from] crate::image_io::ImageError),
 }
 
 /// Runs a parsed command line.
 pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Some(Command::Spectrum(args)) => spectrum::run(args),
-        None => {
-            // Until the renderer exists, the main job summarises the spectral data.
-            spectrum::print_data_summary();
-            Ok(())
-        }
+        Some(Command::Render(args)) => render::run(args),
+        None => render::run_default(),
     }
 }

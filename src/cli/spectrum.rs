@@ -14,7 +14,7 @@ use crate::units::{Length, plain};
 pub struct SpectrumArgs {
     /// Spectrum name, e.g. cie-d65, glass:N-BK7, metal:Au, colorchecker:dark-skin,
     /// blackbody:6500K.
-    #[arg(required_unless_present = "list")]
+    /// Without a name: a summary of all spectral data.
     pub name: Option<String>,
     /// Wavelengths, e.g. 587.56nm or "0.55 um" (a bare number is nm).
     #[arg(allow_negative_numbers = true)]

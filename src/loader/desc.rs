@@ -174,6 +174,12 @@ pub enum ShapeKind {
     Obj {
         path: PathBuf,
     },
+    /// A triangle mesh written in the scene file: vertices in the scene's length unit and
+    /// 0-based triangle indices.
+    Inline {
+        vertices: Vec<[f64; 3]>,
+        faces: Vec<[u32; 3]>,
+    },
 }
 
 /// How much light an area emitter gives; its spectrum gives the shape.

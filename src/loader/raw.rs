@@ -97,6 +97,8 @@ pub struct RawShape {
     pub transform: Option<S<Vec<S<Value>>>>,
     pub two_sided: Option<S<bool>>,
     pub emission: Option<S<RawEmission>>,
+    pub vertices: Option<S<Vec<S<Value>>>>,
+    pub faces: Option<S<Vec<S<Value>>>>,
 }
 
 #[derive(Deserialize, Debug)]

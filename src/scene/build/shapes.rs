@@ -75,6 +75,11 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
         ShapeKind::Obj { path } => {
             Shape::Mesh(Mesh::load_obj(path, &transform(s, true)?).map_err(|e| e.to_string())?)
         }
+        ShapeKind::Inline { vertices, faces } => {
+            let positions = vertices.iter().map(|v| Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32)).collect();
+            let mesh = Mesh::new(positions, None, None, faces.clone(), &transform(s, true)?);
+            Shape::Mesh(mesh.map_err(|e| e.to_string())?)
+        }
     };
     if !(shape.area() > 0.0) {
         return Err("the shape has zero area".into());

@@ -97,7 +97,7 @@ pub(super) fn shape(
     let sp = s.span();
     let f = format!("shapes[{i}]");
     let s = s.get_ref();
-    let all = present!(s; kind, material, file, center, radius, transform, two_sided, emission);
+    let all = present!(s; kind, material, file, center, radius, transform, two_sided, emission, vertices, faces);
     let ty = cx.required(
         &s.kind,
         &sp,
@@ -148,11 +148,35 @@ pub(super) fn shape(
                 path: cx.path(p.get_ref()),
             }
         }
+        "mesh" => {
+            cx.only("an inline mesh", &f, &all, &with(&["vertices", "faces"]))?;
+            let v = cx.required(&s.vertices, &sp, &format!("{f}.vertices"), "a list of [x, y, z]")?;
+            let fs = cx.required(&s.faces, &sp, &format!("{f}.faces"), "a list of [i, j, k] (0-based)")?;
+            let vertices = v
+                .get_ref()
+                .iter()
+                .enumerate()
+                .map(|(i, p)| cx.vec3(p, &format!("{f}.vertices[{i}]")))
+                .collect::<R<Vec<_>>>()?;
+            let mut faces = Vec::new();
+            for (i, t) in fs.get_ref().iter().enumerate() {
+                let idx = cx.vec3(t, &format!("{f}.faces[{i}]"))?;
+                if idx.iter().any(|&k| k < 0.0 || k.fract() != 0.0 || k as usize >= vertices.len()) {
+                    return Err(cx.err(
+                        &t.span(),
+                        format!("{f}.faces[{i}]"),
+                        format!("expected 3 vertex indices from 0 to {}", vertices.len().saturating_sub(1)),
+                    ));
+                }
+                faces.push(idx.map(|k| k as u32));
+            }
+            ShapeKind::Inline { vertices, faces }
+        }
         o => {
             return Err(cx.err(
                 &ty.span(),
                 format!("{f}.type"),
-                format!("unknown shape type \"{o}\"; expected sphere, rectangle, box, disk or obj"),
+                format!("unknown shape type \"{o}\"; expected sphere, rectangle, box, disk, obj or mesh"),
             ));
         }
     };

@@ -1,0 +1,94 @@
+//! Writing a finished [`Image`]: float32 EXR with documented channels and header attributes,
+//! spectral EXR (Fichet et al. 2021) when the film has bins, and an 8-bit sRGB PNG preview.
+//! Every file is written atomically (temporary file, then rename) by `image_io`.
+//!
+//! EXR channels: `X`, `Y`, `Z` (CIE 1931, `Y` = luminance in cd/m²); `R`, `G`, `B` (linear
+//! sRGB/Rec. 709 primaries, D65, same absolute scale); `L` (radiance integrated over the film's
+//! wavelength range, W·m⁻²·sr⁻¹); spectral files add `S0.<λ>nm` channels (mean spectral radiance
+//! of each bin, W·m⁻²·sr⁻¹·nm⁻¹).
+//!
+//! PNG tone curve: linear RGB is divided by the saturating luminance of an ISO-100 camera,
+//! L_max = 1.2 · 2^EV₁₀₀ cd/m² (the saturation-based sensitivity of ISO 12232), clamped to
+//! [0, 1], and encoded with the sRGB transfer function. With automatic exposure,
+//! EV₁₀₀ = log₂(L_avg · 100 / 12.5), the reflected-light meter calibration of ISO 2720 with
+//! L_avg the geometric mean luminance.
+
+use std::path::Path;
+
+use crate::film::Image;
+use crate::image_io::{self, AttrValue, Channel, ImageError};
+use crate::spectrum::WavelengthRange;
+
+/// What the header records about a render.
+pub struct RenderInfo<'a> {
+    pub scene_file: &'a str,
+    pub integrator: &'a str,
+    /// Samples per pixel completed (light tracing: light paths per pixel).
+    pub spp: u32,
+    pub seed: u32,
+    pub seconds: f64,
+    pub partial: bool,
+    pub nan_samples: u64,
+    pub inf_samples: u64,
+    pub range: WavelengthRange,
+}
+
+/// Writes the EXR (spectral when the image has bins).
+pub fn write_exr(path: &Path, img: &Image, info: &RenderInfo<'_>) -> Result<(), ImageError> {
+    let plane = |f: &dyn Fn(usize) -> f32| -> Vec<f32> { (0..img.width * img.height).map(f).collect() };
+    let x = plane(&|i| img.xyz[i][0]);
+    let y = plane(&|i| img.xyz[i][1]);
+    let z = plane(&|i| img.xyz[i][2]);
+    let r = plane(&|i| img.rgb[i][0]);
+    let g = plane(&|i| img.rgb[i][1]);
+    let b = plane(&|i| img.rgb[i][2]);
+    let channels = [
+        Channel { name: "X", data: &x },
+        Channel { name: "Y", data: &y },
+        Channel { name: "Z", data: &z },
+        Channel { name: "R", data: &r },
+        Channel { name: "G", data: &g },
+        Channel { name: "B", data: &b },
+        Channel { name: "L", data: &img.band },
+    ];
+    let units = format!(
+        "X,Y,Z: CIE 1931 2deg, Y = luminance in cd/m^2; R,G,B: linear sRGB (Rec.709 primaries, D65) on the same scale; L: radiance over {}-{} nm in W.m^-2.sr^-1",
+        info.range.min_nm, info.range.max_nm
+    );
+    let attrs = [
+        ("spectrace:units", AttrValue::Text(units)),
+        ("spectrace:samplesPerPixel", AttrValue::Int(info.spp as i32)),
+        ("spectrace:seed", AttrValue::Int(info.seed as i32)),
+        ("spectrace:wavelengthRange", AttrValue::Text(format!("{} nm to {} nm", info.range.min_nm, info.range.max_nm))),
+        ("spectrace:integrator", AttrValue::Text(info.integrator.to_string())),
+        ("spectrace:scene", AttrValue::Text(info.scene_file.to_string())),
+        ("spectrace:renderTimeSeconds", AttrValue::Double(info.seconds)),
+        ("spectrace:partial", AttrValue::Int(info.partial as i32)),
+        ("spectrace:droppedNaNSamples", AttrValue::Double(info.nan_samples as f64)),
+        ("spectrace:droppedInfSamples", AttrValue::Double(info.inf_samples as f64)),
+    ];
+    match &img.bins {
+        Some(bins) => {
+            let lambdas: Vec<f32> = (0..bins.count).map(|i| bins.centre(i)).collect();
+            let planes: Vec<&[f32]> = img.spectral.iter().map(Vec::as_slice).collect();
+            image_io::write_spectral_exr(path, img.width, img.height, &lambdas, &planes, &channels, &attrs)
+        }
+        None => image_io::write_exr(path, img.width, img.height, &channels, &attrs),
+    }
+}
+
+/// The automatic exposure EV₁₀₀ of an image (see the module doc).
+pub fn auto_ev100(img: &Image) -> f32 {
+    let n = img.xyz.len().max(1) as f64;
+    let log_avg = (img.xyz.iter().map(|p| (p[1].max(0.0) as f64 + 1e-6).ln()).sum::<f64>() / n).exp();
+    (log_avg * 100.0 / 12.5).max(1e-12).log2() as f32
+}
+
+/// Writes the PNG preview with exposure `ev100` (None: automatic); returns the EV₁₀₀ used.
+pub fn write_png(path: &Path, img: &Image, ev100: Option<f32>) -> Result<f32, ImageError> {
+    let ev = ev100.unwrap_or_else(|| auto_ev100(img));
+    let k = 1.0 / (1.2 * 2f32.powf(ev));
+    let rgb: Vec<[f32; 3]> = img.rgb.iter().map(|p| p.map(|v| v * k)).collect();
+    image_io::write_png_linear(path, img.width, img.height, &rgb)?;
+    Ok(ev)
+}
