@@ -143,7 +143,10 @@ fn plain_exr_round_trips_channels_and_attributes() {
         ("gain", AttrValue::Float(-1.5e-7)),
         ("pixelSize", AttrValue::Double(1.0 / 3.0)),
         ("samples", AttrValue::Int(-12345)),
-        ("spectrace.settings.a_name_longer_than_31_bytes", AttrValue::Int(7)),
+        (
+            "spectrace.settings.a_name_longer_than_31_bytes",
+            AttrValue::Int(7),
+        ),
     ];
     write_exr(&path, w, h, &channels, &attrs).unwrap();
 
