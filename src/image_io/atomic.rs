@@ -22,33 +22,47 @@ pub fn write_atomically(
 ) -> Result<(), ImageError> {
     let tmp = temp_path(path)?;
     let io_err = |action: String| {
-        move |source| ImageError::Io { path: path.to_path_buf(), action, source }
+        move |source| ImageError::Io {
+            path: path.to_path_buf(),
+            action,
+            source,
+        }
     };
     let file = OpenOptions::new()
         .write(true)
         .create_new(true)
         .open(&tmp)
-        .map_err(io_err(format!("cannot create temporary file {}", tmp.display())))?;
+        .map_err(io_err(format!(
+            "cannot create temporary file {}",
+            tmp.display()
+        )))?;
     // From here on the guard removes the temporary file unless the rename succeeded.
-    let mut guard = TempGuard { path: Some(tmp.clone()) };
+    let mut guard = TempGuard {
+        path: Some(tmp.clone()),
+    };
 
     let mut writer = BufWriter::new(file);
     f(&mut writer)?;
     let file = writer
         .into_inner()
         .map_err(|e| e.into_error())
-        .map_err(io_err(format!("cannot write temporary file {}", tmp.display())))?;
-    file.sync_all()
-        .map_err(io_err(format!("cannot fsync temporary file {}", tmp.display())))?;
+        .map_err(io_err(format!(
+            "cannot write temporary file {}",
+            tmp.display()
+        )))?;
+    file.sync_all().map_err(io_err(format!(
+        "cannot fsync temporary file {}",
+        tmp.display()
+    )))?;
     drop(file);
     std::fs::rename(&tmp, path)
         .map_err(io_err(format!("cannot rename {} over it", tmp.display())))?;
     guard.path = None;
 
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        if let Ok(d) = File::open(dir) {
-            let _ = d.sync_all();
-        }
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty())
+        && let Ok(d) = File::open(dir)
+    {
+        let _ = d.sync_all();
     }
     Ok(())
 }
@@ -83,9 +97,15 @@ mod tests {
     #[test]
     fn temp_name_sits_beside_the_target() {
         let t = temp_path(Path::new("/a/b/out.exr")).unwrap();
-        assert_eq!(t, PathBuf::from(format!("/a/b/out.exr.tmp-{}", std::process::id())));
+        assert_eq!(
+            t,
+            PathBuf::from(format!("/a/b/out.exr.tmp-{}", std::process::id()))
+        );
         let t = temp_path(Path::new("out.png")).unwrap();
-        assert_eq!(t, PathBuf::from(format!("out.png.tmp-{}", std::process::id())));
+        assert_eq!(
+            t,
+            PathBuf::from(format!("out.png.tmp-{}", std::process::id()))
+        );
         assert!(temp_path(Path::new("/")).is_err());
     }
 }

@@ -23,7 +23,10 @@ pub(super) fn check_name(path: &Path, what: &str, name: &str) -> Result<(), Imag
         return Err(invalid(path, format!("{what} name is empty")));
     }
     if name.contains('\0') {
-        return Err(invalid(path, format!("{what} name {name:?} contains a NUL character")));
+        return Err(invalid(
+            path,
+            format!("{what} name {name:?} contains a NUL character"),
+        ));
     }
     if name.len() > MAX_NAME_BYTES {
         return Err(invalid(
@@ -122,7 +125,10 @@ pub(super) fn layer_attributes(
             return Err(invalid(path, format!("attribute `{name}` is given twice")));
         }
         let wrong_type = |want: &str| {
-            invalid(path, format!("standard attribute `{name}` must be {want}, not {value:?}"))
+            invalid(
+                path,
+                format!("standard attribute `{name}` must be {want}, not {value:?}"),
+            )
         };
         match (slot(&mut la, name), value) {
             (Some(Slot::Text(field)), AttrValue::Text(t)) => *field = Some(to_text(t)),
@@ -171,7 +177,9 @@ pub(super) fn read_attributes<'a>(
     let mut la = layer.clone();
     for name in SLOT_NAMES {
         match slot(&mut la, name) {
-            Some(Slot::Text(Some(t))) => out.push((name.to_string(), AttrValue::Text(from_text(t)))),
+            Some(Slot::Text(Some(t))) => {
+                out.push((name.to_string(), AttrValue::Text(from_text(t))))
+            }
             Some(Slot::Float(Some(v))) => out.push((name.to_string(), AttrValue::Float(*v))),
             _ => {}
         }

@@ -43,13 +43,21 @@ pub fn read_exr(path: &Path) -> Result<ExrImage, ImageError> {
                 source: Box::new(e),
             });
         }
-        Err(_) => return Err(invalid(path, "the EXR decoder failed on this file (corrupt?)")),
+        Err(_) => {
+            return Err(invalid(
+                path,
+                "the EXR decoder failed on this file (corrupt?)",
+            ));
+        }
     };
 
     let [layer] = image.layer_data.as_slice() else {
         return Err(invalid(
             path,
-            format!("the file has {} layers; only single-layer files are read", image.layer_data.len()),
+            format!(
+                "the file has {} layers; only single-layer files are read",
+                image.layer_data.len()
+            ),
         ));
     };
     let (width, height) = (layer.size.0, layer.size.1);
@@ -73,11 +81,19 @@ pub fn read_exr(path: &Path) -> Result<ExrImage, ImageError> {
         if values.len() != pixels {
             return Err(invalid(
                 path,
-                format!("channel `{name}` holds {} values for {pixels} pixels", values.len()),
+                format!(
+                    "channel `{name}` holds {} values for {pixels} pixels",
+                    values.len()
+                ),
             ));
         }
         channels.push((name, values));
     }
     let attributes = read_attributes(&layer.attributes, image.attributes.other.iter());
-    Ok(ExrImage { width, height, channels, attributes })
+    Ok(ExrImage {
+        width,
+        height,
+        channels,
+        attributes,
+    })
 }

@@ -37,7 +37,10 @@ pub fn write_exr(
 ) -> Result<(), ImageError> {
     let pixels = pixel_count(path, width, height)?;
     if i32::try_from(width).is_err() || i32::try_from(height).is_err() {
-        return Err(invalid(path, format!("image size {width}×{height} is too large for EXR")));
+        return Err(invalid(
+            path,
+            format!("image size {width}×{height} is too large for EXR"),
+        ));
     }
     if channels.is_empty() {
         return Err(invalid(path, "an EXR file needs at least one channel"));
@@ -46,7 +49,10 @@ pub fn write_exr(
     for c in channels {
         check_name(path, "channel", c.name)?;
         if !names.insert(c.name) {
-            return Err(invalid(path, format!("channel `{}` is given twice", c.name)));
+            return Err(invalid(
+                path,
+                format!("channel `{}` is given twice", c.name),
+            ));
         }
         check_pixels(path, width, pixels, c)?;
     }
@@ -56,14 +62,22 @@ pub fn write_exr(
         .iter()
         .map(|c| AnyChannel::new(to_text(c.name), FlatSamples::F32(c.data.to_vec())))
         .collect();
-    let layer = Layer::new((width, height), layer_attributes, ENCODING, AnyChannels::sort(list));
+    let layer = Layer::new(
+        (width, height),
+        layer_attributes,
+        ENCODING,
+        AnyChannels::sort(list),
+    );
     let image = Image::from_layer(layer);
     write_atomically(path, |out| {
-        image.write().to_buffered(out).map_err(|e| ImageError::Codec {
-            path: path.to_path_buf(),
-            action: "cannot encode EXR",
-            source: Box::new(e),
-        })
+        image
+            .write()
+            .to_buffered(out)
+            .map_err(|e| ImageError::Codec {
+                path: path.to_path_buf(),
+                action: "cannot encode EXR",
+                source: Box::new(e),
+            })
     })
 }
 
@@ -97,15 +111,25 @@ pub fn write_spectral_exr(
     if wavelengths_nm.len() != bins.len() {
         return Err(invalid(
             path,
-            format!("{} wavelengths for {} spectral bins", wavelengths_nm.len(), bins.len()),
+            format!(
+                "{} wavelengths for {} spectral bins",
+                wavelengths_nm.len(),
+                bins.len()
+            ),
         ));
     }
     if bins.is_empty() {
-        return Err(invalid(path, "a spectral EXR needs at least one spectral bin"));
+        return Err(invalid(
+            path,
+            "a spectral EXR needs at least one spectral bin",
+        ));
     }
     for (i, wl) in wavelengths_nm.iter().enumerate() {
         if !(wl.is_finite() && *wl > 0.0) {
-            return Err(invalid(path, format!("wavelength {i} is {wl} nm, not positive")));
+            return Err(invalid(
+                path,
+                format!("wavelength {i} is {wl} nm, not positive"),
+            ));
         }
         if i > 0 && *wl <= wavelengths_nm[i - 1] {
             return Err(invalid(
@@ -121,7 +145,10 @@ pub fn write_spectral_exr(
         if spectral_names::parse_channel_name(c.name).is_some() {
             return Err(invalid(
                 path,
-                format!("extra channel `{}` would read as a spectral channel", c.name),
+                format!(
+                    "extra channel `{}` would read as a spectral channel",
+                    c.name
+                ),
             ));
         }
     }
@@ -137,7 +164,10 @@ pub fn write_spectral_exr(
     channels.extend_from_slice(extra);
 
     let mut all_attributes = vec![
-        ("spectralLayoutVersion", AttrValue::Text(SPECTRAL_LAYOUT_VERSION.into())),
+        (
+            "spectralLayoutVersion",
+            AttrValue::Text(SPECTRAL_LAYOUT_VERSION.into()),
+        ),
         ("emissiveUnits", AttrValue::Text(EMISSIVE_UNITS.into())),
     ];
     all_attributes.extend(attributes.iter().cloned());

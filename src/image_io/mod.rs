@@ -67,12 +67,18 @@ pub struct ExrImage {
 impl ExrImage {
     /// The values of the channel with this exact name.
     pub fn channel(&self, name: &str) -> Option<&[f32]> {
-        self.channels.iter().find(|(n, _)| n == name).map(|(_, d)| d.as_slice())
+        self.channels
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, d)| d.as_slice())
     }
 
     /// The attribute with this exact name.
     pub fn attribute(&self, name: &str) -> Option<&AttrValue> {
-        self.attributes.iter().find(|(n, _)| n == name).map(|(_, v)| v)
+        self.attributes
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| v)
     }
 }
 
@@ -125,13 +131,19 @@ impl ImageError {
 }
 
 pub(crate) fn invalid(path: &Path, reason: impl Into<String>) -> ImageError {
-    ImageError::Invalid { path: path.to_path_buf(), reason: reason.into() }
+    ImageError::Invalid {
+        path: path.to_path_buf(),
+        reason: reason.into(),
+    }
 }
 
 /// Checks that the image is not empty and that `width * height` fits; returns the pixel count.
 pub(crate) fn pixel_count(path: &Path, width: usize, height: usize) -> Result<usize, ImageError> {
     if width == 0 || height == 0 {
-        return Err(invalid(path, format!("image size {width}×{height} is empty")));
+        return Err(invalid(
+            path,
+            format!("image size {width}×{height} is empty"),
+        ));
     }
     width
         .checked_mul(height)

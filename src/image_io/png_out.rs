@@ -49,7 +49,10 @@ pub fn write_png_srgb8(
     let pixels = pixel_count(path, width, height)?;
     check_len(path, pixels, rgb8.len())?;
     let (Ok(w), Ok(h)) = (u32::try_from(width), u32::try_from(height)) else {
-        return Err(invalid(path, format!("image size {width}×{height} is too large for PNG")));
+        return Err(invalid(
+            path,
+            format!("image size {width}×{height} is too large for PNG"),
+        ));
     };
     let codec = |e: png::EncodingError| ImageError::Codec {
         path: path.to_path_buf(),
@@ -62,7 +65,9 @@ pub fn write_png_srgb8(
         encoder.set_depth(png::BitDepth::Eight);
         encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
         let mut writer = encoder.write_header().map_err(codec)?;
-        writer.write_image_data(rgb8.as_flattened()).map_err(codec)?;
+        writer
+            .write_image_data(rgb8.as_flattened())
+            .map_err(codec)?;
         writer.finish().map_err(codec)
     })
 }
@@ -77,7 +82,10 @@ fn check_len(path: &Path, pixels: usize, len: usize) -> Result<(), ImageError> {
     if len == pixels {
         Ok(())
     } else {
-        Err(invalid(path, format!("{len} pixels given, the image has {pixels}")))
+        Err(invalid(
+            path,
+            format!("{len} pixels given, the image has {pixels}"),
+        ))
     }
 }
 

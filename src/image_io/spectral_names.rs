@@ -41,7 +41,9 @@ pub(super) fn parse_channel_name(name: &str) -> Option<f32> {
         Some(r) => (r, true),
         None => (rest.strip_suffix('m')?, false),
     };
-    let number_len = rest.trim_end_matches(|c: char| c.is_ascii_alphabetic()).len();
+    let number_len = rest
+        .trim_end_matches(|c: char| c.is_ascii_alphabetic())
+        .len();
     let number = &rest[..number_len];
     let prefix = prefix_exponent(&rest[number_len..])?;
     if !is_number(number) {
@@ -144,8 +146,18 @@ mod tests {
     #[test]
     fn non_spectral_names() {
         for name in [
-            "R", "S0.nm", "S0.,nm", "S1.550nm", "T.550nm", "S0.550", "S0.550xm", "S0.5,5,0nm",
-            "S0.-550nm", "S0.550e+nm", "S0.infnm", "S0.0nm",
+            "R",
+            "S0.nm",
+            "S0.,nm",
+            "S1.550nm",
+            "T.550nm",
+            "S0.550",
+            "S0.550xm",
+            "S0.5,5,0nm",
+            "S0.-550nm",
+            "S0.550e+nm",
+            "S0.infnm",
+            "S0.0nm",
         ] {
             assert_eq!(parse_channel_name(name), None, "{name}");
         }
