@@ -11,7 +11,7 @@
 //! L_max = 1.2 · 2^EV₁₀₀ cd/m² (the saturation-based sensitivity of ISO 12232), clamped to
 //! [0, 1], and encoded with the sRGB transfer function. With automatic exposure,
 //! EV₁₀₀ = log₂(L_avg · 100 / 12.5), the reflected-light meter calibration of ISO 2720 with
-//! L_avg the geometric mean luminance.
+//! L_avg the geometric mean luminance of the pixels that are not black.
 
 use std::path::Path;
 
@@ -35,7 +35,8 @@ pub struct RenderInfo<'a> {
 
 /// Writes the EXR (spectral when the image has bins).
 pub fn write_exr(path: &Path, img: &Image, info: &RenderInfo<'_>) -> Result<(), ImageError> {
-    let plane = |f: &dyn Fn(usize) -> f32| -> Vec<f32> { (0..img.width * img.height).map(f).collect() };
+    let plane =
+        |f: &dyn Fn(usize) -> f32| -> Vec<f32> { (0..img.width * img.height).map(f).collect() };
     let x = plane(&|i| img.xyz[i][0]);
     let y = plane(&|i| img.xyz[i][1]);
     let z = plane(&|i| img.xyz[i][2]);
@@ -43,13 +44,34 @@ pub fn write_exr(path: &Path, img: &Image, info: &RenderInfo<'_>) -> Result<(), 
     let g = plane(&|i| img.rgb[i][1]);
     let b = plane(&|i| img.rgb[i][2]);
     let channels = [
-        Channel { name: "X", data: &x },
-        Channel { name: "Y", data: &y },
-        Channel { name: "Z", data: &z },
-        Channel { name: "R", data: &r },
-        Channel { name: "G", data: &g },
-        Channel { name: "B", data: &b },
-        Channel { name: "L", data: &img.band },
+        Channel {
+            name: "X",
+            data: &x,
+        },
+        Channel {
+            name: "Y",
+            data: &y,
+        },
+        Channel {
+            name: "Z",
+            data: &z,
+        },
+        Channel {
+            name: "R",
+            data: &r,
+        },
+        Channel {
+            name: "G",
+            data: &g,
+        },
+        Channel {
+            name: "B",
+            data: &b,
+        },
+        Channel {
+            name: "L",
+            data: &img.band,
+        },
     ];
     let units = format!(
         "X,Y,Z: CIE 1931 2deg, Y = luminance in cd/m^2; R,G,B: linear sRGB (Rec.709 primaries, D65) on the same scale; L: radiance over {}-{} nm in W.m^-2.sr^-1",
@@ -59,28 +81,60 @@ pub fn write_exr(path: &Path, img: &Image, info: &RenderInfo<'_>) -> Result<(), 
         ("spectrace:units", AttrValue::Text(units)),
         ("spectrace:samplesPerPixel", AttrValue::Int(info.spp as i32)),
         ("spectrace:seed", AttrValue::Int(info.seed as i32)),
-        ("spectrace:wavelengthRange", AttrValue::Text(format!("{} nm to {} nm", info.range.min_nm, info.range.max_nm))),
-        ("spectrace:integrator", AttrValue::Text(info.integrator.to_string())),
-        ("spectrace:scene", AttrValue::Text(info.scene_file.to_string())),
-        ("spectrace:renderTimeSeconds", AttrValue::Double(info.seconds)),
+        (
+            "spectrace:wavelengthRange",
+            AttrValue::Text(format!(
+                "{} nm to {} nm",
+                info.range.min_nm, info.range.max_nm
+            )),
+        ),
+        (
+            "spectrace:integrator",
+            AttrValue::Text(info.integrator.to_string()),
+        ),
+        (
+            "spectrace:scene",
+            AttrValue::Text(info.scene_file.to_string()),
+        ),
+        (
+            "spectrace:renderTimeSeconds",
+            AttrValue::Double(info.seconds),
+        ),
         ("spectrace:partial", AttrValue::Int(info.partial as i32)),
-        ("spectrace:droppedNaNSamples", AttrValue::Double(info.nan_samples as f64)),
-        ("spectrace:droppedInfSamples", AttrValue::Double(info.inf_samples as f64)),
+        (
+            "spectrace:droppedNaNSamples",
+            AttrValue::Double(info.nan_samples as f64),
+        ),
+        (
+            "spectrace:droppedInfSamples",
+            AttrValue::Double(info.inf_samples as f64),
+        ),
     ];
     match &img.bins {
         Some(bins) => {
             let lambdas: Vec<f32> = (0..bins.count).map(|i| bins.centre(i)).collect();
             let planes: Vec<&[f32]> = img.spectral.iter().map(Vec::as_slice).collect();
-            image_io::write_spectral_exr(path, img.width, img.height, &lambdas, &planes, &channels, &attrs)
+            image_io::write_spectral_exr(
+                path, img.width, img.height, &lambdas, &planes, &channels, &attrs,
+            )
         }
         None => image_io::write_exr(path, img.width, img.height, &channels, &attrs),
     }
 }
 
-/// The automatic exposure EV₁₀₀ of an image (see the module doc).
+/// The automatic exposure EV₁₀₀ of an image (see the module doc). The geometric mean skips
+/// black pixels (background, unlit), so that they do not overexpose the rest.
 pub fn auto_ev100(img: &Image) -> f32 {
-    let n = img.xyz.len().max(1) as f64;
-    let log_avg = (img.xyz.iter().map(|p| (p[1].max(0.0) as f64 + 1e-6).ln()).sum::<f64>() / n).exp();
+    let lit: Vec<f64> = img
+        .xyz
+        .iter()
+        .map(|p| p[1] as f64)
+        .filter(|y| *y > 0.0)
+        .collect();
+    if lit.is_empty() {
+        return 0.0;
+    }
+    let log_avg = (lit.iter().map(|y| y.ln()).sum::<f64>() / lit.len() as f64).exp();
     (log_avg * 100.0 / 12.5).max(1e-12).log2() as f32
 }
 

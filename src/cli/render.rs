@@ -5,11 +5,11 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::{Args, ValueEnum};
 
-use super::progress::Progress;
 use super::CliError;
+use super::progress::Progress;
 use crate::loader::desc::IntegratorKind;
-use crate::output::{write_exr, write_png, RenderInfo};
-use crate::render::{render, RenderOptions};
+use crate::output::{RenderInfo, write_exr, write_png};
+use crate::render::{RenderOptions, render};
 
 /// The built-in default scene: `scenes/prism.toml`, embedded in the binary.
 pub const DEFAULT_SCENE: &str = include_str!("../../scenes/prism.toml");
@@ -67,7 +67,9 @@ fn install_ctrl_c() {
         if CANCEL.swap(true, Ordering::SeqCst) {
             std::process::exit(130);
         }
-        eprintln!("\nstopping: finishing the current tiles and writing the partial image (Ctrl-C again to abort)");
+        eprintln!(
+            "\nstopping: finishing the current tiles and writing the partial image (Ctrl-C again to abort)"
+        );
     });
 }
 
@@ -113,17 +115,33 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
     }
     if let Some(b) = args.spectral_bins {
         if b > 1000 {
-            return Err(CliError::Usage("--spectral-bins must be at most 1000".into()));
+            return Err(CliError::Usage(
+                "--spectral-bins must be at most 1000".into(),
+            ));
         }
         opts.spectral_bins = b;
     }
-    let stem = args.scene.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "render".into());
-    let exr = args.output.clone().unwrap_or_else(|| PathBuf::from(format!("{stem}.exr")));
-    let png = args.png.clone().unwrap_or_else(|| exr.with_extension("png"));
+    let stem = args
+        .scene
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "render".into());
+    let exr = args
+        .output
+        .clone()
+        .unwrap_or_else(|| PathBuf::from(format!("{stem}.exr")));
+    let png = args
+        .png
+        .clone()
+        .unwrap_or_else(|| exr.with_extension("png"));
     for p in [&exr, &png] {
         if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
             if !dir.is_dir() {
-                return Err(CliError::Usage(format!("cannot write {}: folder {} does not exist", p.display(), dir.display())));
+                return Err(CliError::Usage(format!(
+                    "cannot write {}: folder {} does not exist",
+                    p.display(),
+                    dir.display()
+                )));
             }
         }
     }
@@ -131,7 +149,8 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
     install_ctrl_c();
     let total = scene.film.width as u64 * scene.film.height as u64 * opts.spp as u64;
     let bar = Progress::new(total, args.quiet);
-    let (film, stats) = render(&scene, &opts, &CANCEL, &|done, _| bar.set(done)).map_err(|e| CliError::Usage(e.to_string()))?;
+    let (film, stats) = render(&scene, &opts, &CANCEL, &|done, _| bar.set(done))
+        .map_err(|e| CliError::Usage(e.to_string()))?;
     bar.finish();
     let image = film.image();
     let integrator = match opts.integrator {
@@ -142,7 +161,11 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
     let info = RenderInfo {
         scene_file: &args.scene.display().to_string(),
         integrator,
-        spp: if stats.partial { stats.spp_done } else { opts.spp },
+        spp: if stats.partial {
+            stats.spp_done
+        } else {
+            opts.spp
+        },
         seed: opts.seed,
         seconds: stats.elapsed.as_secs_f64(),
         partial: stats.partial,
@@ -159,16 +182,31 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
             stats.samples,
             secs,
             stats.samples as f64 / secs.max(1e-9) / 1e6,
-            if stats.partial { ", stopped early: the image is partial" } else { "" }
+            if stats.partial {
+                ", stopped early: the image is partial"
+            } else {
+                ""
+            }
         );
         if stats.nan_samples + stats.inf_samples > 0 {
-            eprintln!("dropped {} NaN and {} infinite samples", stats.nan_samples, stats.inf_samples);
+            eprintln!(
+                "dropped {} NaN and {} infinite samples",
+                stats.nan_samples, stats.inf_samples
+            );
         }
-        eprintln!("wrote {} and {} (EV100 {:.2})", shown(&exr), shown(&png), ev);
+        eprintln!(
+            "wrote {} and {} (EV100 {:.2})",
+            shown(&exr),
+            shown(&png),
+            ev
+        );
     }
     Ok(())
 }
 
 fn shown(p: &Path) -> String {
-    std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf()).display().to_string()
+    std::path::absolute(p)
+        .unwrap_or_else(|_| p.to_path_buf())
+        .display()
+        .to_string()
 }

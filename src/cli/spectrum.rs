@@ -51,9 +51,8 @@ pub fn run(args: SpectrumArgs) -> Result<(), CliError> {
         return Ok(());
     }
     let Some(name) = args.name else {
-        return Err(CliError::Usage(
-            "a spectrum name is required (or --list)".into(),
-        ));
+        print_data_summary();
+        return Ok(());
     };
     let named = lookup(&name)?;
     if args.wavelengths.is_empty() {

@@ -76,7 +76,10 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
             Shape::Mesh(Mesh::load_obj(path, &transform(s, true)?).map_err(|e| e.to_string())?)
         }
         ShapeKind::Inline { vertices, faces } => {
-            let positions = vertices.iter().map(|v| Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32)).collect();
+            let positions = vertices
+                .iter()
+                .map(|v| Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32))
+                .collect();
             let mesh = Mesh::new(positions, None, None, faces.clone(), &transform(s, true)?);
             Shape::Mesh(mesh.map_err(|e| e.to_string())?)
         }

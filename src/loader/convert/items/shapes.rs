@@ -150,8 +150,18 @@ pub(super) fn shape(
         }
         "mesh" => {
             cx.only("an inline mesh", &f, &all, &with(&["vertices", "faces"]))?;
-            let v = cx.required(&s.vertices, &sp, &format!("{f}.vertices"), "a list of [x, y, z]")?;
-            let fs = cx.required(&s.faces, &sp, &format!("{f}.faces"), "a list of [i, j, k] (0-based)")?;
+            let v = cx.required(
+                &s.vertices,
+                &sp,
+                &format!("{f}.vertices"),
+                "a list of [x, y, z]",
+            )?;
+            let fs = cx.required(
+                &s.faces,
+                &sp,
+                &format!("{f}.faces"),
+                "a list of [i, j, k] (0-based)",
+            )?;
             let vertices = v
                 .get_ref()
                 .iter()
@@ -161,11 +171,17 @@ pub(super) fn shape(
             let mut faces = Vec::new();
             for (i, t) in fs.get_ref().iter().enumerate() {
                 let idx = cx.vec3(t, &format!("{f}.faces[{i}]"))?;
-                if idx.iter().any(|&k| k < 0.0 || k.fract() != 0.0 || k as usize >= vertices.len()) {
+                if idx
+                    .iter()
+                    .any(|&k| k < 0.0 || k.fract() != 0.0 || k as usize >= vertices.len())
+                {
                     return Err(cx.err(
                         &t.span(),
                         format!("{f}.faces[{i}]"),
-                        format!("expected 3 vertex indices from 0 to {}", vertices.len().saturating_sub(1)),
+                        format!(
+                            "expected 3 vertex indices from 0 to {}",
+                            vertices.len().saturating_sub(1)
+                        ),
                     ));
                 }
                 faces.push(idx.map(|k| k as u32));
@@ -176,7 +192,9 @@ pub(super) fn shape(
             return Err(cx.err(
                 &ty.span(),
                 format!("{f}.type"),
-                format!("unknown shape type \"{o}\"; expected sphere, rectangle, box, disk, obj or mesh"),
+                format!(
+                    "unknown shape type \"{o}\"; expected sphere, rectangle, box, disk, obj or mesh"
+                ),
             ));
         }
     };

@@ -1,0 +1,144 @@
+//! Dispersion through the N-BK7 prism of the default scene: narrow-line beams at the F, d and C
+//! lines land on a screen where Snell's law, the Sellmeier formula and the geometry put them,
+//! within 0.1°, measured from rendered images (light tracing).
+
+mod support;
+
+use glam::{DVec2, Vec2, Vec3};
+use support::render::{render_with, scene_from};
+
+/// N-BK7 (SCHOTT), λ in nm, evaluated here independently of the renderer.
+fn n_bk7(l_nm: f64) -> f64 {
+    let l2 = (l_nm * 1e-3).powi(2);
+    let b = [1.03961212, 0.231792344, 1.01046945];
+    let c = [0.00600069867, 0.0200179144, 103.560653];
+    (1.0 + (0..3).map(|i| b[i] * l2 / (l2 - c[i])).sum::<f64>()).sqrt()
+}
+
+/// Refraction of unit `d` at a surface with unit normal `n` facing the incoming side, η = n₁/n₂.
+fn refract(d: DVec2, n: DVec2, eta: f64) -> DVec2 {
+    let cos_i = -d.dot(n);
+    let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+    assert!(k > 0.0, "total internal reflection");
+    eta * d + (eta * cos_i - k.sqrt()) * n
+}
+
+// Geometry in the xy plane (metres): prism A(−0.05, 0), B(0.05, 0), C(0, 0.0866025) with the
+// beam entering the left face AC at its midpoint at 19.32° above horizontal (minimum deviation
+// for the d line), and a screen 0.5 m beyond the exit point, perpendicular to the d-line exit
+// ray.
+const A: DVec2 = DVec2::new(-0.05, 0.0);
+const B: DVec2 = DVec2::new(0.05, 0.0);
+const C: DVec2 = DVec2::new(0.0, 0.0866025);
+
+/// Exit point and direction of the beam's central ray at wavelength `l`.
+fn trace(l: f64) -> (DVec2, DVec2) {
+    let d = DVec2::new(19.32f64.to_radians().cos(), 19.32f64.to_radians().sin());
+    let m = (A + C) * 0.5;
+    let n_left = DVec2::new(-(C - A).y, (C - A).x).normalize(); // outward (−0.866, 0.5)
+    let n = n_bk7(l);
+    let t = refract(d, n_left, 1.0 / n);
+    let n_right = DVec2::new((C - B).y, -(C - B).x).normalize(); // outward (0.866, 0.5)
+    let s = (B - m).dot(n_right) / t.dot(n_right);
+    let e = m + t * s;
+    (e, refract(t, -n_right, n))
+}
+
+#[test]
+fn fraunhofer_lines_land_where_snell_and_sellmeier_say() {
+    let (e_d, out_d) = trace(587.56);
+    let s_centre = e_d + out_d * 0.5;
+    let n_s = -out_d; // the screen faces the prism
+    let eye = s_centre + n_s * 0.25;
+    let mut measured = Vec::new();
+    for l in [486.13, 587.56, 656.27] {
+        let scene = scene_from(&format!(
+            r#"
+[camera]
+eye = [{ex}, {ey}, 0]
+target = [{sx}, {sy}, 0]
+up = [0, 0, 1]
+fov = "8 deg"
+[film]
+width = 160
+height = 160
+spp = 64
+filter = "box"
+[integrator]
+type = "light"
+max_depth = 8
+[materials.bk7]
+type = "dielectric"
+ior = "N-BK7"
+[materials.screen]
+type = "diffuse"
+reflectance = 0.8
+[[shapes]]
+type = "mesh"
+material = "bk7"
+vertices = [[-0.05, 0, 0.05], [0.05, 0, 0.05], [0, 0.0866025, 0.05], [-0.05, 0, -0.05], [0.05, 0, -0.05], [0, 0.0866025, -0.05]]
+faces = [[0, 1, 2], [3, 5, 4], [0, 3, 4], [0, 4, 1], [0, 2, 5], [0, 5, 3], [1, 4, 5], [1, 5, 2]]
+[[shapes]]
+type = "rectangle"
+material = "screen"
+transform = [{{ scale = 0.1 }}, {{ look_at = {{ eye = [{sx}, {sy}, 0], target = [{tx}, {ty}, 0], up = [0, 0, 1] }} }}]
+[[lights]]
+type = "beam"
+position = [{bx}, {by}, 0]
+target = [-0.025, 0.04330125, 0]
+radius = "0.5 mm"
+spectrum = {{ samples = [[{l0}, 0], [{l}, 1], [{l1}, 0]] }}
+power = "1 W"
+"#,
+            ex = eye.x,
+            ey = eye.y,
+            sx = s_centre.x,
+            sy = s_centre.y,
+            tx = s_centre.x + n_s.x,
+            ty = s_centre.y + n_s.y,
+            bx = -0.025 - 0.3 * 19.32f64.to_radians().cos(),
+            by = 0.04330125 - 0.3 * 19.32f64.to_radians().sin(),
+            l0 = l - 0.5,
+            l1 = l + 0.5,
+        ));
+        let (img, stats) = render_with(&scene, |_| {});
+        assert_eq!(stats.nan_samples + stats.inf_samples, 0);
+        // centroid of the spot, weighted by band radiance
+        let (mut sw, mut sx, mut sy) = (0.0f64, 0.0f64, 0.0f64);
+        for (i, v) in img.band.iter().enumerate() {
+            let v = *v as f64;
+            sw += v;
+            sx += v * ((i % img.width) as f64 + 0.5);
+            sy += v * ((i / img.width) as f64 + 0.5);
+        }
+        assert!(sw > 0.0, "no light reached the screen at {l} nm");
+        let raster = Vec2::new((sx / sw) as f32, (sy / sw) as f32);
+        // back-project onto the screen plane
+        let ray = scene.camera.generate_ray(raster, Vec2::splat(0.5));
+        let (o, d) = (ray.o.as_dvec3(), ray.d.as_dvec3());
+        let plane_n = n_s.extend(0.0);
+        let t = (s_centre.extend(0.0) - o).dot(plane_n) / d.dot(plane_n);
+        let p = o + d * t;
+        measured.push((l, DVec2::new(p.x, p.y)));
+        let _ = Vec3::ZERO;
+    }
+    for (l, p) in &measured {
+        let (e, out) = trace(*l);
+        let got = (*p - e).normalize();
+        let angle = got.angle_to(out).to_degrees().abs();
+        println!("{l} nm: exit direction off by {angle:.4}°");
+        assert!(
+            angle < 0.1,
+            "{l} nm: measured direction differs from Snell + Sellmeier by {angle}°"
+        );
+    }
+    // the spread between F and C, a pure dispersion measure
+    let dir = |i: usize| (measured[i].1 - trace(measured[i].0).0).normalize();
+    let spread = dir(0).angle_to(dir(2)).to_degrees().abs();
+    let want = trace(486.13).1.angle_to(trace(656.27).1).to_degrees().abs();
+    println!("F–C spread {spread:.4}°, predicted {want:.4}°");
+    assert!(
+        (spread - want).abs() < 0.1 * want.max(0.1),
+        "F–C spread {spread}°, predicted {want}°"
+    );
+}
