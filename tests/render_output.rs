@@ -1,0 +1,201 @@
+//! The render command's files: EXR channels and header, the spectral EXR read back, the PNG,
+//! the built-in default scene, errors, and a render stopped with Ctrl-C.
+
+mod support;
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use spectrace::image_io::{AttrValue, read_exr, spectral_channels};
+use support::render::scene_from;
+
+fn tmpdir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("spectrace-test-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).expect("temp dir");
+    d
+}
+
+fn spectrace(dir: &Path, args: &[&str]) -> (bool, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_spectrace"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("runs");
+    (
+        out.status.success(),
+        String::from_utf8_lossy(&out.stderr).into(),
+    )
+}
+
+fn scene_path(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(name)
+        .display()
+        .to_string()
+}
+
+#[test]
+fn spectral_exr_reads_back_with_the_same_bins_and_values() {
+    let scene = scene_from(
+        &std::fs::read_to_string(scene_path("radiometry.toml"))
+            .unwrap()
+            .replace("width = 256\nheight = 256", "width = 24\nheight = 16"),
+    );
+    let (img, stats) = support::render::render_with(&scene, |o| {
+        o.spp = 4;
+        o.spectral_bins = 16;
+    });
+    let dir = tmpdir("spectral");
+    let path = dir.join("s.exr");
+    let info = spectrace::output::RenderInfo {
+        scene_file: "radiometry.toml",
+        integrator: "path",
+        spp: 4,
+        seed: 0,
+        seconds: stats.elapsed.as_secs_f64(),
+        partial: false,
+        nan_samples: 0,
+        inf_samples: 0,
+        range: scene.wavelengths,
+    };
+    spectrace::output::write_exr(&path, &img, &info).unwrap();
+    let back = read_exr(&path).unwrap();
+    let bins = spectral_channels(&back);
+    assert_eq!(bins.len(), 16);
+    let b = img.bins.as_ref().unwrap();
+    for (k, (lambda, ch)) in bins.iter().enumerate() {
+        assert!(
+            (lambda - b.centre(k)).abs() < 1e-3,
+            "bin {k}: {lambda} nm vs {}",
+            b.centre(k)
+        );
+        assert_eq!(back.channels[*ch].1, img.spectral[k], "bin {k} values");
+    }
+    assert_eq!(
+        back.channel("Y").unwrap(),
+        img.xyz.iter().map(|p| p[1]).collect::<Vec<_>>()
+    );
+    assert_eq!(back.channel("L").unwrap(), img.band.as_slice());
+    assert_eq!(
+        back.attribute("spectralLayoutVersion"),
+        Some(&AttrValue::Text("1.0".into()))
+    );
+    assert_eq!(
+        back.attribute("emissiveUnits"),
+        Some(&AttrValue::Text("W.m^-2.sr^-1".into()))
+    );
+    // the bins integrate to the band radiance: Σ bins · Δλ = L
+    let dl = b.width();
+    for i in 0..img.band.len() {
+        let sum: f32 = img.spectral.iter().map(|s| s[i] * dl).sum();
+        assert!(
+            (sum - img.band[i]).abs() <= 1e-4 * img.band[i].abs().max(1e-6),
+            "pixel {i}: {sum} vs {}",
+            img.band[i]
+        );
+    }
+}
+
+#[test]
+fn render_command_writes_exr_and_png_with_documented_header() {
+    let dir = tmpdir("cli");
+    let (ok, err) = spectrace(
+        &dir,
+        &[
+            "render",
+            &scene_path("furnace.toml"),
+            "--spp",
+            "2",
+            "-o",
+            "f.exr",
+            "--quiet",
+        ],
+    );
+    assert!(ok, "{err}");
+    let exr = read_exr(&dir.join("f.exr")).unwrap();
+    for c in ["X", "Y", "Z", "R", "G", "B", "L"] {
+        assert!(exr.channel(c).is_some(), "channel {c}");
+    }
+    assert!(
+        exr.channels
+            .iter()
+            .all(|(_, v)| v.iter().all(|x| x.is_finite()))
+    );
+    assert_eq!(
+        exr.attribute("spectrace:samplesPerPixel"),
+        Some(&AttrValue::Int(2))
+    );
+    assert_eq!(
+        exr.attribute("spectrace:integrator"),
+        Some(&AttrValue::Text("path".into()))
+    );
+    assert_eq!(exr.attribute("spectrace:partial"), Some(&AttrValue::Int(0)));
+    assert!(
+        matches!(exr.attribute("spectrace:units"), Some(AttrValue::Text(t)) if t.contains("cd/m^2"))
+    );
+    assert!(dir.join("f.png").is_file());
+    // a bad scene is an error naming the file and line, and writes nothing
+    std::fs::write(dir.join("bad.toml"), "[camera]\neye = [0, 0, 0\n").unwrap();
+    let (ok, err) = spectrace(&dir, &["render", "bad.toml", "-o", "bad.exr"]);
+    assert!(
+        !ok && err.contains("bad.toml:") && !dir.join("bad.exr").exists(),
+        "{err}"
+    );
+    let (ok, err) = spectrace(
+        &dir,
+        &[
+            "render",
+            &scene_path("furnace.toml"),
+            "-o",
+            "no/such/dir/x.exr",
+        ],
+    );
+    assert!(!ok && err.contains("does not exist"), "{err}");
+}
+
+#[test]
+fn no_arguments_render_the_default_scene() {
+    let dir = tmpdir("default");
+    let (ok, err) = spectrace(&dir, &[]);
+    assert!(ok, "{err}");
+    assert!(
+        err.contains("spectrace.exr") && err.contains("spectrace.png"),
+        "says where: {err}"
+    );
+    let exr = read_exr(&dir.join("spectrace.exr")).unwrap();
+    let y = exr.channel("Y").unwrap();
+    assert!(y.iter().any(|v| *v > 0.0) && y.iter().all(|v| v.is_finite()));
+    assert!(dir.join("spectrace.png").is_file());
+}
+
+#[test]
+fn ctrl_c_writes_a_partial_image() {
+    let dir = tmpdir("ctrlc");
+    let child = Command::new(env!("CARGO_BIN_EXE_spectrace"))
+        .current_dir(&dir)
+        .args([
+            "render",
+            &scene_path("cornell.toml"),
+            "--spp",
+            "100000",
+            "-o",
+            "c.exr",
+            "--quiet",
+        ])
+        .spawn()
+        .expect("starts");
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .expect("kill");
+    assert!(status.success());
+    let out = child.wait_with_output().expect("exits");
+    assert!(out.status.success(), "exit status {:?}", out.status);
+    let exr = read_exr(&dir.join("c.exr")).unwrap();
+    assert_eq!(exr.attribute("spectrace:partial"), Some(&AttrValue::Int(1)));
+    let y = exr.channel("Y").unwrap();
+    assert!(y.iter().all(|v| v.is_finite()) && y.iter().any(|v| *v > 0.0));
+}
