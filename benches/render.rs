@@ -4,22 +4,28 @@
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
 
-use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use spectrace::loader::desc::IntegratorKind;
-use spectrace::render::{render, RenderOptions};
+use spectrace::render::{RenderOptions, render};
 
 fn bench(c: &mut Criterion) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell.toml");
-    let scene = spectrace::scene::build(&spectrace::loader::load(&path).expect("loads")).expect("builds");
+    let scene =
+        spectrace::scene::build(&spectrace::loader::load(&path).expect("loads")).expect("builds");
     let mut g = c.benchmark_group("cornell_512");
     g.sample_size(10);
     g.throughput(Throughput::Elements(512 * 512));
-    for (name, kind) in [("path", IntegratorKind::Path), ("whitted", IntegratorKind::Whitted)] {
+    for (name, kind) in [
+        ("path", IntegratorKind::Path),
+        ("whitted", IntegratorKind::Whitted),
+    ] {
         let mut o = RenderOptions::from_scene(&scene);
         o.spp = 1;
         o.integrator = kind;
         let cancel = AtomicBool::new(false);
-        g.bench_function(name, |b| b.iter(|| render(&scene, &o, &cancel, &|_, _| {}).expect("renders")));
+        g.bench_function(name, |b| {
+            b.iter(|| render(&scene, &o, &cancel, &|_, _| {}).expect("renders"))
+        });
     }
     g.finish();
 }

@@ -28,6 +28,25 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
             &format!("{f}.position"),
         )
     };
+    // position and a distinct target, for lights that aim
+    let aim = |cx: &Cx<'_>, what: &str| -> R<(Point, Point)> {
+        let position = pos(cx)?;
+        let t = cx.required(
+            &l.target,
+            &sp,
+            &format!("{f}.target"),
+            &format!("the point the {what} aims at"),
+        )?;
+        let target = cx.point(t, &format!("{f}.target"))?;
+        if (0..3).all(|k| target[k] == position[k]) {
+            return Err(cx.err(
+                &t.span(),
+                format!("{f}.target"),
+                "the target equals the position",
+            ));
+        }
+        Ok((position, target))
+    };
     let point_amount = |cx: &Cx<'_>| -> R<PointAmount> {
         let (which, v) = one_amount(
             cx,
@@ -115,21 +134,7 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
                     "falloff_start",
                 ],
             )?;
-            let position = pos(cx)?;
-            let t = cx.required(
-                &l.target,
-                &sp,
-                &format!("{f}.target"),
-                "the point the spot aims at",
-            )?;
-            let target = cx.point(t, &format!("{f}.target"))?;
-            if (0..3).all(|k| target[k] == position[k]) {
-                return Err(cx.err(
-                    &t.span(),
-                    format!("{f}.target"),
-                    "the target equals the position",
-                ));
-            }
+            let (position, target) = aim(cx, "spot")?;
             let c = cx.required(
                 &l.cone_angle,
                 &sp,
@@ -259,21 +264,7 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
                     "kind", "spectrum", "position", "target", "radius", "power", "scale",
                 ],
             )?;
-            let position = pos(cx)?;
-            let t = cx.required(
-                &l.target,
-                &sp,
-                &format!("{f}.target"),
-                "the point the beam aims at",
-            )?;
-            let target = cx.point(t, &format!("{f}.target"))?;
-            if (0..3).all(|k| target[k] == position[k]) {
-                return Err(cx.err(
-                    &t.span(),
-                    format!("{f}.target"),
-                    "the target equals the position",
-                ));
-            }
+            let (position, target) = aim(cx, "beam")?;
             let r = cx.required(
                 &l.radius,
                 &sp,
@@ -286,14 +277,6 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
                     &r.span(),
                     format!("{f}.radius"),
                     "expected a positive radius",
-                ));
-            }
-            if l.intensity.is_some() {
-                let span = l.intensity.as_ref().map(|v| v.span()).unwrap_or(sp.clone());
-                return Err(cx.err(
-                    &span,
-                    format!("{f}.intensity"),
-                    "a beam has a power, not an intensity",
                 ));
             }
             LightKind::Beam {
