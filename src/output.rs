@@ -31,6 +31,18 @@ pub struct RenderInfo<'a> {
     pub nan_samples: u64,
     pub inf_samples: u64,
     pub range: WavelengthRange,
+    /// Whether X, Y, Z, R, G, B were divided by K_m·∫ȳ (see [`to_mitsuba_scale`]).
+    pub mitsuba_units: bool,
+}
+
+/// Divides X, Y, Z and R, G, B by K_m·∫ȳ = 683.002 × 106.856895, the factor between spectrace's
+/// Y in cd/m² and Mitsuba 3's XYZ film for the same numeric emitter spectra
+/// (`../shared/PHYSICS.md`, "Comparing with Mitsuba 3"). L is unchanged.
+pub fn to_mitsuba_scale(img: &mut Image) {
+    let k = (1.0 / (crate::colour::cie::K_M * crate::colour::cie::CIE_Y_INTEGRAL)) as f32;
+    for p in img.xyz.iter_mut().chain(img.rgb.iter_mut()) {
+        *p = p.map(|v| v * k);
+    }
 }
 
 /// Writes the EXR (spectral when the image has bins).
@@ -73,8 +85,13 @@ pub fn write_exr(path: &Path, img: &Image, info: &RenderInfo<'_>) -> Result<(), 
             data: &img.band,
         },
     ];
+    let xyz_units = if info.mitsuba_units {
+        "X,Y,Z: CIE 1931 2deg on Mitsuba's scale (cd/m^2 divided by 683.002 x 106.856895)"
+    } else {
+        "X,Y,Z: CIE 1931 2deg, Y = luminance in cd/m^2"
+    };
     let units = format!(
-        "X,Y,Z: CIE 1931 2deg, Y = luminance in cd/m^2; R,G,B: linear sRGB (Rec.709 primaries, D65) on the same scale; L: radiance over {}-{} nm in W.m^-2.sr^-1",
+        "{xyz_units}; R,G,B: linear sRGB (Rec.709 primaries, D65) on the same scale; L: radiance over {}-{} nm in W.m^-2.sr^-1",
         info.range.min_nm, info.range.max_nm
     );
     let attrs = [

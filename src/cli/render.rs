@@ -57,6 +57,13 @@ pub struct RenderArgs {
     /// No progress bar and no summary.
     #[arg(short, long)]
     pub quiet: bool,
+    /// Mitsuba XML parameter, NAME=VALUE (overrides a <default>); repeatable.
+    #[arg(short = 'D', value_name = "NAME=VALUE")]
+    pub define: Vec<String>,
+    /// Write X, Y, Z, R, G, B on Mitsuba's scale: divided by K_m·∫ȳ = 72 983.0, as Mitsuba's
+    /// film reports XYZ/∫ȳ of unitless emitter spectra. L stays in W·m⁻²·sr⁻¹.
+    #[arg(long)]
+    pub mitsuba_units: bool,
 }
 
 static CANCEL: AtomicBool = AtomicBool::new(false);
@@ -86,7 +93,14 @@ pub fn run_default() -> Result<(), CliError> {
 }
 
 pub fn run(args: RenderArgs) -> Result<(), CliError> {
-    let desc = crate::loader::load(&args.scene)?;
+    let mut defines = Vec::new();
+    for d in &args.define {
+        let Some((k, v)) = d.split_once('=') else {
+            return Err(CliError::Usage(format!("-D {d}: expected NAME=VALUE")));
+        };
+        defines.push((k.to_string(), v.to_string()));
+    }
+    let desc = crate::loader::load_any(&args.scene, &defines)?;
     run_desc(&args, desc)
 }
 
@@ -152,7 +166,10 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
     let (film, stats) = render(&scene, &opts, &CANCEL, &|done, _| bar.set(done))
         .map_err(|e| CliError::Usage(e.to_string()))?;
     bar.finish();
-    let image = film.image();
+    let mut image = film.image();
+    if args.mitsuba_units {
+        crate::output::to_mitsuba_scale(&mut image);
+    }
     let integrator = match opts.integrator {
         IntegratorKind::Path => "path",
         IntegratorKind::Light => "light",
@@ -172,6 +189,7 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
         nan_samples: stats.nan_samples,
         inf_samples: stats.inf_samples,
         range: scene.wavelengths,
+        mitsuba_units: args.mitsuba_units,
     };
     write_exr(&exr, &image, &info)?;
     let ev = write_png(&png, &image, args.exposure.or(scene.film.exposure_ev))?;

@@ -7,12 +7,26 @@
 mod convert;
 pub mod desc;
 pub mod error;
+pub mod mitsuba;
 mod raw;
 
 use std::path::Path;
 
 pub use desc::SceneDesc;
 pub use error::{LoadError, Loc};
+
+/// Reads a scene file by its extension: `.xml` is a Mitsuba scene (with `defines` for its
+/// parameters), anything else spectrace's TOML.
+pub fn load_any(path: &Path, defines: &[(String, String)]) -> Result<SceneDesc, LoadError> {
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("xml"))
+    {
+        mitsuba::load(path, defines)
+    } else {
+        load(path)
+    }
+}
 
 /// Reads and validates a scene file.
 pub fn load(path: &Path) -> Result<SceneDesc, LoadError> {

@@ -1,0 +1,965 @@
+//! Mitsuba elements → scene description.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use super::xml::Element;
+use crate::loader::desc::*;
+use crate::loader::error::{LoadError, SourceMap};
+use crate::spectrum::blackbody::Blackbody;
+use crate::spectrum::ior::{ComplexIor, Ior};
+use crate::spectrum::named::{Named, lookup};
+use crate::spectrum::{PiecewiseLinear, Spectrum, rgb2spec};
+use crate::units::{Angle, Length, angle, length};
+
+type R<T> = Result<T, LoadError>;
+
+const PLUGINS: &[&str] = &[
+    "perspective",
+    "thinlens",
+    "hdrfilm",
+    "box",
+    "gaussian",
+    "independent",
+    "path",
+    "obj",
+    "rectangle",
+    "cube",
+    "sphere",
+    "disk",
+    "diffuse",
+    "twosided",
+    "conductor",
+    "roughconductor",
+    "dielectric",
+    "roughdielectric",
+    "area",
+    "point",
+    "spot",
+    "constant",
+    "directional",
+    "blackbody",
+    "d65",
+    "regular",
+    "irregular",
+];
+
+struct Cx<'a> {
+    /// (file, text) of the scene and every included file.
+    sources: Vec<(PathBuf, String)>,
+    defines: &'a HashMap<String, String>,
+    params: HashMap<String, String>,
+    ids: HashMap<String, Element>,
+}
+
+impl Cx<'_> {
+    fn err(&self, e: &Element, msg: impl Into<String>) -> LoadError {
+        let (file, text) = &self.sources[e.src];
+        let field = match e.attr("name") {
+            Some(n) => format!("<{} name=\"{n}\">", e.tag),
+            None => format!("<{}>", e.tag),
+        };
+        LoadError::new(file, SourceMap::new(text).loc(e.pos), field, msg)
+    }
+
+    fn loc(&self, e: &Element) -> crate::loader::Loc {
+        SourceMap::new(&self.sources[e.src].1).loc(e.pos)
+    }
+
+    fn dir(&self, e: &Element) -> PathBuf {
+        self.sources[e.src]
+            .0
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_default()
+    }
+
+    fn unsupported(&self, e: &Element, what: &str, kind: &str) -> LoadError {
+        let near = PLUGINS
+            .iter()
+            .max_by(|a, b| strsim::jaro_winkler(kind, a).total_cmp(&strsim::jaro_winkler(kind, b)))
+            .copied()
+            .unwrap_or("");
+        self.err(
+            e,
+            format!(
+                "{what} type \"{kind}\" is not supported; the nearest supported one is \"{near}\""
+            ),
+        )
+    }
+
+    /// `$name` substitution in every attribute value, recursively.
+    fn substitute(&self, e: &mut Element) -> R<()> {
+        for (k, v) in e.attrs.iter_mut() {
+            while let Some(i) = v.find('$') {
+                let rest = &v[i + 1..];
+                let end = rest
+                    .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+                    .unwrap_or(rest.len());
+                let name = &rest[..end];
+                let Some(value) = self.defines.get(name).or_else(|| self.params.get(name)) else {
+                    let (file, text) = &self.sources[e.src];
+                    return Err(LoadError::new(
+                        file,
+                        SourceMap::new(text).loc(e.pos),
+                        format!("<{}> {k}", e.tag),
+                        format!(
+                            "${name} is not defined: add <default name=\"{name}\" value=\"…\"/> or -D {name}=…"
+                        ),
+                    ));
+                };
+                *v = format!("{}{}{}", &v[..i], value, &rest[end..]);
+            }
+        }
+        for c in &mut e.children {
+            self.substitute(c)?;
+        }
+        Ok(())
+    }
+
+    fn float(&self, e: &Element) -> R<f64> {
+        let v = e
+            .attr("value")
+            .ok_or_else(|| self.err(e, "missing value"))?;
+        let x: f64 = v
+            .trim()
+            .parse()
+            .map_err(|_| self.err(e, format!("\"{v}\" is not a number")))?;
+        if !x.is_finite() {
+            return Err(self.err(e, format!("\"{v}\" is not finite")));
+        }
+        Ok(x)
+    }
+
+    fn floats(&self, e: &Element, s: &str) -> R<Vec<f64>> {
+        s.split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|t| !t.is_empty())
+            .map(|t| {
+                t.parse::<f64>()
+                    .ok()
+                    .filter(|x| x.is_finite())
+                    .ok_or_else(|| self.err(e, format!("\"{t}\" is not a number")))
+            })
+            .collect()
+    }
+
+    /// A `point`/`vector` from x, y, z or value attributes.
+    fn vec3(&self, e: &Element) -> R<[f64; 3]> {
+        if let Some(v) = e.attr("value") {
+            let f = self.floats(e, v)?;
+            return match f.len() {
+                1 => Ok([f[0]; 3]),
+                3 => Ok([f[0], f[1], f[2]]),
+                _ => Err(self.err(e, format!("expected 1 or 3 numbers, found {}", f.len()))),
+            };
+        }
+        let mut out = [0.0; 3];
+        for (i, k) in ["x", "y", "z"].iter().enumerate() {
+            if let Some(v) = e.attr(k) {
+                out[i] = self.floats(e, v)?.first().copied().unwrap_or(0.0);
+            }
+        }
+        Ok(out)
+    }
+
+    fn child<'e>(&self, e: &'e Element, name: &str) -> Option<&'e Element> {
+        e.children.iter().find(|c| c.attr("name") == Some(name))
+    }
+
+    fn opt_float(&self, e: &Element, name: &str) -> R<Option<f64>> {
+        self.child(e, name).map(|c| self.float(c)).transpose()
+    }
+
+    fn string(&self, e: &Element, name: &str) -> Option<String> {
+        self.child(e, name)
+            .and_then(|c| c.attr("value"))
+            .map(str::to_string)
+    }
+
+    fn resolve<'e>(&'e self, e: &'e Element) -> R<&'e Element> {
+        if e.tag == "ref" {
+            let id = e.attr("id").ok_or_else(|| self.err(e, "missing id"))?;
+            return self.ids.get(id).ok_or_else(|| {
+                self.err(e, format!("refers to id \"{id}\", which is not defined"))
+            });
+        }
+        Ok(e)
+    }
+
+    /// A spectrum property: float, `spectrum` (value list, filename, type blackbody/d65), `rgb`.
+    fn spectrum(&self, e: &Element, emission: bool) -> R<Spectrum> {
+        let e = self.resolve(e)?;
+        match e.tag.as_str() {
+            "float" => Ok(Spectrum::Constant(self.float(e)? as f32)),
+            "rgb" => {
+                let v = e
+                    .attr("value")
+                    .ok_or_else(|| self.err(e, "missing value"))?;
+                let f = self.floats(e, v)?;
+                let rgb = match f.len() {
+                    1 => [f[0] as f32; 3],
+                    3 => [f[0] as f32, f[1] as f32, f[2] as f32],
+                    _ => return Err(self.err(e, "expected 3 numbers")),
+                };
+                let r = if emission {
+                    rgb2spec::illuminant(rgb)
+                } else {
+                    rgb2spec::albedo(rgb)
+                };
+                r.map_err(|er| self.err(e, er.to_string()))
+            }
+            "spectrum" => {
+                if let Some(t) = e.attr("type") {
+                    return match t {
+                        "blackbody" => {
+                            let t = self
+                                .opt_float(e, "temperature")?
+                                .ok_or_else(|| self.err(e, "missing temperature"))?;
+                            Ok(Spectrum::Blackbody(Blackbody::absolute(t as f32)))
+                        }
+                        "d65" => match lookup("cie-d65") {
+                            // Mitsuba's d65 is normalised by 1/100 relative to the CIE table
+                            Ok(Named::Curve { spectrum, .. }) => Ok(spectrum.scaled(0.01)),
+                            _ => Err(self.err(e, "the D65 table is missing")),
+                        },
+                        other => Err(self.unsupported(e, "spectrum", other)),
+                    };
+                }
+                if let Some(f) = e.attr("filename") {
+                    let path = self.dir(e).join(f);
+                    let text = std::fs::read_to_string(&path).map_err(|er| {
+                        self.err(
+                            e,
+                            format!("cannot read spectrum file {}: {er}", path.display()),
+                        )
+                    })?;
+                    let mut l = Vec::new();
+                    let mut v = Vec::new();
+                    for line in text
+                        .lines()
+                        .map(str::trim)
+                        .filter(|s| !s.is_empty() && !s.starts_with('#'))
+                    {
+                        let x = self.floats(e, line)?;
+                        if x.len() != 2 {
+                            return Err(self.err(
+                                e,
+                                format!("{}: expected \"wavelength value\" lines", path.display()),
+                            ));
+                        }
+                        l.push(x[0] as f32);
+                        v.push(x[1] as f32);
+                    }
+                    return PiecewiseLinear::new(l, v)
+                        .map(|t| Spectrum::Piecewise(Arc::new(t)))
+                        .map_err(|er| self.err(e, er.to_string()));
+                }
+                let v = e
+                    .attr("value")
+                    .ok_or_else(|| self.err(e, "missing value"))?;
+                if !v.contains(':') {
+                    return Ok(Spectrum::Constant(
+                        self.floats(e, v)?.first().copied().unwrap_or(0.0) as f32,
+                    ));
+                }
+                let mut l = Vec::new();
+                let mut y = Vec::new();
+                for pair in v.split(',') {
+                    let (a, b) = pair
+                        .split_once(':')
+                        .ok_or_else(|| self.err(e, format!("\"{pair}\" is not λ:value")))?;
+                    let a: f32 = a
+                        .trim()
+                        .parse()
+                        .map_err(|_| self.err(e, format!("\"{a}\" is not a wavelength")))?;
+                    let b: f32 = b
+                        .trim()
+                        .parse()
+                        .map_err(|_| self.err(e, format!("\"{b}\" is not a number")))?;
+                    l.push(a);
+                    y.push(b);
+                }
+                PiecewiseLinear::new(l, y)
+                    .map(|t| Spectrum::Piecewise(Arc::new(t)))
+                    .map_err(|er| self.err(e, er.to_string()))
+            }
+            other => Err(self.err(
+                e,
+                format!("<{other}> cannot give a spectrum; use <float>, <spectrum> or <rgb>"),
+            )),
+        }
+    }
+
+    fn spectrum_prop(&self, e: &Element, name: &str, default: f32, emission: bool) -> R<Spectrum> {
+        match self.child(e, name) {
+            Some(c) => self.spectrum(c, emission),
+            None => Ok(Spectrum::Constant(default)),
+        }
+    }
+
+    /// `to_world` steps in order.
+    fn transform(&self, t: &Element) -> R<Vec<TransformStep>> {
+        let m = |x: f64| Length::new::<length::meter>(x);
+        let mut steps = Vec::new();
+        for c in &t.children {
+            steps.push(match c.tag.as_str() {
+                "translate" => TransformStep::Translate(self.vec3(c)?.map(m)),
+                "scale" => TransformStep::Scale({
+                    let mut s = self.vec3(c)?;
+                    if c.attr("value").is_none() {
+                        for (i, k) in ["x", "y", "z"].iter().enumerate() {
+                            if c.attr(k).is_none() {
+                                s[i] = 1.0;
+                            }
+                        }
+                    }
+                    s
+                }),
+                "rotate" => {
+                    let a = c
+                        .attr("angle")
+                        .ok_or_else(|| self.err(c, "missing angle (degrees)"))?;
+                    let deg = self.floats(c, a)?.first().copied().unwrap_or(0.0);
+                    let axis = match c.attr("value") {
+                        Some(_) => self.vec3(c)?,
+                        None => self.vec3(c)?,
+                    };
+                    if axis == [0.0; 3] {
+                        return Err(self.err(c, "the rotation axis is zero"));
+                    }
+                    TransformStep::Rotate {
+                        axis,
+                        angle: Angle::new::<angle::degree>(deg),
+                    }
+                }
+                "matrix" => {
+                    let v = c
+                        .attr("value")
+                        .ok_or_else(|| self.err(c, "missing value"))?;
+                    let f = self.floats(c, v)?;
+                    if f.len() != 16 {
+                        return Err(self.err(c, format!("expected 16 numbers, found {}", f.len())));
+                    }
+                    let mut a = [0.0; 16];
+                    a.copy_from_slice(&f);
+                    TransformStep::Matrix(a)
+                }
+                "lookat" => {
+                    let g = |k: &str| -> R<[f64; 3]> {
+                        let v = c
+                            .attr(k)
+                            .ok_or_else(|| self.err(c, format!("missing {k}")))?;
+                        let f = self.floats(c, v)?;
+                        if f.len() != 3 {
+                            return Err(self.err(c, format!("{k}: expected 3 numbers")));
+                        }
+                        Ok([f[0], f[1], f[2]])
+                    };
+                    TransformStep::LookAt {
+                        eye: g("origin")?.map(m),
+                        target: g("target")?.map(m),
+                        up: if c.attr("up").is_some() {
+                            g("up")?
+                        } else {
+                            [0.0, 1.0, 0.0]
+                        },
+                    }
+                }
+                other => return Err(self.unsupported(c, "transform", other)),
+            });
+        }
+        Ok(steps)
+    }
+}
+
+/// Mitsuba's named indices of refraction (constants, as Mitsuba tabulates them).
+fn named_ior(name: &str) -> Option<f64> {
+    Some(match name {
+        "vacuum" => 1.0,
+        "helium" => 1.000036,
+        "hydrogen" => 1.000132,
+        "air" => 1.000277,
+        "carbon dioxide" => 1.00045,
+        "water" => 1.3330,
+        "acetone" => 1.36,
+        "ethanol" => 1.361,
+        "carbon tetrachloride" => 1.461,
+        "glycerol" => 1.4729,
+        "benzene" => 1.501,
+        "silicone oil" => 1.52045,
+        "bromine" => 1.661,
+        "water ice" => 1.31,
+        "fused quartz" => 1.458,
+        "pyrex" => 1.470,
+        "acrylic glass" => 1.49,
+        "polypropylene" => 1.49,
+        "bk7" => 1.5046,
+        "sodium chloride" => 1.544,
+        "amber" => 1.55,
+        "pet" => 1.5750,
+        "diamond" => 2.419,
+        _ => return None,
+    })
+}
+
+pub(super) fn scene(
+    mut root: Element,
+    text: &str,
+    path: &Path,
+    defines: &HashMap<String, String>,
+) -> R<SceneDesc> {
+    let mut cx = Cx {
+        sources: vec![(path.to_path_buf(), text.to_string())],
+        defines,
+        params: HashMap::new(),
+        ids: HashMap::new(),
+    };
+    if root.tag != "scene" {
+        return Err(cx.err(&root, "the root element must be <scene>"));
+    }
+    match root.attr("version") {
+        Some(v) if v.starts_with("3.") || v.starts_with("2.") => {}
+        Some(v) => {
+            return Err(cx.err(
+                &root,
+                format!("scene version {v} is not supported; use 2.x or 3.x"),
+            ));
+        }
+        None => return Err(cx.err(&root, "missing version (e.g. version=\"3.0.0\")")),
+    }
+    // includes, spliced in place (depth-limited)
+    let mut depth = 0;
+    while root.children.iter().any(|c| c.tag == "include") {
+        depth += 1;
+        if depth > 16 {
+            return Err(cx.err(&root, "includes nest more than 16 deep"));
+        }
+        let mut out = Vec::new();
+        for c in std::mem::take(&mut root.children) {
+            if c.tag != "include" {
+                out.push(c);
+                continue;
+            }
+            let f = c
+                .attr("filename")
+                .ok_or_else(|| cx.err(&c, "missing filename"))?;
+            let p = cx.dir(&c).join(f);
+            let t = std::fs::read_to_string(&p)
+                .map_err(|e| cx.err(&c, format!("cannot read {}: {e}", p.display())))?;
+            let mut inc = super::parse_file(&t, &p)?;
+            cx.sources.push((p, t));
+            inc.set_source(cx.sources.len() - 1);
+            out.extend(inc.children);
+        }
+        root.children = out;
+    }
+    for c in root.children.iter().filter(|c| c.tag == "default") {
+        let (Some(n), Some(v)) = (c.attr("name"), c.attr("value")) else {
+            return Err(cx.err(c, "a <default> needs name and value"));
+        };
+        cx.params.insert(n.to_string(), v.to_string());
+    }
+    cx.substitute(&mut root)?;
+    for c in &root.children {
+        if let Some(id) = c.attr("id") {
+            cx.ids.insert(id.to_string(), c.clone());
+        }
+    }
+
+    let mut film = FilmDesc {
+        width: 768,
+        height: 576,
+        spp: 4,
+        filter: FilterDesc::Gaussian { sigma: 0.5 },
+        spectral_bins: 0,
+        exposure_ev: None,
+        loc: Default::default(),
+    };
+    let mut integrator = IntegratorDesc {
+        kind: IntegratorKind::Path,
+        max_depth: 1024,
+    };
+    let mut camera = None;
+    let mut materials: Vec<MaterialDesc> = Vec::new();
+    let mut material_ids: HashMap<String, (usize, bool)> = HashMap::new();
+    let mut shapes = Vec::new();
+    let mut lights = Vec::new();
+
+    for c in &root.children {
+        match c.tag.as_str() {
+            "default" | "include" => {}
+            "integrator" => {
+                let t = c.attr("type").unwrap_or("");
+                if t != "path" {
+                    return Err(cx.unsupported(c, "integrator", t));
+                }
+                if let Some(d) = cx.child(c, "max_depth") {
+                    let v = cx.float(d)?;
+                    // Mitsuba counts path length (1 = emission seen directly); spectrace counts
+                    // bounces; −1 is unlimited
+                    integrator.max_depth = if v < 0.0 {
+                        1024
+                    } else {
+                        (v as i64 - 1).clamp(1, 1024) as u32
+                    };
+                }
+            }
+            "sensor" => camera = Some(sensor(&cx, c, &mut film)?),
+            "bsdf" => {
+                if let Some(id) = c.attr("id") {
+                    let (m, two) = bsdf(&cx, c, id)?;
+                    material_ids.insert(id.to_string(), (materials.len(), two));
+                    materials.push(m);
+                }
+            }
+            "shape" => shapes.push(shape(&cx, c, &mut materials, &material_ids)?),
+            "emitter" => lights.push(emitter(&cx, c)?),
+            "spectrum" | "texture" | "rgb" | "float" => {}
+            other => {
+                return Err(cx.err(
+                    c,
+                    format!("<{other}> is not supported at the top level of a scene"),
+                ));
+            }
+        }
+    }
+    let camera = camera.ok_or_else(|| cx.err(&root, "the scene has no <sensor>"))?;
+    let nm = |x: f64| Length::new::<length::nanometer>(x);
+    Ok(SceneDesc {
+        path: path.to_path_buf(),
+        wavelength_range: [nm(360.0), nm(830.0)],
+        camera,
+        film,
+        integrator,
+        materials,
+        shapes,
+        lights,
+    })
+}
+
+fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraDesc> {
+    let t = s.attr("type").unwrap_or("");
+    if t != "perspective" && t != "thinlens" {
+        return Err(cx.unsupported(s, "sensor", t));
+    }
+    let fov = cx.opt_float(s, "fov")?.unwrap_or(39.3077);
+    let axis = match cx.string(s, "fov_axis").as_deref() {
+        None | Some("x") => FovAxis::X,
+        Some("y") => FovAxis::Y,
+        Some("larger") => FovAxis::Larger,
+        Some("smaller") => FovAxis::Smaller,
+        Some(o) => {
+            return Err(cx.err(
+                s,
+                format!("fov_axis \"{o}\" is not supported (x, y, larger, smaller)"),
+            ));
+        }
+    };
+    let projection = Projection::Fov {
+        fov: Angle::new::<angle::degree>(fov),
+        axis,
+    };
+    let kind = if t == "thinlens" {
+        let r = cx.opt_float(s, "aperture_radius")?.unwrap_or(0.03);
+        let fd = cx.opt_float(s, "focus_distance")?.unwrap_or(1.0);
+        // aperture radius = f/(2N) with the focal length of a 36 mm sensor at this field of view
+        let hfov = fov.to_radians();
+        let focal = 0.036 / (2.0 * (hfov / 2.0).tan());
+        CameraKind::ThinLens {
+            projection,
+            f_number: focal / (2.0 * r.max(1e-9)),
+            focus_distance: Length::new::<length::meter>(fd),
+        }
+    } else {
+        CameraKind::Perspective { projection }
+    };
+    for c in &s.children {
+        match (c.tag.as_str(), c.attr("type")) {
+            ("film", Some("hdrfilm")) => {
+                if let Some(w) = cx.opt_float(c, "width")? {
+                    film.width = w as u32;
+                }
+                if let Some(h) = cx.opt_float(c, "height")? {
+                    film.height = h as u32;
+                }
+                if film.width == 0 || film.height == 0 || film.width > 32768 || film.height > 32768
+                {
+                    return Err(cx.err(
+                        c,
+                        format!(
+                            "{}×{} is not a supported resolution",
+                            film.width, film.height
+                        ),
+                    ));
+                }
+                for f in c.children.iter().filter(|f| f.tag == "rfilter") {
+                    film.filter = match f.attr("type") {
+                        Some("box") => FilterDesc::Box,
+                        Some("gaussian") => FilterDesc::Gaussian {
+                            sigma: cx.opt_float(f, "stddev")?.unwrap_or(0.5),
+                        },
+                        Some(o) => return Err(cx.unsupported(f, "rfilter", o)),
+                        None => return Err(cx.err(f, "missing type")),
+                    };
+                }
+            }
+            ("film", Some(o)) => return Err(cx.unsupported(c, "film", o)),
+            ("sampler", Some(o)) => {
+                if o != "independent" {
+                    return Err(cx.unsupported(c, "sampler", o));
+                }
+                if let Some(n) = cx.opt_float(c, "sample_count")? {
+                    film.spp = (n as u32).max(1);
+                }
+            }
+            _ => {}
+        }
+    }
+    film.loc = cx.loc(s);
+    // the camera frame from to_world: origin, +z forward, +y up
+    let steps = match s.children.iter().find(|c| c.tag == "transform") {
+        Some(t) => cx.transform(t)?,
+        None => Vec::new(),
+    };
+    let (eye, target, up) = camera_frame(cx, s, &steps)?;
+    Ok(CameraDesc {
+        kind,
+        eye,
+        target,
+        up,
+        loc: cx.loc(s),
+    })
+}
+
+/// Eye, target and up of a sensor's `to_world`, by applying it to the camera's own frame.
+fn camera_frame(cx: &Cx<'_>, s: &Element, steps: &[TransformStep]) -> R<(Point, Point, [f64; 3])> {
+    use glam::{DMat4, DVec3};
+    let mut m = DMat4::IDENTITY;
+    for st in steps {
+        let next = match st {
+            TransformStep::Translate(p) => {
+                DMat4::from_translation(DVec3::new(p[0].value, p[1].value, p[2].value))
+            }
+            TransformStep::Scale(k) => DMat4::from_scale(DVec3::from(*k)),
+            TransformStep::Rotate { axis, angle } => {
+                DMat4::from_axis_angle(DVec3::from(*axis).normalize(), angle.value)
+            }
+            TransformStep::Matrix(a) => DMat4::from_cols_array(a).transpose(),
+            TransformStep::LookAt { eye, target, up } => {
+                let e = DVec3::new(eye[0].value, eye[1].value, eye[2].value);
+                let t = DVec3::new(target[0].value, target[1].value, target[2].value);
+                let d = (t - e).normalize();
+                let left = DVec3::from(*up).cross(d).normalize();
+                let new_up = d.cross(left);
+                DMat4::from_cols(
+                    left.extend(0.0),
+                    new_up.extend(0.0),
+                    d.extend(0.0),
+                    e.extend(1.0),
+                )
+            }
+        };
+        m = next * m;
+    }
+    let eye = m.transform_point3(DVec3::ZERO);
+    let fwd = m.transform_vector3(DVec3::Z);
+    let up = m.transform_vector3(DVec3::Y);
+    if fwd.length() == 0.0 || up.length() == 0.0 || !eye.is_finite() {
+        return Err(cx.err(s, "the sensor's to_world is degenerate"));
+    }
+    let target = eye + fwd.normalize();
+    let l = |x: f64| Length::new::<length::meter>(x);
+    Ok((
+        [l(eye.x), l(eye.y), l(eye.z)],
+        [l(target.x), l(target.y), l(target.z)],
+        up.normalize().to_array(),
+    ))
+}
+
+/// A BSDF; returns the material and whether it was wrapped in `twosided`.
+fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, bool)> {
+    let b = cx.resolve(b)?;
+    let t = b.attr("type").unwrap_or("");
+    let alpha = |cx: &Cx<'_>| -> R<Option<f64>> {
+        if let Some(d) = cx.string(b, "distribution") {
+            if d != "ggx" {
+                return Err(cx.err(
+                    b,
+                    format!("distribution \"{d}\" is not supported; use \"ggx\""),
+                ));
+            }
+        }
+        Ok(Some(cx.opt_float(b, "alpha")?.unwrap_or(0.1)))
+    };
+    let ior_of = |cx: &Cx<'_>, key: &str, default: f64| -> R<f64> {
+        match cx.child(b, key) {
+            None => Ok(default),
+            Some(e) if e.tag == "float" => cx.float(e),
+            Some(e) => {
+                let v = e.attr("value").unwrap_or("");
+                named_ior(v).ok_or_else(|| cx.err(e, format!("unknown index name \"{v}\"; use a number or a Mitsuba name such as \"bk7\"")))
+            }
+        }
+    };
+    let kind = match t {
+        "twosided" => {
+            let inner = b
+                .children
+                .iter()
+                .find(|c| c.tag == "bsdf" || c.tag == "ref")
+                .ok_or_else(|| cx.err(b, "twosided needs a nested <bsdf>"))?;
+            let (m, _) = bsdf(cx, inner, name)?;
+            return Ok((m, true));
+        }
+        "diffuse" => MaterialKind::Diffuse {
+            reflectance: cx.spectrum_prop(b, "reflectance", 0.5, false)?,
+        },
+        "dielectric" | "roughdielectric" => MaterialKind::Dielectric {
+            ior: Ior::Constant(ior_of(cx, "int_ior", 1.5046)? as f32),
+            exterior_ior: ior_of(cx, "ext_ior", 1.000277)?,
+            roughness: if t == "roughdielectric" {
+                alpha(cx)?
+            } else {
+                None
+            },
+        },
+        "conductor" | "roughconductor" => {
+            let roughness = if t == "roughconductor" {
+                alpha(cx)?
+            } else {
+                None
+            };
+            let ior = match (
+                cx.string(b, "material"),
+                cx.child(b, "eta"),
+                cx.child(b, "k"),
+            ) {
+                (Some(m), _, _) => match lookup(&format!("metal:{m}")) {
+                    Ok(Named::Conductor(metal)) => metal.ior,
+                    _ => return Err(cx.err(
+                        b,
+                        format!(
+                            "material \"{m}\" is not available; use Au, Ag, Cu or Al, or eta and k"
+                        ),
+                    )),
+                },
+                (None, Some(eta), Some(k)) => {
+                    let table = |s: Spectrum| -> Arc<PiecewiseLinear> {
+                        match s {
+                            Spectrum::Piecewise(t) => t,
+                            other => {
+                                let l: Vec<f32> =
+                                    (300..=900).step_by(5).map(|x| x as f32).collect();
+                                let v = l.iter().map(|&x| other.eval(x)).collect();
+                                match PiecewiseLinear::new(l, v) {
+                                    Ok(t) => Arc::new(t),
+                                    Err(_) => Arc::new(
+                                        PiecewiseLinear::new(vec![300.0, 900.0], vec![1.0, 1.0])
+                                            .unwrap_or_else(|_| unreachable!()),
+                                    ), // ok: two valid samples
+                                }
+                            }
+                        }
+                    };
+                    ComplexIor {
+                        n: table(cx.spectrum(eta, false)?),
+                        k: table(cx.spectrum(k, false)?),
+                    }
+                }
+                _ => match lookup("metal:Al") {
+                    // Mitsuba's default conductor is a perfect mirror; the closest table is Al
+                    Ok(Named::Conductor(metal)) => metal.ior,
+                    _ => return Err(cx.err(b, "give material, or eta and k")),
+                },
+            };
+            MaterialKind::Conductor {
+                ior,
+                exterior_ior: ior_of(cx, "ext_ior", 1.000277)?,
+                roughness,
+            }
+        }
+        "plastic" | "roughplastic" => {
+            return Err(cx.err(b, "plastic has no faithful mapping in spectrace yet; use \"diffuse\", or \"dielectric\" over a \"diffuse\" base in a later version"));
+        }
+        other => return Err(cx.unsupported(b, "bsdf", other)),
+    };
+    Ok((
+        MaterialDesc {
+            name: name.to_string(),
+            kind,
+            loc: cx.loc(b),
+        },
+        false,
+    ))
+}
+
+fn shape(
+    cx: &Cx<'_>,
+    s: &Element,
+    materials: &mut Vec<MaterialDesc>,
+    ids: &HashMap<String, (usize, bool)>,
+) -> R<ShapeDesc> {
+    let t = s.attr("type").unwrap_or("");
+    let mut transform = match s.children.iter().find(|c| c.tag == "transform") {
+        Some(tr) => cx.transform(tr)?,
+        None => Vec::new(),
+    };
+    let kind = match t {
+        "obj" => {
+            let f = cx
+                .string(s, "filename")
+                .ok_or_else(|| cx.err(s, "missing filename"))?;
+            ShapeKind::Obj {
+                path: cx.dir(s).join(f),
+            }
+        }
+        "rectangle" => ShapeKind::Rectangle,
+        "cube" => ShapeKind::Box,
+        "disk" => ShapeKind::Disk,
+        "sphere" => {
+            let c = match cx.child(s, "center") {
+                Some(c) => cx.vec3(c)?,
+                None => [0.0; 3],
+            };
+            let r = cx.opt_float(s, "radius")?.unwrap_or(1.0);
+            if r <= 0.0 {
+                return Err(cx.err(s, "radius must be positive"));
+            }
+            let l = |x: f64| Length::new::<length::meter>(x);
+            ShapeKind::Sphere {
+                center: c.map(l),
+                radius: l(r),
+            }
+        }
+        "ply" => {
+            return Err(cx.err(
+                s,
+                "ply meshes are not supported yet; convert to obj (the nearest supported type)",
+            ));
+        }
+        other => return Err(cx.unsupported(s, "shape", other)),
+    };
+    if cx.child(s, "flip_normals").and_then(|f| f.attr("value")) == Some("true") {
+        // a mirror through the object's z = 0 plane reverses the winding and the normal
+        transform.insert(0, TransformStep::Scale([1.0, 1.0, -1.0]));
+    }
+    let mut material = None;
+    let mut two_sided = false;
+    let mut emission = None;
+    for c in &s.children {
+        match c.tag.as_str() {
+            "bsdf" => {
+                let (m, two) = bsdf(cx, c, &format!("shape@{}", cx.loc(s).line))?;
+                material = Some(materials.len());
+                two_sided = two;
+                materials.push(m);
+            }
+            "ref" => {
+                let id = c.attr("id").unwrap_or("");
+                let &(m, two) = ids.get(id).ok_or_else(|| {
+                    cx.err(c, format!("refers to bsdf \"{id}\", which is not defined"))
+                })?;
+                material = Some(m);
+                two_sided = two;
+            }
+            "emitter" => {
+                if c.attr("type") != Some("area") {
+                    return Err(cx.unsupported(c, "shape emitter", c.attr("type").unwrap_or("")));
+                }
+                emission = Some(EmissionDesc {
+                    spectrum: cx.spectrum_prop(c, "radiance", 1.0, true)?,
+                    amount: EmitAmount::Scale(1.0),
+                    two_sided: false,
+                    loc: cx.loc(c),
+                });
+            }
+            _ => {}
+        }
+    }
+    if material.is_none() {
+        // Mitsuba's default BSDF is diffuse with reflectance 0.5
+        material = Some(materials.len());
+        materials.push(MaterialDesc {
+            name: format!("default@{}", cx.loc(s).line),
+            kind: MaterialKind::Diffuse {
+                reflectance: Spectrum::Constant(0.5),
+            },
+            loc: cx.loc(s),
+        });
+    }
+    Ok(ShapeDesc {
+        kind,
+        transform,
+        material,
+        two_sided,
+        emission,
+        unit_m: 1.0,
+        loc: cx.loc(s),
+    })
+}
+
+fn emitter(cx: &Cx<'_>, e: &Element) -> R<LightDesc> {
+    let t = e.attr("type").unwrap_or("");
+    let l = |x: f64| Length::new::<length::meter>(x);
+    let position = || -> R<Point> {
+        if let Some(p) = cx.child(e, "position") {
+            return Ok(cx.vec3(p)?.map(l));
+        }
+        Ok([l(0.0), l(0.0), l(0.0)])
+    };
+    let (kind, spectrum) = match t {
+        "point" => (
+            LightKind::Point {
+                position: position()?,
+                amount: PointAmount::Scale(1.0),
+            },
+            cx.spectrum_prop(e, "intensity", 1.0, true)?,
+        ),
+        "constant" => (
+            LightKind::Environment {
+                amount: EmitAmount::Scale(1.0),
+            },
+            cx.spectrum_prop(e, "radiance", 1.0, true)?,
+        ),
+        "directional" => {
+            let d = match cx.child(e, "direction") {
+                Some(d) => cx.vec3(d)?,
+                None => [0.0, 0.0, 1.0],
+            };
+            (
+                LightKind::Directional {
+                    direction: d,
+                    angular_diameter: Angle::new::<angle::radian>(0.0),
+                    amount: DirectionalAmount::Scale(1.0),
+                },
+                cx.spectrum_prop(e, "irradiance", 1.0, true)?,
+            )
+        }
+        "spot" => {
+            let cutoff = cx.opt_float(e, "cutoff_angle")?.unwrap_or(20.0);
+            let width = cx.opt_float(e, "beam_width")?.unwrap_or(cutoff * 0.75);
+            let steps = match e.children.iter().find(|c| c.tag == "transform") {
+                Some(tr) => cx.transform(tr)?,
+                None => return Err(cx.err(e, "a spot needs a to_world with lookat")),
+            };
+            let (eye, target, _) = camera_frame(cx, e, &steps)?;
+            (
+                LightKind::Spot {
+                    position: eye,
+                    target,
+                    cone_angle: Angle::new::<angle::degree>(cutoff),
+                    falloff_start: Angle::new::<angle::degree>(width.min(cutoff)),
+                    amount: PointAmount::Scale(1.0),
+                },
+                cx.spectrum_prop(e, "intensity", 1.0, true)?,
+            )
+        }
+        other => return Err(cx.unsupported(e, "emitter", other)),
+    };
+    Ok(LightDesc {
+        kind,
+        spectrum,
+        loc: cx.loc(e),
+    })
+}
