@@ -95,7 +95,17 @@ fn import_errors_are_located_and_suggest_alternatives() {
         "{e}"
     );
     let e = err(&PLANE.replace("type=\"rectangle\"", "type=\"ply\""));
-    assert!(e.contains("ply") && e.contains("obj"), "{e}");
+    assert!(e.contains("missing filename"), "{e}");
+    let e = err(&PLANE.replace(
+        "type=\"rectangle\">",
+        "type=\"ply\"><string name=\"filename\" value=\"nope.ply\"/>",
+    ));
+    assert!(e.contains("nope.ply"), "{e}");
+    let e = err(&PLANE.replace("type=\"rectangle\"", "type=\"torus\""));
+    assert!(
+        e.contains("torus") && e.contains("nearest supported"),
+        "{e}"
+    );
     let e = err(&PLANE.replace(
         "<rotate x=\"1\" angle=\"-90\"/>",
         "<rotate x=\"1\" angle=\"right\"/>",

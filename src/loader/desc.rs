@@ -174,6 +174,10 @@ pub enum ShapeKind {
     Obj {
         path: PathBuf,
     },
+    /// A Stanford PLY mesh; coordinates in the scene's length unit.
+    Ply {
+        path: PathBuf,
+    },
     /// A triangle mesh written in the scene file: vertices in the scene's length unit and
     /// 0-based triangle indices.
     Inline {

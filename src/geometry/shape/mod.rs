@@ -12,6 +12,7 @@
 mod disk;
 mod mesh;
 mod obj;
+mod ply;
 mod sphere;
 mod triangle;
 

@@ -833,10 +833,12 @@ fn shape(
             }
         }
         "ply" => {
-            return Err(cx.err(
-                s,
-                "ply meshes are not supported yet; convert to obj (the nearest supported type)",
-            ));
+            let f = cx
+                .string(s, "filename")
+                .ok_or_else(|| cx.err(s, "missing filename"))?;
+            ShapeKind::Ply {
+                path: cx.dir(s).join(f),
+            }
         }
         other => return Err(cx.unsupported(s, "shape", other)),
     };

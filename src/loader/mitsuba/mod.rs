@@ -4,7 +4,7 @@
 //! `id`/`ref`, `include`; `perspective` and `thinlens` sensors with `to_world`
 //! (`lookat`, `translate`, `rotate`, `scale`, `matrix`), `hdrfilm` (`width`, `height`,
 //! `rfilter` box/gaussian), the `independent` sampler, the `path` integrator; shapes `obj`,
-//! `rectangle`, `cube`, `sphere`, `disk` with `to_world` and `flip_normals` (not yet: `ply`);
+//! `ply`, `rectangle`, `cube`, `sphere`, `disk` with `to_world` and `flip_normals`;
 //! BSDFs `diffuse`, `twosided`, `conductor`, `roughconductor`, `dielectric`, `roughdielectric`
 //! (GGX only); emitters `area`, `point`, `spot`, `constant`, `directional`; spectra as a float,
 //! `λ:v` lists, `filename`, `blackbody`, `d65` and `rgb`.

@@ -75,6 +75,9 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
         ShapeKind::Obj { path } => {
             Shape::Mesh(Mesh::load_obj(path, &transform(s, true)?).map_err(|e| e.to_string())?)
         }
+        ShapeKind::Ply { path } => {
+            Shape::Mesh(Mesh::load_ply(path, &transform(s, true)?).map_err(|e| e.to_string())?)
+        }
         ShapeKind::Inline { vertices, faces } => {
             let positions = vertices
                 .iter()

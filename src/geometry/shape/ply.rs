@@ -1,0 +1,284 @@
+//! Loading Stanford PLY files (ASCII, binary little- and big-endian) into a [`Mesh`]: vertex
+//! `x y z` with optional `nx ny nz` and `u v` (or `s t`), faces as `vertex_indices` (or
+//! `vertex_index`) lists, triangulated as fans. Other elements and properties are skipped.
+
+use glam::{Vec2, Vec3};
+
+use super::Mesh;
+use crate::geometry::error::GeometryError;
+use crate::geometry::transform::Transform;
+use std::path::Path;
+
+#[derive(Clone, Copy, PartialEq)]
+enum Format {
+    Ascii,
+    Le,
+    Be,
+}
+
+#[derive(Clone, Copy)]
+enum Ty {
+    I8,
+    U8,
+    I16,
+    U16,
+    I32,
+    U32,
+    F32,
+    F64,
+}
+
+impl Ty {
+    fn parse(s: &str) -> Option<Ty> {
+        Some(match s {
+            "char" | "int8" => Ty::I8,
+            "uchar" | "uint8" => Ty::U8,
+            "short" | "int16" => Ty::I16,
+            "ushort" | "uint16" => Ty::U16,
+            "int" | "int32" => Ty::I32,
+            "uint" | "uint32" => Ty::U32,
+            "float" | "float32" => Ty::F32,
+            "double" | "float64" => Ty::F64,
+            _ => return None,
+        })
+    }
+    fn size(self) -> usize {
+        match self {
+            Ty::I8 | Ty::U8 => 1,
+            Ty::I16 | Ty::U16 => 2,
+            Ty::I32 | Ty::U32 | Ty::F32 => 4,
+            Ty::F64 => 8,
+        }
+    }
+}
+
+struct Prop {
+    name: String,
+    ty: Ty,
+    /// Some(count type) for list properties.
+    list: Option<Ty>,
+}
+
+struct Elem {
+    name: String,
+    count: usize,
+    props: Vec<Prop>,
+}
+
+/// Reads values one at a time from the body in the file's format.
+struct Body<'a> {
+    data: &'a [u8],
+    pos: usize,
+    format: Format,
+    tokens: std::str::SplitAsciiWhitespace<'a>,
+}
+
+impl Body<'_> {
+    fn read(&mut self, ty: Ty) -> Option<f64> {
+        if self.format == Format::Ascii {
+            return self.tokens.next()?.parse().ok();
+        }
+        let n = ty.size();
+        let b = self.data.get(self.pos..self.pos + n)?;
+        self.pos += n;
+        let mut a = [0u8; 8];
+        a[..n].copy_from_slice(b);
+        if self.format == Format::Be {
+            a[..n].reverse();
+        }
+        Some(match ty {
+            Ty::I8 => a[0] as i8 as f64,
+            Ty::U8 => a[0] as f64,
+            Ty::I16 => i16::from_le_bytes([a[0], a[1]]) as f64,
+            Ty::U16 => u16::from_le_bytes([a[0], a[1]]) as f64,
+            Ty::I32 => i32::from_le_bytes([a[0], a[1], a[2], a[3]]) as f64,
+            Ty::U32 => u32::from_le_bytes([a[0], a[1], a[2], a[3]]) as f64,
+            Ty::F32 => f32::from_le_bytes([a[0], a[1], a[2], a[3]]) as f64,
+            Ty::F64 => f64::from_le_bytes(a),
+        })
+    }
+}
+
+impl Mesh {
+    /// Loads a PLY file as one mesh, transformed by `transform`. Errors name the path, like
+    /// [`Mesh::load_obj`].
+    pub fn load_ply(path: &Path, transform: &Transform) -> Result<Mesh, GeometryError> {
+        let bytes = std::fs::read(path).map_err(|source| GeometryError::MeshOpen {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let bad = |m: &str| GeometryError::MeshParse {
+            path: path.to_path_buf(),
+            message: m.to_string(),
+        };
+        let end = bytes
+            .windows(10)
+            .position(|w| w == b"end_header")
+            .ok_or_else(|| bad("no end_header"))?;
+        let header =
+            std::str::from_utf8(&bytes[..end]).map_err(|_| bad("the header is not text"))?;
+        let mut body_start = end + 10;
+        while body_start < bytes.len() && (bytes[body_start] == b'\r' || bytes[body_start] == b'\n')
+        {
+            body_start += 1;
+            if bytes[body_start - 1] == b'\n' {
+                break;
+            }
+        }
+        let mut lines = header.lines();
+        if lines.next().map(str::trim) != Some("ply") {
+            return Err(bad("not a PLY file (no 'ply' magic)"));
+        }
+        let mut format = None;
+        let mut elems: Vec<Elem> = Vec::new();
+        for line in lines {
+            let w: Vec<&str> = line.split_whitespace().collect();
+            match w.as_slice() {
+                ["format", f, _] => {
+                    format = Some(match *f {
+                        "ascii" => Format::Ascii,
+                        "binary_little_endian" => Format::Le,
+                        "binary_big_endian" => Format::Be,
+                        _ => return Err(bad(&format!("unknown format {f}"))),
+                    })
+                }
+                ["element", name, count] => elems.push(Elem {
+                    name: name.to_string(),
+                    count: count
+                        .parse()
+                        .map_err(|_| bad(&format!("bad element count {count}")))?,
+                    props: Vec::new(),
+                }),
+                ["property", "list", ct, ty, name] => {
+                    let (Some(ct), Some(ty)) = (Ty::parse(ct), Ty::parse(ty)) else {
+                        return Err(bad(&format!("unknown type in '{line}'")));
+                    };
+                    elems
+                        .last_mut()
+                        .ok_or_else(|| bad("property before element"))?
+                        .props
+                        .push(Prop {
+                            name: name.to_string(),
+                            ty,
+                            list: Some(ct),
+                        });
+                }
+                ["property", ty, name] => {
+                    let ty =
+                        Ty::parse(ty).ok_or_else(|| bad(&format!("unknown type in '{line}'")))?;
+                    elems
+                        .last_mut()
+                        .ok_or_else(|| bad("property before element"))?
+                        .props
+                        .push(Prop {
+                            name: name.to_string(),
+                            ty,
+                            list: None,
+                        });
+                }
+                _ => {}
+            }
+        }
+        let format = format.ok_or_else(|| bad("no format line"))?;
+        let text = if format == Format::Ascii {
+            std::str::from_utf8(&bytes[body_start..]).map_err(|_| bad("ASCII body is not text"))?
+        } else {
+            ""
+        };
+        let mut body = Body {
+            data: &bytes[body_start..],
+            pos: 0,
+            format,
+            tokens: text.split_ascii_whitespace(),
+        };
+        let (mut positions, mut normals, mut uvs, mut indices) =
+            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        let truncated = || bad("the file ends early or has a bad value");
+        for e in &elems {
+            for _ in 0..e.count {
+                let mut v = [0.0f64; 8]; // x y z nx ny nz u v
+                let mut face: Vec<u32> = Vec::new();
+                for p in &e.props {
+                    match p.list {
+                        Some(ct) => {
+                            let n = body.read(ct).ok_or_else(truncated)? as usize;
+                            for _ in 0..n {
+                                let x = body.read(p.ty).ok_or_else(truncated)?;
+                                if e.name == "face"
+                                    && (p.name == "vertex_indices" || p.name == "vertex_index")
+                                {
+                                    face.push(x as u32);
+                                }
+                            }
+                        }
+                        None => {
+                            let x = body.read(p.ty).ok_or_else(truncated)?;
+                            let slot = match p.name.as_str() {
+                                "x" => 0,
+                                "y" => 1,
+                                "z" => 2,
+                                "nx" => 3,
+                                "ny" => 4,
+                                "nz" => 5,
+                                "u" | "s" | "texture_u" => 6,
+                                "v" | "t" | "texture_v" => 7,
+                                _ => continue,
+                            };
+                            v[slot] = x;
+                        }
+                    }
+                }
+                if e.name == "vertex" {
+                    positions.push(Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32));
+                    normals.push(Vec3::new(v[3] as f32, v[4] as f32, v[5] as f32));
+                    uvs.push(Vec2::new(v[6] as f32, v[7] as f32));
+                } else if e.name == "face" {
+                    for k in 1..face.len().saturating_sub(1) {
+                        indices.push([face[0], face[k], face[k + 1]]);
+                    }
+                }
+            }
+        }
+        let has = |name: &str| {
+            elems
+                .iter()
+                .any(|e| e.name == "vertex" && e.props.iter().any(|p| p.name == name))
+        };
+        let normals = has("nx").then_some(normals);
+        let uvs = (has("u") || has("s") || has("texture_u")).then_some(uvs);
+        Mesh::new(positions, normals, uvs, indices, transform)
+            .map_err(|e| bad(&format!("mesh {e}")))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ascii_and_binary_quads() {
+        let dir = std::env::temp_dir().join(format!("spectrace-ply-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let ascii = "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n2 0 0\n2 3 0\n0 3 0\n4 0 1 2 3\n";
+        let p = dir.join("a.ply");
+        std::fs::write(&p, ascii).unwrap();
+        let m = Mesh::load_ply(&p, &Transform::identity()).unwrap();
+        assert!((m.area() - 6.0).abs() < 1e-5);
+        let mut bin = b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n".to_vec();
+        for v in [[0.0f32, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]] {
+            for c in v {
+                bin.extend_from_slice(&c.to_le_bytes());
+            }
+        }
+        bin.push(3);
+        for i in [0i32, 1, 2] {
+            bin.extend_from_slice(&i.to_le_bytes());
+        }
+        let p = dir.join("b.ply");
+        std::fs::write(&p, &bin).unwrap();
+        assert!((Mesh::load_ply(&p, &Transform::identity()).unwrap().area() - 0.5).abs() < 1e-6);
+        std::fs::write(&p, &bin[..bin.len() - 3]).unwrap();
+        assert!(Mesh::load_ply(&p, &Transform::identity()).is_err());
+        assert!(Mesh::load_ply(&dir.join("missing.ply"), &Transform::identity()).is_err());
+    }
+}
