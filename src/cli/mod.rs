@@ -12,7 +12,7 @@ use clap::{Parser, Subcommand};
 /// command, renders the built-in default scene (a white beam through a BK7 prism) to
 /// spectrace.exr and spectrace.png in the current folder.
 #[derive(Parser, Debug)]
-#[command(name = "spectrace", version, about, long_about = None)]
+#[command(name = "spectrace", version, about, long_about)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,

@@ -26,7 +26,7 @@ pub enum IntegratorArg {
 
 #[derive(Args, Debug, Default)]
 pub struct RenderArgs {
-    /// Scene file (TOML).
+    /// Scene file: spectrace TOML, or Mitsuba 3 XML (.xml).
     pub scene: PathBuf,
     /// Output EXR (float32: X, Y, Z in cd/m², linear sRGB R, G, B, band radiance L in
     /// W·m⁻²·sr⁻¹; spectral channels with --spectral-bins). Default: the scene's name with .exr,
