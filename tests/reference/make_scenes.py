@@ -186,7 +186,7 @@ def cornell():
     white = colorchecker("white-9-5")
     red = colorchecker("red")
     green = colorchecker("green")
-    d65 = illuminant("d65", 15.0)
+    d65 = illuminant("d65", 40.0)
     mdir = os.path.join(HERE, "meshes")
     os.makedirs(mdir, exist_ok=True)
     parts = ["floor", "ceiling", "back", "green", "red", "shortblock", "tallblock", "light"]
@@ -195,7 +195,7 @@ def cornell():
     s = header(
         """Spectral Cornell box: the classic Cornell geometry (meshes in millimetres, scaled to
 metres by to_world), ColorChecker (N. Ohta) white-9-5 / red / green reflectances, twosided
-walls, one-sided blocks, and a ceiling light with radiance = CIE D65 / 100 × 15.
+walls, one-sided blocks, and a ceiling light with radiance = CIE D65 / 100 × 40.
 Exercises: obj meshes, scale transform, twosided, ids/refs, measured spectra, multiple bounces.""",
         "0.278, 0.273, -0.8",
         "0.278, 0.273, 0",
@@ -285,8 +285,9 @@ Exercises: delta conductor Fresnel with complex spectral IOR, constant emitter, 
     )
     s += "\n" + floor_rect(2.5, colorchecker("neutral-6-5"))
     s += area_rect(0.5, "0, 2.5, -0.5", illuminant("d65", 10.0))
-    s += sphere((-0.6, 0.5, 0), 0.5, conductor_xml("au"), "gold")
-    s += sphere((0.6, 0.5, 0), 0.5, conductor_xml("cu"), "copper")
+    # the camera looks along +z with +y up, so +x is on the left of the image
+    s += sphere((0.6, 0.5, 0), 0.5, conductor_xml("au"), "gold (left in the image)")
+    s += sphere((-0.6, 0.5, 0), 0.5, conductor_xml("cu"), "copper (right in the image)")
     s += """
     <emitter type="constant">
         <spectrum name="radiance" value="0.3"/>
@@ -365,7 +366,7 @@ Exercises: microfacet transmission (Walter et al. 2007), rough refraction, gloss
 
 def spot():
     s = header(
-        """A spot light with a hard edge (cutoff_angle = beam_width = 25°, so that Mitsuba's linear
+        """A spot light with a hard edge (cutoff_angle = beam_width = 20°, so that Mitsuba's linear
 falloff ramp and spectrace's falloff have zero width and cannot differ), intensity = CIE D65
 / 100 × 20, shining from the upper right onto a diffuse plane (neutral-8) and a diffuse
 sphere (ColorChecker red).
@@ -383,8 +384,8 @@ Exercises: spot emitter, its cone, its orientation from a lookat to_world.""",
         <transform name="to_world">
             <lookat origin="1.2, 2.5, -0.8" target="0, 0, 0.2"/>
         </transform>
-        <float name="cutoff_angle" value="25"/>
-        <float name="beam_width" value="25"/>
+        <float name="cutoff_angle" value="20"/>
+        <float name="beam_width" value="20"/>
         <spectrum name="intensity" value="{illuminant('d65', 20.0)}"/>
     </emitter>
 """
