@@ -35,11 +35,17 @@ pub struct RenderInfo<'a> {
     pub mitsuba_units: bool,
 }
 
-/// Divides X, Y, Z and R, G, B by K_m·∫ȳ = 683.002 × 106.856895, the factor between spectrace's
-/// Y in cd/m² and Mitsuba 3's XYZ film for the same numeric emitter spectra
-/// (`../shared/PHYSICS.md`, "Comparing with Mitsuba 3"). L is unchanged.
+/// Mitsuba 3.9.1's XYZ film multiplies by `MI_CIE_Y_NORMALIZATION` = 1/106.7502594, not by
+/// 1/∫ȳ = 1/106.856895 as `../shared/PHYSICS.md` assumes (measured: a flat spectrum of 1 reads
+/// Y = 1.00101 in Mitsuba 3.9.1); the two differ by 0.1 %.
+pub const MITSUBA_CIE_Y_NORMALIZATION_INV: f64 = 106.750_259_4;
+
+/// Divides X, Y, Z and R, G, B by K_m × 106.7502594 = 72 910.6, the factor between spectrace's
+/// Y in cd/m² and Mitsuba 3.9.1's XYZ film for the same numeric emitter spectra
+/// (`../shared/PHYSICS.md`, "Comparing with Mitsuba 3", gives 72 983.0 from ∫ȳ; Mitsuba's own
+/// constant is 0.1 % smaller, see [`MITSUBA_CIE_Y_NORMALIZATION_INV`]). L is unchanged.
 pub fn to_mitsuba_scale(img: &mut Image) {
-    let k = (1.0 / (crate::colour::cie::K_M * crate::colour::cie::CIE_Y_INTEGRAL)) as f32;
+    let k = (1.0 / (crate::colour::cie::K_M * MITSUBA_CIE_Y_NORMALIZATION_INV)) as f32;
     for p in img.xyz.iter_mut().chain(img.rgb.iter_mut()) {
         *p = p.map(|v| v * k);
     }
@@ -86,7 +92,7 @@ pub fn write_exr(path: &Path, img: &Image, info: &RenderInfo<'_>) -> Result<(), 
         },
     ];
     let xyz_units = if info.mitsuba_units {
-        "X,Y,Z: CIE 1931 2deg on Mitsuba's scale (cd/m^2 divided by 683.002 x 106.856895)"
+        "X,Y,Z: CIE 1931 2deg on Mitsuba 3.9.1's scale (cd/m^2 divided by 683.002 x 106.7502594)"
     } else {
         "X,Y,Z: CIE 1931 2deg, Y = luminance in cd/m^2"
     };

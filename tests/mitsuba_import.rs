@@ -44,7 +44,8 @@ fn err(xml: &str) -> String {
 }
 
 /// A point light of spectral intensity 10 (Mitsuba's unitless numbers, read as W·sr⁻¹·nm⁻¹)
-/// 2 m over a ρ = 0.5 plane: on Mitsuba's scale Y = ρ/π · 10 · cos θ / r².
+/// 2 m over a ρ = 0.5 plane: on Mitsuba's scale Y = ρ/π · 10 · cos θ / r² · (∫ȳ / 106.7502594),
+/// Mitsuba 3.9.1's film normalisation.
 #[test]
 fn point_light_over_plane_on_mitsuba_scale() {
     let desc = load_str(PLANE, Path::new("plane.xml"), &[]).unwrap_or_else(|e| panic!("{e}"));
@@ -67,7 +68,7 @@ fn point_light_over_plane_on_mitsuba_scale() {
             ray.o.z as f64 + t * ray.d.z as f64,
         );
         let r2 = x * x + z * z + 4.0;
-        let want = 0.5 / PI * 10.0 * (2.0 / r2.sqrt()) / r2;
+        let want = 0.5 / PI * 10.0 * (2.0 / r2.sqrt()) / r2 * (106.856895 / 106.7502594);
         let got = img.xyz[py * 32 + px][1] as f64;
         assert!(
             (got / want - 1.0).abs() < 0.01,

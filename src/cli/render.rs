@@ -60,8 +60,9 @@ pub struct RenderArgs {
     /// Mitsuba XML parameter, NAME=VALUE (overrides a <default>); repeatable.
     #[arg(short = 'D', value_name = "NAME=VALUE")]
     pub define: Vec<String>,
-    /// Write X, Y, Z, R, G, B on Mitsuba's scale: divided by K_m·∫ȳ = 72 983.0, as Mitsuba's
-    /// film reports XYZ/∫ȳ of unitless emitter spectra. L stays in W·m⁻²·sr⁻¹.
+    /// Write X, Y, Z, R, G, B on Mitsuba 3.9.1's scale: divided by 683.002 × 106.7502594
+    /// = 72 910.6 (Mitsuba's film normalisation of unitless emitter spectra). L stays in
+    /// W·m⁻²·sr⁻¹.
     #[arg(long)]
     pub mitsuba_units: bool,
 }
