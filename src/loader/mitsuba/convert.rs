@@ -4,16 +4,18 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use super::bsdf::bsdf;
+use super::shapes::{emitter, shape};
 use super::xml::Element;
 use crate::loader::desc::*;
 use crate::loader::error::{LoadError, SourceMap};
 use crate::spectrum::blackbody::Blackbody;
-use crate::spectrum::ior::{ComplexIor, Ior};
+
 use crate::spectrum::named::{Named, lookup};
 use crate::spectrum::{PiecewiseLinear, Spectrum, rgb2spec};
 use crate::units::{Angle, Length, angle, length};
 
-type R<T> = Result<T, LoadError>;
+pub(super) type R<T> = Result<T, LoadError>;
 
 const PLUGINS: &[&str] = &[
     "perspective",
@@ -45,7 +47,7 @@ const PLUGINS: &[&str] = &[
     "irregular",
 ];
 
-struct Cx<'a> {
+pub(super) struct Cx<'a> {
     /// (file, text) of the scene and every included file.
     sources: Vec<(PathBuf, String)>,
     defines: &'a HashMap<String, String>,
@@ -54,7 +56,7 @@ struct Cx<'a> {
 }
 
 impl Cx<'_> {
-    fn err(&self, e: &Element, msg: impl Into<String>) -> LoadError {
+    pub(super) fn err(&self, e: &Element, msg: impl Into<String>) -> LoadError {
         let (file, text) = &self.sources[e.src];
         let field = match e.attr("name") {
             Some(n) => format!("<{} name=\"{n}\">", e.tag),
@@ -63,11 +65,11 @@ impl Cx<'_> {
         LoadError::new(file, SourceMap::new(text).loc(e.pos), field, msg)
     }
 
-    fn loc(&self, e: &Element) -> crate::loader::Loc {
+    pub(super) fn loc(&self, e: &Element) -> crate::loader::Loc {
         SourceMap::new(&self.sources[e.src].1).loc(e.pos)
     }
 
-    fn dir(&self, e: &Element) -> PathBuf {
+    pub(super) fn dir(&self, e: &Element) -> PathBuf {
         self.sources[e.src]
             .0
             .parent()
@@ -75,7 +77,7 @@ impl Cx<'_> {
             .unwrap_or_default()
     }
 
-    fn unsupported(&self, e: &Element, what: &str, kind: &str) -> LoadError {
+    pub(super) fn unsupported(&self, e: &Element, what: &str, kind: &str) -> LoadError {
         let near = PLUGINS
             .iter()
             .max_by(|a, b| strsim::jaro_winkler(kind, a).total_cmp(&strsim::jaro_winkler(kind, b)))
@@ -90,7 +92,7 @@ impl Cx<'_> {
     }
 
     /// `$name` substitution in every attribute value, recursively.
-    fn substitute(&self, e: &mut Element) -> R<()> {
+    pub(super) fn substitute(&self, e: &mut Element) -> R<()> {
         for (k, v) in e.attrs.iter_mut() {
             while let Some(i) = v.find('$') {
                 let rest = &v[i + 1..];
@@ -118,7 +120,7 @@ impl Cx<'_> {
         Ok(())
     }
 
-    fn float(&self, e: &Element) -> R<f64> {
+    pub(super) fn float(&self, e: &Element) -> R<f64> {
         let v = e
             .attr("value")
             .ok_or_else(|| self.err(e, "missing value"))?;
@@ -132,7 +134,7 @@ impl Cx<'_> {
         Ok(x)
     }
 
-    fn floats(&self, e: &Element, s: &str) -> R<Vec<f64>> {
+    pub(super) fn floats(&self, e: &Element, s: &str) -> R<Vec<f64>> {
         s.split(|c: char| c == ',' || c.is_whitespace())
             .filter(|t| !t.is_empty())
             .map(|t| {
@@ -145,7 +147,7 @@ impl Cx<'_> {
     }
 
     /// A `point`/`vector` from x, y, z or value attributes.
-    fn vec3(&self, e: &Element) -> R<[f64; 3]> {
+    pub(super) fn vec3(&self, e: &Element) -> R<[f64; 3]> {
         if let Some(v) = e.attr("value") {
             let f = self.floats(e, v)?;
             return match f.len() {
@@ -163,21 +165,21 @@ impl Cx<'_> {
         Ok(out)
     }
 
-    fn child<'e>(&self, e: &'e Element, name: &str) -> Option<&'e Element> {
+    pub(super) fn child<'e>(&self, e: &'e Element, name: &str) -> Option<&'e Element> {
         e.children.iter().find(|c| c.attr("name") == Some(name))
     }
 
-    fn opt_float(&self, e: &Element, name: &str) -> R<Option<f64>> {
+    pub(super) fn opt_float(&self, e: &Element, name: &str) -> R<Option<f64>> {
         self.child(e, name).map(|c| self.float(c)).transpose()
     }
 
-    fn string(&self, e: &Element, name: &str) -> Option<String> {
+    pub(super) fn string(&self, e: &Element, name: &str) -> Option<String> {
         self.child(e, name)
             .and_then(|c| c.attr("value"))
             .map(str::to_string)
     }
 
-    fn resolve<'e>(&'e self, e: &'e Element) -> R<&'e Element> {
+    pub(super) fn resolve<'e>(&'e self, e: &'e Element) -> R<&'e Element> {
         if e.tag == "ref" {
             let id = e.attr("id").ok_or_else(|| self.err(e, "missing id"))?;
             return self.ids.get(id).ok_or_else(|| {
@@ -188,7 +190,7 @@ impl Cx<'_> {
     }
 
     /// A spectrum property: float, `spectrum` (value list, filename, type blackbody/d65), `rgb`.
-    fn spectrum(&self, e: &Element, emission: bool) -> R<Spectrum> {
+    pub(super) fn spectrum(&self, e: &Element, emission: bool) -> R<Spectrum> {
         let e = self.resolve(e)?;
         match e.tag.as_str() {
             "float" => Ok(Spectrum::Constant(self.float(e)? as f32)),
@@ -291,7 +293,13 @@ impl Cx<'_> {
         }
     }
 
-    fn spectrum_prop(&self, e: &Element, name: &str, default: f32, emission: bool) -> R<Spectrum> {
+    pub(super) fn spectrum_prop(
+        &self,
+        e: &Element,
+        name: &str,
+        default: f32,
+        emission: bool,
+    ) -> R<Spectrum> {
         match self.child(e, name) {
             Some(c) => self.spectrum(c, emission),
             None => Ok(Spectrum::Constant(default)),
@@ -299,7 +307,7 @@ impl Cx<'_> {
     }
 
     /// `to_world` steps in order.
-    fn transform(&self, t: &Element) -> R<Vec<TransformStep>> {
+    pub(super) fn transform(&self, t: &Element) -> R<Vec<TransformStep>> {
         let m = |x: f64| Length::new::<length::meter>(x);
         let mut steps = Vec::new();
         for c in &t.children {
@@ -371,36 +379,6 @@ impl Cx<'_> {
         }
         Ok(steps)
     }
-}
-
-/// Mitsuba's named indices of refraction (constants, as Mitsuba tabulates them).
-fn named_ior(name: &str) -> Option<f64> {
-    Some(match name {
-        "vacuum" => 1.0,
-        "helium" => 1.000036,
-        "hydrogen" => 1.000132,
-        "air" => 1.000277,
-        "carbon dioxide" => 1.00045,
-        "water" => 1.3330,
-        "acetone" => 1.36,
-        "ethanol" => 1.361,
-        "carbon tetrachloride" => 1.461,
-        "glycerol" => 1.4729,
-        "benzene" => 1.501,
-        "silicone oil" => 1.52045,
-        "bromine" => 1.661,
-        "water ice" => 1.31,
-        "fused quartz" => 1.458,
-        "pyrex" => 1.470,
-        "acrylic glass" => 1.49,
-        "polypropylene" => 1.49,
-        "bk7" => 1.5046,
-        "sodium chloride" => 1.544,
-        "amber" => 1.55,
-        "pet" => 1.5750,
-        "diamond" => 2.419,
-        _ => return None,
-    })
 }
 
 pub(super) fn scene(
@@ -633,7 +611,11 @@ fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraDesc> {
 }
 
 /// Eye, target and up of a sensor's `to_world`, by applying it to the camera's own frame.
-fn camera_frame(cx: &Cx<'_>, s: &Element, steps: &[TransformStep]) -> R<(Point, Point, [f64; 3])> {
+pub(super) fn camera_frame(
+    cx: &Cx<'_>,
+    s: &Element,
+    steps: &[TransformStep],
+) -> R<(Point, Point, [f64; 3])> {
     use glam::{DMat4, DVec3};
     let mut m = DMat4::IDENTITY;
     for st in steps {
@@ -675,293 +657,4 @@ fn camera_frame(cx: &Cx<'_>, s: &Element, steps: &[TransformStep]) -> R<(Point, 
         [l(target.x), l(target.y), l(target.z)],
         up.normalize().to_array(),
     ))
-}
-
-/// A BSDF; returns the material and whether it was wrapped in `twosided`.
-fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, bool)> {
-    let b = cx.resolve(b)?;
-    let t = b.attr("type").unwrap_or("");
-    let alpha = |cx: &Cx<'_>| -> R<Option<f64>> {
-        if let Some(d) = cx.string(b, "distribution") {
-            if d != "ggx" {
-                return Err(cx.err(
-                    b,
-                    format!("distribution \"{d}\" is not supported; use \"ggx\""),
-                ));
-            }
-        }
-        Ok(Some(cx.opt_float(b, "alpha")?.unwrap_or(0.1)))
-    };
-    let ior_of = |cx: &Cx<'_>, key: &str, default: f64| -> R<f64> {
-        match cx.child(b, key) {
-            None => Ok(default),
-            Some(e) if e.tag == "float" => cx.float(e),
-            Some(e) => {
-                let v = e.attr("value").unwrap_or("");
-                named_ior(v).ok_or_else(|| cx.err(e, format!("unknown index name \"{v}\"; use a number or a Mitsuba name such as \"bk7\"")))
-            }
-        }
-    };
-    let kind = match t {
-        "twosided" => {
-            let inner = b
-                .children
-                .iter()
-                .find(|c| c.tag == "bsdf" || c.tag == "ref")
-                .ok_or_else(|| cx.err(b, "twosided needs a nested <bsdf>"))?;
-            let (m, _) = bsdf(cx, inner, name)?;
-            return Ok((m, true));
-        }
-        "diffuse" => MaterialKind::Diffuse {
-            reflectance: cx.spectrum_prop(b, "reflectance", 0.5, false)?,
-        },
-        "dielectric" | "roughdielectric" => MaterialKind::Dielectric {
-            ior: Ior::Constant(ior_of(cx, "int_ior", 1.5046)? as f32),
-            exterior_ior: ior_of(cx, "ext_ior", 1.000277)?,
-            roughness: if t == "roughdielectric" {
-                alpha(cx)?
-            } else {
-                None
-            },
-        },
-        "conductor" | "roughconductor" => {
-            let roughness = if t == "roughconductor" {
-                alpha(cx)?
-            } else {
-                None
-            };
-            let ior = match (
-                cx.string(b, "material"),
-                cx.child(b, "eta"),
-                cx.child(b, "k"),
-            ) {
-                (Some(m), _, _) => match lookup(&format!("metal:{m}")) {
-                    Ok(Named::Conductor(metal)) => metal.ior,
-                    _ => return Err(cx.err(
-                        b,
-                        format!(
-                            "material \"{m}\" is not available; use Au, Ag, Cu or Al, or eta and k"
-                        ),
-                    )),
-                },
-                (None, Some(eta), Some(k)) => {
-                    let table = |s: Spectrum| -> Arc<PiecewiseLinear> {
-                        match s {
-                            Spectrum::Piecewise(t) => t,
-                            other => {
-                                let l: Vec<f32> =
-                                    (300..=900).step_by(5).map(|x| x as f32).collect();
-                                let v = l.iter().map(|&x| other.eval(x)).collect();
-                                match PiecewiseLinear::new(l, v) {
-                                    Ok(t) => Arc::new(t),
-                                    Err(_) => Arc::new(
-                                        PiecewiseLinear::new(vec![300.0, 900.0], vec![1.0, 1.0])
-                                            .unwrap_or_else(|_| unreachable!()),
-                                    ), // ok: two valid samples
-                                }
-                            }
-                        }
-                    };
-                    ComplexIor {
-                        n: table(cx.spectrum(eta, false)?),
-                        k: table(cx.spectrum(k, false)?),
-                    }
-                }
-                _ => match lookup("metal:Al") {
-                    // Mitsuba's default conductor is a perfect mirror; the closest table is Al
-                    Ok(Named::Conductor(metal)) => metal.ior,
-                    _ => return Err(cx.err(b, "give material, or eta and k")),
-                },
-            };
-            MaterialKind::Conductor {
-                ior,
-                exterior_ior: ior_of(cx, "ext_ior", 1.000277)?,
-                roughness,
-            }
-        }
-        "plastic" | "roughplastic" => {
-            return Err(cx.err(b, "plastic has no faithful mapping in spectrace yet; use \"diffuse\", or \"dielectric\" over a \"diffuse\" base in a later version"));
-        }
-        other => return Err(cx.unsupported(b, "bsdf", other)),
-    };
-    Ok((
-        MaterialDesc {
-            name: name.to_string(),
-            kind,
-            loc: cx.loc(b),
-        },
-        false,
-    ))
-}
-
-fn shape(
-    cx: &Cx<'_>,
-    s: &Element,
-    materials: &mut Vec<MaterialDesc>,
-    ids: &HashMap<String, (usize, bool)>,
-) -> R<ShapeDesc> {
-    let t = s.attr("type").unwrap_or("");
-    let mut transform = match s.children.iter().find(|c| c.tag == "transform") {
-        Some(tr) => cx.transform(tr)?,
-        None => Vec::new(),
-    };
-    let kind = match t {
-        "obj" => {
-            let f = cx
-                .string(s, "filename")
-                .ok_or_else(|| cx.err(s, "missing filename"))?;
-            ShapeKind::Obj {
-                path: cx.dir(s).join(f),
-            }
-        }
-        "rectangle" => ShapeKind::Rectangle,
-        "cube" => ShapeKind::Box,
-        "disk" => ShapeKind::Disk,
-        "sphere" => {
-            let c = match cx.child(s, "center") {
-                Some(c) => cx.vec3(c)?,
-                None => [0.0; 3],
-            };
-            let r = cx.opt_float(s, "radius")?.unwrap_or(1.0);
-            if r <= 0.0 {
-                return Err(cx.err(s, "radius must be positive"));
-            }
-            let l = |x: f64| Length::new::<length::meter>(x);
-            ShapeKind::Sphere {
-                center: c.map(l),
-                radius: l(r),
-            }
-        }
-        "ply" => {
-            let f = cx
-                .string(s, "filename")
-                .ok_or_else(|| cx.err(s, "missing filename"))?;
-            ShapeKind::Ply {
-                path: cx.dir(s).join(f),
-            }
-        }
-        other => return Err(cx.unsupported(s, "shape", other)),
-    };
-    if cx.child(s, "flip_normals").and_then(|f| f.attr("value")) == Some("true") {
-        // a mirror through the object's z = 0 plane reverses the winding and the normal
-        transform.insert(0, TransformStep::Scale([1.0, 1.0, -1.0]));
-    }
-    let mut material = None;
-    let mut two_sided = false;
-    let mut emission = None;
-    for c in &s.children {
-        match c.tag.as_str() {
-            "bsdf" => {
-                let (m, two) = bsdf(cx, c, &format!("shape@{}", cx.loc(s).line))?;
-                material = Some(materials.len());
-                two_sided = two;
-                materials.push(m);
-            }
-            "ref" => {
-                let id = c.attr("id").unwrap_or("");
-                let &(m, two) = ids.get(id).ok_or_else(|| {
-                    cx.err(c, format!("refers to bsdf \"{id}\", which is not defined"))
-                })?;
-                material = Some(m);
-                two_sided = two;
-            }
-            "emitter" => {
-                if c.attr("type") != Some("area") {
-                    return Err(cx.unsupported(c, "shape emitter", c.attr("type").unwrap_or("")));
-                }
-                emission = Some(EmissionDesc {
-                    spectrum: cx.spectrum_prop(c, "radiance", 1.0, true)?,
-                    amount: EmitAmount::Scale(1.0),
-                    two_sided: false,
-                    loc: cx.loc(c),
-                });
-            }
-            _ => {}
-        }
-    }
-    if material.is_none() {
-        // Mitsuba's default BSDF is diffuse with reflectance 0.5
-        material = Some(materials.len());
-        materials.push(MaterialDesc {
-            name: format!("default@{}", cx.loc(s).line),
-            kind: MaterialKind::Diffuse {
-                reflectance: Spectrum::Constant(0.5),
-            },
-            loc: cx.loc(s),
-        });
-    }
-    Ok(ShapeDesc {
-        kind,
-        transform,
-        material,
-        two_sided,
-        emission,
-        unit_m: 1.0,
-        loc: cx.loc(s),
-    })
-}
-
-fn emitter(cx: &Cx<'_>, e: &Element) -> R<LightDesc> {
-    let t = e.attr("type").unwrap_or("");
-    let l = |x: f64| Length::new::<length::meter>(x);
-    let position = || -> R<Point> {
-        if let Some(p) = cx.child(e, "position") {
-            return Ok(cx.vec3(p)?.map(l));
-        }
-        Ok([l(0.0), l(0.0), l(0.0)])
-    };
-    let (kind, spectrum) = match t {
-        "point" => (
-            LightKind::Point {
-                position: position()?,
-                amount: PointAmount::Scale(1.0),
-            },
-            cx.spectrum_prop(e, "intensity", 1.0, true)?,
-        ),
-        "constant" => (
-            LightKind::Environment {
-                amount: EmitAmount::Scale(1.0),
-            },
-            cx.spectrum_prop(e, "radiance", 1.0, true)?,
-        ),
-        "directional" => {
-            let d = match cx.child(e, "direction") {
-                Some(d) => cx.vec3(d)?,
-                None => [0.0, 0.0, 1.0],
-            };
-            (
-                LightKind::Directional {
-                    direction: d,
-                    angular_diameter: Angle::new::<angle::radian>(0.0),
-                    amount: DirectionalAmount::Scale(1.0),
-                },
-                cx.spectrum_prop(e, "irradiance", 1.0, true)?,
-            )
-        }
-        "spot" => {
-            let cutoff = cx.opt_float(e, "cutoff_angle")?.unwrap_or(20.0);
-            let width = cx.opt_float(e, "beam_width")?.unwrap_or(cutoff * 0.75);
-            let steps = match e.children.iter().find(|c| c.tag == "transform") {
-                Some(tr) => cx.transform(tr)?,
-                None => return Err(cx.err(e, "a spot needs a to_world with lookat")),
-            };
-            let (eye, target, _) = camera_frame(cx, e, &steps)?;
-            (
-                LightKind::Spot {
-                    position: eye,
-                    target,
-                    cone_angle: Angle::new::<angle::degree>(cutoff),
-                    falloff_start: Angle::new::<angle::degree>(width.min(cutoff)),
-                    amount: PointAmount::Scale(1.0),
-                },
-                cx.spectrum_prop(e, "intensity", 1.0, true)?,
-            )
-        }
-        other => return Err(cx.unsupported(e, "emitter", other)),
-    };
-    Ok(LightDesc {
-        kind,
-        spectrum,
-        loc: cx.loc(e),
-    })
 }

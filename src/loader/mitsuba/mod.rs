@@ -15,7 +15,9 @@
 //! Anything outside the subset is an error naming the element, its line and the nearest
 //! supported alternative.
 
+mod bsdf;
 mod convert;
+mod shapes;
 mod xml;
 
 use std::collections::HashMap;
