@@ -158,19 +158,11 @@ pub fn trace<const N: usize>(
                 }
             }
         }
-        let (uc, u) = (s.get_1d(), s.get_2d());
-        let Some(bs) = sh.material.sample(wo, w, uc, u, TransportMode::Importance) else {
+        let Some((_, next)) = sh.scatter(&hit, wo, w, s, TransportMode::Importance, &mut beta)
+        else {
             break;
         };
-        if bs.pdf <= 0.0 || bs.f.is_zero() {
-            break;
-        }
-        if bs.dispersive {
-            w.terminate_secondary();
-        }
-        beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
-        let wi = sh.frame.to_world(bs.wi);
-        ray = spawn_ray(hit.p, hit.p_error, sh.n_geom_toward(wi), wi);
+        ray = next;
         // Russian roulette on the throughput relative to the particle's starting weight
         if depth > 1 {
             let q = (1.0 - beta.max_component() / beta0).max(0.0);

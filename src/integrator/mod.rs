@@ -15,7 +15,7 @@ use glam::Vec3;
 use crate::geometry::{Frame, Intersection, Ray, spawn_ray, spawn_ray_to};
 use crate::light::LightSample;
 use crate::loader::desc::IntegratorKind;
-use crate::material::Material;
+use crate::material::{BsdfSample, Material, TransportMode};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
@@ -110,6 +110,35 @@ pub(crate) struct Shading<'a> {
 }
 
 impl Shading<'_> {
+    /// The BSDF-sampling step shared by camera and light paths: samples the material with
+    /// (uc, u) from `s`, keeps only the hero wavelength at a dispersive event, multiplies `beta`
+    /// by f·|cos θ|/pdf and returns the sample with the ray that continues the path. None ends
+    /// the path (no sample, zero pdf or zero value).
+    pub fn scatter<const N: usize>(
+        &self,
+        hit: &Intersection,
+        wo: Vec3,
+        w: &mut SampledWavelengths<N>,
+        s: &mut Sampler,
+        mode: TransportMode,
+        beta: &mut SampledSpectrum<N>,
+    ) -> Option<(BsdfSample<N>, Ray)> {
+        let (uc, u) = (s.get_1d(), s.get_2d());
+        let bs = self.material.sample(wo, w, uc, u, mode)?;
+        if bs.pdf <= 0.0 || bs.f.is_zero() {
+            return None;
+        }
+        if bs.dispersive {
+            w.terminate_secondary();
+        }
+        *beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
+        let wi = self.frame.to_world(bs.wi);
+        Some((
+            bs,
+            spawn_ray(hit.p, hit.p_error, self.n_geom_toward(wi), wi),
+        ))
+    }
+
     /// The geometric normal flipped to the side of `dir`, for offsetting rays that leave there.
     #[inline]
     pub fn n_geom_toward(&self, dir: Vec3) -> Vec3 {

@@ -7,7 +7,7 @@
 use glam::Vec3;
 
 use super::Integrator;
-use crate::geometry::{Ray, spawn_ray};
+use crate::geometry::Ray;
 use crate::material::TransportMode;
 use crate::sampler::Sampler;
 use crate::sampling::power_heuristic;
@@ -113,25 +113,17 @@ pub(super) fn radiance<const N: usize>(
         }
 
         // BSDF sampling.
-        let (uc, u2) = (s.get_1d(), s.get_2d());
-        let Some(bs) = sh.material.sample(wo, w, uc, u2, TransportMode::Radiance) else {
+        let Some((bs, next)) = sh.scatter(&hit, wo, w, s, TransportMode::Radiance, &mut beta)
+        else {
             break;
         };
-        if bs.pdf <= 0.0 || bs.f.is_zero() {
-            break;
-        }
-        if bs.dispersive {
-            w.terminate_secondary();
-        }
-        beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
         if bs.transmission {
             eta_scale *= bs.eta * bs.eta;
         }
         specular_bounce = bs.specular;
         prev_pdf = bs.pdf;
         prev_p = hit.p;
-        let wi = sh.frame.to_world(bs.wi);
-        ray = spawn_ray(hit.p, hit.p_error, sh.n_geom_toward(wi), wi);
+        ray = next;
 
         // Russian roulette on the throughput, corrected for radiance scaling by η².
         let rr = (beta * eta_scale).max_component();
