@@ -6,7 +6,6 @@ mod support;
 use std::f64::consts::PI;
 use std::path::Path;
 
-use glam::Vec2;
 use spectrace::loader::mitsuba::load_str;
 
 const PLANE: &str = r#"<scene version="3.0.0">
@@ -58,17 +57,8 @@ fn point_light_over_plane_on_mitsuba_scale() {
     let (mut img, _) = support::render::render_with(&scene, |_| {});
     spectrace::output::to_mitsuba_scale(&mut img);
     for (px, py) in [(16, 16), (5, 20), (28, 3)] {
-        let ray = scene.camera.generate_ray(
-            Vec2::new(px as f32 + 0.5, py as f32 + 0.5),
-            Vec2::splat(0.5),
-        );
-        let t = -ray.o.y as f64 / ray.d.y as f64;
-        let (x, z) = (
-            ray.o.x as f64 + t * ray.d.x as f64,
-            ray.o.z as f64 + t * ray.d.z as f64,
-        );
-        let r2 = x * x + z * z + 4.0;
-        let want = 0.5 / PI * 10.0 * (2.0 / r2.sqrt()) / r2 * (106.856895 / 106.7502594);
+        let (r2, cos) = support::render::plane_point(&scene, px as usize, py as usize);
+        let want = 0.5 / PI * 10.0 * cos / r2 * (106.856895 / 106.7502594);
         let got = img.xyz[py * 32 + px][1] as f64;
         assert!(
             (got / want - 1.0).abs() < 0.01,

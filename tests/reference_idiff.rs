@@ -209,19 +209,8 @@ power = "100 W"
 "#;
     let scene = support::render::scene_from(plane);
     let analytic = |px: usize, py: usize| {
-        let ray = scene.camera.generate_ray(
-            glam::Vec2::new(px as f32 + 0.5, py as f32 + 0.5),
-            glam::Vec2::splat(0.5),
-        );
-        let t = -ray.o.y as f64 / ray.d.y as f64;
-        let (x, z) = (
-            ray.o.x as f64 + t * ray.d.x as f64,
-            ray.o.z as f64 + t * ray.d.z as f64,
-        );
-        let r2 = x * x + z * z + 4.0;
-        let l_band =
-            0.5 / std::f64::consts::PI * (100.0 / (4.0 * std::f64::consts::PI)) * (2.0 / r2.sqrt())
-                / r2;
+        let (r2, cos) = support::render::plane_point(&scene, px as usize, py as usize);
+        let l_band = 0.5 / std::f64::consts::PI * (100.0 / (4.0 * std::f64::consts::PI)) * cos / r2;
         (l_band * K / 470.0) as f32
     };
     closed_form(

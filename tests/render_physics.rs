@@ -4,7 +4,6 @@ mod support;
 
 use std::f64::consts::PI;
 
-use glam::Vec2;
 use spectrace::loader::desc::IntegratorKind;
 use support::render::{mean, render_with, scene_from};
 
@@ -92,17 +91,7 @@ fn point_light_over_plane() {
         let (img, _) = render_with(&s, |_| {});
         for (px, py) in [(16, 16), (4, 16), (20, 27), (30, 2), (9, 9)] {
             // the plane point seen through the pixel centre
-            let ray = s.camera.generate_ray(
-                Vec2::new(px as f32 + 0.5, py as f32 + 0.5),
-                Vec2::splat(0.5),
-            );
-            let t = -ray.o.y as f64 / ray.d.y as f64;
-            let (x, z) = (
-                ray.o.x as f64 + t * ray.d.x as f64,
-                ray.o.z as f64 + t * ray.d.z as f64,
-            );
-            let r2 = x * x + z * z + 4.0;
-            let cos = 2.0 / r2.sqrt();
+            let (r2, cos) = support::render::plane_point(&s, px as usize, py as usize);
             let l_band = 0.5 / PI * (100.0 / (4.0 * PI)) * cos / r2;
             let y = l_band * K_M * CIE_Y_INTEGRAL / 470.0;
             let i = py * 32 + px;

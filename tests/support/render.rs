@@ -32,3 +32,20 @@ pub fn mean(v: impl Iterator<Item = f32>) -> f64 {
     }
     s / n as f64
 }
+
+/// For the point-light-over-plane scenes (light 2 m above the origin of the plane y = 0): the
+/// squared distance r² (m²) from the light to the plane point seen through the centre of pixel
+/// (px, py), and the cosine of incidence there.
+pub fn plane_point(scene: &Scene, px: usize, py: usize) -> (f64, f64) {
+    let ray = scene.camera.generate_ray(
+        glam::Vec2::new(px as f32 + 0.5, py as f32 + 0.5),
+        glam::Vec2::splat(0.5),
+    );
+    let t = -ray.o.y as f64 / ray.d.y as f64;
+    let (x, z) = (
+        ray.o.x as f64 + t * ray.d.x as f64,
+        ray.o.z as f64 + t * ray.d.z as f64,
+    );
+    let r2 = x * x + z * z + 4.0;
+    (r2, 2.0 / r2.sqrt())
+}
