@@ -1,8 +1,8 @@
 //! Unidirectional path tracing: next-event estimation with multiple importance sampling
 //! (power heuristic, Veach 1997 §9.2), BSDF sampling, Russian roulette (pbrt-v4 §13.1.5), delta
 //! lights and delta BSDFs handled exactly, lights chosen in proportion to their power.
-//! Refraction through a dispersive interface terminates the secondary wavelengths
-//! (Wilkie et al. 2014 §4.2).
+//! Any hit on a dispersive interface terminates the secondary wavelengths, before a lobe is
+//! chosen (Wilkie et al. 2014 §4.2; pbrt-v4 §14.1.3).
 
 use glam::Vec3;
 
@@ -72,8 +72,12 @@ pub(super) fn radiance<const N: usize>(
             break;
         };
         let wo = sh.frame.to_local(-ray.d);
-        if sh.material.is_dispersive() && !sh.material.is_specular() {
-            // a rough dispersive interface: its transmission lobe depends on λ
+        // A dispersive interface (smooth or rough) keeps only the hero wavelength, decided at
+        // the hit and before any lobe is chosen, so the decision does not depend on the hero's
+        // Fresnel term (pbrt-v4 §14.1.3, `TerminateSecondary` on `BSDF::HasDispersion`
+        // hits; Wilkie et al. 2014 §4.2). Terminating only when transmission is sampled with
+        // probability 1 − F(λ₀) biases the secondaries.
+        if sh.material.is_dispersive() {
             w.terminate_secondary();
         }
 
