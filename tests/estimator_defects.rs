@@ -69,7 +69,10 @@ fn dispersive_slab_adds_nothing() {
                 o.max_depth = 1;
             });
             let (b, sb) = render_with(&scene, |o| o.seed = seed);
-            assert_eq!(sa.nan_samples + sa.inf_samples + sb.nan_samples + sb.inf_samples, 0);
+            assert_eq!(
+                sa.nan_samples + sa.inf_samples + sb.nan_samples + sb.inf_samples,
+                0
+            );
             d_band.push(mean(b.band.iter().copied()) / mean(a.band.iter().copied()) - 1.0);
             d_y.push(mean(b.xyz.iter().map(|v| v[1])) / mean(a.xyz.iter().map(|v| v[1])) - 1.0);
         }
@@ -78,8 +81,14 @@ fn dispersive_slab_adds_nothing() {
             let m = d.iter().sum::<f64>() / n;
             let se = (d.iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n - 1.0) / n).sqrt();
             eprintln!("ior {ior}: {what} depth 2 / depth 1 − 1 = {m:+.5} ± {se:.5}");
-            assert!(se < 0.005, "{what}: too noisy to detect a 5 % bias (SE {se})");
-            assert!(m.abs() < 4.0 * se, "ior {ior}: {what} changed by {m} ± {se}");
+            assert!(
+                se < 0.005,
+                "{what}: too noisy to detect a 5 % bias (SE {se})"
+            );
+            assert!(
+                m.abs() < 4.0 * se,
+                "ior {ior}: {what} changed by {m} ± {se}"
+            );
         }
     }
 }
@@ -135,5 +144,50 @@ emission = { radiance = "1 W/m^2/sr", two_sided = true }
     // interfaces of the sphere.
     let centre = img.band[8 * 16 + 8];
     assert!((centre - 1.0).abs() < 0.01, "through the sphere: {centre}");
-    assert!((lo - 1.0).abs() < 0.01 && (hi - 1.0).abs() < 0.01, "{lo} .. {hi}");
+    assert!(
+        (lo - 1.0).abs() < 0.01 && (hi - 1.0).abs() < 0.01,
+        "{lo} .. {hi}"
+    );
+}
+
+/// A terminated secondary wavelength (pdf 0) may hold NaN or ∞ (a 0/0 from a dispersive
+/// event): the film must still add the hero's estimate, (1/N)·L(λ₀)/p(λ₀)·K_m·ȳ(λ₀) in Y, and
+/// drop a sample only for a NaN or ∞ at a live wavelength, saying which.
+#[test]
+fn film_keeps_hero_when_a_terminated_secondary_is_not_finite() {
+    use spectrace::film::{NonFinite, Tile, non_finite};
+    use spectrace::spectrum::{SampledSpectrum, SampledWavelengths};
+    let mut w = SampledWavelengths::<4> {
+        lambda: [555.0, 600.0, 650.0, 700.0],
+        pdf: [0.01; 4],
+    };
+    w.terminate_secondary();
+    let (l0, p0) = (2.0f32, w.pdf[0]);
+    let ybar_555 = spectrace::colour::cie::cmf().eval(555.0)[1] as f64;
+    let want_y = spectrace::colour::cie::K_M * (l0 / p0) as f64 / 4.0 * ybar_555;
+    for bad in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+        let l = SampledSpectrum([l0, bad, 0.0, bad]);
+        assert_eq!(non_finite(&w, &l), None);
+        let mut tile = Tile::new(0, 0, 1, 1, 0);
+        assert!(
+            tile.add(0, 0, &w, &l, None),
+            "hero dropped for {bad} in a terminated secondary"
+        );
+        let y = tile.pixels[0].xyz[1];
+        assert!((y / want_y - 1.0).abs() < 1e-6, "Y = {y}, want {want_y}");
+        assert_eq!(tile.pixels[0].count, 1);
+    }
+    // at a live wavelength the sample is dropped and classified
+    let live = SampledWavelengths::<4> {
+        lambda: [555.0, 600.0, 650.0, 700.0],
+        pdf: [0.01; 4],
+    };
+    let mut tile = Tile::new(0, 0, 1, 1, 0);
+    let nan = SampledSpectrum([1.0, f32::NAN, 0.0, f32::INFINITY]);
+    assert_eq!(non_finite(&live, &nan), Some(NonFinite::NaN));
+    assert!(!tile.add(0, 0, &live, &nan, None));
+    let inf = SampledSpectrum([1.0, f32::INFINITY, 0.0, 0.0]);
+    assert_eq!(non_finite(&live, &inf), Some(NonFinite::Inf));
+    assert!(!tile.add(0, 0, &live, &inf, None));
+    assert_eq!(tile.pixels[0].count, 0);
 }
