@@ -93,6 +93,12 @@ impl Sampler {
         self
     }
 
+    /// The next dimension this stream will read (each `get_2d` and `get_1d` reads two).
+    #[inline]
+    pub fn dimension(&self) -> u32 {
+        self.dim
+    }
+
     /// The next two dimensions as a point in [0, 1)².
     #[inline]
     pub fn get_2d(&mut self) -> Vec2 {

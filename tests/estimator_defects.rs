@@ -191,3 +191,55 @@ fn film_keeps_hero_when_a_terminated_secondary_is_not_finite() {
     assert!(!tile.add(0, 0, &live, &inf, None));
     assert_eq!(tile.pixels[0].count, 0);
 }
+
+/// Every path bounce reads the same sampler dimensions whether or not Russian roulette ran at
+/// an earlier bounce (the path tracer asserts its fixed layout in builds with debug assertions,
+/// which the test profile has). The scene makes roulette's use vary from path to path: a
+/// furnace of albedo 0.8 emitting 1 W·m⁻²·sr⁻¹ with a clear glass sphere inside (throughput
+/// × η² above 1 inside the glass, below 1 after diffuse bounces). The closed form holds
+/// through the lossless sphere too: L = Le/(1 − ρ) = 5 W·m⁻²·sr⁻¹ in every pixel.
+#[test]
+fn path_bounces_read_fixed_sampler_dimensions() {
+    assert!(
+        cfg!(debug_assertions),
+        "the layout check needs debug assertions (the test profile has them)"
+    );
+    let scene = scene_from(
+        r#"
+[camera]
+eye = [0, 0, 0]
+target = [0, 0, 1]
+fov = "60 deg"
+[film]
+width = 16
+height = 16
+spp = 256
+[integrator]
+type = "path"
+max_depth = 1000
+[materials.wall]
+type = "diffuse"
+reflectance = 0.8
+[materials.glass]
+type = "dielectric"
+ior = 1.5
+exterior_ior = 1.0
+[[shapes]]
+type = "sphere"
+radius = 1
+material = "wall"
+two_sided = true
+emission = { radiance = "1 W/m^2/sr", two_sided = true }
+[[shapes]]
+type = "sphere"
+center = [0, 0, 0.6]
+radius = 0.25
+material = "glass"
+"#,
+    );
+    let (img, stats) = render_with(&scene, |_| {});
+    assert_eq!(stats.nan_samples + stats.inf_samples, 0);
+    let got = mean(img.band.iter().copied());
+    eprintln!("furnace with a glass sphere: L = {got} W/m²/sr (want 5)");
+    assert!((got / 5.0 - 1.0).abs() < 0.01, "L = {got}, want 5");
+}

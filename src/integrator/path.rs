@@ -29,6 +29,12 @@ pub(super) fn radiance<const N: usize>(
     let mut specular_bounce = true; // the camera ray counts as "specular": no MIS
     let mut eta_scale = 1.0f32;
     let mut depth = 0u32;
+    // Every bounce reads the same dimensions whatever happened before (pbrt-v4 §8.3: a fixed
+    // layout keeps each bounce's samples stratified across the pixel's samples): light choice
+    // 1D, light point 2D, light extra 1D, lobe choice 1D, direction 2D, roulette 1D, each 1D
+    // read taking a pair: 12 dimensions per bounce from `base`.
+    const BOUNCE_DIMS: u32 = 12;
+    let base = s.dimension();
     loop {
         let Some(hit) = scene.accel.intersect(&scene.shapes, &ray) else {
             // Escaped: environment and sun disks, MIS-weighted against BSDF sampling.
@@ -67,6 +73,11 @@ pub(super) fn radiance<const N: usize>(
         if depth == it.max_depth {
             break;
         }
+        debug_assert_eq!(
+            s.dimension(),
+            base + depth * BOUNCE_DIMS,
+            "bounce {depth} starts at a shifted sampler dimension"
+        );
         depth += 1;
         let Some(sh) = it.shading(&hit, ray.d) else {
             break;
@@ -129,11 +140,13 @@ pub(super) fn radiance<const N: usize>(
         prev_p = hit.p;
         ray = next;
 
-        // Russian roulette on the throughput, corrected for radiance scaling by η².
+        // Russian roulette on the throughput, corrected for radiance scaling by η²
+        // (pbrt-v4 §13.1.5). Its dimension is read at every bounce, used or not.
+        let u_rr = s.get_1d();
         let rr = (beta * eta_scale).max_component();
         if rr < 1.0 && depth > 1 {
             let q = (1.0 - rr).max(0.0);
-            if s.get_1d() < q {
+            if u_rr < q {
                 break;
             }
             beta /= 1.0 - q;
