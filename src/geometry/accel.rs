@@ -13,7 +13,7 @@
 //! primitive whose own (watertight, conservative) test would report a hit.
 
 use super::ray::Ray;
-use super::shape::{Intersection, PrimHit, Shape};
+use super::shape::{Intersection, PrimHit, Shape, WatertightRay, intersect_triangle_with};
 use glam::{Vec3, Vec3A};
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
@@ -30,6 +30,8 @@ const BOX_PAD: f32 = 1.0 / (1 << 20) as f32;
 struct PrimRef {
     shape: u32,
     prim: u32,
+    /// Whether the primitive is a triangle, whose corners are copied into [`Accel::tris`].
+    triangle: bool,
 }
 
 /// The BVH over a slice of shapes.
@@ -39,6 +41,9 @@ pub struct Accel {
     bvh: Option<Bvh2>,
     /// Indexed by the BVH's primitive ids (already permuted, so no indirection at query time).
     prims: Vec<PrimRef>,
+    /// Triangle corners (m) by BVH primitive id, copied from the meshes so that a leaf test reads
+    /// one contiguous record instead of shape → index → position; zero for other primitives.
+    tris: Vec<[Vec3; 3]>,
 }
 
 impl std::fmt::Debug for Accel {
@@ -67,6 +72,7 @@ impl Accel {
                 refs.push(PrimRef {
                     shape: s as u32,
                     prim: i as u32,
+                    triangle: matches!(shape, Shape::Mesh(_)),
                 });
             }
         }
@@ -74,6 +80,7 @@ impl Accel {
             return Accel {
                 bvh: None,
                 prims: Vec::new(),
+                tris: Vec::new(),
             };
         }
         let bvh = build_bvh2(
@@ -81,14 +88,22 @@ impl Accel {
             BvhBuildParams::medium_build(),
             &mut Duration::default(),
         );
-        let prims = bvh
+        let prims: Vec<PrimRef> = bvh
             .primitive_indices
             .iter()
             .map(|&i| refs[i as usize])
             .collect();
+        let tris = prims
+            .iter()
+            .map(|pr| match &shapes[pr.shape as usize] {
+                Shape::Mesh(m) => m.vertices(pr.prim as usize),
+                _ => [Vec3::ZERO; 3],
+            })
+            .collect();
         Accel {
             bvh: Some(bvh),
             prims,
+            tris,
         }
     }
 
@@ -108,11 +123,12 @@ impl Accel {
     pub fn intersect(&self, shapes: &[Shape], ray: &Ray) -> Option<Intersection> {
         let bvh = self.bvh.as_ref()?;
         let bvh_ray = to_bvh_ray(ray)?;
+        let wt = WatertightRay::new(ray);
         let mut best: Option<(PrimRef, f32, PrimHit)> = None;
         let mut hit = RayHit::none();
         bvh.ray_traverse(bvh_ray, &mut hit, |r, id| {
             let pr = self.prims[id];
-            match intersect_ref(shapes, pr, ray, r.tmax) {
+            match self.intersect_prim(shapes, id, ray, &wt, r.tmax) {
                 Some((t, h)) => {
                     best = Some((pr, t, h));
                     t
@@ -131,18 +147,34 @@ impl Accel {
         let (Some(bvh), Some(bvh_ray)) = (self.bvh.as_ref(), to_bvh_ray(ray)) else {
             return false;
         };
+        let wt = WatertightRay::new(ray);
         !bvh.ray_traverse_miss(bvh_ray, |r, id| {
-            intersect_ref(shapes, self.prims[id], ray, r.tmax).map_or(f32::INFINITY, |(t, _)| t)
+            self.intersect_prim(shapes, id, ray, &wt, r.tmax)
+                .map_or(f32::INFINITY, |(t, _)| t)
         })
     }
-}
 
-#[inline]
-fn intersect_ref(shapes: &[Shape], pr: PrimRef, ray: &Ray, t_max: f32) -> Option<(f32, PrimHit)> {
-    let ray = Ray { t_max, ..*ray };
-    shapes
-        .get(pr.shape as usize)?
-        .intersect_primitive(pr.prim as usize, &ray)
+    /// The leaf test of BVH primitive `id`: triangles from their copied corners with the ray's
+    /// precomputed watertight setup `wt`, other shapes through [`Shape::intersect_primitive`].
+    #[inline]
+    fn intersect_prim(
+        &self,
+        shapes: &[Shape],
+        id: usize,
+        ray: &Ray,
+        wt: &WatertightRay,
+        t_max: f32,
+    ) -> Option<(f32, PrimHit)> {
+        let pr = self.prims[id];
+        if pr.triangle {
+            return intersect_triangle_with(self.tris[id], ray, wt, t_max)
+                .map(|(t, b)| (t, PrimHit::Triangle { b }));
+        }
+        let ray = Ray { t_max, ..*ray };
+        shapes
+            .get(pr.shape as usize)?
+            .intersect_primitive(pr.prim as usize, &ray)
+    }
 }
 
 /// The obvhs ray, with exact reciprocal directions. `None` for rays that cannot hit anything

@@ -15,19 +15,56 @@ use crate::geometry::float::gamma;
 use crate::geometry::ray::Ray;
 use glam::Vec3;
 
+/// The per-ray part of the watertight test (Woop et al. 2013 §3): the axis permutation that
+/// makes the ray's largest direction component z, and the shear that maps the ray onto +z.
+/// Computed once per ray and shared by every triangle the ray is tested against.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct WatertightRay {
+    kx: usize,
+    ky: usize,
+    kz: usize,
+    shear_x: f32,
+    shear_y: f32,
+    scale_z: f32,
+}
+
+impl WatertightRay {
+    #[inline]
+    pub(crate) fn new(ray: &Ray) -> Self {
+        let kz = ray.d.abs().max_position();
+        let kx = if kz == 2 { 0 } else { kz + 1 };
+        let ky = if kx == 2 { 0 } else { kx + 1 };
+        let (dx, dy, dz) = (ray.d[kx], ray.d[ky], ray.d[kz]);
+        Self {
+            kx,
+            ky,
+            kz,
+            shear_x: -dx / dz,
+            shear_y: -dy / dz,
+            scale_z: 1.0 / dz,
+        }
+    }
+}
+
 /// Intersects `ray` with the triangle `p` (either winding). Returns the distance `t` in
 /// (0, `ray.t_max`) and the barycentric coordinates of the hit for vertices 0, 1, 2.
 #[inline]
 pub(crate) fn intersect_triangle(p: [Vec3; 3], ray: &Ray) -> Option<(f32, [f32; 3])> {
-    let kz = ray.d.abs().max_position();
-    let kx = if kz == 2 { 0 } else { kz + 1 };
-    let ky = if kx == 2 { 0 } else { kx + 1 };
-    let permute = |v: Vec3| Vec3::new(v[kx], v[ky], v[kz]);
+    intersect_triangle_with(p, ray, &WatertightRay::new(ray), ray.t_max)
+}
 
-    let d = permute(ray.d);
-    let shear_x = -d.x / d.z;
-    let shear_y = -d.y / d.z;
-    let scale_z = 1.0 / d.z;
+/// [`intersect_triangle`] with the per-ray part precomputed (`w` must come from `ray`) and the
+/// distance limit `t_max` in place of `ray.t_max` (a traversal's closest hit so far).
+#[inline]
+pub(crate) fn intersect_triangle_with(
+    p: [Vec3; 3],
+    ray: &Ray,
+    w: &WatertightRay,
+    t_max: f32,
+) -> Option<(f32, [f32; 3])> {
+    let (kx, ky, kz) = (w.kx, w.ky, w.kz);
+    let permute = |v: Vec3| Vec3::new(v[kx], v[ky], v[kz]);
+    let (shear_x, shear_y, scale_z) = (w.shear_x, w.shear_y, w.scale_z);
 
     // Vertices relative to the origin, permuted, then sheared in x and y.
     let rel = p.map(|v| permute(v - ray.o));
@@ -52,11 +89,11 @@ pub(crate) fn intersect_triangle(p: [Vec3; 3], ray: &Ray) -> Option<(f32, [f32; 
     let t_scaled = e[0] * z[0] + e[1] * z[1] + e[2] * z[2];
     // t = t_scaled / det must lie in (0, t_max); compare without dividing.
     if det < 0.0 {
-        if t_scaled >= 0.0 || t_scaled < ray.t_max * det {
+        if t_scaled >= 0.0 || t_scaled < t_max * det {
             return None;
         }
     } else if det > 0.0 {
-        if t_scaled <= 0.0 || t_scaled > ray.t_max * det {
+        if t_scaled <= 0.0 || t_scaled > t_max * det {
             return None;
         }
     } else {
@@ -65,7 +102,7 @@ pub(crate) fn intersect_triangle(p: [Vec3; 3], ray: &Ray) -> Option<(f32, [f32; 
 
     let inv_det = 1.0 / det;
     let t = t_scaled * inv_det;
-    if !(t < ray.t_max) {
+    if !(t < t_max) {
         return None;
     }
 
