@@ -18,7 +18,7 @@ fn main() {
     let threads: usize = args
         .next()
         .map_or(1, |s| s.parse().expect("THREADS is a number"));
-    let desc = spectrace::loader::load(std::path::Path::new(&path)).unwrap_or_else(|e| {
+    let desc = spectrace::loader::load_any(std::path::Path::new(&path), &[]).unwrap_or_else(|e| {
         eprintln!("{e}");
         std::process::exit(1)
     });
