@@ -138,16 +138,36 @@ fn build() -> Registry {
         entries.insert(name.to_lowercase(), (name, v));
     };
     use embedded::*;
+    // Each illuminant over its whole defined range: D65 and D50 are the CIE tables, 300–830 nm;
+    // F2 and F11 the CIE tables, 380–780 nm (zero outside). A and E are defined by formulas for
+    // every wavelength, so they are evaluated exactly rather than read from their tables
+    // (`spectra/illuminants/cie_a.csv`, `cie_e.csv` hold the same values, for reference).
     for (name, f) in [
         ("cie-d65", CIE_D65),
         ("cie-d50", CIE_D50),
-        ("cie-a", CIE_A),
-        ("cie-e", CIE_E),
         ("cie-f2", CIE_F2),
         ("cie-f11", CIE_F11),
     ] {
         add(name.into(), curve(f, "value", CurveKind::Illuminant));
     }
+    add(
+        "cie-a".into(),
+        Named::Curve {
+            spectrum: Spectrum::Blackbody(Blackbody::cie_illuminant_a()),
+            kind: CurveKind::Illuminant,
+            source:
+                "CIE 015:2018 eq. (4.1): Planck's law, c2 = 1.435e7 nm K, 2848 K, 100 at 560 nm"
+                    .into(),
+        },
+    );
+    add(
+        "cie-e".into(),
+        Named::Curve {
+            spectrum: Spectrum::Constant(100.0),
+            kind: CurveKind::Illuminant,
+            source: "CIE 015:2018: equal-energy illuminant, the constant 100".into(),
+        },
+    );
     for (name, col) in [("cie-x", "xbar"), ("cie-y", "ybar"), ("cie-z", "zbar")] {
         add(
             name.into(),
