@@ -666,6 +666,108 @@ def gen_metals() -> None:
 
 
 # ---------------------------------------------------------------------------
+# 5b. Mitsuba 3's conductor presets (material="Au" etc.)
+# ---------------------------------------------------------------------------
+
+MITSUBA_VERSION = "3.9.1"
+# The raw Mitsuba files copied under tests/data/mitsuba_ior/ for the importer's test.
+MITSUBA_TEST_COPIES = ("Au", "Cu", "Ag", "Al")
+MITSUBA_SOURCE = (
+    "Mitsuba 3's documentation (conductor plugin): 'These index of refraction values are identical",
+    "to the data distributed with PBRT. They are originally from the Luxpop database",
+    "(http://www.luxpop.com) and are based on data by Palik et al. and measurements of atomic",
+    "scattering factors made by the Center For X-Ray Optics (CXRO) at Berkeley and the Lawrence",
+    "Livermore National Laboratory (LLNL).' Palik: E. D. Palik (ed.), Handbook of Optical Constants",
+    "of Solids (Academic Press, 1985; II 1991; III 1998). CXRO/LLNL: B. L. Henke, E. M. Gullikson and",
+    "J. C. Davis, X-ray interactions, At. Data Nucl. Data Tables 54, 181-342 (1993).",
+)
+
+
+def mitsuba_ior_dir() -> Path | None:
+    """The data/ior folder of the pip-installed Mitsuba, without importing it."""
+    import importlib.util
+    spec = importlib.util.find_spec("mitsuba")
+    if spec is None or spec.origin is None:
+        return None
+    return Path(spec.origin).parent / "data" / "ior"
+
+
+def read_spd(path: Path):
+    """Mitsuba's .spd format: '#' comments, then 'wavelength_nm value' per line."""
+    comments, rows = [], []
+    for line in path.read_text(encoding="ascii").splitlines():
+        t = line.strip()
+        if not t:
+            continue
+        if t.startswith("#"):
+            comments.append(t.lstrip("#").strip(" ;").strip())
+            continue
+        f = t.split()
+        if len(f) != 2:
+            raise RuntimeError(f"{path}: bad line {line!r}")
+        float(f[0]), float(f[1])
+        rows.append((f[0], f[1]))
+    return [c for c in comments if c and not set(c) <= set("-") and not c.startswith("Lambda")], rows
+
+
+def gen_mitsuba_metals() -> None:
+    report("== 5b. Mitsuba conductor presets")
+    d = mitsuba_ior_dir()
+    try:
+        ver = metadata.version("mitsuba")
+    except metadata.PackageNotFoundError:
+        ver = None
+    if d is None or ver != MITSUBA_VERSION or not d.is_dir():
+        fail(f"mitsuba=={MITSUBA_VERSION} with data/ior is needed (found {ver}, {d})")
+        return
+    names = sorted(p.name[: -len(".eta.spd")] for p in d.glob("*.eta.spd"))
+    out = ROOT / "spectra" / "metals" / "mitsuba"
+    out.mkdir(parents=True, exist_ok=True)
+    for old in out.glob("*.csv"):
+        old.unlink()
+    short = []
+    for name in names:
+        ce, eta = read_spd(d / f"{name}.eta.spd")
+        ck, k = read_spd(d / f"{name}.k.spd")
+        if [w for w, _ in eta] != [w for w, _ in k]:
+            fail(f"Mitsuba {name}: eta and k on different wavelengths")
+            continue
+        wl = [float(w) for w, _ in eta]
+        if any(b <= a for a, b in zip(wl, wl[1:])):
+            fail(f"Mitsuba {name}: wavelengths not increasing")
+            continue
+        if wl[0] > 360 or wl[-1] < 830:
+            short.append(f"{name} ({wl[0]:g}-{wl[-1]:g} nm)")
+        own = " / ".join(dict.fromkeys(ce + ck))
+        write_csv(
+            f"spectra/metals/mitsuba/{name}.csv",
+            [
+                f"Complex refractive index n + i k of Mitsuba 3's conductor preset material=\"{name}\":",
+                f"the points of data/ior/{name}.eta.spd and {name}.k.spd of the pip package mitsuba=={ver},",
+                "copied digit for digit (Mitsuba reads them as float32 and interpolates linearly between",
+                "points, zero outside the first and last point).",
+                f"Mitsuba's files say: {own}.",
+                "(Their 'Lambda (A)' column label is wrong: the wavelengths are in nm.)",
+                *MITSUBA_SOURCE,
+                "Licence: Mitsuba 3 is BSD-3-Clause; the data is from the sources above.",
+                "Units: wavelength in nm (vacuum); n and k dimensionless.",
+                GEN_LINE + f", mitsuba=={ver}.",
+            ],
+            "wavelength_nm,n,k",
+            [[w, n, kk] for (w, n), (_, kk) in zip(eta, k)],
+        )
+    report(f"  {len(names)} presets from {d}")
+    report(f"  not covering 360-830 nm (Mitsuba reads eta = k = 0 outside): {', '.join(short)}")
+    tdir = ROOT / "tests" / "data" / "mitsuba_ior"
+    tdir.mkdir(parents=True, exist_ok=True)
+    for name in MITSUBA_TEST_COPIES:
+        for part in ("eta", "k"):
+            src = d / f"{name}.{part}.spd"
+            (tdir / src.name).write_bytes(src.read_bytes())
+            WRITTEN.append((f"tests/data/mitsuba_ior/{src.name}", len(read_spd(src)[1])))
+
+
+# ---------------------------------------------------------------------------
 # 6. Test vectors
 # ---------------------------------------------------------------------------
 
@@ -1023,6 +1125,7 @@ def main() -> int:
     gen_colorchecker()
     gen_glass()
     gen_metals()
+    gen_mitsuba_metals()
     gen_planck()
     gen_colorchecker_d65()
     gen_metals_check()
