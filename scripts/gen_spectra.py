@@ -10,7 +10,9 @@ Writes (paths relative to the repository root):
     spectra/colorchecker/colorchecker_n_ohta.csv
     spectra/glass/sellmeier.toml
     spectra/metals/{au,ag,cu,al}.csv
+    spectra/metals/mitsuba/<preset>.csv      (Mitsuba 3.9.1's conductor presets)
     tests/data/{planck,colorchecker_d65,metals_check,illuminant_integrals,ciede2000}.csv
+    tests/data/mitsuba_ior/{Au,Cu,Ag,Al}.{eta,k}.spd   (byte-for-byte copies of Mitsuba's files)
 
 Sources:
   * colour-science (BSD-3-Clause): CIE tables, illuminants, ColorChecker
