@@ -53,6 +53,7 @@ EPS_REL = 1e-2
 # Sample counts per scene (96 × 96 pixels): ≲ 60 s per reference on 2 cores.
 SPP = {
     "blackbody": 6144,
+    "conductor_presets": 8192,
     "constant_env": 8192,
     "cornell": 3072,
     "dielectric_sphere": 8192,

@@ -10,7 +10,9 @@ Writes (paths relative to the repository root):
     spectra/colorchecker/colorchecker_n_ohta.csv
     spectra/glass/sellmeier.toml
     spectra/metals/{au,ag,cu,al}.csv
-    tests/data/{planck,colorchecker_d65,metals_check,ciede2000}.csv
+    spectra/metals/mitsuba/<preset>.csv      (Mitsuba 3.9.1's conductor presets)
+    tests/data/{planck,colorchecker_d65,metals_check,illuminant_integrals,ciede2000}.csv
+    tests/data/mitsuba_ior/{Au,Cu,Ag,Al}.{eta,k}.spd   (byte-for-byte copies of Mitsuba's files)
 
 Sources:
   * colour-science (BSD-3-Clause): CIE tables, illuminants, ColorChecker
@@ -186,39 +188,113 @@ ILLUMINANTS = [
 ]
 
 
+# CIE 015:2018 section 4.1.2: D-series SPDs are S0 + M1 S1 + M2 S2 with M1 and M2 rounded to 3
+# decimals, from the chromaticity of the correlated colour temperature scaled by 1.4388/1.4380
+# (the change of c2). This is how the CIE computed its own D65 and D50 tables, which run from
+# 300 to 830 nm. colour-science ships those tables only to 780 nm, and the D-series basis
+# (SDS_BASIS_FUNCTIONS_CIE_ILLUMINANT_D_SERIES) to 830 nm: the script computes the D series over
+# 300-830 nm, checks it reproduces the shipped 300-780 nm table, and appends 785-830 nm.
+D_SERIES_CCT = {"D65": 6500, "D50": 5000}
+# Largest difference allowed between the computed D series and colour-science's table (whose
+# values are printed to 4 decimals).
+D_SERIES_TOL = 1e-3
+
+# CIE 015:2018 eq. (4.1): S_A(lambda) = 100 (560/lambda)^5 (exp(c2/(2848*560)) - 1) /
+# (exp(c2/(2848 lambda)) - 1), c2 = 1.435e7 nm K: Planck's law at 2856 K on the ITS-90 scale.
+A_C2_NM_K = 1.435e7
+A_T_K = 2848.0
+
+
+def cie_a_formula(lam_nm):
+    lam = np.asarray(lam_nm, dtype=np.float64)
+    return 100.0 * (560.0 / lam) ** 5 * np.expm1(A_C2_NM_K / (A_T_K * 560.0)) / np.expm1(
+        A_C2_NM_K / (A_T_K * lam))
+
+
+def illuminant_sd(key):
+    """(wavelengths, values, notes) over the illuminant's full defined range."""
+    sd = colour.SDS_ILLUMINANTS[key]
+    wl, v = np.array(sd.wavelengths), np.array(sd.values)
+    shape = sd.shape
+    native = (f"colour-science SDS_ILLUMINANTS['{key}'] tabulates {shape.start:g}-{shape.end:g} nm "
+              f"at {shape.interval:g} nm")
+    if key in D_SERIES_CCT:
+        from colour.colorimetry import sd_CIE_illuminant_D_series
+        from colour.temperature import CCT_to_xy_CIE_D
+        xy = CCT_to_xy_CIE_D(D_SERIES_CCT[key] * 1.4388 / 1.4380)
+        ds = sd_CIE_illuminant_D_series(xy, M1_M2_rounding=True)
+        if ds.shape.start != 300 or ds.shape.end != 830 or ds.shape.interval != 5:
+            fail(f"D-series basis covers {ds.shape}, expected 300-830 nm at 5 nm")
+        diff = float(np.max(np.abs(ds[wl] - v)))
+        report(f"  {key}: D-series computation vs colour-science table over "
+               f"{shape.start:g}-{shape.end:g} nm: max |difference| = {diff:.2e}")
+        if diff > D_SERIES_TOL:
+            fail(f"{key}: D-series computation differs from the table by {diff}")
+        ext = np.array([w for w in ds.wavelengths if w > shape.end])
+        ext_v = np.array([round(float(ds[w]), 4) for w in ext])
+        wl, v = np.concatenate([wl, ext]), np.concatenate([v, ext_v])
+        notes = [
+            f"{native}, the CIE 15:2004 table. The CIE tabulates {key} from 300 to 830 nm (CIE 015:2018",
+            "section 4.1.2 and its data sets); the rows above 780 nm are the CIE D-series method,",
+            "S0 + M1 S1 + M2 S2 with M1, M2 rounded to 3 decimals, for the CCT "
+            f"{D_SERIES_CCT[key]} K x 1.4388/1.4380,",
+            "computed with colour-science sd_CIE_illuminant_D_series and its CIE basis",
+            "SDS_BASIS_FUNCTIONS_CIE_ILLUMINANT_D_SERIES (300-830 nm), rounded to 4 decimals as the CIE",
+            f"prints them. The same computation reproduces the 300-780 nm rows within {diff:.1e}.",
+        ]
+    elif key == "A":
+        f = cie_a_formula(wl)
+        diff = float(np.max(np.abs(f - v)))
+        report(f"  A: CIE formula vs colour-science table: max |difference| = {diff:.2e}")
+        if diff > 1e-3:
+            fail(f"A: CIE formula differs from the table by {diff}")
+        wl = np.arange(300.0, 830.0 + 0.5, 5.0)
+        v = np.array([float(f"{x:.10g}") for x in cie_a_formula(wl)])
+        col = colour.sd_CIE_standard_illuminant_A(colour.SpectralShape(300, 830, 5))
+        d2 = float(np.max(np.abs(col.values / v - 1)))
+        if d2 > 1e-9:
+            fail(f"A: formula vs colour-science sd_CIE_standard_illuminant_A rel diff {d2}")
+        notes = [
+            "CIE 015:2018 eq. (4.1) defines A by a formula, S_A = 100 (560/l)^5 (exp(c2/(2848 x 560)) - 1)",
+            "/ (exp(c2/(2848 l)) - 1) with c2 = 1.435e7 nm K (Planck's law at 2856 K, ITS-90), for every",
+            "wavelength. These rows are that formula at 300-830 nm (10 significant digits); they equal",
+            f"colour-science sd_CIE_standard_illuminant_A within {d2:.0e} and its {native} table",
+            f"within {diff:.1e}. spectrace evaluates the formula itself (exact over any range); this",
+            "file is for reference and plotting.",
+        ]
+    elif key == "E":
+        notes = [f"{native}; E is constant at every wavelength, and spectrace evaluates it as such."]
+    elif key.startswith("FL"):
+        notes = [f"{native}, not resampled: the CIE F-series tables are defined over 380-780 nm only",
+                 "(CIE 015:2018 Table 10 data), and the lamps are zero outside that range here."]
+    else:
+        notes = [f"{native}, not resampled."]
+    return wl, v, notes
+
+
 def gen_illuminants() -> None:
     report("== 2. Illuminants")
     cmfs = colour.MSDS_CMFS[CMFS_KEY]
     for key, fname, desc, norm in ILLUMINANTS:
-        sd = colour.SDS_ILLUMINANTS[key]
-        wl, v = sd.wavelengths, sd.values
-        shape = sd.shape
-        note = []
+        wl, v, notes = illuminant_sd(key)
         if key == "E":
             if not np.all(v == 100.0):
                 fail("colour-science illuminant E is not constant 100")
-        if key in ("D65", "D50", "A") and abs(sd[560] - 100.0) > 1e-9:
-            fail(f"{key} at 560 nm is {sd[560]}, expected 100")
-        if key in ("D65", "D50", "A") and shape.end < 830:
-            note.append(
-                f"colour-science's table ends at {shape.end:g} nm; the CIE tables go on to 830 nm"
-                " but the extra values are not in the package, so nothing was extrapolated."
-            )
-        if key.startswith("FL"):
-            note.append("The CIE F-series tables cover 380-780 nm only.")
+        if key in ("D65", "D50", "A") and abs(float(np.interp(560.0, wl, v)) - 100.0) > 1e-9:
+            fail(f"{key} at 560 nm is {np.interp(560.0, wl, v)}, expected 100")
+        if key in ("D65", "D50", "A") and (wl[0] != 300 or wl[-1] != 830):
+            fail(f"{key} covers {wl[0]}-{wl[-1]} nm, expected the CIE's 300-830 nm")
         rows = [[num(w), num(x)] for w, x in zip(wl, v)]
         comments = [
-            f"{desc}: relative spectral power distribution.",
-            f"Native tabulation of colour-science SDS_ILLUMINANTS['{key}']: "
-            f"{shape.start:g}-{shape.end:g} nm at {shape.interval:g} nm ({len(wl)} rows), not resampled.",
-        ] + note + [
+            f"{desc}: relative spectral power distribution, {wl[0]:g}-{wl[-1]:g} nm ({len(wl)} rows).",
+        ] + notes + [
             "Source: CIE 015:2018 Colorimetry (4th ed.) and CIE 15:2004 tables data, via colour-science.",
             f"Licence: {LIC_CIE}; {LIC_COLOUR}.",
             f"Units: wavelength in nm; value = relative spectral power, {norm}.",
             GEN_LINE + ".",
         ]
         write_csv(f"spectra/illuminants/{fname}", comments, "wavelength_nm,value", rows)
-        report(f"  {key:5s} -> {fname}: {shape.start:g}-{shape.end:g} nm @ {shape.interval:g} nm, {len(wl)} rows")
+        report(f"  {key:5s} -> {fname}: {wl[0]:g}-{wl[-1]:g} nm, {len(wl)} rows")
     for key, ref in (("D65", (0.3127, 0.3290)), ("A", (0.4476, 0.4074))):
         xy = colour.XYZ_to_xy(colour.sd_to_XYZ(colour.SDS_ILLUMINANTS[key], cmfs))
         report(f"  xy({key}) by colour-science = ({xy[0]:.5f}, {xy[1]:.5f})  expected ~{ref}")
@@ -592,6 +668,108 @@ def gen_metals() -> None:
 
 
 # ---------------------------------------------------------------------------
+# 5b. Mitsuba 3's conductor presets (material="Au" etc.)
+# ---------------------------------------------------------------------------
+
+MITSUBA_VERSION = "3.9.1"
+# The raw Mitsuba files copied under tests/data/mitsuba_ior/ for the importer's test.
+MITSUBA_TEST_COPIES = ("Au", "Cu", "Ag", "Al")
+MITSUBA_SOURCE = (
+    "Mitsuba 3's documentation (conductor plugin): 'These index of refraction values are identical",
+    "to the data distributed with PBRT. They are originally from the Luxpop database",
+    "(http://www.luxpop.com) and are based on data by Palik et al. and measurements of atomic",
+    "scattering factors made by the Center For X-Ray Optics (CXRO) at Berkeley and the Lawrence",
+    "Livermore National Laboratory (LLNL).' Palik: E. D. Palik (ed.), Handbook of Optical Constants",
+    "of Solids (Academic Press, 1985; II 1991; III 1998). CXRO/LLNL: B. L. Henke, E. M. Gullikson and",
+    "J. C. Davis, X-ray interactions, At. Data Nucl. Data Tables 54, 181-342 (1993).",
+)
+
+
+def mitsuba_ior_dir() -> Path | None:
+    """The data/ior folder of the pip-installed Mitsuba, without importing it."""
+    import importlib.util
+    spec = importlib.util.find_spec("mitsuba")
+    if spec is None or spec.origin is None:
+        return None
+    return Path(spec.origin).parent / "data" / "ior"
+
+
+def read_spd(path: Path):
+    """Mitsuba's .spd format: '#' comments, then 'wavelength_nm value' per line."""
+    comments, rows = [], []
+    for line in path.read_text(encoding="ascii").splitlines():
+        t = line.strip()
+        if not t:
+            continue
+        if t.startswith("#"):
+            comments.append(t.lstrip("#").strip(" ;").strip())
+            continue
+        f = t.split()
+        if len(f) != 2:
+            raise RuntimeError(f"{path}: bad line {line!r}")
+        float(f[0]), float(f[1])
+        rows.append((f[0], f[1]))
+    return [c for c in comments if c and not set(c) <= set("-") and not c.startswith("Lambda")], rows
+
+
+def gen_mitsuba_metals() -> None:
+    report("== 5b. Mitsuba conductor presets")
+    d = mitsuba_ior_dir()
+    try:
+        ver = metadata.version("mitsuba")
+    except metadata.PackageNotFoundError:
+        ver = None
+    if d is None or ver != MITSUBA_VERSION or not d.is_dir():
+        fail(f"mitsuba=={MITSUBA_VERSION} with data/ior is needed (found {ver}, {d})")
+        return
+    names = sorted(p.name[: -len(".eta.spd")] for p in d.glob("*.eta.spd"))
+    out = ROOT / "spectra" / "metals" / "mitsuba"
+    out.mkdir(parents=True, exist_ok=True)
+    for old in out.glob("*.csv"):
+        old.unlink()
+    short = []
+    for name in names:
+        ce, eta = read_spd(d / f"{name}.eta.spd")
+        ck, k = read_spd(d / f"{name}.k.spd")
+        if [w for w, _ in eta] != [w for w, _ in k]:
+            fail(f"Mitsuba {name}: eta and k on different wavelengths")
+            continue
+        wl = [float(w) for w, _ in eta]
+        if any(b <= a for a, b in zip(wl, wl[1:])):
+            fail(f"Mitsuba {name}: wavelengths not increasing")
+            continue
+        if wl[0] > 360 or wl[-1] < 830:
+            short.append(f"{name} ({wl[0]:g}-{wl[-1]:g} nm)")
+        own = " / ".join(dict.fromkeys(ce + ck))
+        write_csv(
+            f"spectra/metals/mitsuba/{name}.csv",
+            [
+                f"Complex refractive index n + i k of Mitsuba 3's conductor preset material=\"{name}\":",
+                f"the points of data/ior/{name}.eta.spd and {name}.k.spd of the pip package mitsuba=={ver},",
+                "copied digit for digit (Mitsuba reads them as float32 and interpolates linearly between",
+                "points, zero outside the first and last point).",
+                f"Mitsuba's files say: {own}.",
+                "(Their 'Lambda (A)' column label is wrong: the wavelengths are in nm.)",
+                *MITSUBA_SOURCE,
+                "Licence: Mitsuba 3 is BSD-3-Clause; the data is from the sources above.",
+                "Units: wavelength in nm (vacuum); n and k dimensionless.",
+                GEN_LINE + f", mitsuba=={ver}.",
+            ],
+            "wavelength_nm,n,k",
+            [[w, n, kk] for (w, n), (_, kk) in zip(eta, k)],
+        )
+    report(f"  {len(names)} presets from {d}")
+    report(f"  not covering 360-830 nm (Mitsuba reads eta = k = 0 outside): {', '.join(short)}")
+    tdir = ROOT / "tests" / "data" / "mitsuba_ior"
+    tdir.mkdir(parents=True, exist_ok=True)
+    for name in MITSUBA_TEST_COPIES:
+        for part in ("eta", "k"):
+            src = d / f"{name}.{part}.spd"
+            (tdir / src.name).write_bytes(src.read_bytes())
+            WRITTEN.append((f"tests/data/mitsuba_ior/{src.name}", len(read_spd(src)[1])))
+
+
+# ---------------------------------------------------------------------------
 # 6. Test vectors
 # ---------------------------------------------------------------------------
 
@@ -702,6 +880,85 @@ def gen_colorchecker_d65() -> None:
             GEN_LINE + ".",
         ],
         "name,X,Y,Z,R_lin,G_lin,B_lin,L,a,b",
+        rows,
+    )
+
+
+INTEGRAL_RANGES = [(360, 830), (380, 780), (300, 830)]
+
+
+def integrals_piecewise(wl, v, ybar_wl, ybar, lo, hi):
+    """Exact integrals of S and S*ybar over [lo, hi] for S linear between its knots (zero
+    outside) and ybar linear between its 1 nm knots (zero outside 360-830 nm): both integrands
+    are piecewise quadratic on a grid that holds every knot, so Simpson's rule on each cell
+    inside the supports is exact."""
+    def simpson(f, a0, b0):
+        if not b0 > a0:
+            return 0.0
+        knots = np.unique(np.concatenate([wl, ybar_wl, [a0, b0]]))
+        knots = knots[(knots >= a0) & (knots <= b0)]
+        a, b = knots[:-1], knots[1:]
+        m = 0.5 * (a + b)
+        return float(np.sum((b - a) / 6 * (f(a) + 4 * f(m) + f(b))))
+    def s(x):
+        return np.interp(x, wl, v)
+    def y(x):
+        return np.interp(x, ybar_wl, ybar)
+    lo_s, hi_s = max(lo, wl[0]), min(hi, wl[-1])
+    band = simpson(s, lo_s, hi_s)
+    lum = simpson(lambda x: s(x) * y(x), max(lo_s, ybar_wl[0]), min(hi_s, ybar_wl[-1]))
+    return band, lum
+
+
+def gen_illuminant_integrals() -> None:
+    report("== 6e. Illuminant integrals")
+    cmfs = colour.MSDS_CMFS[CMFS_KEY]
+    ybar_wl, ybar = np.array(cmfs.wavelengths), np.array(cmfs.values[:, 1])
+    rows = []
+    for key, fname, _desc, _norm in ILLUMINANTS:
+        wl, v, _ = illuminant_sd(key)
+        if key == "E":
+            # equal energy: the constant 100 at every wavelength (spectrace evaluates it so)
+            wl, v = np.array([200.0, 2000.0]), np.array([100.0, 100.0])
+        for lo, hi in INTEGRAL_RANGES:
+            band, lum = integrals_piecewise(wl, v, ybar_wl, ybar, lo, hi)
+            if key == "A":
+                # the formula itself, not the 5 nm table: 0.01 nm Simpson (error < 1e-12 relative)
+                x = np.linspace(lo, hi, int(round((hi - lo) * 100)) + 1)
+                f = cie_a_formula(x)
+                w = np.full(len(x), 2.0)
+                w[1::2] = 4.0
+                w[0] = w[-1] = 1.0
+                h = (x[1] - x[0]) / 3
+                band = float(h * np.sum(w * f))
+                lum = float(h * np.sum(w * f * np.interp(x, ybar_wl, ybar, left=0.0, right=0.0)))
+            name = "cie-" + fname.removeprefix("cie_").removesuffix(".csv")
+            rows.append([name, str(lo), str(hi), num10(band), num10(lum)])
+            report(f"  {name:8s} {lo}-{hi} nm: int S = {band:.6e}, int S ybar = {lum:.6e}")
+        # what the tables read before they reached 830 nm: zero above 780 nm
+        if key in ("A", "D65", "D50"):
+            cut = wl <= 780
+            b0, l0 = integrals_piecewise(wl[cut], v[cut], ybar_wl, ybar, 360, 830)
+            b1, l1 = integrals_piecewise(wl, v, ybar_wl, ybar, 360, 830)
+            report(f"    {key} cut at 780 nm vs full, 360-830 nm: band ratio {b0 / b1:.4f}, "
+                   f"lumens per watt ratio {(l0 / b0) / (l1 / b1):.4f}")
+    write_csv(
+        "tests/data/illuminant_integrals.csv",
+        [
+            "Test vectors: band integral int S dl and luminous integral int S ybar dl (multiply by",
+            "K_m = 683.002 lm/W for lumens) of the CIE illuminants over wavelength ranges [lo, hi] nm.",
+            "S is the relative SPD over its full defined range (D65, D50: the CIE tables 300-830 nm at",
+            "5 nm; E: the constant 100 everywhere; F2, F11: 380-780 nm; zero outside), read by linear interpolation",
+            "between its points; ybar is the CIE 1931 2 degree table of colour-science",
+            f"MSDS_CMFS['{CMFS_KEY}'] (360-830 nm at 1 nm, linear between points, zero outside).",
+            "Both integrands are piecewise quadratic between knots; integrated exactly by Simpson's",
+            "rule per cell with numpy. For A the integrand is the CIE 015:2018 formula itself",
+            "(c2 = 1.435e7 nm K, T = 2848 K), integrated by Simpson's rule at 0.01 nm.",
+            "Units: nm; band in (S unit) nm, luminous in (S unit) nm; 10 significant digits.",
+            f"Licence: generated data; {LIC_COLOUR}.",
+            GEN_LINE + ".",
+        ],
+        "illuminant,lo_nm,hi_nm,band,luminous",
         rows,
     )
 
@@ -870,9 +1127,11 @@ def main() -> int:
     gen_colorchecker()
     gen_glass()
     gen_metals()
+    gen_mitsuba_metals()
     gen_planck()
     gen_colorchecker_d65()
     gen_metals_check()
+    gen_illuminant_integrals()
     gen_ciede2000()
     report("== Files written")
     for rel, nrows in WRITTEN:

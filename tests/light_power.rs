@@ -234,3 +234,150 @@ fn directional_and_environment() {
     let env = over_lambda(true, |l| s.lights[2].escaped(Vec3::X, &at(l))[0] as f64);
     assert_close(env, 5.0, "environment luminance");
 }
+
+/// One row of `tests/data/illuminant_integrals.csv` (colour-science tables, exact integrals).
+struct IlluminantIntegral {
+    name: String,
+    lo: f64,
+    hi: f64,
+    /// ∫ S dλ over [lo, hi], S's unit × nm.
+    band: f64,
+    /// ∫ S ȳ dλ over [lo, hi] ∩ 360–830 nm.
+    luminous: f64,
+}
+
+fn illuminant_integrals() -> Vec<IlluminantIntegral> {
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/data/illuminant_integrals.csv"
+    );
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    text.lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with("illuminant"))
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            let x = |i: usize| f[i].parse::<f64>().unwrap_or_else(|e| panic!("{l}: {e}"));
+            IlluminantIntegral {
+                name: f[0].to_string(),
+                lo: x(1),
+                hi: x(2),
+                band: x(3),
+                luminous: x(4),
+            }
+        })
+        .collect()
+}
+
+/// CIE standard illuminant A by its defining formula (CIE 015:2018 eq. 4.1): Planck's law with
+/// c₂ = 1.435e7 nm·K at 2848 K (2856 K on ITS-90), normalised to 100 at 560 nm.
+fn cie_a(l: f64) -> f64 {
+    let c2: f64 = 1.435e7 / 2848.0;
+    100.0 * (560.0 / l).powi(5) * (c2 / 560.0).exp_m1() / (c2 / l).exp_m1()
+}
+
+/// (∫ S dλ, ∫ S ȳ dλ) of CIE A over [lo, hi], by Simpson's rule at 0.005 nm on the formula
+/// (ȳ from the CIE 1931 table, zero outside 360–830 nm).
+fn cie_a_integrals(lo: f64, hi: f64) -> (f64, f64) {
+    let n = ((hi - lo) / 0.005).round() as usize; // even for the ranges used here
+    let h = (hi - lo) / n as f64;
+    let (mut band, mut lum) = (0.0, 0.0);
+    for i in 0..=n {
+        let l = lo + i as f64 * h;
+        let w = if i == 0 || i == n {
+            1.0
+        } else if i % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        };
+        let s = cie_a(l);
+        band += w * s;
+        lum += w * s * cmf().y_bar(l as f32) as f64;
+    }
+    (band * h / 3.0, lum * h / 3.0)
+}
+
+/// ∫ g(λ) dλ over [lo, hi] by the midpoint rule at 0.01 nm, with K_m ȳ(λ) when `lumens`.
+fn over_range(lo: f64, hi: f64, lumens: bool, g: impl Fn(f32) -> f64) -> f64 {
+    let h = 0.01;
+    let n = ((hi - lo) / h).round() as usize;
+    (0..n)
+        .map(|i| {
+            let l = (lo + (i as f64 + 0.5) * h) as f32;
+            let y = if lumens {
+                K_M * cmf().y_bar(l) as f64
+            } else {
+                1.0
+            };
+            h * y * g(l)
+        })
+        .sum()
+}
+
+/// Every named CIE illuminant over its whole defined range (A: Planck's law at any wavelength;
+/// D65, D50: the CIE tables to 830 nm), for several scene wavelength ranges. A light given in
+/// cd/m² must have the band radiance 100 cd/m² × ∫S dλ / (K_m ∫S ȳ dλ), and a light given in
+/// watts the lumens 100 W × K_m ∫S ȳ dλ / ∫S dλ, both integrals over the scene's range and from
+/// independent truth: the CIE A formula integrated here, and colour-science's CIE tables
+/// integrated exactly by `scripts/gen_spectra.py` (`tests/data/illuminant_integrals.csv`).
+#[test]
+fn named_illuminants_band_radiance_and_lumens_over_the_range() {
+    let rows = illuminant_integrals();
+    assert!(rows.len() >= 18, "{} rows", rows.len());
+    let (mut worst, mut failures): (Vec<String>, Vec<String>) = (Vec::new(), Vec::new());
+    for r in &rows {
+        let (band, luminous) = if r.name == "cie-a" {
+            let (b, l) = cie_a_integrals(r.lo, r.hi);
+            // the generator's integral of the same formula, as a cross-check of the data file
+            assert!(
+                (b / r.band - 1.0).abs() < 1e-6,
+                "{}: {b} vs {}",
+                r.name,
+                r.band
+            );
+            assert!(
+                (l / r.luminous - 1.0).abs() < 1e-6,
+                "{}: {l} vs {}",
+                r.name,
+                r.luminous
+            );
+            (b, l)
+        } else {
+            (r.band, r.luminous)
+        };
+        let s = scene(&format!(
+            "[scene]\nwavelength_range = [{}, {}]\n\
+             [[shapes]]\ntype = \"sphere\"\nradius = 1\nmaterial = \"grey\"\n\
+             [[lights]]\ntype = \"environment\"\nspectrum = \"{name}\"\nluminance = \"100 cd/m^2\"\n\
+             [[lights]]\ntype = \"point\"\nposition = [5, 5, 5]\nspectrum = \"{name}\"\npower = \"100 W\"\n",
+            r.lo,
+            r.hi,
+            name = r.name
+        ));
+        let what = format!("{} over {}–{} nm", r.name, r.lo, r.hi);
+        // band radiance of the 100 cd/m² environment
+        let got = over_range(r.lo, r.hi, false, |l| {
+            s.lights[0].escaped(Vec3::X, &at(l))[0] as f64
+        });
+        let want = 100.0 * band / (K_M * luminous);
+        worst.push(format!("{what}: band radiance {:.4}", got / want));
+        // lumens of the 100 W point light: 4π ∫ I K_m ȳ dλ
+        let lm = 4.0
+            * PI
+            * over_range(r.lo, r.hi, true, |l| {
+                intensity(&s, &s.lights[1], Vec3::Y, l)
+            });
+        let want_lm = 100.0 * K_M * luminous / band;
+        worst.push(format!("{what}: lumens {:.4}", lm / want_lm));
+        if ((got - want) / want).abs() > 1e-3 || ((lm - want_lm) / want_lm).abs() > 1e-3 {
+            failures.push(format!(
+                "{what}: band radiance {got:.6} W/m²/sr, closed form {want:.6} (ratio {:.4}); \
+                 lumens {lm:.1}, closed form {want_lm:.1} (ratio {:.4})",
+                got / want,
+                lm / want_lm
+            ));
+        }
+    }
+    eprintln!("{}", worst.join("\n"));
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

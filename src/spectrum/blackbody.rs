@@ -9,6 +9,11 @@ pub const BOLTZMANN_K: f64 = 1.380_649e-23;
 /// Wien's displacement constant b, m·K.
 pub const WIEN_B: f64 = 2.897_771_955e-3;
 
+/// The second radiation constant c₂ that CIE 015:2018 uses in the definition of illuminant A, m·K.
+pub const CIE_A_C2_M_K: f64 = 1.435e-2;
+/// The temperature in CIE 015:2018's formula for illuminant A (with [`CIE_A_C2_M_K`]), K.
+pub const CIE_A_T_K: f64 = 2848.0;
+
 /// Spectral radiance of a black body, in W·m⁻²·sr⁻¹·nm⁻¹, at `lambda_nm` (nm) and
 /// `temperature_k` (K): L = 2hc²/λ⁵ / (exp(hc/(λkT)) − 1), × 1e-9 for per nm.
 /// Returns 0 for non-positive temperatures or wavelengths.
@@ -53,6 +58,19 @@ impl Blackbody {
             scale: if peak > 0.0 { (1.0 / peak) as f32 } else { 0.0 },
         }
     }
+    /// CIE standard illuminant A as CIE 015:2018 eq. (4.1) defines it, at every wavelength:
+    /// S_A(λ) = 100 (560/λ)⁵ (exp(c₂/(2848·560)) − 1) / (exp(c₂/(2848 λ)) − 1), λ in nm, with the
+    /// CIE's c₂ = 1.435e7 nm·K. That is Planck's law at the temperature T for which
+    /// hc/(k T) = c₂/2848 K, i.e. T = 2848 K × (hc/k)/c₂ = 2855.54 K (the "2856 K" of ITS-90),
+    /// scaled to 100 at 560 nm (relative SPD, dimensionless).
+    pub fn cie_illuminant_a() -> Self {
+        let t = CIE_A_T_K * (PLANCK_H * LIGHT_C / BOLTZMANN_K) / CIE_A_C2_M_K;
+        let at_560 = planck(560.0, t);
+        Self {
+            temperature_k: t as f32,
+            scale: (100.0 / at_560) as f32,
+        }
+    }
     /// Value at `lambda_nm`, in the unit the scale gives it.
     #[inline]
     pub fn eval(&self, lambda_nm: f32) -> f32 {
@@ -71,5 +89,23 @@ mod tests {
         assert!((b.eval(peak) - 1.0).abs() < 1e-6);
         assert!(b.eval(peak - 20.0) < 1.0 && b.eval(peak + 20.0) < 1.0);
         assert_eq!(planck(500.0, 0.0), 0.0);
+    }
+
+    #[test]
+    fn cie_a_is_the_cie_formula() {
+        // CIE 015:2018 eq. (4.1), evaluated directly
+        let formula = |l: f64| {
+            let c = 1.435e7 / 2848.0;
+            100.0 * (560.0 / l).powi(5) * (c / 560.0f64).exp_m1() / (c / l).exp_m1()
+        };
+        let a = Blackbody::cie_illuminant_a();
+        for l in [
+            300.0f32, 360.0, 450.0, 560.0, 700.0, 780.0, 805.0, 830.0, 1000.0,
+        ] {
+            let (got, want) = (a.eval(l) as f64, formula(l as f64));
+            assert!((got / want - 1.0).abs() < 1e-6, "{l} nm: {got} vs {want}");
+        }
+        // the CIE 15:2004 table (colour-science SDS_ILLUMINANTS["A"]): S_A(780 nm) = 241.675
+        assert!((a.eval(780.0) - 241.675).abs() < 1e-3, "{}", a.eval(780.0));
     }
 }

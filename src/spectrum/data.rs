@@ -189,6 +189,31 @@ pub mod embedded {
         METAL_CU = "spectra/metals/cu.csv";
         METAL_AL = "spectra/metals/al.csv";
     }
+
+    macro_rules! mitsuba_metals {
+        ($($name:literal)+) => {
+            /// Mitsuba 3.9.1's conductor presets (`material="Au"` …): (preset name, (path,
+            /// contents)) of `spectra/metals/mitsuba/<name>.csv`, written by
+            /// `scripts/gen_spectra.py` from Mitsuba's own `data/ior/<name>.{eta,k}.spd`.
+            pub const MITSUBA_METALS: &[(&str, (&str, &str))] = &[$((
+                $name,
+                (
+                    concat!("spectra/metals/mitsuba/", $name, ".csv"),
+                    include_str!(concat!("../../spectra/metals/mitsuba/", $name, ".csv")),
+                ),
+            )),+];
+        };
+    }
+    mitsuba_metals! {
+        "Ag" "Al" "AlAs" "AlAs_palik" "AlSb" "AlSb_palik" "Au" "Be" "Be_palik" "Cr" "CsI"
+        "CsI_palik" "Cu" "Cu2O" "Cu2O_palik" "CuO" "CuO_palik" "Cu_palik" "Hg" "HgTe"
+        "HgTe_palik" "Hg_palik" "Ir" "Ir_palik" "K" "K_palik" "Li" "Li_palik" "MgO"
+        "MgO_palik" "Mo" "Mo_palik" "Na_palik" "Nb" "Nb_palik" "Ni_palik" "Rh" "Rh_palik"
+        "Se-e" "Se-e_palik" "Se" "Se_palik" "SiC" "SiC_palik" "SnTe" "SnTe_palik" "Ta"
+        "Ta_palik" "Te-e" "Te-e_palik" "Te" "Te_palik" "ThF4" "ThF4_palik" "TiC"
+        "TiC_palik" "TiN" "TiN_palik" "TiO2-e" "TiO2-e_palik" "TiO2" "TiO2_palik" "VC"
+        "VC_palik" "VN" "VN_palik" "V_palik" "W" "a-C" "d-C" "d-C_palik"
+    }
 }
 
 /// Parses an embedded table. The files are part of the build and covered by tests, so a parse
@@ -245,9 +270,29 @@ mod tests {
             let t = embedded_table(f);
             assert!(t.rows.len() > 40, "{}", f.0);
         }
-        for f in [METAL_AU, METAL_AG, METAL_CU, METAL_AL] {
+        for f in [METAL_AU, METAL_AG, METAL_CU, METAL_AL]
+            .into_iter()
+            .chain(MITSUBA_METALS.iter().map(|m| m.1))
+        {
             let t = embedded_table(f);
             assert_eq!(t.columns, ["wavelength_nm", "n", "k"], "{}", f.0);
         }
+        // every file the generator wrote is embedded
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/spectra/metals/mitsuba");
+        let mut on_disk: Vec<String> = std::fs::read_dir(dir)
+            .map(|r| {
+                r.filter_map(|e| e.ok())
+                    .map(|e| e.file_name().to_string_lossy().into_owned())
+                    .filter(|n| n.ends_with(".csv"))
+                    .collect()
+            })
+            .unwrap_or_default();
+        on_disk.sort();
+        let mut listed: Vec<String> = MITSUBA_METALS
+            .iter()
+            .map(|m| format!("{}.csv", m.0))
+            .collect();
+        listed.sort();
+        assert_eq!(on_disk, listed);
     }
 }

@@ -138,16 +138,36 @@ fn build() -> Registry {
         entries.insert(name.to_lowercase(), (name, v));
     };
     use embedded::*;
+    // Each illuminant over its whole defined range: D65 and D50 are the CIE tables, 300–830 nm;
+    // F2 and F11 the CIE tables, 380–780 nm (zero outside). A and E are defined by formulas for
+    // every wavelength, so they are evaluated exactly rather than read from their tables
+    // (`spectra/illuminants/cie_a.csv`, `cie_e.csv` hold the same values, for reference).
     for (name, f) in [
         ("cie-d65", CIE_D65),
         ("cie-d50", CIE_D50),
-        ("cie-a", CIE_A),
-        ("cie-e", CIE_E),
         ("cie-f2", CIE_F2),
         ("cie-f11", CIE_F11),
     ] {
         add(name.into(), curve(f, "value", CurveKind::Illuminant));
     }
+    add(
+        "cie-a".into(),
+        Named::Curve {
+            spectrum: Spectrum::Blackbody(Blackbody::cie_illuminant_a()),
+            kind: CurveKind::Illuminant,
+            source:
+                "CIE 015:2018 eq. (4.1): Planck's law, c2 = 1.435e7 nm K, 2848 K, 100 at 560 nm"
+                    .into(),
+        },
+    );
+    add(
+        "cie-e".into(),
+        Named::Curve {
+            spectrum: Spectrum::Constant(100.0),
+            kind: CurveKind::Illuminant,
+            source: "CIE 015:2018: equal-energy illuminant, the constant 100".into(),
+        },
+    );
     for (name, col) in [("cie-x", "xbar"), ("cie-y", "ybar"), ("cie-z", "zbar")] {
         add(
             name.into(),
@@ -196,31 +216,84 @@ fn build() -> Registry {
             }),
         );
     }
+    // spectrace's own metals: Johnson & Christy (1972) for the noble metals, Rakić (1995) for Al
     for (name, f) in [
         ("Au", METAL_AU),
         ("Ag", METAL_AG),
         ("Cu", METAL_CU),
         ("Al", METAL_AL),
     ] {
-        let t = embedded_table(f);
-        let (n, k) = match (table_to_curve(&t, 0, 1, f.0), table_to_curve(&t, 0, 2, f.0)) {
-            (Ok(n), Ok(k)) => (n, k),
-            (Err(e), _) | (_, Err(e)) => panic!("embedded data file is corrupt: {e}"), // ok: invariant
-        };
-        let ior = ComplexIor {
-            n: Arc::new(n),
-            k: Arc::new(k),
-        };
-        add(
-            format!("metal:{name}"),
-            Named::Conductor(Metal {
-                name: name.into(),
-                ior,
-                source: source_line(&t),
-            }),
-        );
+        add(format!("metal:{name}"), conductor(name, f));
+    }
+    // Mitsuba 3.9.1's conductor presets, digit for digit (Palik via the Luxpop database)
+    for (name, f) in MITSUBA_METALS {
+        add(format!("mitsuba:{name}"), conductor(name, *f));
     }
     Registry { entries }
+}
+
+fn conductor(name: &str, f: (&str, &str)) -> Named {
+    let t = embedded_table(f);
+    let (n, k) = match (table_to_curve(&t, 0, 1, f.0), table_to_curve(&t, 0, 2, f.0)) {
+        (Ok(n), Ok(k)) => (n, k),
+        (Err(e), _) | (_, Err(e)) => panic!("embedded data file is corrupt: {e}"), // ok: invariant
+    };
+    let source = t
+        .comment_starting("Mitsuba 3's documentation")
+        .map(|_| {
+            format!(
+                "Mitsuba {} data/ior/{name}.eta.spd, .k.spd (Palik et al. via the Luxpop database)",
+                MITSUBA_VERSION
+            )
+        })
+        .unwrap_or_else(|| source_line(&t));
+    Named::Conductor(Metal {
+        name: name.into(),
+        ior: ComplexIor {
+            n: Arc::new(n),
+            k: Arc::new(k),
+        },
+        source,
+    })
+}
+
+/// The Mitsuba version whose conductor presets `mitsuba:<name>` reproduces.
+pub const MITSUBA_VERSION: &str = "3.9.1";
+
+/// The n, k that Mitsuba 3.9.1 uses for `<string name="material" value="NAME"/>` in a
+/// `conductor` or `roughconductor`: its own data (`mitsuba:NAME`), matched case-sensitively as
+/// Mitsuba opens `data/ior/NAME.eta.spd`. Mitsuba reads eta = k = 0 outside a file's wavelengths,
+/// which is no metal; a preset whose data does not cover Mitsuba's 360–830 nm is refused.
+/// Errors are a sentence for the user.
+pub fn mitsuba_conductor(name: &str) -> Result<ComplexIor, String> {
+    let known = || {
+        let mut v: Vec<&str> = super::data::embedded::MITSUBA_METALS
+            .iter()
+            .map(|m| m.0)
+            .collect();
+        v.sort_by_key(|n| n.to_lowercase());
+        v.join(", ")
+    };
+    match lookup(&format!("mitsuba:{name}")) {
+        Ok(Named::Conductor(m)) if m.name == name => {
+            let (lo, hi) = (m.ior.n.domain(), m.ior.k.domain());
+            if lo.0 > 360.0 || hi.0 > 360.0 || lo.1 < 830.0 || hi.1 < 830.0 {
+                return Err(format!(
+                    "Mitsuba's data for material \"{name}\" covers only {}–{} nm, and Mitsuba reads eta = k = 0 outside it (inside its 360–830 nm); spectrace does not reproduce that, give eta and k instead",
+                    lo.0, lo.1
+                ));
+            }
+            Ok(m.ior)
+        }
+        Ok(Named::Conductor(m)) => Err(format!(
+            "material \"{name}\" is not one of Mitsuba's presets (names are case-sensitive): did you mean \"{}\"?",
+            m.name
+        )),
+        _ => Err(format!(
+            "material \"{name}\" is not one of Mitsuba 3.9.1's conductor presets ({}); or give eta and k",
+            known()
+        )),
+    }
 }
 
 fn registry() -> &'static Registry {

@@ -296,6 +296,35 @@ Exercises: delta conductor Fresnel with complex spectral IOR, constant emitter, 
     write("gold_copper", s + FOOTER)
 
 
+def conductor_presets():
+    s = header(
+        """The gold_copper scene with Mitsuba's own conductor presets instead of λ:v lists:
+material="Au" (left) and material="Cu" (right), i.e. Mitsuba 3.9.1's data/ior/Au.eta.spd etc.
+(Palik via the Luxpop database), which spectrace's importer must read as the same n and k
+(spectra/metals/mitsuba/). Diffuse floor (neutral-6-5), a D65 area light (/100 × 10) and a
+uniform constant environment (radiance 0.3 per nm).
+Exercises: the importer's conductor presets.""",
+        "0, 1.5, -4",
+        "0, 0.5, 0",
+        40,
+        64,
+        8,
+    )
+    s += "\n" + floor_rect(2.5, colorchecker("neutral-6-5"))
+    s += area_rect(0.5, "0, 2.5, -0.5", illuminant("d65", 10.0))
+    for x, m, c in ((0.6, "Au", "gold (left in the image)"), (-0.6, "Cu", "copper (right in the image)")):
+        s += sphere((x, 0.5, 0), 0.5, f"""        <bsdf type="conductor">
+            <string name="material" value="{m}"/>
+        </bsdf>
+""", c)
+    s += """
+    <emitter type="constant">
+        <spectrum name="radiance" value="0.3"/>
+    </emitter>
+"""
+    write("conductor_presets", s + FOOTER)
+
+
 def rough_conductor():
     s = header(
         """A rough aluminium sphere (roughconductor, GGX, alpha 0.2; n and k from spectrace's table,
@@ -516,14 +545,15 @@ Exercises: directional emitter, its direction convention, cube.""",
     write("directional", s + FOOTER)
 
 
+SCENES = {
+    f.__name__: f
+    for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor,
+              dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional)
+}
+
 if __name__ == "__main__":
-    cornell()
-    point_plane()
-    gold_copper()
-    rough_conductor()
-    dielectric_sphere()
-    rough_dielectric()
-    spot()
-    blackbody()
-    constant_env()
-    directional()
+    # python3 tests/reference/make_scenes.py [scene ...]   (default: every scene)
+    import sys
+
+    for name in sys.argv[1:] or SCENES:
+        SCENES[name]()

@@ -6,7 +6,7 @@ use super::convert::{Cx, R};
 use super::xml::Element;
 use crate::loader::desc::*;
 use crate::spectrum::ior::{ComplexIor, Ior};
-use crate::spectrum::named::{Named, lookup};
+use crate::spectrum::named::{Named, lookup, mitsuba_conductor};
 use crate::spectrum::{PiecewiseLinear, Spectrum};
 
 /// Mitsuba's named indices of refraction (constants, as Mitsuba tabulates them).
@@ -97,15 +97,8 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
                 cx.child(b, "eta"),
                 cx.child(b, "k"),
             ) {
-                (Some(m), _, _) => match lookup(&format!("metal:{m}")) {
-                    Ok(Named::Conductor(metal)) => metal.ior,
-                    _ => return Err(cx.err(
-                        b,
-                        format!(
-                            "material \"{m}\" is not available; use Au, Ag, Cu or Al, or eta and k"
-                        ),
-                    )),
-                },
+                // Mitsuba's own preset data (spectra/metals/mitsuba/), not spectrace's metal:*
+                (Some(m), _, _) => mitsuba_conductor(&m).map_err(|e| cx.err(b, e))?,
                 (None, Some(eta), Some(k)) => {
                     let table = |s: Spectrum| -> Arc<PiecewiseLinear> {
                         match s {

@@ -13,6 +13,15 @@
 //! | area power | Φ/(π A B), two-sided Φ/(2π A B) (Φ = π L A) |
 //! | beam power Φ (W or lm) | Φ/B or Φ/V (spread over the beam's disk) |
 //! | scale s | s (S is already absolute) |
+//!
+//! **Watts and lumens count the film's wavelength range only.** B and V are integrals over that
+//! range, so a spectrum with power outside it gets a different k when the range changes. For a
+//! 100 W `cie-a` point light (S_A is Planck's law, non-zero at every λ): B = 59 942 nm over
+//! 360–830 nm and 47 179 nm over 380–780 nm, so its spectral intensity, its luminous intensity
+//! and its lumens (12 294 lm vs 15 620 lm) are 1.2705× larger over the narrower range. A
+//! photometric amount fixes V instead, which does not change while the range holds 360–830 nm
+//! (ȳ is zero outside). `tests/light_power.rs`
+//! (`named_illuminants_band_radiance_and_lumens_over_the_range`) checks both against closed forms.
 
 use glam::Vec3;
 
@@ -32,12 +41,14 @@ use crate::units::{
     radiant_intensity,
 };
 
-/// ∫ S dλ over the range, in S's unit × nm.
+/// ∫ S dλ over the range, in S's unit × nm. Power outside the range is not counted: a radiometric
+/// amount (W, W/sr, W/m², W/m²/sr) is the power *within* the range.
 pub fn band_integral(s: &Spectrum, r: WavelengthRange) -> f64 {
     s.integrate(r.min_nm, r.max_nm, 1.0)
 }
 
-/// K_m ∫ S ȳ dλ over the range ∩ 360–830 nm, lm per (W per S's unit).
+/// K_m ∫ S ȳ dλ over the range ∩ 360–830 nm, lm per (W per S's unit). Light of the spectrum
+/// outside the range is not counted.
 pub fn luminous_integral(s: &Spectrum, r: WavelengthRange) -> f64 {
     K_M * s.integrate_weighted(r.min_nm.max(360.0), r.max_nm.min(830.0), 1.0, |l| {
         cmf().y_bar(l) as f64
