@@ -154,7 +154,11 @@ pub fn trace<const N: usize>(
                         camera.position(),
                     )
                 {
-                    splat(c.raster, w, beta * f * (wc.z.abs() * c.weight));
+                    // β·f·|ns·wc|·(adjoint correction) = β·f·|ns·wo|·|ng·wc|/|ng·wo|:
+                    // the geometric cosine at the camera end, shading cosine at the light end
+                    // (Veach 1997 §5.3)
+                    let corr = sh.adjoint_correction(wo, c.wi);
+                    splat(c.raster, w, beta * f * (wc.z.abs() * corr * c.weight));
                 }
             }
         }
