@@ -104,21 +104,18 @@ pub fn trace<const N: usize>(
             let (o, d, power) = b.sample_emission(u1, w);
             (o, Vec3::ZERO, Vec3::ZERO, d, power * (1.0 / p_sel))
         }
+        // lights at infinity: a direction, then a point on the disk of the scene's bounding
+        // sphere perpendicular to it (`sample_le`)
         Light::Directional(l) => {
             let (c, r) = scene.bounding_sphere();
-            let f = Frame::from_normal(l.direction);
-            let disk = crate::sampling::concentric_disk(u1) * r;
-            let o = c - l.direction * (2.0 * r) + f.s * disk.x + f.t * disk.y;
-            let area = std::f32::consts::PI * r * r;
-            (
-                o,
-                Vec3::ZERO,
-                Vec3::ZERO,
-                l.direction,
-                l.irradiance.sample(w) * (area / p_sel),
-            )
+            let e = l.sample_le(c, r, w, u1, u2);
+            (e.o, Vec3::ZERO, Vec3::ZERO, e.d, e.weight() * (1.0 / p_sel))
         }
-        Light::Environment(_) => return,
+        Light::Environment(l) => {
+            let (c, r) = scene.bounding_sphere();
+            let e = l.sample_le(c, r, w, u1, u2);
+            (e.o, Vec3::ZERO, Vec3::ZERO, e.d, e.weight() * (1.0 / p_sel))
+        }
     };
     if beta.is_zero() {
         return;
