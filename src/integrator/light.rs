@@ -19,9 +19,13 @@ use crate::sampling::{
 };
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
-/// Traces one light path and calls `splat` for every camera connection.
+/// Traces one light path and calls `splat` for every camera connection, with the raster
+/// position (pixels) of the connection, which may lie up to `margin` pixels outside the image
+/// (the reconstruction filter's radius: the caller spreads each splat over the pixels of the
+/// filter's support, see `render::render_light`).
 pub fn trace<const N: usize>(
     it: &Integrator<'_>,
+    margin: f32,
     w: &mut SampledWavelengths<N>,
     s: &mut Sampler,
     splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, SampledSpectrum<N>),
@@ -42,7 +46,7 @@ pub fn trace<const N: usize>(
             }
             let le = a.radiance.sample(w);
             // t = 1: the emitter seen directly by the camera
-            if let Some(c) = camera.connect(ps.p) {
+            if let Some(c) = camera.connect(ps.p, margin) {
                 let cos = ps.n.dot(c.wi);
                 if (a.two_sided || cos > 0.0)
                     && !occluded_to_camera(it, ps.p, ps.p_error, ps.n, camera.position())
@@ -139,7 +143,7 @@ pub fn trace<const N: usize>(
             w.terminate_secondary();
         }
         if !sh.material.is_specular() {
-            if let Some(c) = camera.connect(hit.p) {
+            if let Some(c) = camera.connect(hit.p, margin) {
                 let wc = sh.frame.to_local(c.wi);
                 let f = sh.material.eval(wo, wc, w, TransportMode::Importance);
                 if !f.is_zero()

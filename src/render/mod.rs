@@ -207,6 +207,42 @@ pub fn render(
     Ok((film, stats))
 }
 
+/// Spreads a light-tracing splat at `raster` (pixels) over the pixels of the filter's support,
+/// each with the filter's normalised weight f(raster − centre)/∫∫f (px⁻², times the pixel's
+/// unit area): the same reconstruction, ∫ L(x) f(x − centre) dx / ∫ f, that camera rays
+/// realise by sampling their offsets from the filter (pbrt-v4 §5.4.3). Pixels outside the
+/// image are skipped; `l` must be finite.
+fn splat_filtered<const N: usize>(
+    tile: &mut crate::film::Tile,
+    filter: &Filter,
+    raster: Vec2,
+    wl: &SampledWavelengths<N>,
+    l: &crate::spectrum::SampledSpectrum<N>,
+    bins: Option<&crate::film::Bins>,
+) {
+    let r = filter.radius;
+    // pixels whose centre x + 0.5 lies within [raster − r, raster + r], one more on each side
+    // for rounding; `Filter::weight` decides the half-open support exactly
+    let lo = (raster - Vec2::splat(0.5 + r)).floor();
+    let hi = (raster + Vec2::splat(r - 0.5)).floor() + Vec2::ONE;
+    let (x0, y0) = (lo.x.max(0.0) as u32, lo.y.max(0.0) as u32);
+    let (x1, y1) = (
+        hi.x.min(tile.width as f32 - 1.0),
+        hi.y.min(tile.height as f32 - 1.0),
+    );
+    if x1 < 0.0 || y1 < 0.0 {
+        return;
+    }
+    for y in y0..=y1 as u32 {
+        for x in x0..=x1 as u32 {
+            let wgt = filter.weight(raster - Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
+            if wgt > 0.0 {
+                tile.splat(x, y, wl, &(*l * wgt), bins);
+            }
+        }
+    }
+}
+
 /// Light tracing: `spp × pixels` paths in a fixed number of chunks, each splatting into its own
 /// full-image tile; chunks are merged in order, so the image does not depend on the threads.
 #[allow(clippy::too_many_arguments)]
@@ -225,6 +261,7 @@ fn render_light(
     let pixels = w as u64 * h as u64;
     let total = pixels * opts.spp as u64;
     let bins = film.bins.clone();
+    let filter = film.filter.clone();
     let done = AtomicU64::new(0);
     let (nan, inf) = (AtomicU64::new(0), AtomicU64::new(0));
     let tiles: Vec<(crate::film::Tile, u64)> = pool.install(|| {
@@ -252,19 +289,20 @@ fn render_light(
                     let mut wl: SampledWavelengths<N_WAVELENGTHS> = lambda.sample(s.get_1d());
                     crate::integrator::light::trace(
                         integrator,
+                        filter.radius,
                         &mut wl,
                         &mut s,
                         &mut |raster, wl, l| {
-                            let (x, y) =
-                                ((raster.x as u32).min(w - 1), (raster.y as u32).min(h - 1));
-                            if !tile.splat(x, y, wl, &l, bins.as_ref()) {
+                            if !l.is_finite() {
                                 let counter = if l.0.iter().any(|v| v.is_nan()) {
                                     &nan
                                 } else {
                                     &inf
                                 };
                                 counter.fetch_add(1, Ordering::Relaxed);
+                                return;
                             }
+                            splat_filtered(&mut tile, &filter, raster, wl, &l, bins.as_ref());
                         },
                     );
                     traced += 1;
