@@ -378,3 +378,51 @@ fn light_tracing_deterministic_across_thread_counts() {
     assert_eq!(a.band, b.band);
     assert!(a.band.iter().any(|&v| v > 0.0));
 }
+
+/// The sky and a sun disk seen directly: a camera 5 m above the plane looks toward a sun of 20°
+/// angular diameter (E⊥ = 100 W/m², so the disk's radiance is E⊥/(π sin² 10°)) in a uniform
+/// sky of 1 W·m⁻²·sr⁻¹. Particles from infinity never reach a pinhole, so light tracing adds
+/// these along camera rays; before, it rendered them black. The centre pixel reads sky + disk,
+/// a corner pixel the sky alone, and `light` matches `path` pixel by pixel at the disk's edge.
+#[test]
+fn sky_and_sun_seen_directly() {
+    let lights = "type = \"environment\"\nspectrum = \"cie-e\"\nradiance = \"1 W/m^2/sr\"\n[[lights]]\ntype = \"directional\"\ndirection = [-1, -1, 0]\nangular_diameter = \"20 deg\"\nspectrum = \"cie-e\"\nirradiance = \"100 W/m^2\"";
+    let text = |kind: &str| {
+        plane_under_sky(kind, lights, "", "\"gaussian\"")
+            .replace("target = [0, 0, 0]", "target = [1, 6, 0]")
+    };
+    let (light, _) = render_with(&scene_from(&text("light")), |o| o.spp = 64);
+    let (path, _) = render_with(&scene_from(&text("path")), |o| o.spp = 64);
+    let sin2 = (10f64.to_radians()).sin().powi(2);
+    let disk = 100.0 / (PI * sin2);
+    // the 5 × 5 pixels at the centre lie inside the disk (radius ≈ 5 px), the 4 × 4 at a
+    // corner see only sky; spectral sampling is the only noise there
+    let block = |x0: usize, y0: usize, n: usize, want: f64| {
+        let v: Vec<f64> = (0..n * n)
+            .map(|k| light.band[(y0 + k / n) * 32 + x0 + k % n] as f64 / want)
+            .collect();
+        mean_se(&v)
+    };
+    let (c, c_se) = block(14, 14, 5, 1.0 + disk);
+    let (k, k_se) = block(0, 0, 4, 1.0);
+    eprintln!("light / closed form: sun disk {c:.5} ± {c_se:.5}, sky {k:.5} ± {k_se:.5}");
+    assert!((c - 1.0).abs() < 4.5 * c_se + 1e-4, "disk {c} ± {c_se}");
+    assert!((k - 1.0).abs() < 4.5 * k_se + 1e-4, "sky {k} ± {k_se}");
+    // per pixel: both average the same filter over the disk's edge with 64 samples; the
+    // difference of two such means is within 5 σ, σ² = Var(one sample)·2/64 ≤ (disk/2)²·2/64
+    let sigma = disk / 2.0 * (2.0f64 / 64.0).sqrt();
+    let mut worst: f64 = 0.0;
+    for i in 0..32 * 32 {
+        let (a, b) = (light.band[i] as f64, path.band[i] as f64);
+        worst = worst.max((a - b).abs() / sigma);
+        assert!(
+            (a - b).abs() < 5.0 * sigma,
+            "pixel {i}: light {a}, path {b}"
+        );
+    }
+    let (ml, mp) = (
+        light.band.iter().map(|&v| v as f64).sum::<f64>(),
+        path.band.iter().map(|&v| v as f64).sum::<f64>(),
+    );
+    eprintln!("worst pixel {worst:.2} σ; image sums light {ml:.1}, path {mp:.1}");
+}

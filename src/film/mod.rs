@@ -201,6 +201,14 @@ impl Film {
     /// Adds a tile's sums into the film. Tiles cover disjoint pixels, so the order does not
     /// matter and the result is the same for any number of threads.
     pub fn merge(&mut self, t: &Tile) {
+        self.merge_scaled(t, 1.0);
+    }
+
+    /// Adds a tile's sums, multiplied by `scale`, into the film, and its sample counts as they
+    /// are. Light tracing uses it to add camera samples (the directly visible lights at
+    /// infinity, a mean over the samples per pixel) to a film whose splats are divided by the
+    /// number of light paths: `scale` = paths / camera samples per pixel.
+    pub fn merge_scaled(&mut self, t: &Tile, scale: f64) {
         let nb = self.bins.as_ref().map_or(0, |b| b.count);
         for ty in 0..t.height {
             for tx in 0..t.width {
@@ -208,12 +216,12 @@ impl Film {
                 let dst = ((t.y0 + ty) * self.width + t.x0 + tx) as usize;
                 let (a, b) = (&mut self.sums[dst], &t.pixels[src]);
                 for k in 0..3 {
-                    a.xyz[k] += b.xyz[k];
+                    a.xyz[k] += b.xyz[k] * scale;
                 }
-                a.band += b.band;
+                a.band += b.band * scale;
                 a.count += b.count;
                 for k in 0..nb {
-                    self.spectral[dst * nb + k] += t.spectral[src * nb + k];
+                    self.spectral[dst * nb + k] += t.spectral[src * nb + k] * scale;
                 }
             }
         }

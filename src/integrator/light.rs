@@ -4,8 +4,14 @@
 //! LightPathIntegrator). It renders
 //! caustics that `path` cannot, such as a collimated beam refracted by a prism onto a screen.
 //!
-//! Supported emitters: area, point, spot, beam and directional (as a beam as wide as the
-//! scene). Environment lights are not traced. The camera must be a pinhole.
+//! Every emitter is traced: area, point, spot and beam lights from their surfaces or positions;
+//! lights at infinity (environment, directional with or without an angular diameter) from a
+//! disk of the scene's bounding sphere (`sample_le`). A light at infinity seen directly by the
+//! camera (the sky, a sun disk) cannot reach a pinhole from a particle; [`escaped`] adds it
+//! along camera rays instead (see `render::render_light`). The camera must be a pinhole.
+//!
+//! Paths that reach the camera through a specular last bounce (an emitter seen in a mirror or
+//! through glass) are not sampled by light tracing with a pinhole, for any light; use `path`.
 
 use glam::{Vec2, Vec3};
 
@@ -182,4 +188,35 @@ pub fn trace<const N: usize>(
 fn occluded_to_camera(it: &Integrator<'_>, p: Vec3, p_error: Vec3, n: Vec3, eye: Vec3) -> bool {
     let ray = spawn_ray_to(p, p_error, n, eye, Vec3::ZERO, Vec3::ZERO);
     it.scene.accel.occluded(&it.scene.shapes, &ray)
+}
+
+/// Whether the scene has a light at infinity that a camera ray can see directly (an
+/// environment, or a directional light with an angular diameter): light tracing then adds
+/// [`escaped`] along camera rays.
+pub fn has_visible_infinite_lights(it: &Integrator<'_>) -> bool {
+    it.scene.lights.iter().any(|l| match l {
+        Light::Environment(_) => true,
+        Light::Directional(d) => !d.is_delta(),
+        Light::Area(_) | Light::Point(_) | Light::Spot(_) | Light::Beam(_) => false,
+    })
+}
+
+/// Radiance seen directly along a camera ray from the lights at infinity, W·m⁻²·sr⁻¹·nm⁻¹:
+/// the sum of their `escaped` radiance if the ray leaves the scene, else 0. This is the path
+/// tracer's zero-bounce term for those lights (the particles of `trace` cannot reach a pinhole
+/// directly from infinity).
+pub fn escaped<const N: usize>(
+    it: &Integrator<'_>,
+    ray: &Ray,
+    w: &SampledWavelengths<N>,
+) -> SampledSpectrum<N> {
+    let scene = it.scene;
+    if scene.accel.intersect(&scene.shapes, ray).is_some() {
+        return SampledSpectrum::zero();
+    }
+    let mut l = SampledSpectrum::zero();
+    for light in &scene.lights {
+        l += light.escaped(ray.d, w);
+    }
+    l
 }

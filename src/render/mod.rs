@@ -317,7 +317,52 @@ fn render_light(
         paths += traced;
     }
     film.set_path_count(paths.max(1));
-    let partial = paths < total || cancel.load(Ordering::Relaxed);
+    // Lights at infinity seen directly (sky, sun disk): camera rays with the filter's offsets,
+    // as in `render`, each adding the escaped radiance; their per-pixel sums are scaled by
+    // paths / spp so that the film's division by the path count leaves their mean.
+    let mut cam_cancelled = false;
+    if crate::integrator::light::has_visible_infinite_lights(integrator) && paths > 0 {
+        let scene = integrator.scene;
+        let filter = film.filter.clone();
+        let rows: Vec<Option<crate::film::Tile>> = pool.install(|| {
+            (0..h)
+                .into_par_iter()
+                .map(|y| {
+                    if cancel.load(Ordering::Relaxed) {
+                        return None;
+                    }
+                    let mut tile = film.tile(0, y, w, 1);
+                    for x in 0..w {
+                        for i in 0..opts.spp {
+                            let mut s = Sampler::new(opts.seed ^ 0x534b_5900, x, y, i);
+                            let wl: SampledWavelengths<N_WAVELENGTHS> = lambda.sample(s.get_1d());
+                            let offset = filter.sample(s.get_2d());
+                            let raster = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
+                            let ray = scene.camera.generate_ray(raster, s.get_2d());
+                            let l = crate::integrator::light::escaped(integrator, &ray, &wl);
+                            if !tile.splat(x, y, &wl, &l, bins.as_ref()) {
+                                let counter = if l.0.iter().any(|v| v.is_nan()) {
+                                    &nan
+                                } else {
+                                    &inf
+                                };
+                                counter.fetch_add(1, Ordering::Relaxed);
+                            }
+                        }
+                    }
+                    Some(tile)
+                })
+                .collect()
+        });
+        let scale = paths as f64 / opts.spp.max(1) as f64;
+        for row in &rows {
+            match row {
+                Some(t) => film.merge_scaled(t, scale),
+                None => cam_cancelled = true,
+            }
+        }
+    }
+    let partial = paths < total || cam_cancelled || cancel.load(Ordering::Relaxed);
     let stats = RenderStats {
         samples: paths,
         nan_samples: nan.load(Ordering::Relaxed),
