@@ -150,6 +150,61 @@ impl Tile {
     }
 }
 
+impl Tile {
+    /// Adds a light-tracing splat to several pixels, pixel (x, y) with weight `wgt` for each
+    /// `(x, y, wgt)` of `pixels` (image coordinates inside the tile), without counting samples
+    /// (see [`Tile::splat`]): the same sums as `splat(x, y, w, l·wgt)` for each, with the
+    /// colour-matching functions looked up once. Returns false, adding nothing, for NaN or
+    /// infinite values.
+    #[inline]
+    pub fn splat_weighted<const N: usize>(
+        &mut self,
+        pixels: impl Iterator<Item = (u32, u32, f32)>,
+        w: &SampledWavelengths<N>,
+        l: &SampledSpectrum<N>,
+        bins: Option<&Bins>,
+    ) -> bool {
+        if !l.is_finite() {
+            return false;
+        }
+        // per-sample sums, as in `add`
+        let inv_n = 1.0 / N as f64;
+        let (mut xyz, mut band) = ([0.0f64; 3], 0.0f64);
+        let mut per_bin = [(usize::MAX, 0.0f64); N];
+        for j in 0..N {
+            if w.pdf[j] == 0.0 {
+                continue;
+            }
+            let v = l[j] as f64 / w.pdf[j] as f64 * inv_n;
+            let c = cmf().eval(w.lambda[j]);
+            for k in 0..3 {
+                xyz[k] += K_M * v * c[k] as f64;
+            }
+            band += v;
+            if let Some(b) = bins {
+                if let Some(k) = b.index(w.lambda[j]) {
+                    per_bin[j] = (k, v / b.width() as f64);
+                }
+            }
+        }
+        for (x, y, wgt) in pixels {
+            let wgt = wgt as f64;
+            let i = ((y - self.y0) * self.width + (x - self.x0)) as usize;
+            let p = &mut self.pixels[i];
+            for k in 0..3 {
+                p.xyz[k] += xyz[k] * wgt;
+            }
+            p.band += band * wgt;
+            for &(k, v) in &per_bin {
+                if k != usize::MAX {
+                    self.spectral[i * self.nbins + k] += v * wgt;
+                }
+            }
+        }
+        true
+    }
+}
+
 /// The whole film: settings and the accumulated sums of every pixel.
 #[derive(Clone, Debug)]
 pub struct Film {

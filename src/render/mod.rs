@@ -211,7 +211,8 @@ pub fn render(
 /// each with the filter's normalised weight f(raster − centre)/∫∫f (px⁻², times the pixel's
 /// unit area): the same reconstruction, ∫ L(x) f(x − centre) dx / ∫ f, that camera rays
 /// realise by sampling their offsets from the filter (pbrt-v4 §5.4.3). Pixels outside the
-/// image are skipped; `l` must be finite.
+/// image are skipped. `tile` covers the whole image. Returns false, adding nothing, if `l` is
+/// not finite.
 fn splat_filtered<const N: usize>(
     tile: &mut crate::film::Tile,
     filter: &Filter,
@@ -219,28 +220,25 @@ fn splat_filtered<const N: usize>(
     wl: &SampledWavelengths<N>,
     l: &crate::spectrum::SampledSpectrum<N>,
     bins: Option<&crate::film::Bins>,
-) {
+) -> bool {
+    debug_assert!(tile.x0 == 0 && tile.y0 == 0);
     let r = filter.radius;
     // pixels whose centre x + 0.5 lies within [raster − r, raster + r], one more on each side
     // for rounding; `Filter::weight` decides the half-open support exactly
-    let lo = (raster - Vec2::splat(0.5 + r)).floor();
-    let hi = (raster + Vec2::splat(r - 0.5)).floor() + Vec2::ONE;
-    let (x0, y0) = (lo.x.max(0.0) as u32, lo.y.max(0.0) as u32);
-    let (x1, y1) = (
-        hi.x.min(tile.width as f32 - 1.0),
-        hi.y.min(tile.height as f32 - 1.0),
-    );
-    if x1 < 0.0 || y1 < 0.0 {
-        return;
+    let lo = (raster - Vec2::splat(0.5 + r)).floor().max(Vec2::ZERO);
+    let hi = ((raster + Vec2::splat(r - 0.5)).floor() + Vec2::ONE)
+        .min(Vec2::new(tile.width as f32 - 1.0, tile.height as f32 - 1.0));
+    if hi.x < lo.x || hi.y < lo.y {
+        return l.is_finite();
     }
-    for y in y0..=y1 as u32 {
-        for x in x0..=x1 as u32 {
+    let (x0, y0, x1, y1) = (lo.x as u32, lo.y as u32, hi.x as u32, hi.y as u32);
+    let pixels = (y0..=y1)
+        .flat_map(|y| (x0..=x1).map(move |x| (x, y)))
+        .filter_map(|(x, y)| {
             let wgt = filter.weight(raster - Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
-            if wgt > 0.0 {
-                tile.splat(x, y, wl, &(*l * wgt), bins);
-            }
-        }
-    }
+            (wgt > 0.0).then_some((x, y, wgt))
+        });
+    tile.splat_weighted(pixels, wl, l, bins)
 }
 
 /// Light tracing: `spp × pixels` paths in a fixed number of chunks, each splatting into its own
@@ -293,16 +291,14 @@ fn render_light(
                         &mut wl,
                         &mut s,
                         &mut |raster, wl, l| {
-                            if !l.is_finite() {
+                            if !splat_filtered(&mut tile, &filter, raster, wl, &l, bins.as_ref()) {
                                 let counter = if l.0.iter().any(|v| v.is_nan()) {
                                     &nan
                                 } else {
                                     &inf
                                 };
                                 counter.fetch_add(1, Ordering::Relaxed);
-                                return;
                             }
-                            splat_filtered(&mut tile, &filter, raster, wl, &l, bins.as_ref());
                         },
                     );
                     traced += 1;
