@@ -106,6 +106,11 @@ fn tilted_ratio(kind: &str) -> (f64, f64) {
     let ratios: Vec<f64> = (0..32 * 32)
         .map(|i| img.band[i] as f64 / tilted_closed_form(&s, i % 32, i / 32))
         .collect();
+    let centre: Vec<f64> = (0..64)
+        .map(|k| ratios[(12 + k / 8) * 32 + 12 + k % 8])
+        .collect();
+    let (c, c_se) = mean_se(&centre);
+    eprintln!("{kind}/closed over the central 8 × 8 pixels: {c:.4} ± {c_se:.4}");
     mean_se(&ratios)
 }
 
