@@ -181,18 +181,18 @@ impl Tile {
                 xyz[k] += K_M * v * c[k] as f64;
             }
             band += v;
-            if let Some(b) = bins {
-                if let Some(k) = b.index(w.lambda[j]) {
-                    per_bin[j] = (k, v / b.width() as f64);
-                }
+            if let Some(b) = bins
+                && let Some(k) = b.index(w.lambda[j])
+            {
+                per_bin[j] = (k, v / b.width() as f64);
             }
         }
         for (x, y, wgt) in pixels {
             let wgt = wgt as f64;
             let i = ((y - self.y0) * self.width + (x - self.x0)) as usize;
             let p = &mut self.pixels[i];
-            for k in 0..3 {
-                p.xyz[k] += xyz[k] * wgt;
+            for (a, c) in p.xyz.iter_mut().zip(xyz) {
+                *a += c * wgt;
             }
             p.band += band * wgt;
             for &(k, v) in &per_bin {
