@@ -13,6 +13,9 @@ pub struct Filter {
     pub radius: f32,
     /// Inverse CDF of one axis on [0, 1], `INV_CDF_SIZE + 1` entries, in pixels.
     inv_cdf: Vec<f32>,
+    /// The one-axis filter f(x) at `values.len()` evenly spaced x from −radius to radius,
+    /// divided by ∫ f dx over the support (px⁻¹), for [`Filter::weight`].
+    values: Vec<f32>,
 }
 
 const INV_CDF_SIZE: usize = 1024;
@@ -41,6 +44,12 @@ impl Filter {
             cdf[i + 1] = cdf[i] + f(m) as f64;
         }
         let total = cdf[n];
+        // ∫ f dx by the same midpoint rule, pixels
+        let integral = total * (2.0 * radius as f64) / n as f64;
+        let values = xs
+            .iter()
+            .map(|&x| (f(x) as f64 / integral) as f32)
+            .collect();
         let mut inv_cdf = Vec::with_capacity(INV_CDF_SIZE + 1);
         let mut j = 0;
         for k in 0..=INV_CDF_SIZE {
@@ -55,7 +64,38 @@ impl Filter {
             };
             inv_cdf.push(xs[j] + (xs[j + 1] - xs[j]) * t as f32);
         }
-        Self { radius, inv_cdf }
+        Self {
+            radius,
+            inv_cdf,
+            values,
+        }
+    }
+
+    /// The normalised one-axis filter f(x)/∫f at offset `x` (pixels), px⁻¹; 0 outside the
+    /// half-open support [−radius, radius), so that a point on the boundary between two pixels
+    /// of a box filter counts in one of them.
+    fn weight_axis(&self, x: f32) -> f32 {
+        if !(x >= -self.radius && x < self.radius) {
+            return 0.0;
+        }
+        let n = self.values.len() - 1;
+        let t = ((x + self.radius) / (2.0 * self.radius) * n as f32).clamp(0.0, n as f32);
+        let i = (t as usize).min(n - 1);
+        let a = t - i as f32;
+        self.values[i] + a * (self.values[i + 1] - self.values[i])
+    }
+
+    /// The weight with which a point at `offset` (pixels) from a pixel centre counts in that
+    /// pixel: f(offset) / ∫∫ f, px⁻², the density that [`Filter::sample`] draws offsets from.
+    /// Splatting a value with this weight into every pixel of the support reconstructs the same
+    /// image, ∫ L(x) f(x − centre) dx / ∫ f, as averaging camera samples drawn by `sample`
+    /// (pbrt-v4 §5.4.3 and §8.8; the weights over the pixels of the support sum to about 1).
+    pub fn weight(&self, offset: Vec2) -> f32 {
+        let wx = self.weight_axis(offset.x);
+        if wx == 0.0 {
+            return 0.0;
+        }
+        wx * self.weight_axis(offset.y)
     }
 
     fn sample_axis(&self, u: f32) -> f32 {
@@ -81,6 +121,43 @@ mod tests {
         assert!((f.sample(Vec2::ZERO).x + 0.5).abs() < 1e-5);
         assert!((f.sample(Vec2::splat(0.25)).x + 0.25).abs() < 1e-4);
         assert!((f.sample(Vec2::ONE).x - 0.5).abs() < 1e-5);
+    }
+
+    #[test]
+    fn weight_is_the_sampled_density() {
+        for d in [FilterDesc::Box, FilterDesc::Gaussian { sigma: 0.5 }] {
+            let f = Filter::from_desc(&d);
+            // ∫ weight = 1 over the support (midpoint rule on a 400 × 400 grid)
+            let n = 400;
+            let h = 2.0 * f.radius / n as f32;
+            let mut sum = 0.0f64;
+            for i in 0..n {
+                for j in 0..n {
+                    let o = Vec2::new(
+                        -f.radius + (i as f32 + 0.5) * h,
+                        -f.radius + (j as f32 + 0.5) * h,
+                    );
+                    sum += (f.weight(o) * h * h) as f64;
+                }
+            }
+            assert!((sum - 1.0).abs() < 1e-4, "{d:?}: ∫ weight = {sum}");
+            // the fraction of sampled offsets with x < a equals ∫_{−r}^{a} weight_axis
+            let a = 0.2 * f.radius;
+            let m = 20_000;
+            let below = (0..m)
+                .filter(|&k| f.sample_axis((k as f32 + 0.5) / m as f32) < a)
+                .count() as f64
+                / m as f64;
+            let steps = 20_000;
+            let dx = (a + f.radius) / steps as f32;
+            let cdf: f64 = (0..steps)
+                .map(|k| (f.weight_axis(-f.radius + (k as f32 + 0.5) * dx) * dx) as f64)
+                .sum();
+            assert!((below - cdf).abs() < 1e-3, "{d:?}: {below} vs {cdf}");
+        }
+        let b = Filter::from_desc(&FilterDesc::Box);
+        assert_eq!(b.weight(Vec2::new(-0.5, 0.0)), 1.0);
+        assert_eq!(b.weight(Vec2::new(0.5, 0.0)), 0.0);
     }
 
     #[test]

@@ -176,6 +176,61 @@ impl Tile {
     }
 }
 
+impl Tile {
+    /// Adds a light-tracing splat to several pixels, pixel (x, y) with weight `wgt` for each
+    /// `(x, y, wgt)` of `pixels` (image coordinates inside the tile), without counting samples
+    /// (see [`Tile::splat`]): the same sums as `splat(x, y, w, l·wgt)` for each, with the
+    /// colour-matching functions looked up once. Returns false, adding nothing, for NaN or
+    /// infinite values at a live wavelength ([`non_finite`]).
+    #[inline]
+    pub fn splat_weighted<const N: usize>(
+        &mut self,
+        pixels: impl Iterator<Item = (u32, u32, f32)>,
+        w: &SampledWavelengths<N>,
+        l: &SampledSpectrum<N>,
+        bins: Option<&Bins>,
+    ) -> bool {
+        if non_finite(w, l).is_some() {
+            return false;
+        }
+        // per-sample sums, as in `add`
+        let inv_n = 1.0 / N as f64;
+        let (mut xyz, mut band) = ([0.0f64; 3], 0.0f64);
+        let mut per_bin = [(usize::MAX, 0.0f64); N];
+        for j in 0..N {
+            if w.pdf[j] == 0.0 {
+                continue;
+            }
+            let v = l[j] as f64 / w.pdf[j] as f64 * inv_n;
+            let c = cmf().eval(w.lambda[j]);
+            for k in 0..3 {
+                xyz[k] += K_M * v * c[k] as f64;
+            }
+            band += v;
+            if let Some(b) = bins
+                && let Some(k) = b.index(w.lambda[j])
+            {
+                per_bin[j] = (k, v / b.width() as f64);
+            }
+        }
+        for (x, y, wgt) in pixels {
+            let wgt = wgt as f64;
+            let i = ((y - self.y0) * self.width + (x - self.x0)) as usize;
+            let p = &mut self.pixels[i];
+            for (a, c) in p.xyz.iter_mut().zip(xyz) {
+                *a += c * wgt;
+            }
+            p.band += band * wgt;
+            for &(k, v) in &per_bin {
+                if k != usize::MAX {
+                    self.spectral[i * self.nbins + k] += v * wgt;
+                }
+            }
+        }
+        true
+    }
+}
+
 /// The whole film: settings and the accumulated sums of every pixel.
 #[derive(Clone, Debug)]
 pub struct Film {
@@ -227,6 +282,14 @@ impl Film {
     /// Adds a tile's sums into the film. Tiles cover disjoint pixels, so the order does not
     /// matter and the result is the same for any number of threads.
     pub fn merge(&mut self, t: &Tile) {
+        self.merge_scaled(t, 1.0);
+    }
+
+    /// Adds a tile's sums, multiplied by `scale`, into the film, and its sample counts as they
+    /// are. Light tracing uses it to add camera samples (the directly visible lights at
+    /// infinity, a mean over the samples per pixel) to a film whose splats are divided by the
+    /// number of light paths: `scale` = paths / camera samples per pixel.
+    pub fn merge_scaled(&mut self, t: &Tile, scale: f64) {
         let nb = self.bins.as_ref().map_or(0, |b| b.count);
         for ty in 0..t.height {
             for tx in 0..t.width {
@@ -234,12 +297,12 @@ impl Film {
                 let dst = ((t.y0 + ty) * self.width + t.x0 + tx) as usize;
                 let (a, b) = (&mut self.sums[dst], &t.pixels[src]);
                 for k in 0..3 {
-                    a.xyz[k] += b.xyz[k];
+                    a.xyz[k] += b.xyz[k] * scale;
                 }
-                a.band += b.band;
+                a.band += b.band * scale;
                 a.count += b.count;
                 for k in 0..nb {
-                    self.spectral[dst * nb + k] += t.spectral[src * nb + k];
+                    self.spectral[dst * nb + k] += t.spectral[src * nb + k] * scale;
                 }
             }
         }

@@ -239,8 +239,10 @@ impl Camera {
     }
 
     /// Where the world point `p` appears on a pinhole perspective camera, or None if it is
-    /// behind the camera, outside the image, or the camera is not a pinhole.
-    pub fn connect(&self, p: Vec3) -> Option<CameraConnection> {
+    /// behind the camera, more than `margin` pixels outside the image (a reconstruction filter
+    /// of that radius still carries such a point into the image), or the camera is not a
+    /// pinhole.
+    pub fn connect(&self, p: Vec3, margin: f32) -> Option<CameraConnection> {
         let Camera::Perspective(c) = self else {
             return None;
         };
@@ -254,7 +256,11 @@ impl Camera {
         let ndc = -xy / c.film.half;
         let size = Vec2::new(c.film.width as f32, c.film.height as f32);
         let raster = (ndc + Vec2::ONE) * 0.5 * size;
-        if !(raster.x >= 0.0 && raster.y >= 0.0 && raster.x < size.x && raster.y < size.y) {
+        if !(raster.x >= -margin
+            && raster.y >= -margin
+            && raster.x < size.x + margin
+            && raster.y < size.y + margin)
+        {
             return None;
         }
         let area = 4.0 * c.film.half.x * c.film.half.y;

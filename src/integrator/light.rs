@@ -4,8 +4,14 @@
 //! LightPathIntegrator). It renders
 //! caustics that `path` cannot, such as a collimated beam refracted by a prism onto a screen.
 //!
-//! Supported emitters: area, point, spot, beam and directional (as a beam as wide as the
-//! scene). Environment lights are not traced. The camera must be a pinhole.
+//! Every emitter is traced: area, point, spot and beam lights from their surfaces or positions;
+//! lights at infinity (environment, directional with or without an angular diameter) from a
+//! disk of the scene's bounding sphere (`sample_le`). A light at infinity seen directly by the
+//! camera (the sky, a sun disk) cannot reach a pinhole from a particle; [`escaped`] adds it
+//! along camera rays instead (see `render::render_light`). The camera must be a pinhole.
+//!
+//! Paths that reach the camera through a specular last bounce (an emitter seen in a mirror or
+//! through glass) are not sampled by light tracing with a pinhole, for any light; use `path`.
 
 use glam::{Vec2, Vec3};
 
@@ -19,9 +25,13 @@ use crate::sampling::{
 };
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
-/// Traces one light path and calls `splat` for every camera connection.
+/// Traces one light path and calls `splat` for every camera connection, with the raster
+/// position (pixels) of the connection, which may lie up to `margin` pixels outside the image
+/// (the reconstruction filter's radius: the caller spreads each splat over the pixels of the
+/// filter's support, see `render::render_light`).
 pub fn trace<const N: usize>(
     it: &Integrator<'_>,
+    margin: f32,
     w: &mut SampledWavelengths<N>,
     s: &mut Sampler,
     splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, SampledSpectrum<N>),
@@ -42,7 +52,7 @@ pub fn trace<const N: usize>(
             }
             let le = a.radiance.sample(w);
             // t = 1: the emitter seen directly by the camera
-            if let Some(c) = camera.connect(ps.p) {
+            if let Some(c) = camera.connect(ps.p, margin) {
                 let cos = ps.n.dot(c.wi);
                 if (a.two_sided || cos > 0.0)
                     && !occluded_to_camera(it, ps.p, ps.p_error, ps.n, camera.position())
@@ -104,21 +114,18 @@ pub fn trace<const N: usize>(
             let (o, d, power) = b.sample_emission(u1, w);
             (o, Vec3::ZERO, Vec3::ZERO, d, power * (1.0 / p_sel))
         }
+        // lights at infinity: a direction, then a point on the disk of the scene's bounding
+        // sphere perpendicular to it (`sample_le`)
         Light::Directional(l) => {
             let (c, r) = scene.bounding_sphere();
-            let f = Frame::from_normal(l.direction);
-            let disk = crate::sampling::concentric_disk(u1) * r;
-            let o = c - l.direction * (2.0 * r) + f.s * disk.x + f.t * disk.y;
-            let area = std::f32::consts::PI * r * r;
-            (
-                o,
-                Vec3::ZERO,
-                Vec3::ZERO,
-                l.direction,
-                l.irradiance.sample(w) * (area / p_sel),
-            )
+            let e = l.sample_le(c, r, w, u1, u2);
+            (e.o, Vec3::ZERO, Vec3::ZERO, e.d, e.weight() * (1.0 / p_sel))
         }
-        Light::Environment(_) => return,
+        Light::Environment(l) => {
+            let (c, r) = scene.bounding_sphere();
+            let e = l.sample_le(c, r, w, u1, u2);
+            (e.o, Vec3::ZERO, Vec3::ZERO, e.d, e.weight() * (1.0 / p_sel))
+        }
     };
     if beta.is_zero() {
         return;
@@ -142,7 +149,7 @@ pub fn trace<const N: usize>(
             w.terminate_secondary();
         }
         if !sh.material.is_specular() {
-            if let Some(c) = camera.connect(hit.p) {
+            if let Some(c) = camera.connect(hit.p, margin) {
                 let wc = sh.frame.to_local(c.wi);
                 let f = sh.material.eval(wo, wc, w, TransportMode::Importance);
                 if !f.is_zero()
@@ -154,7 +161,11 @@ pub fn trace<const N: usize>(
                         camera.position(),
                     )
                 {
-                    splat(c.raster, w, beta * f * (wc.z.abs() * c.weight));
+                    // β·f·|ns·wc|·(adjoint correction) = β·f·|ns·wo|·|ng·wc|/|ng·wo|:
+                    // the geometric cosine at the camera end, shading cosine at the light end
+                    // (Veach 1997 §5.3)
+                    let corr = sh.adjoint_correction(wo, c.wi);
+                    splat(c.raster, w, beta * f * (wc.z.abs() * corr * c.weight));
                 }
             }
         }
@@ -177,4 +188,35 @@ pub fn trace<const N: usize>(
 fn occluded_to_camera(it: &Integrator<'_>, p: Vec3, p_error: Vec3, n: Vec3, eye: Vec3) -> bool {
     let ray = spawn_ray_to(p, p_error, n, eye, Vec3::ZERO, Vec3::ZERO);
     it.scene.accel.occluded(&it.scene.shapes, &ray)
+}
+
+/// Whether the scene has a light at infinity that a camera ray can see directly (an
+/// environment, or a directional light with an angular diameter): light tracing then adds
+/// [`escaped`] along camera rays.
+pub fn has_visible_infinite_lights(it: &Integrator<'_>) -> bool {
+    it.scene.lights.iter().any(|l| match l {
+        Light::Environment(_) => true,
+        Light::Directional(d) => !d.is_delta(),
+        Light::Area(_) | Light::Point(_) | Light::Spot(_) | Light::Beam(_) => false,
+    })
+}
+
+/// Radiance seen directly along a camera ray from the lights at infinity, W·m⁻²·sr⁻¹·nm⁻¹:
+/// the sum of their `escaped` radiance if the ray leaves the scene, else 0. This is the path
+/// tracer's zero-bounce term for those lights (the particles of `trace` cannot reach a pinhole
+/// directly from infinity).
+pub fn escaped<const N: usize>(
+    it: &Integrator<'_>,
+    ray: &Ray,
+    w: &SampledWavelengths<N>,
+) -> SampledSpectrum<N> {
+    let scene = it.scene;
+    if scene.accel.intersect(&scene.shapes, ray).is_some() {
+        return SampledSpectrum::zero();
+    }
+    let mut l = SampledSpectrum::zero();
+    for light in &scene.lights {
+        l += light.escaped(ray.d, w);
+    }
+    l
 }

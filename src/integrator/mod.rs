@@ -133,12 +133,37 @@ impl Shading<'_> {
         if bs.pdf <= 0.0 || bs.f.is_zero() {
             return None;
         }
-        *beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
         let wi = self.frame.to_world(bs.wi);
+        let correction = match mode {
+            TransportMode::Radiance => 1.0,
+            TransportMode::Importance => self.adjoint_correction(wo, wi),
+        };
+        if correction == 0.0 {
+            return None;
+        }
+        *beta *= bs.f * (bs.wi.z.abs() * correction / bs.pdf);
         Some((
             bs,
             spawn_ray(hit.p, hit.p_error, self.n_geom_toward(wi), wi),
         ))
+    }
+
+    /// The adjoint correction for shading normals (Veach 1997 §5.3, eq. 5.19; pbrt-v3 §16.1.3
+    /// `CorrectShadingNormal`), for particles (importance transport): a particle that arrived
+    /// from `wo` (local, toward where the light came from) and leaves along `wi_world` (world,
+    /// unit) carries f·|ns·wi| ⟶ f·|ns·wo|·|ng·wi| / (|ng·wo|·|ns·wi|) times that. Multiplying
+    /// by it makes light tracing estimate the same radiance as path tracing, which integrates
+    /// f·|ns·wi| over the incident directions. Returns 0 for a direction tangent to the
+    /// geometric surface (the particle carries nothing there).
+    #[inline]
+    pub fn adjoint_correction(&self, wo: Vec3, wi_world: Vec3) -> f32 {
+        let wo_world = self.frame.to_world(wo);
+        let den = self.n_geom.dot(wo_world).abs() * wi_world.dot(self.frame.n).abs();
+        if den == 0.0 {
+            return 0.0;
+        }
+        let c = wo.z.abs() * self.n_geom.dot(wi_world).abs() / den;
+        if c.is_finite() { c } else { 0.0 }
     }
 
     /// The geometric normal flipped to the side of `dir`, for offsetting rays that leave there.

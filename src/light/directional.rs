@@ -2,7 +2,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::LightSample;
+use super::{EmissionSample, LightSample, infinite_disk_origin};
 use crate::geometry::Frame;
 use crate::sampling::{uniform_cone, uniform_cone_pdf};
 use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
@@ -96,6 +96,39 @@ impl DirectionalLight {
             self.irradiance.sample(w) * self.disk_radiance_factor()
         } else {
             SampledSpectrum::zero()
+        }
+    }
+
+    /// A particle from this light (light tracing). The direction of travel is `direction`
+    /// (collimated: `le` = E⊥, pdf_dir = 1) or uniform in the disk's cone (le = E⊥/(π sin²α),
+    /// pdf_dir = 1/(2π(1 − cos α)) sr⁻¹, `u_dir`); the origin is uniform on the disk of the
+    /// scene's bounding sphere (`center`, `radius`) perpendicular to it (pdf 1/(π r²) m⁻²,
+    /// `u_pos`).
+    pub fn sample_le<const N: usize>(
+        &self,
+        center: Vec3,
+        radius: f32,
+        w: &SampledWavelengths<N>,
+        u_pos: Vec2,
+        u_dir: Vec2,
+    ) -> EmissionSample<N> {
+        let (d, le, pdf_dir) = if self.is_delta() {
+            (self.direction, self.irradiance.sample(w), 1.0)
+        } else {
+            // frame.n points toward the light; the particle travels the other way
+            (
+                -self.frame.to_world(uniform_cone(u_dir, self.one_minus_cos)),
+                self.irradiance.sample(w) * self.disk_radiance_factor(),
+                uniform_cone_pdf(self.one_minus_cos),
+            )
+        };
+        let (o, pdf_pos) = infinite_disk_origin(center, radius, d, u_pos);
+        EmissionSample {
+            o,
+            d,
+            le,
+            pdf_pos,
+            pdf_dir,
         }
     }
 }

@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::LightSample;
+use super::{EmissionSample, LightSample, infinite_disk_origin};
 use crate::sampling::{UNIFORM_SPHERE_PDF, uniform_sphere};
 use crate::spectrum::{SampledWavelengths, Spectrum};
 
@@ -30,5 +30,28 @@ impl EnvironmentLight {
             n: Vec3::ZERO,
             distance: f32::INFINITY,
         })
+    }
+
+    /// A particle from the environment (light tracing): a direction of travel uniform on the
+    /// sphere (pdf 1/(4π) sr⁻¹, `u_dir`), then an origin uniform on the disk of the scene's
+    /// bounding sphere (`center`, `radius`) perpendicular to it (pdf 1/(π r²) m⁻², `u_pos`).
+    /// Particles that miss the scene carry nothing, and none of the scene is missed.
+    pub fn sample_le<const N: usize>(
+        &self,
+        center: Vec3,
+        radius: f32,
+        w: &SampledWavelengths<N>,
+        u_pos: Vec2,
+        u_dir: Vec2,
+    ) -> EmissionSample<N> {
+        let d = uniform_sphere(u_dir);
+        let (o, pdf_pos) = infinite_disk_origin(center, radius, d, u_pos);
+        EmissionSample {
+            o,
+            d,
+            le: self.radiance.sample(w),
+            pdf_pos,
+            pdf_dir: UNIFORM_SPHERE_PDF,
+        }
     }
 }

@@ -51,6 +51,42 @@ pub struct LightSample<const N: usize> {
     pub distance: f32,
 }
 
+/// A particle leaving a light at infinity (environment, directional): light tracing's emission
+/// sample (pbrt-v4 §12.5, `SampleLe`; Veach 1997 §8.3.2 for the disk of the scene's bounding
+/// sphere).
+#[derive(Clone, Copy, Debug)]
+pub struct EmissionSample<const N: usize> {
+    /// Ray origin on a disk perpendicular to `d`, outside the scene's bounding sphere, m.
+    pub o: Vec3,
+    /// Unit direction of travel.
+    pub d: Vec3,
+    /// Radiance carried along `d`, W·m⁻²·sr⁻¹·nm⁻¹ (a collimated light: its irradiance
+    /// E⊥, W·m⁻²·nm⁻¹, with `pdf_dir` = 1 for the delta direction).
+    pub le: SampledSpectrum<N>,
+    /// Density of `o` per unit area of the disk, m⁻²: 1/(π r²).
+    pub pdf_pos: f32,
+    /// Density of `d` per unit solid angle, sr⁻¹ (1 for a delta direction).
+    pub pdf_dir: f32,
+}
+
+impl<const N: usize> EmissionSample<N> {
+    /// The particle's spectral power per unit probability, W·nm⁻¹: Le·cos θ / (pdf_pos·pdf_dir)
+    /// with cos θ = 1, the disk being perpendicular to `d`.
+    pub fn weight(&self) -> SampledSpectrum<N> {
+        self.le * (1.0 / (self.pdf_pos * self.pdf_dir))
+    }
+}
+
+/// Origin of a particle travelling along `d` (unit) that enters the bounding sphere (`center`,
+/// `radius`): uniform on the disk of that radius perpendicular to `d`, placed a diameter
+/// upstream of the centre so it lies outside the sphere. Returns the origin and its area pdf.
+pub fn infinite_disk_origin(center: Vec3, radius: f32, d: Vec3, u: Vec2) -> (Vec3, f32) {
+    let f = crate::geometry::Frame::from_normal(d);
+    let p = crate::sampling::concentric_disk(u) * radius;
+    let o = center - d * (2.0 * radius) + f.s * p.x + f.t * p.y;
+    (o, 1.0 / (std::f32::consts::PI * radius * radius))
+}
+
 /// The sample of a point-like light at `position` seen from `p`: `intensity(wi)` gives the
 /// spectral intensity (W·sr⁻¹·nm⁻¹) toward the receiver for the direction `wi` from `p` to the
 /// light (None: no light that way); li = I / r², pdf 1, delta.

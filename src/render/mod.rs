@@ -207,6 +207,40 @@ pub fn render(
     Ok((film, stats))
 }
 
+/// Spreads a light-tracing splat at `raster` (pixels) over the pixels of the filter's support,
+/// each with the filter's normalised weight f(raster − centre)/∫∫f (px⁻², times the pixel's
+/// unit area): the same reconstruction, ∫ L(x) f(x − centre) dx / ∫ f, that camera rays
+/// realise by sampling their offsets from the filter (pbrt-v4 §5.4.3). Pixels outside the
+/// image are skipped. `tile` covers the whole image. Returns false, adding nothing, if `l` is
+/// not finite.
+fn splat_filtered<const N: usize>(
+    tile: &mut crate::film::Tile,
+    filter: &Filter,
+    raster: Vec2,
+    wl: &SampledWavelengths<N>,
+    l: &crate::spectrum::SampledSpectrum<N>,
+    bins: Option<&crate::film::Bins>,
+) -> bool {
+    debug_assert!(tile.x0 == 0 && tile.y0 == 0);
+    let r = filter.radius;
+    // pixels whose centre x + 0.5 lies within [raster − r, raster + r], one more on each side
+    // for rounding; `Filter::weight` decides the half-open support exactly
+    let lo = (raster - Vec2::splat(0.5 + r)).floor().max(Vec2::ZERO);
+    let hi = ((raster + Vec2::splat(r - 0.5)).floor() + Vec2::ONE)
+        .min(Vec2::new(tile.width as f32 - 1.0, tile.height as f32 - 1.0));
+    if hi.x < lo.x || hi.y < lo.y {
+        return non_finite(wl, l).is_none();
+    }
+    let (x0, y0, x1, y1) = (lo.x as u32, lo.y as u32, hi.x as u32, hi.y as u32);
+    let pixels = (y0..=y1)
+        .flat_map(|y| (x0..=x1).map(move |x| (x, y)))
+        .filter_map(|(x, y)| {
+            let wgt = filter.weight(raster - Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
+            (wgt > 0.0).then_some((x, y, wgt))
+        });
+    tile.splat_weighted(pixels, wl, l, bins)
+}
+
 /// Light tracing: `spp × pixels` paths in a fixed number of chunks, each splatting into its own
 /// full-image tile; chunks are merged in order, so the image does not depend on the threads.
 #[allow(clippy::too_many_arguments)]
@@ -225,6 +259,7 @@ fn render_light(
     let pixels = w as u64 * h as u64;
     let total = pixels * opts.spp as u64;
     let bins = film.bins.clone();
+    let filter = film.filter.clone();
     let done = AtomicU64::new(0);
     let (nan, inf) = (AtomicU64::new(0), AtomicU64::new(0));
     let tiles: Vec<(crate::film::Tile, u64)> = pool.install(|| {
@@ -252,12 +287,11 @@ fn render_light(
                     let mut wl: SampledWavelengths<N_WAVELENGTHS> = lambda.sample(s.get_1d());
                     crate::integrator::light::trace(
                         integrator,
+                        filter.radius,
                         &mut wl,
                         &mut s,
                         &mut |raster, wl, l| {
-                            let (x, y) =
-                                ((raster.x as u32).min(w - 1), (raster.y as u32).min(h - 1));
-                            if !tile.splat(x, y, wl, &l, bins.as_ref()) {
+                            if !splat_filtered(&mut tile, &filter, raster, wl, &l, bins.as_ref()) {
                                 let counter = if non_finite(wl, &l) == Some(NonFinite::NaN) {
                                     &nan
                                 } else {
@@ -279,7 +313,52 @@ fn render_light(
         paths += traced;
     }
     film.set_path_count(paths.max(1));
-    let partial = paths < total || cancel.load(Ordering::Relaxed);
+    // Lights at infinity seen directly (sky, sun disk): camera rays with the filter's offsets,
+    // as in `render`, each adding the escaped radiance; their per-pixel sums are scaled by
+    // paths / spp so that the film's division by the path count leaves their mean.
+    let mut cam_cancelled = false;
+    if crate::integrator::light::has_visible_infinite_lights(integrator) && paths > 0 {
+        let scene = integrator.scene;
+        let filter = film.filter.clone();
+        let rows: Vec<Option<crate::film::Tile>> = pool.install(|| {
+            (0..h)
+                .into_par_iter()
+                .map(|y| {
+                    if cancel.load(Ordering::Relaxed) {
+                        return None;
+                    }
+                    let mut tile = film.tile(0, y, w, 1);
+                    for x in 0..w {
+                        for i in 0..opts.spp {
+                            let mut s = Sampler::new(opts.seed ^ 0x534b_5900, x, y, i);
+                            let wl: SampledWavelengths<N_WAVELENGTHS> = lambda.sample(s.get_1d());
+                            let offset = filter.sample(s.get_2d());
+                            let raster = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
+                            let ray = scene.camera.generate_ray(raster, s.get_2d());
+                            let l = crate::integrator::light::escaped(integrator, &ray, &wl);
+                            if !tile.splat(x, y, &wl, &l, bins.as_ref()) {
+                                let counter = if l.0.iter().any(|v| v.is_nan()) {
+                                    &nan
+                                } else {
+                                    &inf
+                                };
+                                counter.fetch_add(1, Ordering::Relaxed);
+                            }
+                        }
+                    }
+                    Some(tile)
+                })
+                .collect()
+        });
+        let scale = paths as f64 / opts.spp.max(1) as f64;
+        for row in &rows {
+            match row {
+                Some(t) => film.merge_scaled(t, scale),
+                None => cam_cancelled = true,
+            }
+        }
+    }
+    let partial = paths < total || cam_cancelled || cancel.load(Ordering::Relaxed);
     let stats = RenderStats {
         samples: paths,
         nan_samples: nan.load(Ordering::Relaxed),
