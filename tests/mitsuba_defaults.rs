@@ -321,3 +321,130 @@ fn point_light_to_world_matches_mitsuba() {
         "{e}"
     );
 }
+
+/// A directional emitter without `direction` shines along the image of +z under `to_world`
+/// (Mitsuba 3.9.1: rotating x by 90° then y by 30° sends light along (0, −1, 0); its
+/// `sample_direction` returns (0, 1, 0), toward the light).
+#[test]
+fn directional_to_world_matches_mitsuba() {
+    let xml = r#"<scene version="3.0.0">
+  <sensor type="perspective"><float name="fov" value="40"/></sensor>
+  <emitter type="directional"><transform name="to_world">
+    <rotate x="1" angle="90"/><rotate y="1" angle="30"/></transform></emitter>
+</scene>"#;
+    let desc = load(xml);
+    let spectrace::loader::desc::LightKind::Directional { direction, .. } = &desc.lights[0].kind
+    else {
+        panic!("not a directional light");
+    };
+    println!("direction {direction:?}, Mitsuba (0, -1, 0)");
+    let want = [0.0, -1.0, 0.0];
+    for i in 0..3 {
+        assert!((direction[i] - want[i]).abs() < 1e-9, "{direction:?}");
+    }
+    let e = err(&xml.replace(
+        "<emitter type=\"directional\">",
+        "<emitter type=\"directional\"><vector name=\"direction\" value=\"0, -1, 0\"/>",
+    ));
+    assert!(e.contains("direction or to_world"), "{e}");
+}
+
+fn bsdf_scene(bsdf: &str) -> String {
+    format!(
+        r#"<scene version="3.0.0">
+  <sensor type="perspective"><float name="fov" value="40"/></sensor>
+  <emitter type="constant"/>
+  {bsdf}
+  <shape type="sphere"><ref id="m"/></shape>
+</scene>"#
+    )
+}
+
+fn conductor(desc: &SceneDesc) -> (f32, f32, f64, Option<f64>) {
+    match &desc.materials[0].kind {
+        spectrace::loader::desc::MaterialKind::Conductor {
+            ior,
+            exterior_ior,
+            roughness,
+        } => (
+            ior.n.eval(550.0),
+            ior.k.eval(550.0),
+            *exterior_ior,
+            *roughness,
+        ),
+        other => panic!("not a conductor: {other:?}"),
+    }
+}
+
+/// Mitsuba's `conductor` without `material` is material "none": eta = 0, k = 1, a perfect mirror
+/// (Mitsuba 3.9.1's sampled weight is 1 at every wavelength); eta and k are relative to vacuum
+/// (exterior index 1, and `ext_ior` is an unreferenced property, an error, in Mitsuba).
+#[test]
+fn conductor_defaults_match_mitsuba() {
+    for b in [
+        r#"<bsdf type="conductor" id="m"/>"#,
+        r#"<bsdf type="conductor" id="m"><string name="material" value="none"/></bsdf>"#,
+    ] {
+        let desc = load(&bsdf_scene(b));
+        let (n, k, ext, _) = conductor(&desc);
+        let r: Vec<f32> = [1.0f32, 0.7, 0.3, 0.05]
+            .iter()
+            .map(|&c| {
+                spectrace::material::fresnel::fresnel_conductor(c, n / ext as f32, k / ext as f32)
+            })
+            .collect();
+        println!("{b}: eta {n}, k {k}, exterior {ext}, R(cos θ = 1, 0.7, 0.3, 0.05) = {r:?}");
+        assert_eq!((n, k, ext), (0.0, 1.0, 1.0), "{b}");
+        assert!(r.iter().all(|&r| (r - 1.0).abs() < 1e-6), "{b}: R = {r:?}");
+    }
+    // eta given alone keeps Mitsuba's k = 1
+    let (n, k, ext, _) = conductor(&load(&bsdf_scene(
+        r#"<bsdf type="conductor" id="m"><float name="eta" value="0.2"/></bsdf>"#,
+    )));
+    assert_eq!((n, k, ext), (0.2, 1.0, 1.0));
+    // a named metal is relative to vacuum as well
+    let (_, _, ext, _) = conductor(&load(&bsdf_scene(
+        r#"<bsdf type="conductor" id="m"><string name="material" value="Au"/></bsdf>"#,
+    )));
+    assert_eq!(ext, 1.0);
+    let e = err(&bsdf_scene(
+        r#"<bsdf type="conductor" id="m"><float name="ext_ior" value="1.5"/></bsdf>"#,
+    ));
+    assert!(e.contains("t.xml:4:") && e.contains("ext_ior"), "{e}");
+    let e = err(&bsdf_scene(
+        r#"<bsdf type="conductor" id="m"><string name="material" value="Au"/><float name="eta" value="0.2"/></bsdf>"#,
+    ));
+    assert!(e.contains("material or eta and k"), "{e}");
+}
+
+/// Mitsuba's rough BSDFs default to Beckmann, which spectrace lacks: refused with a located
+/// error rather than rendered as GGX; `alpha_u` = `alpha_v` is the isotropic α, anisotropy is
+/// refused rather than ignored.
+#[test]
+fn rough_bsdf_defaults_are_not_misread() {
+    for t in ["roughconductor", "roughdielectric"] {
+        let e = err(&bsdf_scene(&format!(r#"<bsdf type="{t}" id="m"/>"#)));
+        assert!(
+            e.contains("t.xml:4:") && e.contains("Beckmann") && e.contains("ggx"),
+            "{e}"
+        );
+        let e = err(&bsdf_scene(&format!(
+            r#"<bsdf type="{t}" id="m"><string name="distribution" value="beckmann"/></bsdf>"#
+        )));
+        assert!(e.contains("t.xml:4:") && e.contains("\"beckmann\""), "{e}");
+        let e = err(&bsdf_scene(&format!(
+            r#"<bsdf type="{t}" id="m"><string name="distribution" value="ggx"/>
+  <float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.3"/></bsdf>"#
+        )));
+        assert!(e.contains("t.xml:4:") && e.contains("anisotropic"), "{e}");
+    }
+    let desc = load(&bsdf_scene(
+        r#"<bsdf type="roughconductor" id="m"><string name="distribution" value="ggx"/>
+  <float name="alpha_u" value="0.3"/><float name="alpha_v" value="0.3"/></bsdf>"#,
+    ));
+    assert_eq!(conductor(&desc).3, Some(0.3));
+    let desc = load(&bsdf_scene(
+        r#"<bsdf type="roughconductor" id="m"><string name="distribution" value="ggx"/></bsdf>"#,
+    ));
+    assert_eq!(conductor(&desc).3, Some(0.1), "Mitsuba's default alpha");
+}
