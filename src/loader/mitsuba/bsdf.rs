@@ -96,7 +96,7 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
                 return Err(cx.err(b, "give either alpha or alpha_u and alpha_v, not both"));
             }
         };
-        if !(a > 0.0) {
+        if a <= 0.0 {
             return Err(cx.err(b, format!("alpha must be positive, not {a}")));
         }
         Ok(Some(a))

@@ -535,13 +535,13 @@ pub(super) fn scene(
                         );
                     }
                 }
-                if let Some(h) = cx.child(c, "hide_emitters") {
-                    if h.attr("value") == Some("true") {
-                        return Err(cx.err(
-                            h,
-                            "hide_emitters = true is not supported: spectrace always shows emitters seen directly",
-                        ));
-                    }
+                if let Some(h) = cx.child(c, "hide_emitters")
+                    && h.attr("value") == Some("true")
+                {
+                    return Err(cx.err(
+                        h,
+                        "hide_emitters = true is not supported: spectrace always shows emitters seen directly",
+                    ));
                 }
             }
             "sensor" => camera = Some(sensor(&cx, c, &mut film)?),
