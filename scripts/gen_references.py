@@ -54,6 +54,7 @@ EPS_REL = 1e-2
 SPP = {
     "blackbody": 6144,
     "constant_env": 8192,
+    "defaults": 8192,
     "cornell": 3072,
     "dielectric_sphere": 8192,
     "directional": 8192,
