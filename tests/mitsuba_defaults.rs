@@ -397,7 +397,11 @@ fn conductor_defaults_match_mitsuba() {
         assert_eq!((n, k, ext), (0.0, 1.0, 1.0), "{b}");
         assert!(r.iter().all(|&r| (r - 1.0).abs() < 1e-6), "{b}: R = {r:?}");
     }
-    // eta given alone keeps Mitsuba's k = 1
+    // eta given alone (or with material "none") keeps Mitsuba's k = 1
+    let (n, k, ext, _) = conductor(&load(&bsdf_scene(
+        r#"<bsdf type="conductor" id="m"><string name="material" value="none"/><float name="eta" value="0.2"/></bsdf>"#,
+    )));
+    assert_eq!((n, k, ext), (0.2, 1.0, 1.0));
     let (n, k, ext, _) = conductor(&load(&bsdf_scene(
         r#"<bsdf type="conductor" id="m"><float name="eta" value="0.2"/></bsdf>"#,
     )));

@@ -139,8 +139,9 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
             } else {
                 None
             };
+            // material "none" (Mitsuba's default) means eta and k, defaulting to 0 and 1
             let ior = match (
-                cx.string(b, "material"),
+                cx.string(b, "material").filter(|m| m != "none"),
                 cx.child(b, "eta"),
                 cx.child(b, "k"),
             ) {
@@ -152,7 +153,6 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
                 }
                 // Mitsuba's default: material "none", eta = 0, k = 1, a perfect mirror
                 (None, None, None) => perfect_mirror(),
-                (Some(m), _, _) if m == "none" => perfect_mirror(),
                 (Some(m), _, _) => match lookup(&format!("metal:{m}")) {
                     Ok(Named::Conductor(metal)) => metal.ior,
                     _ => return Err(cx.err(
