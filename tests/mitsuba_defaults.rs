@@ -3,8 +3,8 @@
 //! `scripts/gen_mitsuba_defaults.py`): the sensor's field of view without `fov`, the D65 shape
 //! and scale of an emitter's absent, bare-float, `d65` and `rgb` spectrum, `max_depth` as path
 //! length, a point light placed by `to_world`; and, from Mitsuba's documented defaults, the
-//! perfect-mirror conductor and the refusal of what spectrace cannot render (Beckmann,
-//! anisotropic roughness).
+//! perfect-mirror conductor, Beckmann as the rough BSDFs' default distribution, and the refusal
+//! of what spectrace cannot render (anisotropic roughness).
 
 mod support;
 
@@ -366,6 +366,7 @@ fn conductor(desc: &SceneDesc) -> (f32, f32, f64, Option<f64>) {
             ior,
             exterior_ior,
             roughness,
+            ..
         } => (
             ior.n.eval(550.0),
             ior.k.eval(550.0),
@@ -421,21 +422,33 @@ fn conductor_defaults_match_mitsuba() {
     assert!(e.contains("material or eta and k"), "{e}");
 }
 
-/// Mitsuba's rough BSDFs default to Beckmann, which spectrace lacks: refused with a located
-/// error rather than rendered as GGX; `alpha_u` = `alpha_v` is the isotropic α, anisotropy is
-/// refused rather than ignored.
+/// Mitsuba's rough BSDFs default to Beckmann (and take "beckmann" or "ggx"); `alpha` defaults
+/// to 0.1; `alpha_u` = `alpha_v` is the isotropic α, anisotropy is refused rather than ignored.
 #[test]
-fn rough_bsdf_defaults_are_not_misread() {
+fn rough_bsdf_defaults_match_mitsuba() {
+    use spectrace::loader::desc::{Distribution, MaterialKind};
+    let dist = |d: &SceneDesc| match &d.materials[0].kind {
+        MaterialKind::Conductor { distribution, .. }
+        | MaterialKind::Dielectric { distribution, .. } => *distribution,
+        other => panic!("{other:?}"),
+    };
     for t in ["roughconductor", "roughdielectric"] {
-        let e = err(&bsdf_scene(&format!(r#"<bsdf type="{t}" id="m"/>"#)));
-        assert!(
-            e.contains("t.xml:4:") && e.contains("Beckmann") && e.contains("ggx"),
-            "{e}"
-        );
+        let d = load(&bsdf_scene(&format!(r#"<bsdf type="{t}" id="m"/>"#)));
+        println!("{t} without distribution: {:?}", dist(&d));
+        assert_eq!(dist(&d), Distribution::Beckmann, "{t}: Mitsuba's default");
+        for (v, want) in [
+            ("beckmann", Distribution::Beckmann),
+            ("ggx", Distribution::Ggx),
+        ] {
+            let d = load(&bsdf_scene(&format!(
+                r#"<bsdf type="{t}" id="m"><string name="distribution" value="{v}"/></bsdf>"#
+            )));
+            assert_eq!(dist(&d), want, "{t} {v}");
+        }
         let e = err(&bsdf_scene(&format!(
-            r#"<bsdf type="{t}" id="m"><string name="distribution" value="beckmann"/></bsdf>"#
+            r#"<bsdf type="{t}" id="m"><string name="distribution" value="phong"/></bsdf>"#
         )));
-        assert!(e.contains("t.xml:4:") && e.contains("\"beckmann\""), "{e}");
+        assert!(e.contains("t.xml:4:") && e.contains("\"phong\""), "{e}");
         let e = err(&bsdf_scene(&format!(
             r#"<bsdf type="{t}" id="m"><string name="distribution" value="ggx"/>
   <float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.3"/></bsdf>"#

@@ -5,6 +5,7 @@ use std::sync::Arc;
 use super::convert::{Cx, R};
 use super::xml::Element;
 use crate::loader::desc::*;
+use crate::material::microfacet::Distribution;
 use crate::spectrum::ior::{ComplexIor, Ior};
 use crate::spectrum::named::{Named, lookup};
 use crate::spectrum::{PiecewiseLinear, Spectrum};
@@ -57,28 +58,22 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
     let b = cx.resolve(b)?;
     let t = b.attr("type").unwrap_or("");
     // Mitsuba's rough BSDFs: `distribution` beckmann (its default) or ggx; `alpha` (default
-    // 0.1), or `alpha_u` and `alpha_v` for an anisotropic lobe. spectrace has isotropic GGX only:
-    // anything else is refused rather than read as a different surface.
-    let alpha = |cx: &Cx<'_>| -> R<Option<f64>> {
+    // 0.1), or `alpha_u` and `alpha_v` for an anisotropic lobe. spectrace's microfacets are
+    // isotropic: anisotropy is refused rather than read as a different surface.
+    let distribution = || -> R<Distribution> {
         match cx.child(b, "distribution") {
-            Some(d) if d.attr("value") == Some("ggx") => {}
-            Some(d) => {
-                let v = d.attr("value").unwrap_or("");
-                return Err(cx.err(
+            None => Ok(Distribution::Beckmann),
+            Some(d) => match d.attr("value").unwrap_or("") {
+                "beckmann" => Ok(Distribution::Beckmann),
+                "ggx" => Ok(Distribution::Ggx),
+                v => Err(cx.err(
                     d,
-                    format!("distribution \"{v}\" is not supported; spectrace has only \"ggx\""),
-                ));
-            }
-            None => {
-                return Err(cx.err(
-                    b,
-                    format!(
-                        "{t} without a distribution is Beckmann in Mitsuba, which spectrace does not \
-                         have; add <string name=\"distribution\" value=\"ggx\"/> to render GGX in both"
-                    ),
-                ));
-            }
+                    format!("distribution \"{v}\" is not one of \"beckmann\", \"ggx\""),
+                )),
+            },
         }
+    };
+    let alpha = |cx: &Cx<'_>| -> R<Option<f64>> {
         let iso = cx.opt_float(b, "alpha")?;
         let (u, v) = (cx.opt_float(b, "alpha_u")?, cx.opt_float(b, "alpha_v")?);
         let a = match (iso, u, v) {
@@ -132,6 +127,7 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
             } else {
                 None
             },
+            distribution: distribution()?,
         },
         "conductor" | "roughconductor" => {
             let roughness = if t == "roughconductor" {
@@ -204,6 +200,7 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
                 // Mitsuba's eta, k are the metal's own, relative to vacuum
                 exterior_ior: 1.0,
                 roughness,
+                distribution: distribution()?,
             }
         }
         "plastic" | "roughplastic" => {
