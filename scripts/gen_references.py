@@ -60,6 +60,7 @@ SPP = {
     "directional": 8192,
     "gold_copper": 8192,
     "point_plane": 8192,
+    "rough_beckmann": 8192,
     "rough_conductor": 8192,
     "rough_dielectric": 6144,
     "spot": 8192,

@@ -7,8 +7,8 @@
 //! `height`, `rfilter` box/gaussian), the `independent` sampler, the `path` integrator
 //! (`max_depth` as path length); shapes `obj`, `ply`, `rectangle`, `cube`, `sphere`, `disk`
 //! with `to_world` and `flip_normals`; BSDFs `diffuse`, `twosided`, `conductor` (default: the
-//! perfect mirror eta = 0, k = 1), `roughconductor`, `dielectric`, `roughdielectric` (isotropic
-//! GGX only: Mitsuba's default Beckmann and anisotropic α are refused); emitters `area`, `point`,
+//! perfect mirror eta = 0, k = 1), `roughconductor`, `dielectric`, `roughdielectric` (Beckmann,
+//! Mitsuba's default, or GGX; anisotropic α is refused); emitters `area`, `point`,
 //! `spot`, `constant`, `directional`; spectra as a float, `λ:v` lists, `filename`, `blackbody`,
 //! `d65` and `rgb`. An emitter's absent spectrum, bare float and `rgb` are shaped by Mitsuba's
 //! D65 (CIE D65 / 98.997), as Mitsuba reads them.
