@@ -93,6 +93,12 @@ impl Sampler {
         self
     }
 
+    /// The next dimension this stream will read (each `get_2d` and `get_1d` reads two).
+    #[inline]
+    pub fn dimension(&self) -> u32 {
+        self.dim
+    }
+
     /// The next two dimensions as a point in [0, 1)².
     #[inline]
     pub fn get_2d(&mut self) -> Vec2 {
@@ -104,10 +110,17 @@ impl Sampler {
         Vec2::new(to_unit(x), to_unit(y))
     }
 
-    /// The next dimension in [0, 1) (uses one pair; the second coordinate is discarded).
+    /// The next dimension in [0, 1): the first coordinate of the pair [`Sampler::get_2d`] would
+    /// return (the same value, so layouts stay the same), computed alone. Uses one pair.
     #[inline]
     pub fn get_1d(&mut self) -> f32 {
-        self.get_2d().x
+        let seed = hash_combine(self.pixel_seed, self.dim);
+        self.dim += 2;
+        let i = nested_uniform_scramble(self.index, seed);
+        to_unit(nested_uniform_scramble(
+            i.reverse_bits(),
+            hash_u32(seed ^ 0xa511_e9b3),
+        ))
     }
 }
 
@@ -156,6 +169,16 @@ mod tests {
             Sampler::new(7, 3, 4, 0).get_2d(),
             Sampler::new(7, 3, 4, 0).at_dimension(2).get_2d()
         );
+    }
+
+    #[test]
+    fn get_1d_is_the_first_coordinate_of_get_2d() {
+        for i in 0..256 {
+            let mut a = Sampler::new(3, 5, 7, i).at_dimension(4);
+            let mut b = a.clone();
+            assert_eq!(a.get_1d(), b.get_2d().x);
+            assert_eq!(a.dimension(), b.dimension());
+        }
     }
 
     #[test]

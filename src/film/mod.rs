@@ -15,6 +15,31 @@ use crate::colour::cie::{K_M, cmf};
 use crate::colour::spaces::xyz_to_srgb;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths, WavelengthRange};
 
+/// Why a sample was dropped: a NaN or an infinite value at a live wavelength.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum NonFinite {
+    NaN,
+    Inf,
+}
+
+/// Whether the sample's radiance is NaN (first) or infinite at a live wavelength (pdf > 0).
+/// Terminated secondaries (pdf 0) do not count: the film drops them anyway, so whatever they
+/// hold must not discard the hero's valid estimate.
+#[inline]
+pub fn non_finite<const N: usize>(
+    w: &SampledWavelengths<N>,
+    l: &SampledSpectrum<N>,
+) -> Option<NonFinite> {
+    let live = || (0..N).filter(|&j| w.pdf[j] != 0.0);
+    if live().any(|j| l[j].is_nan()) {
+        Some(NonFinite::NaN)
+    } else if live().any(|j| l[j].is_infinite()) {
+        Some(NonFinite::Inf)
+    } else {
+        None
+    }
+}
+
 /// Per-pixel sums of sample estimates, in f64.
 #[derive(Clone, Debug, Default)]
 pub struct PixelSums {
@@ -94,7 +119,8 @@ impl Tile {
     }
 
     /// Adds one sample's radiance (W·m⁻²·sr⁻¹·nm⁻¹ at each wavelength) to pixel (x, y) in image
-    /// coordinates. Returns false, adding nothing, if any value is NaN or infinite.
+    /// coordinates. Returns false, adding nothing, if a live wavelength's value is NaN or
+    /// infinite ([`non_finite`]); a terminated wavelength's value (pdf 0) is never read.
     #[inline]
     pub fn add<const N: usize>(
         &mut self,
@@ -104,7 +130,7 @@ impl Tile {
         l: &SampledSpectrum<N>,
         bins: Option<&Bins>,
     ) -> bool {
-        if !l.is_finite() {
+        if non_finite(w, l).is_some() {
             return false;
         }
         let i = ((y - self.y0) * self.width + (x - self.x0)) as usize;
@@ -132,7 +158,7 @@ impl Tile {
 
     /// Adds a light-tracing splat to pixel (x, y) without counting a sample; the film divides
     /// by the number of light paths instead (see [`Film::set_path_count`]). Returns false,
-    /// adding nothing, for NaN or infinite values.
+    /// adding nothing, for NaN or infinite values at a live wavelength.
     #[inline]
     pub fn splat<const N: usize>(
         &mut self,

@@ -12,14 +12,14 @@
 //! padded by 2⁻²⁰ of its largest coordinate so that rounding in the slab test cannot cull a
 //! primitive whose own (watertight, conservative) test would report a hit.
 
+use super::bvh4::{BinaryNode, Bvh4};
 use super::ray::Ray;
-use super::shape::{Intersection, PrimHit, Shape};
-use glam::{Vec3, Vec3A};
+use super::shape::{Intersection, PrimHit, Shape, WatertightRay, intersect_triangle_with};
+use glam::Vec3;
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::Bvh2;
 use obvhs::bvh2::builder::build_bvh2;
-use obvhs::ray::{Ray as BvhRay, RayHit};
 use std::time::Duration;
 
 /// Relative padding of primitive boxes.
@@ -30,15 +30,22 @@ const BOX_PAD: f32 = 1.0 / (1 << 20) as f32;
 struct PrimRef {
     shape: u32,
     prim: u32,
+    /// Whether the primitive is a triangle, whose corners are copied into [`Accel::tris`].
+    triangle: bool,
 }
 
 /// The BVH over a slice of shapes.
 #[derive(Clone)]
 pub struct Accel {
-    /// `None` when there are no primitives.
+    /// `None` when there are no primitives. Kept for its bounds; queries use `wide`.
     bvh: Option<Bvh2>,
+    /// The same tree collapsed to 4-wide nodes (see `bvh4.rs`), which queries traverse.
+    wide: Bvh4,
     /// Indexed by the BVH's primitive ids (already permuted, so no indirection at query time).
     prims: Vec<PrimRef>,
+    /// Triangle corners (m) by BVH primitive id, copied from the meshes so that a leaf test reads
+    /// one contiguous record instead of shape → index → position; zero for other primitives.
+    tris: Vec<[Vec3; 3]>,
 }
 
 impl std::fmt::Debug for Accel {
@@ -67,13 +74,16 @@ impl Accel {
                 refs.push(PrimRef {
                     shape: s as u32,
                     prim: i as u32,
+                    triangle: matches!(shape, Shape::Mesh(_)),
                 });
             }
         }
         if refs.is_empty() {
             return Accel {
                 bvh: None,
+                wide: Bvh4::default(),
                 prims: Vec::new(),
+                tris: Vec::new(),
             };
         }
         let bvh = build_bvh2(
@@ -81,14 +91,33 @@ impl Accel {
             BvhBuildParams::medium_build(),
             &mut Duration::default(),
         );
-        let prims = bvh
+        let prims: Vec<PrimRef> = bvh
             .primitive_indices
             .iter()
             .map(|&i| refs[i as usize])
             .collect();
+        let tris = prims
+            .iter()
+            .map(|pr| match &shapes[pr.shape as usize] {
+                Shape::Mesh(m) => m.vertices(pr.prim as usize),
+                _ => [Vec3::ZERO; 3],
+            })
+            .collect();
+        let binary: Vec<BinaryNode> = bvh
+            .nodes
+            .iter()
+            .map(|n| BinaryNode {
+                min: n.aabb().min.into(),
+                max: n.aabb().max.into(),
+                count: n.prim_count,
+                first: n.first_index,
+            })
+            .collect();
         Accel {
+            wide: Bvh4::collapse(&binary),
             bvh: Some(bvh),
             prims,
+            tris,
         }
     }
 
@@ -106,20 +135,19 @@ impl Accel {
 
     /// The closest hit of `ray` (unit `d`) with `t` in (0, `ray.t_max`), or `None`.
     pub fn intersect(&self, shapes: &[Shape], ray: &Ray) -> Option<Intersection> {
-        let bvh = self.bvh.as_ref()?;
-        let bvh_ray = to_bvh_ray(ray)?;
+        let inv_d = inv_direction(ray)?;
+        let wt = WatertightRay::new(ray);
         let mut best: Option<(PrimRef, f32, PrimHit)> = None;
-        let mut hit = RayHit::none();
-        bvh.ray_traverse(bvh_ray, &mut hit, |r, id| {
-            let pr = self.prims[id];
-            match intersect_ref(shapes, pr, ray, r.tmax) {
-                Some((t, h)) => {
-                    best = Some((pr, t, h));
-                    t
+        self.wide
+            .traverse(ray.o, inv_d, ray.t_max, false, |id, t_max| {
+                match self.intersect_prim(shapes, id, ray, &wt, t_max) {
+                    Some((t, h)) => {
+                        best = Some((self.prims[id], t, h));
+                        t
+                    }
+                    None => f32::INFINITY,
                 }
-                None => f32::INFINITY,
-            }
-        });
+            });
         let (pr, t, h) = best?;
         let shape = shapes.get(pr.shape as usize)?;
         Some(shape.interaction(pr.shape, pr.prim as usize, ray, t, &h))
@@ -128,27 +156,47 @@ impl Accel {
     /// Whether anything is hit with `t` in (0, `ray.t_max`) (shadow rays). Stops at the first
     /// hit found.
     pub fn occluded(&self, shapes: &[Shape], ray: &Ray) -> bool {
-        let (Some(bvh), Some(bvh_ray)) = (self.bvh.as_ref(), to_bvh_ray(ray)) else {
+        let Some(inv_d) = inv_direction(ray) else {
             return false;
         };
-        !bvh.ray_traverse_miss(bvh_ray, |r, id| {
-            intersect_ref(shapes, self.prims[id], ray, r.tmax).map_or(f32::INFINITY, |(t, _)| t)
-        })
+        let wt = WatertightRay::new(ray);
+        let t = self
+            .wide
+            .traverse(ray.o, inv_d, ray.t_max, true, |id, t_max| {
+                self.intersect_prim(shapes, id, ray, &wt, t_max)
+                    .map_or(f32::INFINITY, |(t, _)| t)
+            });
+        t < ray.t_max
+    }
+
+    /// The leaf test of BVH primitive `id`: triangles from their copied corners with the ray's
+    /// precomputed watertight setup `wt`, other shapes through [`Shape::intersect_primitive`].
+    #[inline]
+    fn intersect_prim(
+        &self,
+        shapes: &[Shape],
+        id: usize,
+        ray: &Ray,
+        wt: &WatertightRay,
+        t_max: f32,
+    ) -> Option<(f32, PrimHit)> {
+        let pr = self.prims[id];
+        if pr.triangle {
+            return intersect_triangle_with(self.tris[id], ray, wt, t_max)
+                .map(|(t, b)| (t, PrimHit::Triangle { b }));
+        }
+        let ray = Ray { t_max, ..*ray };
+        shapes
+            .get(pr.shape as usize)?
+            .intersect_primitive(pr.prim as usize, &ray)
     }
 }
 
+/// Exact reciprocal directions for the slab test (±f32::MAX for zero components, so no 0·∞
+/// NaN). `None` for rays that cannot hit anything (t_max ≤ 0 or NaN, non-finite origin or
+/// direction).
 #[inline]
-fn intersect_ref(shapes: &[Shape], pr: PrimRef, ray: &Ray, t_max: f32) -> Option<(f32, PrimHit)> {
-    let ray = Ray { t_max, ..*ray };
-    shapes
-        .get(pr.shape as usize)?
-        .intersect_primitive(pr.prim as usize, &ray)
-}
-
-/// The obvhs ray, with exact reciprocal directions. `None` for rays that cannot hit anything
-/// (t_max ≤ 0 or NaN, non-finite origin or direction).
-#[inline]
-fn to_bvh_ray(ray: &Ray) -> Option<BvhRay> {
+fn inv_direction(ray: &Ray) -> Option<Vec3> {
     if !(ray.t_max > 0.0) || !ray.o.is_finite() || !ray.d.is_finite() {
         return None;
     }
@@ -160,11 +208,5 @@ fn to_bvh_ray(ray: &Ray) -> Option<BvhRay> {
             f32::MAX.copysign(x)
         }
     };
-    Some(BvhRay {
-        origin: Vec3A::from(ray.o),
-        direction: Vec3A::from(ray.d),
-        inv_direction: Vec3A::new(recip(ray.d.x), recip(ray.d.y), recip(ray.d.z)),
-        tmin: 0.0,
-        tmax: ray.t_max,
-    })
+    Some(Vec3::new(recip(ray.d.x), recip(ray.d.y), recip(ray.d.z)))
 }

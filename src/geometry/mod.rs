@@ -10,6 +10,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod accel;
+mod bvh4;
 pub mod camera;
 pub mod error;
 pub mod float;

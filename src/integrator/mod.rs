@@ -111,7 +111,7 @@ pub(crate) struct Shading<'a> {
 
 impl Shading<'_> {
     /// The BSDF-sampling step shared by camera and light paths: samples the material with
-    /// (uc, u) from `s`, keeps only the hero wavelength at a dispersive event, multiplies `beta`
+    /// (uc, u) from `s`, keeps only the hero wavelength at any dispersive material, multiplies `beta`
     /// by f·|cos θ|/pdf and returns the sample with the ray that continues the path. None ends
     /// the path (no sample, zero pdf or zero value).
     pub fn scatter<const N: usize>(
@@ -124,12 +124,14 @@ impl Shading<'_> {
         beta: &mut SampledSpectrum<N>,
     ) -> Option<(BsdfSample<N>, Ray)> {
         let (uc, u) = (s.get_1d(), s.get_2d());
+        // Terminate at every dispersive hit, before choosing a lobe: a choice made with the
+        // hero's F(λ₀) that terminates on one branch only biases the secondaries.
+        if self.material.is_dispersive() {
+            w.terminate_secondary();
+        }
         let bs = self.material.sample(wo, w, uc, u, mode)?;
         if bs.pdf <= 0.0 || bs.f.is_zero() {
             return None;
-        }
-        if bs.dispersive {
-            w.terminate_secondary();
         }
         *beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
         let wi = self.frame.to_world(bs.wi);

@@ -1,8 +1,8 @@
 //! Unidirectional path tracing: next-event estimation with multiple importance sampling
 //! (power heuristic, Veach 1997 §9.2), BSDF sampling, Russian roulette (pbrt-v4 §13.1.5), delta
 //! lights and delta BSDFs handled exactly, lights chosen in proportion to their power.
-//! Refraction through a dispersive interface terminates the secondary wavelengths
-//! (Wilkie et al. 2014 §4.2).
+//! Any hit on a dispersive interface terminates the secondary wavelengths, before a lobe is
+//! chosen (Wilkie et al. 2014 §4.2; pbrt-v4 §14.1.3).
 
 use glam::Vec3;
 
@@ -29,6 +29,12 @@ pub(super) fn radiance<const N: usize>(
     let mut specular_bounce = true; // the camera ray counts as "specular": no MIS
     let mut eta_scale = 1.0f32;
     let mut depth = 0u32;
+    // Every bounce reads the same dimensions whatever happened before (pbrt-v4 §8.3: a fixed
+    // layout keeps each bounce's samples stratified across the pixel's samples): light choice
+    // 1D, light point 2D, light extra 1D, lobe choice 1D, direction 2D, roulette 1D, each 1D
+    // read taking a pair: 12 dimensions per bounce from `base`.
+    const BOUNCE_DIMS: u32 = 12;
+    let base = s.dimension();
     loop {
         let Some(hit) = scene.accel.intersect(&scene.shapes, &ray) else {
             // Escaped: environment and sun disks, MIS-weighted against BSDF sampling.
@@ -67,13 +73,22 @@ pub(super) fn radiance<const N: usize>(
         if depth == it.max_depth {
             break;
         }
+        debug_assert_eq!(
+            s.dimension(),
+            base + depth * BOUNCE_DIMS,
+            "bounce {depth} starts at a shifted sampler dimension"
+        );
         depth += 1;
         let Some(sh) = it.shading(&hit, ray.d) else {
             break;
         };
         let wo = sh.frame.to_local(-ray.d);
-        if sh.material.is_dispersive() && !sh.material.is_specular() {
-            // a rough dispersive interface: its transmission lobe depends on λ
+        // A dispersive interface (smooth or rough) keeps only the hero wavelength, decided at
+        // the hit and before any lobe is chosen, so the decision does not depend on the hero's
+        // Fresnel term (pbrt-v4 §14.1.3, `TerminateSecondary` on `BSDF::HasDispersion`
+        // hits; Wilkie et al. 2014 §4.2). Terminating only when transmission is sampled with
+        // probability 1 − F(λ₀) biases the secondaries.
+        if sh.material.is_dispersive() {
             w.terminate_secondary();
         }
 
@@ -125,11 +140,13 @@ pub(super) fn radiance<const N: usize>(
         prev_p = hit.p;
         ray = next;
 
-        // Russian roulette on the throughput, corrected for radiance scaling by η².
+        // Russian roulette on the throughput, corrected for radiance scaling by η²
+        // (pbrt-v4 §13.1.5). Its dimension is read at every bounce, used or not.
+        let u_rr = s.get_1d();
         let rr = (beta * eta_scale).max_component();
         if rr < 1.0 && depth > 1 {
             let q = (1.0 - rr).max(0.0);
-            if s.get_1d() < q {
+            if u_rr < q {
                 break;
             }
             beta /= 1.0 - q;

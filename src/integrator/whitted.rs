@@ -48,8 +48,10 @@ pub(super) fn radiance<const N: usize>(
         if sh.material.is_dispersive() {
             w.terminate_secondary();
         }
-        // both lobes: uc = 0 picks reflection when F > 0, uc → 1 picks transmission when F < 1
-        let mut done_reflection = false;
+        // Both lobes, each once: uc = 0 picks reflection when F > 0, uc → 1 picks transmission
+        // when F < 1. With F = 0 (index-matched) both draws give transmission, with F = 1 (total
+        // internal reflection) both give reflection: a lobe already traced is skipped.
+        let (mut done_reflection, mut done_transmission) = (false, false);
         for uc in [0.0, 1.0 - f32::EPSILON] {
             let Some(bs) =
                 sh.material
@@ -57,12 +59,15 @@ pub(super) fn radiance<const N: usize>(
             else {
                 continue;
             };
-            if !bs.transmission {
-                if done_reflection {
-                    continue;
-                }
-                done_reflection = true;
+            let done = if bs.transmission {
+                &mut done_transmission
+            } else {
+                &mut done_reflection
+            };
+            if *done {
+                continue;
             }
+            *done = true;
             let wi = sh.frame.to_world(bs.wi);
             let next = spawn_ray(hit.p, hit.p_error, sh.n_geom_toward(wi), wi);
             // weight f·|cos θ| (the lobe's Fresnel factor), not divided by the lobe probability

@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 use glam::Vec2;
 use rayon::prelude::*;
 
-use crate::film::{Film, Filter};
+use crate::film::{Film, Filter, NonFinite, non_finite};
 use crate::integrator::Integrator;
 use crate::loader::desc::IntegratorKind;
 use crate::sampler::Sampler;
@@ -168,7 +168,7 @@ pub fn render(
                                 let ray = scene.camera.generate_ray(raster, s.get_2d());
                                 let l = integrator.radiance(ray, &mut wl, &mut s);
                                 if !tile.add(x, y, &wl, &l, bins.as_ref()) {
-                                    if l.0.iter().any(|v| v.is_nan()) {
+                                    if non_finite(&wl, &l) == Some(NonFinite::NaN) {
                                         nan.fetch_add(1, Ordering::Relaxed);
                                     } else {
                                         inf.fetch_add(1, Ordering::Relaxed);
@@ -258,7 +258,7 @@ fn render_light(
                             let (x, y) =
                                 ((raster.x as u32).min(w - 1), (raster.y as u32).min(h - 1));
                             if !tile.splat(x, y, wl, &l, bins.as_ref()) {
-                                let counter = if l.0.iter().any(|v| v.is_nan()) {
+                                let counter = if non_finite(wl, &l) == Some(NonFinite::NaN) {
                                     &nan
                                 } else {
                                     &inf

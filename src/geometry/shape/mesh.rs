@@ -210,7 +210,8 @@ impl Mesh {
     }
 
     #[inline]
-    fn vertices(&self, i: usize) -> [Vec3; 3] {
+    /// World-space corners of triangle `i`, m.
+    pub(crate) fn vertices(&self, i: usize) -> [Vec3; 3] {
         self.indices[i].map(|v| self.positions[v as usize])
     }
 

@@ -19,6 +19,7 @@ mod triangle;
 pub use disk::Disk;
 pub use mesh::Mesh;
 pub use sphere::Sphere;
+pub(crate) use triangle::{WatertightRay, intersect_triangle_with};
 
 use super::ray::Ray;
 use glam::{Vec2, Vec3};

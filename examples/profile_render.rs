@@ -1,0 +1,42 @@
+//! Renders a scene without writing output, for profilers (`perf`, `valgrind --tool=callgrind`):
+//! `cargo run --release --example profile_render -- SCENE [SPP] [THREADS]`.
+//! Prints the render time and samples per second; the image is discarded.
+
+use std::sync::atomic::AtomicBool;
+use std::time::Instant;
+
+use spectrace::render::{RenderOptions, render};
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let path = args
+        .next()
+        .expect("usage: profile_render SCENE [SPP] [THREADS]");
+    let spp: u32 = args
+        .next()
+        .map_or(1, |s| s.parse().expect("SPP is a number"));
+    let threads: usize = args
+        .next()
+        .map_or(1, |s| s.parse().expect("THREADS is a number"));
+    let desc = spectrace::loader::load(std::path::Path::new(&path)).unwrap_or_else(|e| {
+        eprintln!("{e}");
+        std::process::exit(1)
+    });
+    let scene = spectrace::scene::build(&desc).unwrap_or_else(|e| {
+        eprintln!("{e}");
+        std::process::exit(1)
+    });
+    let mut o = RenderOptions::from_scene(&scene);
+    o.spp = spp;
+    o.threads = Some(threads);
+    let cancel = AtomicBool::new(false);
+    let t = Instant::now();
+    let (film, stats) = render(&scene, &o, &cancel, &|_, _| {}).expect("renders");
+    let secs = t.elapsed().as_secs_f64();
+    let samples = (film.width * film.height) as f64 * spp as f64;
+    println!(
+        "{path}: {spp} spp, {threads} threads: {secs:.3} s, {:.3} M samples/s ({} dropped)",
+        samples / secs / 1e6,
+        stats.nan_samples + stats.inf_samples
+    );
+}
