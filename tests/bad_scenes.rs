@@ -1,6 +1,8 @@
-//! Every file in `tests/bad_scenes/` fails to load with the error its header promises.
+//! Every file in `tests/bad_scenes/` (spectrace TOML, or Mitsuba XML read by the importer)
+//! fails to load with the error its header promises.
 //!
-//! Header lines `# expect: TEXT` list substrings the message must contain. A line marked
+//! Header lines `# expect: TEXT` list substrings the message must contain, `# not: TEXT`
+//! substrings it must not (in an XML file, inside a `<!-- … -->` comment). A line marked
 //! `# <-- error` is where the error must point (line and column are always reported).
 
 use std::path::{Path, PathBuf};
@@ -10,14 +12,19 @@ fn corpus() -> Vec<PathBuf> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("corpus folder")
         .map(|e| e.expect("entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml" || e == "xml"))
         .collect();
     v.sort();
     v
 }
 
 fn load_and_build(path: &Path) -> Result<(), String> {
-    let desc = spectrace::loader::load(path).map_err(|e| {
+    let desc = if path.extension().is_some_and(|e| e == "xml") {
+        spectrace::loader::mitsuba::load(path, &[])
+    } else {
+        spectrace::loader::load(path)
+    }
+    .map_err(|e| {
         assert!(
             e.loc.line >= 1 && e.loc.col >= 1,
             "{}: error without a position: {e}",
@@ -46,6 +53,10 @@ fn every_bad_scene_errors_cleanly() {
             "{} has no `# expect:` line",
             path.display()
         );
+        let rejects: Vec<&str> = text
+            .lines()
+            .filter_map(|l| l.strip_prefix("# not: "))
+            .collect();
         let marker = text
             .lines()
             .position(|l| l.contains("# <-- error"))
@@ -72,6 +83,14 @@ fn every_bad_scene_errors_cleanly() {
         for e in &expects {
             if !msg.contains(e) {
                 failures.push(format!("{}: message lacks \"{e}\": {msg}", path.display()));
+            }
+        }
+        for r in &rejects {
+            if msg.contains(r) {
+                failures.push(format!(
+                    "{}: message contains \"{r}\": {msg}",
+                    path.display()
+                ));
             }
         }
         if let Some(line) = marker {

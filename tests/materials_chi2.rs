@@ -10,6 +10,7 @@ use std::sync::Arc;
 
 use chi2::{Chi2Outcome, Grid, chi2_test, gamma_q, ln_gamma, sidak};
 use glam::{Vec2, Vec3};
+use spectrace::material::microfacet::Distribution;
 use spectrace::material::{
     Lambert, Material, Phong, RoughConductor, RoughDielectric, TransportMode,
 };
@@ -113,38 +114,44 @@ fn cases() -> Vec<Case> {
     }
     let heroes = [450.0f32, 550.0, 650.0];
     let mut h = 0;
-    for alpha in [0.1f32, 0.5] {
-        for below in [false, true] {
+    for dist in [Distribution::Ggx, Distribution::Beckmann] {
+        for alpha in [0.1f32, 0.5] {
+            for below in [false, true] {
+                for &t in &angles {
+                    let grid = Grid {
+                        both_hemispheres: true,
+                        ..if alpha < 0.2 { FINE } else { COARSE }
+                    };
+                    v.push(Case {
+                        name: format!(
+                            "RoughDielectric {dist:?} BK7 α={alpha} θo={t} {} λ={}",
+                            if below { "inside" } else { "outside" },
+                            heroes[h % 3]
+                        ),
+                        material: Material::RoughDielectric(
+                            RoughDielectric::new(bk7(), 1.0, alpha).with_distribution(dist),
+                        ),
+                        wo: dir(t, phi, below),
+                        w: wavelengths(heroes[h % 3]),
+                        grid,
+                    });
+                    h += 1;
+                }
+            }
+        }
+        for alpha in [0.1f32, 0.5] {
             for &t in &angles {
-                let grid = Grid {
-                    both_hemispheres: true,
-                    ..if alpha < 0.2 { FINE } else { COARSE }
-                };
                 v.push(Case {
-                    name: format!(
-                        "RoughDielectric BK7 α={alpha} θo={t} {} λ={}",
-                        if below { "inside" } else { "outside" },
-                        heroes[h % 3]
+                    name: format!("RoughConductor {dist:?} Au α={alpha} θo={t}"),
+                    material: Material::RoughConductor(
+                        RoughConductor::new(gold(), 1.0, alpha).with_distribution(dist),
                     ),
-                    material: Material::RoughDielectric(RoughDielectric::new(bk7(), 1.0, alpha)),
-                    wo: dir(t, phi, below),
+                    wo: dir(t, phi, false),
                     w: wavelengths(heroes[h % 3]),
-                    grid,
+                    grid: if alpha < 0.2 { FINE } else { COARSE },
                 });
                 h += 1;
             }
-        }
-    }
-    for alpha in [0.1f32, 0.5] {
-        for &t in &angles {
-            v.push(Case {
-                name: format!("RoughConductor Au α={alpha} θo={t}"),
-                material: Material::RoughConductor(RoughConductor::new(gold(), 1.0, alpha)),
-                wo: dir(t, phi, false),
-                w: wavelengths(heroes[h % 3]),
-                grid: if alpha < 0.2 { FINE } else { COARSE },
-            });
-            h += 1;
         }
     }
     v

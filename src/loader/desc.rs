@@ -3,6 +3,7 @@
 
 use std::path::PathBuf;
 
+pub use crate::material::microfacet::Distribution;
 use crate::spectrum::Spectrum;
 use crate::spectrum::ior::{ComplexIor, Ior};
 use crate::units::{
@@ -121,16 +122,18 @@ pub enum MaterialKind {
         ks: Spectrum,
         exponent: f64,
     },
-    /// Smooth when `roughness` is None, else GGX with α = roughness.
+    /// Smooth when `roughness` is None, else microfacets of `distribution` with α = roughness.
     Dielectric {
         ior: Ior,
         exterior_ior: f64,
         roughness: Option<f64>,
+        distribution: Distribution,
     },
     Conductor {
         ior: ComplexIor,
         exterior_ior: f64,
         roughness: Option<f64>,
+        distribution: Distribution,
     },
 }
 

@@ -5,7 +5,7 @@ use glam::{Vec2, Vec3};
 
 use super::BsdfSample;
 use super::fresnel::{fresnel_conductor, reflect};
-use super::microfacet::Ggx;
+use super::microfacet::{Distribution, Microfacet};
 use crate::spectrum::ior::ComplexIor;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
@@ -63,30 +63,47 @@ impl Conductor {
     }
 }
 
-/// A rough metal: GGX microfacets (roughness `alpha`, clamped to at least
+/// A rough metal: GGX or Beckmann microfacets (roughness `alpha`, clamped to at least
 /// [`MIN_ALPHA`](super::microfacet::MIN_ALPHA)) with height-correlated Smith G and the exact
 /// conductor Fresnel term:
 ///
 /// f = D(wm)·G(wo, wi)·F(wo·wm) / (4 cos θₒ cos θᵢ), wm = normalize(wo + wi),
 ///
-/// sampled through the visible normals from `wo`: pdf = D_wo(wm)/(4 wo·wm). Reflections below
+/// sampled through [`Microfacet::sample_normal`] (GGX: the visible normals from `wo`):
+/// pdf = p(wm)/(4 wo·wm) with p = [`Microfacet::normal_pdf`]. Reflections below
 /// the horizon are rejected (`None`). Reciprocal. One-sided: zero unless `wo.z > 0` and
 /// `wi.z > 0`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct RoughConductor {
     pub ior: ComplexIor,
     pub ext_ior: f32,
-    /// GGX roughness α.
+    /// Roughness α.
     pub alpha: f32,
+    pub distribution: Distribution,
 }
 
 impl RoughConductor {
+    /// A GGX rough conductor.
     pub fn new(ior: ComplexIor, ext_ior: f32, alpha: f32) -> Self {
         Self {
             ior,
             ext_ior,
             alpha,
+            distribution: Distribution::Ggx,
         }
+    }
+
+    /// The same surface with another microfacet distribution.
+    pub fn with_distribution(self, distribution: Distribution) -> Self {
+        Self {
+            distribution,
+            ..self
+        }
+    }
+
+    #[inline]
+    fn microfacet(&self) -> Microfacet {
+        Microfacet::new(self.alpha, self.distribution)
     }
 
     /// The half vector, or `None` if the pair cannot reflect.
@@ -109,8 +126,8 @@ impl RoughConductor {
         let Some(wm) = Self::half(wo, wi) else {
             return SampledSpectrum::zero();
         };
-        let ggx = Ggx::new(self.alpha);
-        let k = ggx.d(wm) * ggx.g(wo, wi) / (4.0 * wo.z * wi.z);
+        let mf = self.microfacet();
+        let k = mf.d(wm) * mf.g(wo, wi) / (4.0 * wo.z * wi.z);
         // wo·wm = wi·wm; their mean keeps the rounding symmetric (exact reciprocity).
         let cos = 0.5 * (wo.dot(wm) + wi.dot(wm));
         conductor_reflectance(&self.ior, self.ext_ior, cos, w) * k
@@ -121,7 +138,7 @@ impl RoughConductor {
         let Some(wm) = Self::half(wo, wi) else {
             return 0.0;
         };
-        Ggx::new(self.alpha).visible_normal_pdf(wo, wm) / (4.0 * wo.dot(wm))
+        self.microfacet().normal_pdf(wo, wm) / (4.0 * wo.dot(wm))
     }
 
     #[inline]
@@ -134,7 +151,10 @@ impl RoughConductor {
         if wo.z <= 0.0 {
             return None;
         }
-        let wm = Ggx::new(self.alpha).sample_visible_normal(wo, u);
+        let wm = self.microfacet().sample_normal(wo, u);
+        if wo.dot(wm) <= 0.0 {
+            return None; // a back-facing normal (Beckmann samples D·cos, not visible normals)
+        }
         let wi = reflect(wo, wm);
         if wi.z <= 0.0 {
             return None;

@@ -1,16 +1,16 @@
-//! The rough dielectric interface: GGX microfacets with reflection and refraction (Walter et
-//! al. 2007), sampled through the visible normals (Heitz 2018).
+//! The rough dielectric interface: GGX or Beckmann microfacets with reflection and refraction
+//! (Walter et al. 2007), GGX sampled through the visible normals (Heitz 2018).
 
 use glam::{Vec2, Vec3};
 
 use super::fresnel::{fresnel_dielectric, fresnel_dielectric_pair, reflect, refract};
-use super::microfacet::Ggx;
+use super::microfacet::{Distribution, Microfacet};
 use super::{BsdfSample, TransportMode};
 use crate::spectrum::ior::Ior;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
 /// A rough interface between an outside of index `ext_ior` (+z side) and an inside of index
-/// `int_ior(λ)` (−z side), GGX roughness `alpha` (clamped to at least
+/// `int_ior(λ)` (−z side), GGX or Beckmann roughness `alpha` (clamped to at least
 /// [`MIN_ALPHA`](super::microfacet::MIN_ALPHA)), height-correlated Smith G.
 ///
 /// With η = int_ior(λ₀)/ext_ior at the hero wavelength λ₀, η' = n(wi side)/n(wo side) (η or 1/η
@@ -23,8 +23,8 @@ use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 ///   pdf = D_wo(wm)·(1 − F)·|wi·wm| / (wi·wm + wo·wm/η')²,
 ///
 /// where F = F(wo·wm) is the exact dielectric Fresnel term (in `eval` evaluated from both
-/// microfacet cosines, see [`fresnel_dielectric_pair`]), D_wo the density of normals visible
-/// from `wo`, and the lobe is chosen with probability F(wo·wm) at λ₀. Microfacets facing away from
+/// microfacet cosines, see [`fresnel_dielectric_pair`]), D_wo the density of sampled normals
+/// ([`Microfacet::normal_pdf`]: visible from `wo` for GGX, D·cos θₘ for Beckmann), and the lobe is chosen with probability F(wo·wm) at λ₀. Microfacets facing away from
 /// either direction contribute nothing.
 ///
 /// The half vector, and hence the transmission direction, uses the hero wavelength's η: a
@@ -35,8 +35,9 @@ use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 pub struct RoughDielectric {
     pub int_ior: Ior,
     pub ext_ior: f32,
-    /// GGX roughness α.
+    /// Roughness α.
     pub alpha: f32,
+    pub distribution: Distribution,
 }
 
 /// The configuration of a (wo, wi) pair: generalised half vector and η'.
@@ -47,12 +48,27 @@ struct Half {
 }
 
 impl RoughDielectric {
+    /// A GGX rough interface.
     pub fn new(int_ior: Ior, ext_ior: f32, alpha: f32) -> Self {
         Self {
             int_ior,
             ext_ior,
             alpha,
+            distribution: Distribution::Ggx,
         }
+    }
+
+    /// The same interface with another microfacet distribution.
+    pub fn with_distribution(self, distribution: Distribution) -> Self {
+        Self {
+            distribution,
+            ..self
+        }
+    }
+
+    #[inline]
+    fn microfacet(&self) -> Microfacet {
+        Microfacet::new(self.alpha, self.distribution)
     }
 
     #[inline]
@@ -102,8 +118,8 @@ impl RoughDielectric {
         let Some(h) = Self::half(wo, wi, eta_hero) else {
             return SampledSpectrum::zero();
         };
-        let ggx = Ggx::new(self.alpha);
-        let dg = ggx.d(h.wm) * ggx.g(wo, wi);
+        let mf = self.microfacet();
+        let dg = mf.d(h.wm) * mf.g(wo, wi);
         let (cos_om, cos_im) = (wo.dot(h.wm), wi.dot(h.wm));
         let cos2 = (wo.z * wi.z).abs();
         // Fresnel: for reflection at the mean of the two (equal) microfacet cosines, for
@@ -139,9 +155,8 @@ impl RoughDielectric {
         let Some(h) = Self::half(wo, wi, eta) else {
             return 0.0;
         };
-        let ggx = Ggx::new(self.alpha);
         let (cos_om, cos_im) = (wo.dot(h.wm), wi.dot(h.wm));
-        let pdf_wm = ggx.visible_normal_pdf(wo, h.wm);
+        let pdf_wm = self.microfacet().normal_pdf(wo, h.wm);
         let r = fresnel_dielectric(cos_om, eta);
         if h.reflection {
             pdf_wm / (4.0 * cos_om.abs()) * r
@@ -164,7 +179,10 @@ impl RoughDielectric {
             return None;
         }
         let eta = self.eta(w.lambda[0]);
-        let wm = Ggx::new(self.alpha).sample_visible_normal(wo, u);
+        let wm = self.microfacet().sample_normal(wo, u);
+        if wo.dot(wm) * wo.z <= 0.0 {
+            return None; // a back-facing normal (Beckmann samples D·cos, not visible normals)
+        }
         let r = fresnel_dielectric(wo.dot(wm), eta);
         let (wi, transmission, etap) = if uc < r {
             (reflect(wo, wm), false, 1.0)

@@ -343,6 +343,21 @@ Exercises: microfacet conductor (GGX, visible-normal sampling in Mitsuba), gloss
     write("rough_conductor", s + FOOTER)
 
 
+def rough_beckmann():
+    """rough_conductor with one difference: no `distribution`, i.e. Mitsuba's default Beckmann
+    (and 48 × 48 pixels, to keep the test cheap)."""
+    path = os.path.join(HERE, "rough_conductor", "scene.xml")
+    with open(path) as f:
+        s = f.read()
+    s = s.replace("roughconductor, GGX, alpha 0.2", "roughconductor, no distribution = Beckmann, alpha 0.2")
+    s = s.replace("microfacet conductor (GGX, visible-normal sampling in Mitsuba)", "Mitsuba's default microfacet distribution (Beckmann)")
+    s = s.replace('<integer name="width" value="96"/>', '<integer name="width" value="48"/>')
+    s = s.replace('<integer name="height" value="96"/>', '<integer name="height" value="48"/>')
+    lines = [l for l in s.split("\n") if 'name="distribution"' not in l]
+    assert len(lines) == len(s.split("\n")) - 1, "expected exactly one distribution line"
+    write("rough_beckmann", "\n".join(lines))
+
+
 def dielectric_xml(int_ior, rough=None):
     t = "roughdielectric" if rough else "dielectric"
     r = ""
@@ -547,7 +562,7 @@ Exercises: directional emitter, its direction convention, cube.""",
 
 SCENES = {
     f.__name__: f
-    for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor,
+    for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
               dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional)
 }
 

@@ -5,8 +5,9 @@ use std::sync::Arc;
 use super::convert::{Cx, R};
 use super::xml::Element;
 use crate::loader::desc::*;
+use crate::material::microfacet::Distribution;
 use crate::spectrum::ior::{ComplexIor, Ior};
-use crate::spectrum::named::{Named, lookup, mitsuba_conductor};
+use crate::spectrum::named::mitsuba_conductor;
 use crate::spectrum::{PiecewiseLinear, Spectrum};
 
 /// Mitsuba's named indices of refraction (constants, as Mitsuba tabulates them).
@@ -39,20 +40,61 @@ pub(super) fn named_ior(name: &str) -> Option<f64> {
     })
 }
 
+/// Mitsuba's conductor with material "none": eta = 0, k = 1, reflectance 1 at every angle.
+fn perfect_mirror() -> ComplexIor {
+    let flat = |v: f32| {
+        Arc::new(
+            PiecewiseLinear::new(vec![300.0, 900.0], vec![v, v]).unwrap_or_else(|_| unreachable!()), // ok: two increasing samples
+        )
+    };
+    ComplexIor {
+        n: flat(0.0),
+        k: flat(1.0),
+    }
+}
+
 /// A BSDF; returns the material and whether it was wrapped in `twosided`.
 pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, bool)> {
     let b = cx.resolve(b)?;
     let t = b.attr("type").unwrap_or("");
+    // Mitsuba's rough BSDFs: `distribution` beckmann (its default) or ggx; `alpha` (default
+    // 0.1), or `alpha_u` and `alpha_v` for an anisotropic lobe. spectrace's microfacets are
+    // isotropic: anisotropy is refused rather than read as a different surface.
+    let distribution = || -> R<Distribution> {
+        match cx.child(b, "distribution") {
+            None => Ok(Distribution::Beckmann),
+            Some(d) => match d.attr("value").unwrap_or("") {
+                "beckmann" => Ok(Distribution::Beckmann),
+                "ggx" => Ok(Distribution::Ggx),
+                v => Err(cx.err(
+                    d,
+                    format!("distribution \"{v}\" is not one of \"beckmann\", \"ggx\""),
+                )),
+            },
+        }
+    };
     let alpha = |cx: &Cx<'_>| -> R<Option<f64>> {
-        if let Some(d) = cx.string(b, "distribution") {
-            if d != "ggx" {
+        let iso = cx.opt_float(b, "alpha")?;
+        let (u, v) = (cx.opt_float(b, "alpha_u")?, cx.opt_float(b, "alpha_v")?);
+        let a = match (iso, u, v) {
+            (Some(a), None, None) => a,
+            (None, None, None) => 0.1,
+            (None, Some(u), Some(v)) if u == v => u,
+            (None, Some(_), Some(_)) => {
                 return Err(cx.err(
                     b,
-                    format!("distribution \"{d}\" is not supported; use \"ggx\""),
+                    "alpha_u ≠ alpha_v (an anisotropic lobe) is not supported; spectrace's GGX is isotropic",
                 ));
             }
+            (None, _, _) => return Err(cx.err(b, "give both alpha_u and alpha_v")),
+            (Some(_), _, _) => {
+                return Err(cx.err(b, "give either alpha or alpha_u and alpha_v, not both"));
+            }
+        };
+        if a <= 0.0 {
+            return Err(cx.err(b, format!("alpha must be positive, not {a}")));
         }
-        Ok(Some(cx.opt_float(b, "alpha")?.unwrap_or(0.1)))
+        Ok(Some(a))
     };
     let ior_of = |cx: &Cx<'_>, key: &str, default: f64| -> R<f64> {
         match cx.child(b, key) {
@@ -85,6 +127,7 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
             } else {
                 None
             },
+            distribution: distribution()?,
         },
         "conductor" | "roughconductor" => {
             let roughness = if t == "roughconductor" {
@@ -92,14 +135,23 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
             } else {
                 None
             };
+            // material "none" (Mitsuba's default) means eta and k, defaulting to 0 and 1
             let ior = match (
-                cx.string(b, "material"),
+                cx.string(b, "material").filter(|m| m != "none"),
                 cx.child(b, "eta"),
                 cx.child(b, "k"),
             ) {
+                (Some(_), Some(c), _) | (Some(_), None, Some(c)) => {
+                    return Err(cx.err(
+                        c,
+                        "give either material or eta and k, not both (as Mitsuba requires)",
+                    ));
+                }
+                // Mitsuba's default: material "none", eta = 0, k = 1, a perfect mirror
+                (None, None, None) => perfect_mirror(),
                 // Mitsuba's own preset data (spectra/metals/mitsuba/), not spectrace's metal:*
                 (Some(m), _, _) => mitsuba_conductor(&m).map_err(|e| cx.err(b, e))?,
-                (None, Some(eta), Some(k)) => {
+                (None, eta, k) => {
                     let table = |s: Spectrum| -> Arc<PiecewiseLinear> {
                         match s {
                             Spectrum::Piecewise(t) => t,
@@ -117,21 +169,31 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
                             }
                         }
                     };
+                    // Mitsuba's defaults with material "none": eta = 0, k = 1
+                    let spec = |c: Option<&Element>, default: f32| -> R<Spectrum> {
+                        match c {
+                            Some(c) => cx.spectrum(c, false),
+                            None => Ok(Spectrum::Constant(default)),
+                        }
+                    };
                     ComplexIor {
-                        n: table(cx.spectrum(eta, false)?),
-                        k: table(cx.spectrum(k, false)?),
+                        n: table(spec(eta, 0.0)?),
+                        k: table(spec(k, 1.0)?),
                     }
                 }
-                _ => match lookup("metal:Al") {
-                    // Mitsuba's default conductor is a perfect mirror; the closest table is Al
-                    Ok(Named::Conductor(metal)) => metal.ior,
-                    _ => return Err(cx.err(b, "give material, or eta and k")),
-                },
             };
+            if let Some(c) = cx.child(b, "ext_ior") {
+                return Err(cx.err(
+                    c,
+                    "Mitsuba's conductors take no ext_ior (eta and k are relative to vacuum)",
+                ));
+            }
             MaterialKind::Conductor {
                 ior,
-                exterior_ior: ior_of(cx, "ext_ior", 1.000277)?,
+                // Mitsuba's eta, k are the metal's own, relative to vacuum
+                exterior_ior: 1.0,
                 roughness,
+                distribution: distribution()?,
             }
         }
         "plastic" | "roughplastic" => {

@@ -17,35 +17,59 @@ use crate::units::{Angle, Length, angle, length};
 
 pub(super) type R<T> = Result<T, LoadError>;
 
-const PLUGINS: &[&str] = &[
-    "perspective",
-    "thinlens",
-    "hdrfilm",
-    "box",
-    "gaussian",
-    "independent",
-    "path",
-    "obj",
-    "rectangle",
-    "cube",
-    "sphere",
-    "disk",
-    "diffuse",
-    "twosided",
-    "conductor",
-    "roughconductor",
-    "dielectric",
-    "roughdielectric",
-    "area",
-    "point",
-    "spot",
-    "constant",
-    "directional",
-    "blackbody",
-    "d65",
-    "regular",
-    "irregular",
+/// The supported plugins by kind (`what` of [`Cx::unsupported`]): an unknown type is only ever
+/// compared with plugins of its own kind.
+const PLUGINS: &[(&str, &[&str])] = &[
+    ("sensor", &["perspective", "thinlens"]),
+    ("film", &["hdrfilm"]),
+    ("rfilter", &["box", "gaussian"]),
+    ("sampler", &["independent"]),
+    ("integrator", &["path"]),
+    (
+        "shape",
+        &["obj", "ply", "rectangle", "cube", "sphere", "disk"],
+    ),
+    (
+        "bsdf",
+        &[
+            "diffuse",
+            "twosided",
+            "conductor",
+            "roughconductor",
+            "dielectric",
+            "roughdielectric",
+        ],
+    ),
+    (
+        "emitter",
+        &["area", "point", "spot", "constant", "directional"],
+    ),
+    ("shape emitter", &["area"]),
+    ("spectrum", &["blackbody", "d65"]),
+    (
+        "transform",
+        &["translate", "scale", "rotate", "matrix", "lookat"],
+    ),
 ];
+
+/// Mitsuba 3's `MI_CIE_D65_NORMALIZATION` (`include/mitsuba/core/spectrum.h`, 3.9.1): its
+/// `d65` spectrum is the CIE D65 relative SPD (100 at 560 nm) times this, so that
+/// ∫ D65 ȳ dλ / ∫ ȳ dλ = 1 on its own 5 nm tables (checked against `mi.load_dict({"type": "d65"})`
+/// in tests/mitsuba_import.rs).
+pub(super) const MITSUBA_D65_NORMALIZATION: f64 = 1.0 / 98.99741751876255;
+
+/// Mitsuba's `d65` spectrum with `scale`: the CIE D65 table × scale × [`MITSUBA_D65_NORMALIZATION`],
+/// in the emitter's own units (W·m⁻²·sr⁻¹·nm⁻¹ for radiance).
+pub(super) fn mitsuba_d65(scale: f64) -> Arc<PiecewiseLinear> {
+    match lookup("cie-d65") {
+        Ok(Named::Curve {
+            spectrum: Spectrum::Piecewise(t),
+            ..
+        }) => Arc::new(t.scaled((scale * MITSUBA_D65_NORMALIZATION) as f32)),
+        // the table is embedded in the binary; its presence is tested in spectrum::named
+        _ => unreachable!("cie-d65 is missing from the embedded data"), // ok: embedded, tested
+    }
+}
 
 pub(super) struct Cx<'a> {
     /// (file, text) of the scene and every included file.
@@ -78,17 +102,23 @@ impl Cx<'_> {
     }
 
     pub(super) fn unsupported(&self, e: &Element, what: &str, kind: &str) -> LoadError {
-        let near = PLUGINS
+        let same_kind = PLUGINS
+            .iter()
+            .find(|(k, _)| *k == what)
+            .map(|(_, names)| *names)
+            .unwrap_or(&[]);
+        let near = same_kind
             .iter()
             .max_by(|a, b| strsim::jaro_winkler(kind, a).total_cmp(&strsim::jaro_winkler(kind, b)))
-            .copied()
-            .unwrap_or("");
-        self.err(
-            e,
-            format!(
-                "{what} type \"{kind}\" is not supported; the nearest supported one is \"{near}\""
+            .copied();
+        let msg = match near {
+            Some(near) => format!(
+                "{what} type \"{kind}\" is not supported; the nearest supported {what} is \"{near}\" (supported: {})",
+                same_kind.join(", ")
             ),
-        )
+            None => format!("{what} type \"{kind}\" is not supported"),
+        };
+        self.err(e, msg)
     }
 
     /// `$name` substitution in every attribute value, recursively.
@@ -193,6 +223,8 @@ impl Cx<'_> {
     pub(super) fn spectrum(&self, e: &Element, emission: bool) -> R<Spectrum> {
         let e = self.resolve(e)?;
         match e.tag.as_str() {
+            // Mitsuba gives an emitter's bare float the shape of its D65 illuminant
+            "float" if emission => Ok(Spectrum::Piecewise(mitsuba_d65(self.float(e)?))),
             "float" => Ok(Spectrum::Constant(self.float(e)? as f32)),
             "rgb" => {
                 let v = e
@@ -204,12 +236,21 @@ impl Cx<'_> {
                     3 => [f[0] as f32, f[1] as f32, f[2] as f32],
                     _ => return Err(self.err(e, "expected 3 numbers")),
                 };
-                let r = if emission {
-                    rgb2spec::illuminant(rgb)
-                } else {
-                    rgb2spec::albedo(rgb)
-                };
-                r.map_err(|er| self.err(e, er.to_string()))
+                if emission {
+                    // Mitsuba's `d65` spectrum with a colour: the unbounded sigmoid spectrum
+                    // (scale 2·max(rgb)) times its normalised D65, so RGB (1, 1, 1) is exactly
+                    // that D65, ∫S ȳ dλ / ∫ȳ dλ ≈ 1, not spectrace's ∫S ȳ dλ = 1
+                    return match rgb2spec::unbounded(rgb) {
+                        Ok(Spectrum::Rgb { poly, scale }) => Ok(Spectrum::RgbIlluminant {
+                            poly,
+                            scale,
+                            illuminant: mitsuba_d65(1.0),
+                        }),
+                        Ok(other) => Ok(other),
+                        Err(er) => Err(self.err(e, er.to_string())),
+                    };
+                }
+                rgb2spec::albedo(rgb).map_err(|er| self.err(e, er.to_string()))
             }
             "spectrum" => {
                 if let Some(t) = e.attr("type") {
@@ -220,11 +261,18 @@ impl Cx<'_> {
                                 .ok_or_else(|| self.err(e, "missing temperature"))?;
                             Ok(Spectrum::Blackbody(Blackbody::absolute(t as f32)))
                         }
-                        "d65" => match lookup("cie-d65") {
-                            // Mitsuba's d65 is normalised by 1/100 relative to the CIE table
-                            Ok(Named::Curve { spectrum, .. }) => Ok(spectrum.scaled(0.01)),
-                            _ => Err(self.err(e, "the D65 table is missing")),
-                        },
+                        "d65" => {
+                            if let Some(c) =
+                                e.children.iter().find(|c| c.attr("name") != Some("scale"))
+                            {
+                                return Err(self.err(
+                                    c,
+                                    "a d65 spectrum takes only a scale here (no color or nested texture)",
+                                ));
+                            }
+                            let scale = self.opt_float(e, "scale")?.unwrap_or(1.0);
+                            Ok(Spectrum::Piecewise(mitsuba_d65(scale)))
+                        }
                         other => Err(self.unsupported(e, "spectrum", other)),
                     };
                 }
@@ -302,6 +350,8 @@ impl Cx<'_> {
     ) -> R<Spectrum> {
         match self.child(e, name) {
             Some(c) => self.spectrum(c, emission),
+            // an emitter without its spectrum emits Mitsuba's D65 × default
+            None if emission => Ok(Spectrum::Piecewise(mitsuba_d65(default as f64))),
             None => Ok(Spectrum::Constant(default)),
         }
     }
@@ -473,14 +523,25 @@ pub(super) fn scene(
                     return Err(cx.unsupported(c, "integrator", t));
                 }
                 if let Some(d) = cx.child(c, "max_depth") {
+                    integrator.max_depth = max_depth(&cx, d)?;
+                }
+                // Mitsuba's rr_depth is where Russian roulette starts; roulette is unbiased, so
+                // it changes only the noise, never the expected image: checked, then ignored
+                if let Some(d) = cx.child(c, "rr_depth") {
                     let v = cx.float(d)?;
-                    // Mitsuba counts path length (1 = emission seen directly); spectrace counts
-                    // bounces; −1 is unlimited
-                    integrator.max_depth = if v < 0.0 {
-                        1024
-                    } else {
-                        (v as i64 - 1).clamp(1, 1024) as u32
-                    };
+                    if v.fract() != 0.0 || v <= 0.0 {
+                        return Err(
+                            cx.err(d, format!("rr_depth must be a positive integer, not {v}"))
+                        );
+                    }
+                }
+                if let Some(h) = cx.child(c, "hide_emitters")
+                    && h.attr("value") == Some("true")
+                {
+                    return Err(cx.err(
+                        h,
+                        "hide_emitters = true is not supported: spectrace always shows emitters seen directly",
+                    ));
                 }
             }
             "sensor" => camera = Some(sensor(&cx, c, &mut film)?),
@@ -516,42 +577,105 @@ pub(super) fn scene(
     })
 }
 
+/// Mitsuba's `max_depth` (path length: 1 = emitters seen directly, 2 = one bounce, −1 =
+/// unlimited) as spectrace's number of bounces (0 = emitters seen directly; 1024 = unlimited).
+/// Mitsuba's 0 renders black and anything below −1 is an error in Mitsuba: both are refused.
+fn max_depth(cx: &Cx<'_>, d: &Element) -> R<u32> {
+    let v = cx.float(d)?;
+    if v.fract() != 0.0 {
+        return Err(cx.err(d, format!("max_depth must be an integer, not {v}")));
+    }
+    match v as i64 {
+        -1 => Ok(1024),
+        0 => Err(cx.err(
+            d,
+            "max_depth 0 renders a black image in Mitsuba; use 1 for emitters seen directly",
+        )),
+        n if n < -1 => Err(cx.err(
+            d,
+            format!("max_depth must be -1 (unlimited) or at least 1, not {n}"),
+        )),
+        n => Ok((n - 1).min(1024) as u32),
+    }
+}
+
+/// Mitsuba's horizontal field of view, degrees, for a film of `aspect` = width / height:
+/// `fov` on `fov_axis` (x, y, smaller, larger, diagonal; default x), or without `fov` the
+/// diagonal field of view of a lens of `focal_length` (default "50mm") on a 36 × 24 mm frame
+/// (Mitsuba 3.9.1 `parse_fov`, src/render/sensor.cpp; checked against its `x_fov`).
+fn x_fov(cx: &Cx<'_>, s: &Element, aspect: f64) -> R<f64> {
+    let fov = cx.opt_float(s, "fov")?;
+    let focal = cx.child(s, "focal_length");
+    let axis = cx.string(s, "fov_axis");
+    let (fov, axis) = match (fov, focal) {
+        (Some(_), Some(f)) => {
+            return Err(cx.err(
+                f,
+                "give either focal_length or fov, not both (as Mitsuba requires)",
+            ));
+        }
+        (Some(fov), None) => (fov, axis.unwrap_or_else(|| "x".into()).to_lowercase()),
+        (None, f) => {
+            if let Some(a) = cx.child(s, "fov_axis") {
+                return Err(cx.err(
+                    a,
+                    "fov_axis needs a fov (Mitsuba rejects it with focal_length)",
+                ));
+            }
+            let text = match f {
+                Some(f) => f.attr("value").unwrap_or("").to_string(),
+                None => "50mm".to_string(),
+            };
+            let mm: f64 = text
+                .trim()
+                .strip_suffix("mm")
+                .unwrap_or(text.trim())
+                .parse()
+                .ok()
+                .filter(|v: &f64| v.is_finite() && *v > 0.0)
+                .ok_or_else(|| {
+                    cx.err(
+                        f.unwrap_or(s),
+                        format!("focal_length \"{text}\" is not of the form <x>mm with x > 0"),
+                    )
+                })?;
+            let diagonal_mm = (36.0f64 * 36.0 + 24.0 * 24.0).sqrt();
+            (
+                (diagonal_mm / (2.0 * mm)).atan().to_degrees() * 2.0,
+                "diagonal".to_string(),
+            )
+        }
+    };
+    if !(fov > 0.0 && fov < 180.0) {
+        return Err(cx.err(s, format!("fov {fov}° is outside (0°, 180°)")));
+    }
+    let axis = match axis.as_str() {
+        "smaller" if aspect > 1.0 => "y",
+        "smaller" => "x",
+        "larger" if aspect > 1.0 => "x",
+        "larger" => "y",
+        a => a,
+    };
+    let half_tan = (fov.to_radians() / 2.0).tan();
+    let x_half_tan = match axis {
+        "x" => half_tan,
+        "y" => half_tan * aspect,
+        "diagonal" => half_tan / (1.0 + 1.0 / (aspect * aspect)).sqrt(),
+        o => {
+            return Err(cx.err(
+                s,
+                format!("fov_axis \"{o}\" is not one of x, y, smaller, larger, diagonal"),
+            ));
+        }
+    };
+    Ok(2.0 * x_half_tan.atan().to_degrees())
+}
+
 fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraDesc> {
     let t = s.attr("type").unwrap_or("");
     if t != "perspective" && t != "thinlens" {
         return Err(cx.unsupported(s, "sensor", t));
     }
-    let fov = cx.opt_float(s, "fov")?.unwrap_or(39.3077);
-    let axis = match cx.string(s, "fov_axis").as_deref() {
-        None | Some("x") => FovAxis::X,
-        Some("y") => FovAxis::Y,
-        Some("larger") => FovAxis::Larger,
-        Some("smaller") => FovAxis::Smaller,
-        Some(o) => {
-            return Err(cx.err(
-                s,
-                format!("fov_axis \"{o}\" is not supported (x, y, larger, smaller)"),
-            ));
-        }
-    };
-    let projection = Projection::Fov {
-        fov: Angle::new::<angle::degree>(fov),
-        axis,
-    };
-    let kind = if t == "thinlens" {
-        let r = cx.opt_float(s, "aperture_radius")?.unwrap_or(0.03);
-        let fd = cx.opt_float(s, "focus_distance")?.unwrap_or(1.0);
-        // aperture radius = f/(2N) with the focal length of a 36 mm sensor at this field of view
-        let hfov = fov.to_radians();
-        let focal = 0.036 / (2.0 * (hfov / 2.0).tan());
-        CameraKind::ThinLens {
-            projection,
-            f_number: focal / (2.0 * r.max(1e-9)),
-            focus_distance: Length::new::<length::meter>(fd),
-        }
-    } else {
-        CameraKind::Perspective { projection }
-    };
     for c in &s.children {
         match (c.tag.as_str(), c.attr("type")) {
             ("film", Some("hdrfilm")) => {
@@ -595,6 +719,25 @@ fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraDesc> {
         }
     }
     film.loc = cx.loc(s);
+    let fov = x_fov(cx, s, film.width as f64 / film.height as f64)?;
+    let projection = Projection::Fov {
+        fov: Angle::new::<angle::degree>(fov),
+        axis: FovAxis::X,
+    };
+    let kind = if t == "thinlens" {
+        let r = cx.opt_float(s, "aperture_radius")?.unwrap_or(0.03);
+        let fd = cx.opt_float(s, "focus_distance")?.unwrap_or(1.0);
+        // aperture radius = f/(2N) with the focal length of a 36 mm sensor at this field of view
+        let hfov = fov.to_radians();
+        let focal = 0.036 / (2.0 * (hfov / 2.0).tan());
+        CameraKind::ThinLens {
+            projection,
+            f_number: focal / (2.0 * r.max(1e-9)),
+            focus_distance: Length::new::<length::meter>(fd),
+        }
+    } else {
+        CameraKind::Perspective { projection }
+    };
     // the camera frame from to_world: origin, +z forward, +y up
     let steps = match s.children.iter().find(|c| c.tag == "transform") {
         Some(t) => cx.transform(t)?,

@@ -2,18 +2,22 @@
 //!
 //! Supported: `default` parameters with `$name` substitution (overridden by `-D name=value`),
 //! `id`/`ref`, `include`; `perspective` and `thinlens` sensors with `to_world`
-//! (`lookat`, `translate`, `rotate`, `scale`, `matrix`), `hdrfilm` (`width`, `height`,
-//! `rfilter` box/gaussian), the `independent` sampler, the `path` integrator; shapes `obj`,
-//! `ply`, `rectangle`, `cube`, `sphere`, `disk` with `to_world` and `flip_normals`;
-//! BSDFs `diffuse`, `twosided`, `conductor`, `roughconductor`, `dielectric`, `roughdielectric`
-//! (GGX only); emitters `area`, `point`, `spot`, `constant`, `directional`; spectra as a float,
-//! `λ:v` lists, `filename`, `blackbody`, `d65` and `rgb`.
+//! (`lookat`, `translate`, `rotate`, `scale`, `matrix`) and Mitsuba's field of view (`fov` on
+//! `fov_axis`, else `focal_length`, default 50 mm on a 36 × 24 mm frame), `hdrfilm` (`width`,
+//! `height`, `rfilter` box/gaussian), the `independent` sampler, the `path` integrator
+//! (`max_depth` as path length); shapes `obj`, `ply`, `rectangle`, `cube`, `sphere`, `disk`
+//! with `to_world` and `flip_normals`; BSDFs `diffuse`, `twosided`, `conductor` (default: the
+//! perfect mirror eta = 0, k = 1), `roughconductor`, `dielectric`, `roughdielectric` (Beckmann,
+//! Mitsuba's default, or GGX; anisotropic α is refused); emitters `area`, `point`,
+//! `spot`, `constant`, `directional`; spectra as a float, `λ:v` lists, `filename`, `blackbody`,
+//! `d65` and `rgb`. An emitter's absent spectrum, bare float and `rgb` are shaped by Mitsuba's
+//! D65 (CIE D65 / 98.997), as Mitsuba reads them.
 //!
 //! Units: Mitsuba reads emitter spectra as plain numbers; they become spectral radiance (or
 //! intensity, irradiance) in W·m⁻²·sr⁻¹·nm⁻¹ unchanged (`scale = 1`). spectrace's `Y` is then
 //! K_m·∫ȳ = 683.002 × 106.856895 = 72 983.0 times Mitsuba's (`../shared/PHYSICS.md`).
 //! Anything outside the subset is an error naming the element, its line and the nearest
-//! supported alternative.
+//! supported plugin of the same kind.
 
 mod bsdf;
 mod convert;

@@ -119,11 +119,19 @@ pub(super) fn shape(
 pub(super) fn emitter(cx: &Cx<'_>, e: &Element) -> R<LightDesc> {
     let t = e.attr("type").unwrap_or("");
     let l = |x: f64| Length::new::<length::meter>(x);
+    let to_world = e.children.iter().find(|c| c.tag == "transform");
+    // Mitsuba places a point light by `position` or by `to_world` (its image of the origin),
+    // never both
     let position = || -> R<Point> {
-        if let Some(p) = cx.child(e, "position") {
-            return Ok(cx.vec3(p)?.map(l));
+        match (cx.child(e, "position"), to_world) {
+            (Some(_), Some(tr)) => Err(cx.err(
+                tr,
+                "give either position or to_world, not both (as Mitsuba requires)",
+            )),
+            (Some(p), None) => Ok(cx.vec3(p)?.map(l)),
+            (None, Some(tr)) => Ok(camera_frame(cx, e, &cx.transform(tr)?)?.0),
+            (None, None) => Ok([l(0.0), l(0.0), l(0.0)]),
         }
-        Ok([l(0.0), l(0.0), l(0.0)])
     };
     let (kind, spectrum) = match t {
         "point" => (
@@ -140,9 +148,20 @@ pub(super) fn emitter(cx: &Cx<'_>, e: &Element) -> R<LightDesc> {
             cx.spectrum_prop(e, "radiance", 1.0, true)?,
         ),
         "directional" => {
-            let d = match cx.child(e, "direction") {
-                Some(d) => cx.vec3(d)?,
-                None => [0.0, 0.0, 1.0],
+            // Mitsuba: `direction`, or the image of +z under `to_world`, never both
+            let d = match (cx.child(e, "direction"), to_world) {
+                (Some(_), Some(tr)) => {
+                    return Err(cx.err(
+                        tr,
+                        "give either direction or to_world, not both (as Mitsuba requires)",
+                    ));
+                }
+                (Some(d), None) => cx.vec3(d)?,
+                (None, Some(tr)) => {
+                    let (eye, target, _) = camera_frame(cx, e, &cx.transform(tr)?)?;
+                    [0, 1, 2].map(|i| target[i].value - eye[i].value)
+                }
+                (None, None) => [0.0, 0.0, 1.0],
             };
             (
                 LightKind::Directional {

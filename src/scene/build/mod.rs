@@ -111,6 +111,7 @@ fn material(k: &MaterialKind) -> Result<Material, String> {
             ior,
             exterior_ior,
             roughness: None,
+            ..
         } => Material::Dielectric(Dielectric {
             int_ior: ior.clone(),
             ext_ior: *exterior_ior as f32,
@@ -119,15 +120,16 @@ fn material(k: &MaterialKind) -> Result<Material, String> {
             ior,
             exterior_ior,
             roughness: Some(a),
-        } => Material::RoughDielectric(RoughDielectric {
-            int_ior: ior.clone(),
-            ext_ior: *exterior_ior as f32,
-            alpha: *a as f32,
-        }),
+            distribution,
+        } => Material::RoughDielectric(
+            RoughDielectric::new(ior.clone(), *exterior_ior as f32, *a as f32)
+                .with_distribution(*distribution),
+        ),
         MaterialKind::Conductor {
             ior,
             exterior_ior,
             roughness: None,
+            ..
         } => Material::Conductor(Conductor {
             ior: ior.clone(),
             ext_ior: *exterior_ior as f32,
@@ -136,11 +138,11 @@ fn material(k: &MaterialKind) -> Result<Material, String> {
             ior,
             exterior_ior,
             roughness: Some(a),
-        } => Material::RoughConductor(RoughConductor {
-            ior: ior.clone(),
-            ext_ior: *exterior_ior as f32,
-            alpha: *a as f32,
-        }),
+            distribution,
+        } => Material::RoughConductor(
+            RoughConductor::new(ior.clone(), *exterior_ior as f32, *a as f32)
+                .with_distribution(*distribution),
+        ),
     })
 }
 

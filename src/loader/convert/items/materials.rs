@@ -155,6 +155,7 @@ pub(super) fn material(
                 ior: cx.ior(i, &format!("{f}.ior"))?,
                 exterior_ior: exterior(cx)?,
                 roughness: roughness(cx)?,
+                distribution: Distribution::Ggx,
             }
         }
         "conductor" => {
@@ -179,6 +180,7 @@ pub(super) fn material(
                 ior,
                 exterior_ior: exterior(cx)?,
                 roughness: roughness(cx)?,
+                distribution: Distribution::Ggx,
             }
         }
         o => {
