@@ -17,6 +17,7 @@ Needs: pip install OpenImageIO numpy
 """
 import argparse
 import math
+import os
 import pathlib
 import subprocess
 import sys
@@ -26,7 +27,8 @@ import OpenImageIO as oiio
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 REF = ROOT / "tests" / "reference"
-BIN = ROOT / "target" / "release" / "spectrace"
+# the binary: $SPECTRACE_BIN, else target/release/spectrace (CARGO_TARGET_DIR may put it elsewhere)
+BIN = pathlib.Path(os.environ.get("SPECTRACE_BIN", ROOT / "target" / "release" / "spectrace"))
 
 
 def channel(path, name):
