@@ -443,6 +443,28 @@ mod tests {
     }
 
     #[test]
+    fn folded_quad_matches_mitsuba() {
+        // a quad folded along its diagonal, as a PLY without normals; the normals Mitsuba
+        // 3.9.1 computes for it (`mi.load_dict({'type': 'ply', ...}).vertex_normals_buffer()`)
+        let ps = vec![
+            Vec3::ZERO,
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(1.0, 1.0, 0.5),
+            Vec3::new(0.0, 1.0, 0.0),
+        ];
+        let ns = angle_weighted_normals(&ps, &[[0, 1, 2], [0, 2, 3]]);
+        let mitsuba = [
+            Vec3::new(-0.23570226, -0.23570226, 0.94280905),
+            Vec3::new(0.0, -0.4472136, 0.8944272),
+            Vec3::new(-0.23570226, -0.23570226, 0.94280905),
+            Vec3::new(-0.4472136, 0.0, 0.8944272),
+        ];
+        for (n, m) in ns.iter().zip(mitsuba) {
+            assert!((*n - m).length() < 1e-6, "{n} vs {m}");
+        }
+    }
+
+    #[test]
     fn a_vertex_of_only_degenerate_triangles_gets_no_normal() {
         let ps = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::X * 2.0];
         let ns = angle_weighted_normals(&ps, &[[0, 1, 2], [0, 1, 3]]);
