@@ -310,7 +310,7 @@ pub fn angle_weighted_normals(positions: &[Vec3], indices: &[[u32; 3]]) -> Vec<V
     for tri in indices {
         let p = tri.map(|i| positions[i as usize]);
         let n = (p[1] - p[0]).cross(p[2] - p[0]);
-        if !(n.length_squared() > 0.0) {
+        if n.length_squared() <= 0.0 || n.is_nan() {
             continue;
         }
         let n = n.normalize();

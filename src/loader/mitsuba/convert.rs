@@ -577,7 +577,7 @@ fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraDesc> {
                         Some("box") => FilterDesc::Box,
                         Some("gaussian") => {
                             let s = cx.opt_float(f, "stddev")?.unwrap_or(0.5);
-                            if !(s > 0.0) {
+                            if s <= 0.0 {
                                 return Err(
                                     cx.err(f, format!("stddev must be positive, found {s}"))
                                 );
