@@ -65,6 +65,10 @@ SPP = {
     "rough_conductor": 8192,
     "rough_dielectric": 6144,
     "spot": 8192,
+    # 48 × 48 one-difference scenes (issue 8)
+    "gaussian_edge": 32768,
+    "smooth_mesh": 8192,
+    "spot_ramp": 8192,
 }
 DEFAULT_SPP = 1024
 

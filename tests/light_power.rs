@@ -119,9 +119,19 @@ fn point_light_watts_and_lumens() {
 
 #[test]
 fn spot_light_power_includes_the_falloff() {
-    for (amount, lumens, want) in [("\"50 W\"", false, 50.0), ("\"1000 lm\"", true, 1000.0)] {
+    // the native smoothstep in cos θ, and Mitsuba's falloff linear in θ (with a wide ramp,
+    // where the two differ by 14.6 % in power)
+    for (falloff, start) in [("", "20 deg"), ("falloff = \"linear\"\n", "10 deg")] {
+        for (amount, lumens, want) in [("\"50 W\"", false, 50.0), ("\"1000 lm\"", true, 1000.0)] {
+            spot_power(falloff, start, amount, lumens, want);
+        }
+    }
+}
+
+fn spot_power(falloff: &str, start: &str, amount: &str, lumens: bool, want: f64) {
+    {
         let s = scene(&format!(
-            "[[shapes]]\ntype = \"sphere\"\nradius = 1\nmaterial = \"grey\"\n[[lights]]\ntype = \"spot\"\nposition = [0, 5, 0]\ntarget = [0, 0, 0]\nspectrum = \"cie-d65\"\ncone_angle = \"30 deg\"\nfalloff_start = \"20 deg\"\npower = {amount}\n"
+            "[[shapes]]\ntype = \"sphere\"\nradius = 1\nmaterial = \"grey\"\n[[lights]]\ntype = \"spot\"\nposition = [0, 5, 0]\ntarget = [0, 0, 0]\nspectrum = \"cie-d65\"\ncone_angle = \"30 deg\"\nfalloff_start = \"{start}\"\n{falloff}power = {amount}\n"
         ));
         let light = &s.lights[0];
         // ∫ dλ first at the axis, then the angular profile relative to the axis
@@ -134,7 +144,11 @@ fn spot_light_power_includes_the_falloff() {
             4000,
             8,
         );
-        assert_close(on_axis * profile, want, &format!("spot {amount}"));
+        assert_close(
+            on_axis * profile,
+            want,
+            &format!("spot {amount} {falloff} {start}"),
+        );
     }
 }
 

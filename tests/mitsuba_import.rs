@@ -127,3 +127,86 @@ fn import_errors_are_located_and_suggest_alternatives() {
     let e = err(&PLANE.replace("version=\"3.0.0\"", "version=\"0.5\""));
     assert!(e.contains("version 0.5"), "{e}");
 }
+
+/// Spot, filter and mesh settings are read as Mitsuba 3 reads them (src/emitters/spot.cpp,
+/// src/rfilters/gaussian.cpp, src/render/mesh.cpp); a spot texture is refused with its line.
+#[test]
+fn spot_filter_and_mesh_normals_follow_mitsuba() {
+    use spectrace::loader::desc::{FilterDesc, LightKind, MeshNormals, ShapeKind, SpotFalloff};
+    let spot = PLANE.replace(
+        r#"<emitter type="point">
+    <point name="position" x="0" y="2" z="0"/>"#,
+        r#"<emitter type="spot">
+    <transform name="to_world"><lookat origin="0, 2, 0" target="0, 0, 0" up="0, 0, 1"/></transform>
+    <float name="cutoff_angle" value="30"/>"#,
+    );
+    let d = load_str(&spot, Path::new("t.xml"), &[]).unwrap_or_else(|e| panic!("{e}"));
+    match &d.lights[0].kind {
+        LightKind::Spot {
+            cone_angle,
+            falloff_start,
+            falloff,
+            ..
+        } => {
+            use spectrace::units::angle::degree;
+            assert_eq!(*falloff, SpotFalloff::LinearAngle);
+            assert!((cone_angle.get::<degree>() - 30.0).abs() < 1e-9);
+            // beam_width defaults to 3/4 of cutoff_angle
+            assert!((falloff_start.get::<degree>() - 22.5).abs() < 1e-9);
+        }
+        k => panic!("{k:?}"),
+    }
+    let e = err(&spot.replace(
+        r#"<float name="cutoff_angle" value="30"/>"#,
+        r#"<float name="cutoff_angle" value="30"/>
+    <texture type="bitmap" name="texture"><string name="filename" value="a.png"/></texture>"#,
+    ));
+    assert!(
+        e.contains("t.xml:22:") && e.contains("texture") && e.contains("not supported"),
+        "{e}"
+    );
+
+    // the default rfilter is Mitsuba's gaussian (stddev 0.5)
+    let d = load_str(
+        &PLANE.replace(r#"<rfilter type="box"/>"#, ""),
+        Path::new("t.xml"),
+        &[],
+    )
+    .unwrap();
+    assert_eq!(d.film.filter, FilterDesc::MitsubaGaussian { stddev: 0.5 });
+    let d = load_str(
+        &PLANE.replace(
+            r#"<rfilter type="box"/>"#,
+            r#"<rfilter type="gaussian"><float name="stddev" value="0.3"/></rfilter>"#,
+        ),
+        Path::new("t.xml"),
+        &[],
+    )
+    .unwrap();
+    assert_eq!(d.film.filter, FilterDesc::MitsubaGaussian { stddev: 0.3 });
+
+    // meshes without normals are smoothed unless face_normals is true
+    let mesh = |extra: &str| {
+        PLANE.replace(
+            r#"<shape type="rectangle">"#,
+            &format!(r#"<shape type="obj"><string name="filename" value="m.obj"/>{extra}"#),
+        )
+    };
+    let normals = |xml: &str| {
+        let d = load_str(xml, Path::new("t.xml"), &[]).unwrap_or_else(|e| panic!("{e}"));
+        match &d.shapes[0].kind {
+            ShapeKind::Obj { normals, .. } => *normals,
+            k => panic!("{k:?}"),
+        }
+    };
+    assert_eq!(normals(&mesh("")), MeshNormals::FromFileOrSmooth);
+    assert_eq!(
+        normals(&mesh(r#"<boolean name="face_normals" value="true"/>"#)),
+        MeshNormals::Flat
+    );
+    let e = err(&mesh(r#"<boolean name="face_normals" value="yes"/>"#));
+    assert!(
+        e.contains("face_normals") && e.contains("true or false"),
+        "{e}"
+    );
+}

@@ -6,69 +6,90 @@ use glam::Vec2;
 
 use crate::loader::desc::FilterDesc;
 
-/// A separable pixel filter, sampled through a tabulated inverse CDF per axis.
+/// A separable pixel filter, sampled per axis by inverting a finely tabulated CDF.
 #[derive(Clone, Debug)]
 pub struct Filter {
     /// Half-width of the support, pixels.
     pub radius: f32,
-    /// Inverse CDF of one axis on [0, 1], `INV_CDF_SIZE + 1` entries, in pixels.
-    inv_cdf: Vec<f32>,
-    /// The one-axis filter f(x) at `values.len()` evenly spaced x from −radius to radius,
-    /// divided by ∫ f dx over the support (px⁻¹), for [`Filter::weight`].
-    values: Vec<f32>,
+    kernel: Kernel,
+    /// CDF of one axis over `CELLS` equal cells of [−radius, radius], `CELLS + 1` entries from
+    /// 0 to 1.
+    cdf: Vec<f32>,
+    /// 1 / ∫ f dx over [−radius, radius] for one axis (px⁻¹ → normalised), by the same
+    /// midpoint rule as `cdf`, for [`Filter::weight`].
+    inv_integral: f32,
 }
 
-const INV_CDF_SIZE: usize = 1024;
+/// One axis of the filter, unnormalised, for |x| ≤ radius.
+#[derive(Clone, Copy, Debug)]
+enum Kernel {
+    Box,
+    /// max(0, exp(−α x'²) − bias), α = 1/2σ², with x' = |x| rounded down to a multiple of
+    /// `step` when `step` > 0 (a table of the kernel at step ends, as Mitsuba's scalar variants
+    /// use it), x' = x when `step` = 0.
+    Gaussian {
+        alpha: f32,
+        bias: f32,
+        step: f32,
+    },
+}
+
+impl Kernel {
+    fn eval(self, x: f32) -> f32 {
+        match self {
+            Kernel::Box => 1.0,
+            Kernel::Gaussian { alpha, bias, step } => {
+                let x = if step > 0.0 {
+                    (x.abs() / step).floor() * step
+                } else {
+                    x
+                };
+                ((-alpha * x * x).exp() - bias).max(0.0)
+            }
+        }
+    }
+}
+
+const CELLS: usize = 8192;
+
+/// Steps of Mitsuba 3's filter table over [0, radius] (`MI_FILTER_RESOLUTION`).
+const MITSUBA_FILTER_RESOLUTION: f32 = 31.0;
 
 impl Filter {
-    /// Box of width 1 pixel, or a Gaussian of standard deviation σ truncated at 3σ.
+    /// Box of width 1 pixel, spectrace's truncated Gaussian or Mitsuba's (see [`FilterDesc`]).
     pub fn from_desc(d: &FilterDesc) -> Self {
         match *d {
-            FilterDesc::Box => Self::tabulate(0.5, |_| 1.0),
-            FilterDesc::Gaussian { sigma } => {
-                let s = sigma as f32;
-                Self::tabulate(3.0 * s, |x| (-x * x / (2.0 * s * s)).exp())
+            FilterDesc::Box => Self::tabulate(0.5, Kernel::Box),
+            FilterDesc::Gaussian { sigma, radius } => {
+                let alpha = (1.0 / (2.0 * sigma * sigma)) as f32;
+                let kernel = Kernel::Gaussian {
+                    alpha,
+                    bias: 0.0,
+                    step: 0.0,
+                };
+                Self::tabulate(radius as f32, kernel)
+            }
+            FilterDesc::MitsubaGaussian { stddev } => {
+                let alpha = (1.0 / (2.0 * stddev * stddev)) as f32;
+                let r = (4.0 * stddev) as f32;
+                let kernel = Kernel::Gaussian {
+                    alpha,
+                    bias: (-alpha * r * r).exp(),
+                    step: r / MITSUBA_FILTER_RESOLUTION,
+                };
+                Self::tabulate(r, kernel)
             }
         }
     }
 
-    fn tabulate(radius: f32, f: impl Fn(f32) -> f32) -> Self {
-        // fine CDF of f on [-r, r], then inverted at uniform levels
-        let n = 8192;
-        let xs: Vec<f32> = (0..=n)
-            .map(|i| -radius + 2.0 * radius * i as f32 / n as f32)
-            .collect();
-        let mut cdf = vec![0.0f64; n + 1];
-        for i in 0..n {
-            let m = 0.5 * (xs[i] + xs[i + 1]);
-            cdf[i + 1] = cdf[i] + f(m) as f64;
+    /// The filter's weight at `offset` from the pixel centre (pixels): the product of the two
+    /// axes' kernels, unnormalised (1 at the centre of a truncated Gaussian or a box), 0 outside
+    /// the square of half-width `radius`.
+    pub fn eval(&self, offset: Vec2) -> f32 {
+        if offset.x.abs() > self.radius || offset.y.abs() > self.radius {
+            return 0.0;
         }
-        let total = cdf[n];
-        // ∫ f dx by the same midpoint rule, pixels
-        let integral = total * (2.0 * radius as f64) / n as f64;
-        let values = xs
-            .iter()
-            .map(|&x| (f(x) as f64 / integral) as f32)
-            .collect();
-        let mut inv_cdf = Vec::with_capacity(INV_CDF_SIZE + 1);
-        let mut j = 0;
-        for k in 0..=INV_CDF_SIZE {
-            let u = k as f64 / INV_CDF_SIZE as f64 * total;
-            while j < n - 1 && cdf[j + 1] < u {
-                j += 1;
-            }
-            let t = if cdf[j + 1] > cdf[j] {
-                ((u - cdf[j]) / (cdf[j + 1] - cdf[j])).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            inv_cdf.push(xs[j] + (xs[j + 1] - xs[j]) * t as f32);
-        }
-        Self {
-            radius,
-            inv_cdf,
-            values,
-        }
+        self.kernel.eval(offset.x) * self.kernel.eval(offset.y)
     }
 
     /// The normalised one-axis filter f(x)/∫f at offset `x` (pixels), px⁻¹; 0 outside the
@@ -78,11 +99,7 @@ impl Filter {
         if !(x >= -self.radius && x < self.radius) {
             return 0.0;
         }
-        let n = self.values.len() - 1;
-        let t = ((x + self.radius) / (2.0 * self.radius) * n as f32).clamp(0.0, n as f32);
-        let i = (t as usize).min(n - 1);
-        let a = t - i as f32;
-        self.values[i] + a * (self.values[i + 1] - self.values[i])
+        self.kernel.eval(x) * self.inv_integral
     }
 
     /// The weight with which a point at `offset` (pixels) from a pixel centre counts in that
@@ -98,11 +115,39 @@ impl Filter {
         wx * self.weight_axis(offset.y)
     }
 
+    fn tabulate(radius: f32, kernel: Kernel) -> Self {
+        // CDF of the kernel taken as constant over each of CELLS cells of [−r, r] (its value
+        // at the cell's midpoint), normalised to end at 1
+        let dx = 2.0 * radius as f64 / CELLS as f64;
+        let mut acc = 0.0f64;
+        let mut sums = Vec::with_capacity(CELLS + 1);
+        sums.push(0.0);
+        for i in 0..CELLS {
+            let m = -radius as f64 + (i as f64 + 0.5) * dx;
+            acc += kernel.eval(m as f32) as f64;
+            sums.push(acc);
+        }
+        let cdf = sums.iter().map(|&c| (c / acc) as f32).collect();
+        Self {
+            radius,
+            kernel,
+            cdf,
+            inv_integral: (1.0 / (acc * dx)) as f32,
+        }
+    }
+
+    /// One axis's offset, pixels: the inverse of the piecewise-linear CDF (exact for the
+    /// tabulated piecewise-constant kernel, tails included).
     fn sample_axis(&self, u: f32) -> f32 {
-        let x = u.clamp(0.0, 1.0) * INV_CDF_SIZE as f32;
-        let i = (x as usize).min(INV_CDF_SIZE - 1);
-        let t = x - i as f32;
-        self.inv_cdf[i] + t * (self.inv_cdf[i + 1] - self.inv_cdf[i])
+        let u = u.clamp(0.0, 1.0);
+        let i = self.cdf.partition_point(|&c| c <= u).clamp(1, CELLS) - 1;
+        let (c0, c1) = (self.cdf[i], self.cdf[i + 1]);
+        let t = if c1 > c0 {
+            ((u - c0) / (c1 - c0)).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        -self.radius + (i as f32 + t) * (2.0 * self.radius / CELLS as f32)
     }
 
     /// Offset from the pixel centre, pixels, distributed as the filter.
@@ -125,7 +170,14 @@ mod tests {
 
     #[test]
     fn weight_is_the_sampled_density() {
-        for d in [FilterDesc::Box, FilterDesc::Gaussian { sigma: 0.5 }] {
+        for d in [
+            FilterDesc::Box,
+            FilterDesc::Gaussian {
+                sigma: 0.5,
+                radius: 1.5,
+            },
+            FilterDesc::MitsubaGaussian { stddev: 0.5 },
+        ] {
             let f = Filter::from_desc(&d);
             // ∫ weight = 1 over the support (midpoint rule on a 400 × 400 grid)
             let n = 400;
@@ -162,7 +214,10 @@ mod tests {
 
     #[test]
     fn gaussian_has_its_sigma() {
-        let f = Filter::from_desc(&FilterDesc::Gaussian { sigma: 0.5 });
+        let f = Filter::from_desc(&FilterDesc::Gaussian {
+            sigma: 0.5,
+            radius: 1.5,
+        });
         let n = 100_000;
         let var: f64 = (0..n)
             .map(|i| (f.sample_axis((i as f32 + 0.5) / n as f32) as f64).powi(2))
@@ -175,5 +230,53 @@ mod tests {
             var.sqrt()
         );
         assert!((f.sample_axis(0.5)).abs() < 1e-4);
+    }
+
+    /// Fraction of one axis's samples beyond `x`, from 200 000 stratified samples.
+    fn tail(f: &Filter, x: f32) -> f64 {
+        let n = 200_000;
+        (0..n)
+            .filter(|i| f.sample_axis((*i as f32 + 0.5) / n as f32) > x)
+            .count() as f64
+            / n as f64
+    }
+
+    #[test]
+    fn mitsuba_gaussian_is_mitsubas_table() {
+        let f = Filter::from_desc(&FilterDesc::MitsubaGaussian { stddev: 0.5 });
+        assert_eq!(f.radius, 2.0);
+        // Mitsuba 3.9.1 scalar_spectral, `mi.load_dict({'type': 'gaussian'})
+        // .eval_discretized(x)` (its kernel is a polynomial fit of the Gaussian, hence 1e-3)
+        for (x, want) in [
+            (0.0, 0.999247),
+            (0.07, 0.990995),
+            (0.5, 0.664957),
+            (1.0, 0.153261),
+            (1.5, 0.011880),
+            (1.99, 0.000221),
+            (2.0, 0.0),
+        ] {
+            let got = f.eval(Vec2::new(x, 0.0));
+            assert!((got - want).abs() < 1e-3, "{x}: {got} vs {want}");
+        }
+        // the fraction of one axis's weight beyond d px: Mitsuba's table integrated by the
+        // midpoint rule (8001 points over [−2, 2], the same call); a 3σ-truncated Gaussian
+        // gives 0 beyond 1.5 px
+        for (d, want) in [
+            (0.25, 0.31514),
+            (0.5, 0.16605),
+            (0.75, 0.07188),
+            (1.25, 0.00691),
+            (1.5, 0.00143),
+            (1.75, 0.00018),
+        ] {
+            let got = tail(&f, d);
+            assert!((got - want).abs() < 2e-4, "{d}: {got} vs {want}");
+        }
+        let native = Filter::from_desc(&FilterDesc::Gaussian {
+            sigma: 0.5,
+            radius: 1.5,
+        });
+        assert_eq!(tail(&native, 1.5), 0.0);
     }
 }

@@ -79,9 +79,18 @@ pub struct CameraDesc {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum FilterDesc {
     Box,
-    /// Gaussian with standard deviation `sigma` in pixels (radius 3σ).
+    /// Gaussian exp(−x²/2σ²) of standard deviation `sigma` per axis, truncated at `radius`
+    /// (both in pixels): spectrace's native filter, radius 3σ.
     Gaussian {
         sigma: f64,
+        radius: f64,
+    },
+    /// Mitsuba 3's `gaussian` rfilter as its scalar variants apply it (src/rfilters/gaussian.cpp,
+    /// src/core/rfilter.cpp): per axis exp(−x²/2σ²) − exp(−r²/2σ²) with r = 4σ, zero beyond r,
+    /// tabulated in 31 steps of |x| over [0, r], each step holding the value at its inner end
+    /// (`eval_discretized`, MI_FILTER_RESOLUTION = 31).
+    MitsubaGaussian {
+        stddev: f64,
     },
 }
 
@@ -176,10 +185,12 @@ pub enum ShapeKind {
     /// A Wavefront OBJ mesh; coordinates in the scene's length unit.
     Obj {
         path: PathBuf,
+        normals: MeshNormals,
     },
     /// A Stanford PLY mesh; coordinates in the scene's length unit.
     Ply {
         path: PathBuf,
+        normals: MeshNormals,
     },
     /// A triangle mesh written in the scene file: vertices in the scene's length unit and
     /// 0-based triangle indices.
@@ -187,6 +198,19 @@ pub enum ShapeKind {
         vertices: Vec<[f64; 3]>,
         faces: Vec<[u32; 3]>,
     },
+}
+
+/// The vertex normals a mesh file is shaded with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MeshNormals {
+    /// The file's normals; face normals (flat shading) if it has none. spectrace's native
+    /// reading.
+    FromFile,
+    /// The file's normals; if it has none, smooth normals computed from the faces, weighted by
+    /// angle (Mitsuba 3's default for `obj` and `ply`).
+    FromFileOrSmooth,
+    /// Face normals only, whatever the file holds (Mitsuba's `face_normals = true`).
+    Flat,
 }
 
 /// How much light an area emitter gives; its spectrum gives the shape.
@@ -242,18 +266,29 @@ pub enum DirectionalAmount {
     Scale(f64),
 }
 
+/// How a spot's intensity falls between `falloff_start` (β) and `cone_angle` (γ).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpotFalloff {
+    /// smoothstep(cos γ, cos β, cos θ) (pbrt-v4 §12.1.2): spectrace's native spot.
+    SmoothstepCos,
+    /// (γ − θ)/(γ − β), linear in the angle θ: Mitsuba 3's `spot` emitter.
+    LinearAngle,
+}
+
 #[derive(Clone, Debug)]
 pub enum LightKind {
     Point {
         position: Point,
         amount: PointAmount,
     },
-    /// Full intensity inside `falloff_start`, smoothstep to zero at `cone_angle` (half-angles).
+    /// Full intensity inside `falloff_start`, falling as `falloff` says to zero at
+    /// `cone_angle` (half-angles).
     Spot {
         position: Point,
         target: Point,
         cone_angle: Angle,
         falloff_start: Angle,
+        falloff: SpotFalloff,
         amount: PointAmount,
     },
     /// Light travelling along `direction` (dimensionless); a disk of `angular_diameter` if > 0.

@@ -129,6 +129,7 @@ pub struct RawLight {
     pub scale: Option<S<Value>>,
     pub cone_angle: Option<S<Value>>,
     pub falloff_start: Option<S<Value>>,
+    pub falloff: Option<S<Value>>,
     pub angular_diameter: Option<S<Value>>,
     pub radius: Option<S<Value>>,
 }

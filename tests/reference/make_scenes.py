@@ -81,7 +81,9 @@ def metal(sym):
 # XML pieces
 
 
-def header(comment, origin, target, fov, spp, max_depth, up="0, 1, 0"):
+def header(comment, origin, target, fov, spp, max_depth, up="0, 1, 0", size=None,
+           rfilter='<rfilter type="box"/>'):
+    w, h = size or (W, H)
     return f"""<?xml version="1.0" encoding="utf-8"?>
 <!--
 {comment.strip()}
@@ -105,9 +107,9 @@ from spectrace's tables in spectra/ (see tests/reference/README.md).
             <integer name="sample_count" value="{spp}"/>
         </sampler>
         <film type="hdrfilm">
-            <integer name="width" value="{W}"/>
-            <integer name="height" value="{H}"/>
-            <rfilter type="box"/>
+            <integer name="width" value="{w}"/>
+            <integer name="height" value="{h}"/>
+            {rfilter}
             <string name="pixel_format" value="xyz"/>
         </film>
     </sensor>
@@ -560,10 +562,139 @@ Exercises: directional emitter, its direction convention, cube.""",
     write("directional", s + FOOTER)
 
 
+# 48 × 48 one-difference scenes for issue 8 ("Mitsuba scenes must render as in Mitsuba")
+SMALL = (48, 48)
+
+
+def spot_ramp():
+    s = header(
+        """A spot light with a wide falloff ramp (beam_width = 10°, cutoff_angle = 30°) straight
+down onto a diffuse plane (neutral-8), intensity = CIE D65 / 100 × 20, seen from above.
+Mitsuba's falloff is linear in the angle between beam_width and cutoff_angle; a smoothstep in
+cos θ would be up to +0.19 brighter (in units of the axis intensity) inside the ramp and +14.6 %
+in total power.
+Exercises: the spot's falloff profile.""",
+        "0, 3, 0",
+        "0, 0, 0",
+        40,
+        64,
+        2,
+        up="0, 0, 1",
+        size=SMALL,
+    )
+    s += "\n" + floor_rect(2.5, colorchecker("neutral-8"))
+    s += f"""
+    <emitter type="spot">
+        <transform name="to_world">
+            <lookat origin="0.1, 1.5, 0" target="0.1, 0, 0" up="0, 0, 1"/>
+        </transform>
+        <float name="cutoff_angle" value="30"/>
+        <float name="beam_width" value="10"/>
+        <spectrum name="intensity" value="{illuminant('d65', 20.0)}"/>
+    </emitter>
+"""
+    write("spot_ramp", s + FOOTER)
+
+
+def gaussian_edge():
+    # the camera looks along +z from the origin; with fov 40° along x, one pixel spans
+    # 2 tan(20°)/48 at z = 1. The emitting strip covers pixel columns 12 to 36.25 (one edge on
+    # a pixel boundary, the other a quarter pixel inside), full height.
+    px = 2 * math.tan(math.radians(20)) / SMALL[0]
+    u0, u1 = 12.0, 36.25
+    half = (u1 - u0) / 2 * px
+    cx = ((u0 + u1) / 2 - SMALL[0] / 2) * px
+    s = header(
+        f"""A uniformly emitting vertical strip (radiance 1, flat) seen straight on against black,
+with Mitsuba's default reconstruction filter, a Gaussian of stddev 0.5 px written explicitly.
+The strip's edges fall on a pixel boundary and a quarter pixel off one, so the columns next to
+them sample the filter's profile at 0.25 px steps out to 2 px. Mitsuba's gaussian is cut at
+4 stddev (2 px) and shifted down by its value there; a Gaussian cut at 3 stddev (1.5 px) leaves
+the columns 1.5 px and beyond from an edge black.
+Exercises: the pixel filter's radius and shape at sharp edges.""",
+        "0, 0, 0",
+        "0, 0, 1",
+        40,
+        64,
+        2,
+        size=SMALL,
+        rfilter='<rfilter type="gaussian">\n                <float name="stddev" value="0.5"/>\n            </rfilter>',
+    )
+    s += f"""
+    <!-- the strip: rectangle [-1,1]² scaled, turned to face the camera (normal -z) -->
+    <shape type="rectangle">
+        <transform name="to_world">
+            <scale x="{half:.9g}" y="1"/>
+            <rotate y="1" angle="180"/>
+            <translate x="{cx:.9g}" z="1"/>
+        </transform>
+        <emitter type="area">
+            <spectrum name="radiance" value="1"/>
+        </emitter>
+        <bsdf type="diffuse">
+            <spectrum name="reflectance" value="0"/>
+        </bsdf>
+    </shape>
+"""
+    write("gaussian_edge", s + FOOTER)
+
+
+def heightfield_obj(path, n=24, size=1.0, amp=0.15):
+    """An n × n-quad height field over [-size, size]² in the xz plane (y up), 2n² triangles,
+    positions and faces only (no normals, no uvs), faces counter-clockwise seen from above."""
+    lines = [f"# height field y = {amp} sin(3x) cos(2.5z) + {amp / 2} sin(5(x + z)), {n}x{n} quads,",
+             "# no normals: written by tests/reference/make_scenes.py"]
+    for j in range(n + 1):
+        for i in range(n + 1):
+            x = -size + 2 * size * i / n
+            z = -size + 2 * size * j / n
+            y = amp * math.sin(3 * x) * math.cos(2.5 * z) + amp / 2 * math.sin(5 * (x + z))
+            lines.append(f"v {x:.6f} {y:.6f} {z:.6f}")
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i + 1
+            b, c, d = a + 1, a + n + 2, a + n + 1
+            # seen from +y with x right and z down: a → d → c is counter-clockwise
+            lines.append(f"f {a} {d} {c}")
+            lines.append(f"f {a} {c} {b}")
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+    print("wrote", os.path.relpath(path, ROOT))
+
+
+def smooth_mesh():
+    heightfield_obj(os.path.join(HERE, "meshes", "heightfield.obj"))
+    s = header(
+        """A coarse height field (24 × 24 quads, 1152 triangles) loaded from an OBJ without normals,
+diffuse neutral-8, lit by a directional light (D65 / 100 × 3) at a low angle and seen from
+above. Mitsuba computes smooth vertex normals for a mesh without normals (angle-weighted,
+unless face_normals is true); flat shading makes every facet visible.
+Exercises: vertex normals computed for OBJ meshes, shading normals.""",
+        "0.2, 2.6, -1.6",
+        "0, 0, 0",
+        40,
+        64,
+        2,
+        size=SMALL,
+    )
+    s += f"""
+    <shape type="obj">
+        <string name="filename" value="../meshes/heightfield.obj"/>
+{diffuse(colorchecker("neutral-8"), indent="        ")}    </shape>
+
+    <emitter type="directional">
+        <vector name="direction" x="-1" y="-0.6" z="0.5"/>
+        <spectrum name="irradiance" value="{illuminant('d65', 3.0)}"/>
+    </emitter>
+"""
+    write("smooth_mesh", s + FOOTER)
+
+
 SCENES = {
     f.__name__: f
     for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
-              dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional)
+              dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional,
+              spot_ramp, gaussian_edge, smooth_mesh)
 }
 
 if __name__ == "__main__":

@@ -499,7 +499,8 @@ pub(super) fn scene(
         width: 768,
         height: 576,
         spp: 4,
-        filter: FilterDesc::Gaussian { sigma: 0.5 },
+        // Mitsuba's default rfilter
+        filter: FilterDesc::MitsubaGaussian { stddev: 0.5 },
         spectral_bins: 0,
         exposure_ev: None,
         loc: Default::default(),
@@ -698,9 +699,15 @@ fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraDesc> {
                 for f in c.children.iter().filter(|f| f.tag == "rfilter") {
                     film.filter = match f.attr("type") {
                         Some("box") => FilterDesc::Box,
-                        Some("gaussian") => FilterDesc::Gaussian {
-                            sigma: cx.opt_float(f, "stddev")?.unwrap_or(0.5),
-                        },
+                        Some("gaussian") => {
+                            let s = cx.opt_float(f, "stddev")?.unwrap_or(0.5);
+                            if s <= 0.0 {
+                                return Err(
+                                    cx.err(f, format!("stddev must be positive, found {s}"))
+                                );
+                            }
+                            FilterDesc::MitsubaGaussian { stddev: s }
+                        }
                         Some(o) => return Err(cx.unsupported(f, "rfilter", o)),
                         None => return Err(cx.err(f, "missing type")),
                     };

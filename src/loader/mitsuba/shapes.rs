@@ -27,6 +27,7 @@ pub(super) fn shape(
                 .ok_or_else(|| cx.err(s, "missing filename"))?;
             ShapeKind::Obj {
                 path: cx.dir(s).join(f),
+                normals: mesh_normals(cx, s)?,
             }
         }
         "rectangle" => ShapeKind::Rectangle,
@@ -53,6 +54,7 @@ pub(super) fn shape(
                 .ok_or_else(|| cx.err(s, "missing filename"))?;
             ShapeKind::Ply {
                 path: cx.dir(s).join(f),
+                normals: mesh_normals(cx, s)?,
             }
         }
         other => return Err(cx.unsupported(s, "shape", other)),
@@ -114,6 +116,22 @@ pub(super) fn shape(
         unit_m: 1.0,
         loc: cx.loc(s),
     })
+}
+
+/// Mitsuba's meshes: the file's vertex normals, or smooth ones computed from the faces when it
+/// has none; `face_normals = true` shades with face normals only (src/render/mesh.cpp).
+fn mesh_normals(cx: &Cx<'_>, s: &Element) -> R<MeshNormals> {
+    match cx.child(s, "face_normals") {
+        None => Ok(MeshNormals::FromFileOrSmooth),
+        Some(c) => match c.attr("value") {
+            Some("true") => Ok(MeshNormals::Flat),
+            Some("false") => Ok(MeshNormals::FromFileOrSmooth),
+            v => Err(cx.err(
+                c,
+                format!("expected true or false, found {}", v.unwrap_or("nothing")),
+            )),
+        },
+    }
 }
 
 pub(super) fn emitter(cx: &Cx<'_>, e: &Element) -> R<LightDesc> {
@@ -179,13 +197,22 @@ pub(super) fn emitter(cx: &Cx<'_>, e: &Element) -> R<LightDesc> {
                 Some(tr) => cx.transform(tr)?,
                 None => return Err(cx.err(e, "a spot needs a to_world with lookat")),
             };
+            if let Some(t) = cx.child(e, "texture") {
+                return Err(cx.err(
+                    t,
+                    "a spot's projected texture is not supported (spectrace has no textures yet); remove it",
+                ));
+            }
             let (eye, target, _) = camera_frame(cx, e, &steps)?;
             (
                 LightKind::Spot {
                     position: eye,
                     target,
                     cone_angle: Angle::new::<angle::degree>(cutoff),
+                    // Mitsuba's falloff is linear in the angle from beam_width to cutoff_angle
+                    // (src/emitters/spot.cpp, falloff_curve)
                     falloff_start: Angle::new::<angle::degree>(width.min(cutoff)),
+                    falloff: SpotFalloff::LinearAngle,
                     amount: PointAmount::Scale(1.0),
                 },
                 cx.spectrum_prop(e, "intensity", 1.0, true)?,

@@ -153,17 +153,18 @@ pub(super) fn lights(
                 target,
                 cone_angle,
                 falloff_start,
+                falloff,
                 amount,
             } => {
                 let p = v3(position);
                 let axis = (v3(target) - p).normalize();
-                let mut spot = SpotLight {
-                    position: p,
-                    frame: Frame::from_normal(axis),
-                    intensity: Spectrum::Constant(0.0),
-                    cos_falloff_start: plain::radians(*falloff_start).cos(),
-                    cos_total: plain::radians(*cone_angle).cos(),
-                };
+                let mut spot = SpotLight::new(
+                    p,
+                    axis,
+                    plain::radians(*falloff_start),
+                    plain::radians(*cone_angle),
+                    *falloff,
+                );
                 let (per, g) = point_amount(amount, spot.solid_angle_factor());
                 spot.intensity = scaled(&l.spectrum, per, g, r).map_err(e)?;
                 Light::Spot(spot)

@@ -5,7 +5,7 @@ use glam::{Mat4, Vec3};
 use super::v3;
 use crate::geometry::shape::{Disk, Mesh, Shape, Sphere};
 use crate::geometry::transform::Transform;
-use crate::loader::desc::{ShapeDesc, ShapeKind, TransformStep};
+use crate::loader::desc::{MeshNormals, ShapeDesc, ShapeKind, TransformStep};
 use crate::units::plain;
 
 /// The object-to-world transform: the scene unit's scale, then the steps in order.
@@ -72,11 +72,13 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
         ShapeKind::Disk => {
             Shape::Disk(Disk::new(&transform(s, true)?, 1.0).map_err(|e| e.to_string())?)
         }
-        ShapeKind::Obj { path } => {
-            Shape::Mesh(Mesh::load_obj(path, &transform(s, true)?).map_err(|e| e.to_string())?)
+        ShapeKind::Obj { path, normals } => {
+            let mesh = Mesh::load_obj(path, &transform(s, true)?).map_err(|e| e.to_string())?;
+            Shape::Mesh(with_normals(mesh, *normals))
         }
-        ShapeKind::Ply { path } => {
-            Shape::Mesh(Mesh::load_ply(path, &transform(s, true)?).map_err(|e| e.to_string())?)
+        ShapeKind::Ply { path, normals } => {
+            let mesh = Mesh::load_ply(path, &transform(s, true)?).map_err(|e| e.to_string())?;
+            Shape::Mesh(with_normals(mesh, *normals))
         }
         ShapeKind::Inline { vertices, faces } => {
             let positions = vertices
@@ -91,4 +93,15 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
         return Err("the shape has zero area".into());
     }
     Ok(shape)
+}
+
+/// A loaded mesh's vertex normals as the description asks (normals are computed in world
+/// space, as Mitsuba computes them after applying `to_world`).
+fn with_normals(mut mesh: Mesh, normals: MeshNormals) -> Mesh {
+    match normals {
+        MeshNormals::FromFile => {}
+        MeshNormals::FromFileOrSmooth => mesh.smooth_if_no_normals(),
+        MeshNormals::Flat => mesh.drop_normals(),
+    }
+    mesh
 }

@@ -229,7 +229,10 @@ pub(super) fn film(cx: &Cx<'_>, f: Option<&S<RawFilm>>) -> R<FilmDesc> {
         width: 512,
         height: 512,
         spp: 16,
-        filter: FilterDesc::Gaussian { sigma: 0.5 },
+        filter: FilterDesc::Gaussian {
+            sigma: 0.5,
+            radius: 1.5,
+        },
         spectral_bins: 0,
         exposure_ev: None,
         loc: Default::default(),
@@ -273,7 +276,12 @@ pub(super) fn film(cx: &Cx<'_>, f: Option<&S<RawFilm>>) -> R<FilmDesc> {
         None => 0.5,
     };
     d.filter = match f.filter.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
-        None | Some(("gaussian", _)) => FilterDesc::Gaussian { sigma },
+        // the native Gaussian is truncated at its radius, 3σ (Mitsuba's own is
+        // FilterDesc::MitsubaGaussian, which only its importer asks for)
+        None | Some(("gaussian", _)) => FilterDesc::Gaussian {
+            sigma,
+            radius: 3.0 * sigma,
+        },
         Some(("box", _)) => FilterDesc::Box,
         Some((o, span)) => {
             return Err(cx.err(

@@ -6,7 +6,7 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
     let sp = l.span();
     let f = format!("lights[{i}]");
     let l = l.get_ref();
-    let all = present!(l; kind, spectrum, position, target, direction, power, intensity, radiance, luminance, irradiance, scale, cone_angle, falloff_start, angular_diameter, radius);
+    let all = present!(l; kind, spectrum, position, target, direction, power, intensity, radiance, luminance, irradiance, scale, cone_angle, falloff_start, falloff, angular_diameter, radius);
     let ty = cx.required(
         &l.kind,
         &sp,
@@ -132,6 +132,7 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
                     "scale",
                     "cone_angle",
                     "falloff_start",
+                    "falloff",
                 ],
             )?;
             let (position, target) = aim(cx, "spot")?;
@@ -172,11 +173,28 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
                 }
                 None => cone_angle,
             };
+            let falloff = match &l.falloff {
+                None => SpotFalloff::SmoothstepCos,
+                Some(v) => {
+                    match cx.string(v, &format!("{f}.falloff"), "\"smoothstep\" or \"linear\"")? {
+                        "smoothstep" => SpotFalloff::SmoothstepCos,
+                        "linear" => SpotFalloff::LinearAngle,
+                        o => {
+                            return Err(cx.err(
+                            &v.span(),
+                            format!("{f}.falloff"),
+                            format!("\"{o}\": expected \"smoothstep\" (in cos θ) or \"linear\" (in the angle, as Mitsuba's spot)"),
+                        ));
+                        }
+                    }
+                }
+            };
             LightKind::Spot {
                 position,
                 target,
                 cone_angle,
                 falloff_start,
+                falloff,
                 amount: point_amount(cx)?,
             }
         }

@@ -144,8 +144,10 @@ pub(super) fn shape(
         "obj" => {
             cx.only("an obj mesh", &f, &all, &with(&["file"]))?;
             let p = cx.required(&s.file, &sp, &format!("{f}.file"), "a path to a .obj file")?;
+            // a mesh without normals stays flat-shaded (the Mitsuba importer smooths it)
             ShapeKind::Obj {
                 path: cx.path(p.get_ref()),
+                normals: MeshNormals::FromFile,
             }
         }
         "mesh" => {
