@@ -2,6 +2,11 @@
 //!
 //! See `ARCHITECTURE.md` for the module map.
 
+// `!(x > 0.0)` is the NaN-safe form of "not positive": it is true for NaN, which is what every
+// such check here wants (a NaN distance, pdf or radius must be rejected). clippy's suggested
+// `x <= 0.0` is false for NaN and would let NaN through, so the lint is wrong for this code.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 // uom's `quantity!`/`system!` macros need their helper macros in scope at the crate root.
 // Only `units` uses them.
 #[macro_use]

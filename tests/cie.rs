@@ -66,14 +66,10 @@ fn luminance_calibration_matches_physics_md() {
 }
 
 fn assert_matrix(m: glam::DMat3, want: [[f64; 3]; 3], tol: f64, what: &str) {
-    for r in 0..3 {
-        for c in 0..3 {
+    for (r, want_row) in want.iter().enumerate() {
+        for (c, &w) in want_row.iter().enumerate() {
             let got = m.row(r)[c];
-            assert!(
-                (got - want[r][c]).abs() < tol,
-                "{what}[{r}][{c}] = {got}, want {}",
-                want[r][c]
-            );
+            assert!((got - w).abs() < tol, "{what}[{r}][{c}] = {got}, want {w}");
         }
     }
 }

@@ -200,8 +200,9 @@ fn film_keeps_hero_when_a_terminated_secondary_is_not_finite() {
 /// through the lossless sphere too: L = Le/(1 − ρ) = 5 W·m⁻²·sr⁻¹ in every pixel.
 #[test]
 fn path_bounces_read_fixed_sampler_dimensions() {
+    let layout_checked = cfg!(debug_assertions);
     assert!(
-        cfg!(debug_assertions),
+        layout_checked,
         "the layout check needs debug assertions (the test profile has them)"
     );
     let scene = scene_from(

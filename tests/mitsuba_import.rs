@@ -57,7 +57,7 @@ fn point_light_over_plane_on_mitsuba_scale() {
     let (mut img, _) = support::render::render_with(&scene, |_| {});
     spectrace::output::to_mitsuba_scale(&mut img);
     for (px, py) in [(16, 16), (5, 20), (28, 3)] {
-        let (r2, cos) = support::render::plane_point(&scene, px as usize, py as usize);
+        let (r2, cos) = support::render::plane_point(&scene, px, py);
         let want = 0.5 / PI * 10.0 * cos / r2 * (106.856895 / 106.7502594);
         let got = img.xyz[py * 32 + px][1] as f64;
         assert!(

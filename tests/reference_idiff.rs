@@ -209,7 +209,7 @@ power = "100 W"
 "#;
     let scene = support::render::scene_from(plane);
     let analytic = |px: usize, py: usize| {
-        let (r2, cos) = support::render::plane_point(&scene, px as usize, py as usize);
+        let (r2, cos) = support::render::plane_point(&scene, px, py);
         let l_band = 0.5 / std::f64::consts::PI * (100.0 / (4.0 * std::f64::consts::PI)) * cos / r2;
         (l_band * K / 470.0) as f32
     };

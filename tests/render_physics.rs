@@ -91,7 +91,7 @@ fn point_light_over_plane() {
         let (img, _) = render_with(&s, |_| {});
         for (px, py) in [(16, 16), (4, 16), (20, 27), (30, 2), (9, 9)] {
             // the plane point seen through the pixel centre
-            let (r2, cos) = support::render::plane_point(&s, px as usize, py as usize);
+            let (r2, cos) = support::render::plane_point(&s, px, py);
             let l_band = 0.5 / PI * (100.0 / (4.0 * PI)) * cos / r2;
             let y = l_band * K_M * CIE_Y_INTEGRAL / 470.0;
             let i = py * 32 + px;

@@ -159,6 +159,6 @@ fn typed_products_have_the_right_dimension() {
     let l = Radiance::new::<radiance::watt_per_square_meter_steradian>(2.0);
     let a = Area::new::<area::square_meter>(3.0);
     let w = SolidAngle::new::<solid_angle::steradian>(0.5);
-    let p: Power = (l * a * w).into();
+    let p: Power = l * a * w;
     assert_eq!(p.get::<power::watt>(), 3.0);
 }

@@ -150,14 +150,14 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
         .clone()
         .unwrap_or_else(|| exr.with_extension("png"));
     for p in [&exr, &png] {
-        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
-            if !dir.is_dir() {
-                return Err(CliError::Usage(format!(
-                    "cannot write {}: folder {} does not exist",
-                    p.display(),
-                    dir.display()
-                )));
-            }
+        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty())
+            && !dir.is_dir()
+        {
+            return Err(CliError::Usage(format!(
+                "cannot write {}: folder {} does not exist",
+                p.display(),
+                dir.display()
+            )));
         }
     }
 

@@ -40,6 +40,11 @@ impl Cmf {
         self.y.len()
     }
 
+    /// Whether the table is empty (never, for the built-in table).
+    pub fn is_empty(&self) -> bool {
+        self.y.is_empty()
+    }
+
     /// Tabulated (x̄, ȳ, z̄) at 360 + i nm.
     #[inline]
     pub fn at_index(&self, i: usize) -> [f32; 3] {
@@ -49,7 +54,7 @@ impl Cmf {
     /// (x̄, ȳ, z̄) at `lambda_nm`, linearly interpolated; zero outside 360–830 nm.
     #[inline]
     pub fn eval(&self, lambda_nm: f32) -> [f32; 3] {
-        if !(lambda_nm >= CIE_MIN_NM && lambda_nm <= CIE_MAX_NM) {
+        if !(CIE_MIN_NM..=CIE_MAX_NM).contains(&lambda_nm) {
             return [0.0; 3];
         }
         let f = lambda_nm - CIE_MIN_NM;

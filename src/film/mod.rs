@@ -146,10 +146,10 @@ impl Tile {
             p.xyz[1] += K_M * v * c[1] as f64;
             p.xyz[2] += K_M * v * c[2] as f64;
             p.band += v;
-            if let Some(b) = bins {
-                if let Some(k) = b.index(w.lambda[j]) {
-                    self.spectral[i * self.nbins + k] += v / b.width() as f64;
-                }
+            if let Some(b) = bins
+                && let Some(k) = b.index(w.lambda[j])
+            {
+                self.spectral[i * self.nbins + k] += v / b.width() as f64;
             }
         }
         p.count += 1;
@@ -252,7 +252,7 @@ impl Film {
         spectral_bins: u32,
     ) -> Self {
         let n = (width * height) as usize;
-        let bins = (spectral_bins > 0).then(|| Bins {
+        let bins = (spectral_bins > 0).then_some(Bins {
             range,
             count: spectral_bins as usize,
         });

@@ -148,25 +148,25 @@ pub fn trace<const N: usize>(
         if sh.material.is_dispersive() && !sh.material.is_specular() {
             w.terminate_secondary();
         }
-        if !sh.material.is_specular() {
-            if let Some(c) = camera.connect(hit.p, margin) {
-                let wc = sh.frame.to_local(c.wi);
-                let f = sh.material.eval(wo, wc, w, TransportMode::Importance);
-                if !f.is_zero()
-                    && !occluded_to_camera(
-                        it,
-                        hit.p,
-                        hit.p_error,
-                        sh.n_geom_toward(c.wi),
-                        camera.position(),
-                    )
-                {
-                    // β·f·|ns·wc|·(adjoint correction) = β·f·|ns·wo|·|ng·wc|/|ng·wo|:
-                    // the geometric cosine at the camera end, shading cosine at the light end
-                    // (Veach 1997 §5.3)
-                    let corr = sh.adjoint_correction(wo, c.wi);
-                    splat(c.raster, w, beta * f * (wc.z.abs() * corr * c.weight));
-                }
+        if !sh.material.is_specular()
+            && let Some(c) = camera.connect(hit.p, margin)
+        {
+            let wc = sh.frame.to_local(c.wi);
+            let f = sh.material.eval(wo, wc, w, TransportMode::Importance);
+            if !f.is_zero()
+                && !occluded_to_camera(
+                    it,
+                    hit.p,
+                    hit.p_error,
+                    sh.n_geom_toward(c.wi),
+                    camera.position(),
+                )
+            {
+                // β·f·|ns·wc|·(adjoint correction) = β·f·|ns·wo|·|ng·wc|/|ng·wo|:
+                // the geometric cosine at the camera end, shading cosine at the light end
+                // (Veach 1997 §5.3)
+                let corr = sh.adjoint_correction(wo, c.wi);
+                splat(c.raster, w, beta * f * (wc.z.abs() * corr * c.weight));
             }
         }
         let Some((_, next)) = sh.scatter(&hit, wo, w, s, TransportMode::Importance, &mut beta)

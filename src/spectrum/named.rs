@@ -344,16 +344,16 @@ pub fn lookup(name: &str) -> Result<Named, UnknownSpectrum> {
     if let Some((_, v)) = registry().entries.get(&key) {
         return Ok(v.clone());
     }
-    if let Some(t) = name.trim().strip_prefix("blackbody:") {
-        if let Ok(temp) = crate::units::parse::parse::<crate::units::ThermodynamicTemperature>(t) {
-            let k = crate::units::plain::kelvin_f32(temp);
-            if k > 0.0 {
-                return Ok(Named::Curve {
-                    spectrum: Spectrum::Blackbody(Blackbody::normalized(k)),
-                    kind: CurveKind::Blackbody,
-                    source: "Planck's law, 2019 SI constants".into(),
-                });
-            }
+    if let Some(t) = name.trim().strip_prefix("blackbody:")
+        && let Ok(temp) = crate::units::parse::parse::<crate::units::ThermodynamicTemperature>(t)
+    {
+        let k = crate::units::plain::kelvin_f32(temp);
+        if k > 0.0 {
+            return Ok(Named::Curve {
+                spectrum: Spectrum::Blackbody(Blackbody::normalized(k)),
+                kind: CurveKind::Blackbody,
+                source: "Planck's law, 2019 SI constants".into(),
+            });
         }
     }
     Err(UnknownSpectrum {

@@ -134,7 +134,7 @@ macro_rules! elementwise {
             #[inline]
             fn $f(mut self, o: Self) -> Self {
                 for i in 0..N {
-                    self.0[i] = self.0[i] $op o.0[i];
+                    $TrA::$fa(&mut self.0[i], o.0[i]);
                 }
                 self
             }
@@ -144,7 +144,7 @@ macro_rules! elementwise {
             #[inline]
             fn $f(mut self, o: f32) -> Self {
                 for v in &mut self.0 {
-                    *v = *v $op o;
+                    $TrA::$fa(v, o);
                 }
                 self
             }

@@ -20,6 +20,10 @@
 //! let i = LuminousIntensity::new::<spectrace::units::luminous_intensity::candela>(1.0);
 //! let _ = f + i; // error: lumens are not candelas
 //! ```
+
+// Conversion factors are written to f64 precision (the degree is π/180 to 17 digits); uom also
+// instantiates them for f32, where clippy calls such literals excessively precise.
+#![allow(clippy::excessive_precision)]
 #![allow(missing_docs)]
 
 /// Kind of plane angles (rad), separate from dimensionless ratios.

@@ -56,9 +56,8 @@ pub(super) fn scene(cx: &mut Cx<'_>, raw: RawScene) -> R<SceneDesc> {
                     "expected [shortest, longest], e.g. [\"360 nm\", \"830 nm\"]",
                 ));
             }
-            for i in 0..2 {
-                let v = &w.get_ref()[i];
-                range[i] = match v.get_ref() {
+            for (slot, v) in range.iter_mut().zip(w.get_ref()) {
+                *slot = match v.get_ref() {
                     Value::String(_) => cx.quantity::<Length>(v, f)?,
                     _ => Length::new::<length::nanometer>(cx.number(v, f)?),
                 };

@@ -34,7 +34,7 @@ pub(super) fn transform(cx: &Cx<'_>, t: &S<Vec<S<Value>>>, field: &str) -> R<Vec
                     Value::Array(_) => cx.vec3(&v, &f)?,
                     _ => [cx.number(&v, &f)?; 3],
                 };
-                if s.iter().any(|x| *x == 0.0) {
+                if s.contains(&0.0) {
                     return Err(cx.err(&step.span(), &f, "a scale factor of 0 flattens the shape"));
                 }
                 TransformStep::Scale(s)
