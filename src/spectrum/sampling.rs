@@ -80,6 +80,10 @@ pub struct WavelengthSampler {
     cdf: Vec<f64>,
     /// Density of each bin in nm⁻¹.
     density: Vec<f32>,
+    /// Guide table (Chen & Wu 1974's "cutpoint" method): `guide[k]` is the first bin whose
+    /// upper CDF edge exceeds k/`guide.len()`, so sampling starts there and scans a bin or two
+    /// instead of a binary search: O(1) expected, and the same bin as the search.
+    guide: Vec<u32>,
 }
 
 impl WavelengthSampler {
@@ -113,11 +117,18 @@ impl WavelengthSampler {
             .iter()
             .map(|w| (w / total / bin_width) as f32)
             .collect();
+        let guide = (0..bins)
+            .map(|k| {
+                let u = k as f64 / bins as f64;
+                cdf[1..].partition_point(|&c| c <= u).min(bins - 1) as u32
+            })
+            .collect();
         Self {
             range,
             bin_width,
             cdf,
             density,
+            guide,
         }
     }
 
@@ -137,14 +148,24 @@ impl WavelengthSampler {
     /// One wavelength in nm from a uniform number `u` in [0, 1).
     pub fn sample_one(&self, u: f32) -> f32 {
         let u = (u as f64).clamp(0.0, 1.0);
-        // first bin whose upper edge exceeds u
-        let i = self.cdf[1..]
-            .partition_point(|&c| c <= u)
-            .min(self.density.len() - 1);
+        let i = self.bin_of(u);
         let (c0, c1) = (self.cdf[i], self.cdf[i + 1]);
         let t = if c1 > c0 { (u - c0) / (c1 - c0) } else { 0.5 };
         let l = self.range.min_nm as f64 + (i as f64 + t) * self.bin_width;
         (l as f32).clamp(self.range.min_nm, self.range.max_nm)
+    }
+
+    /// The first bin whose upper CDF edge exceeds `u` (the last bin for u = 1), from the guide
+    /// table: guide[⌊u·G⌋] never lies past the answer, since its level ⌊u·G⌋/G ≤ u.
+    #[inline]
+    fn bin_of(&self, u: f64) -> usize {
+        let last = self.density.len() - 1;
+        let k = ((u * self.guide.len() as f64) as usize).min(self.guide.len() - 1);
+        let mut i = self.guide[k] as usize;
+        while i < last && self.cdf[i + 1] <= u {
+            i += 1;
+        }
+        i
     }
 
     /// `N` wavelengths, the hero from `u` and the others at `u + j/N (mod 1)`.
@@ -166,6 +187,23 @@ impl WavelengthSampler {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn guide_table_finds_the_binary_search_bin() {
+        for s in [
+            WavelengthSampler::visible(WavelengthRange::default()),
+            WavelengthSampler::visible(WavelengthRange::new(300.0, 1100.0).unwrap()),
+            WavelengthSampler::uniform(WavelengthRange::new(400.5, 700.25).unwrap()),
+        ] {
+            let last = s.density.len() - 1;
+            let mut us: Vec<f64> = (0..=100_000).map(|k| k as f64 / 100_000.0).collect();
+            us.extend(s.cdf.iter().copied()); // exactly on bin edges
+            for u in us {
+                let want = s.cdf[1..].partition_point(|&c| c <= u).min(last);
+                assert_eq!(s.bin_of(u), want, "u = {u}");
+            }
+        }
+    }
 
     #[test]
     fn pdf_integrates_to_one() {
