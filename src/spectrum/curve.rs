@@ -14,6 +14,8 @@ pub struct PiecewiseLinear {
     value: Vec<f32>,
     /// `Some(step)` when the λ_i are uniformly spaced by `step` nm.
     uniform_step: Option<f32>,
+    /// 1/step in nm⁻¹ for uniform tables (0 otherwise).
+    inv_step: f32,
 }
 
 /// Why a table of samples is not a valid piecewise-linear spectrum.
@@ -66,6 +68,7 @@ impl PiecewiseLinear {
             lambda,
             value,
             uniform_step: uniform.then_some(step),
+            inv_step: if uniform { 1.0 / step } else { 0.0 },
         })
     }
 
@@ -88,14 +91,18 @@ impl PiecewiseLinear {
         if !(lambda_nm >= lo && lambda_nm <= hi) {
             return 0.0;
         }
-        let i = match self.uniform_step {
-            Some(step) => (((lambda_nm - lo) / step) as usize).min(n - 2),
-            None => self
-                .lambda
-                .partition_point(|&l| l <= lambda_nm)
-                .saturating_sub(1)
-                .min(n - 2),
-        };
+        if self.uniform_step.is_some() {
+            // O(1): the bin and the fraction from one multiply by the precomputed 1/step
+            let x = (lambda_nm - lo) * self.inv_step;
+            let i = (x as usize).min(n - 2);
+            let t = (x - i as f32).clamp(0.0, 1.0);
+            return self.value[i] + t * (self.value[i + 1] - self.value[i]);
+        }
+        let i = self
+            .lambda
+            .partition_point(|&l| l <= lambda_nm)
+            .saturating_sub(1)
+            .min(n - 2);
         let (l0, l1) = (self.lambda[i], self.lambda[i + 1]);
         let t = ((lambda_nm - l0) / (l1 - l0)).clamp(0.0, 1.0);
         self.value[i] + t * (self.value[i + 1] - self.value[i])
