@@ -2,7 +2,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{EmissionSample, LightSample, infinite_disk_origin};
+use super::{EmissionSample, LightSample};
 use crate::geometry::Frame;
 use crate::sampling::{uniform_cone, uniform_cone_pdf};
 use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
@@ -122,13 +122,6 @@ impl DirectionalLight {
                 uniform_cone_pdf(self.one_minus_cos),
             )
         };
-        let (o, pdf_pos) = infinite_disk_origin(center, radius, d, u_pos);
-        EmissionSample {
-            o,
-            d,
-            le,
-            pdf_pos,
-            pdf_dir,
-        }
+        EmissionSample::from_infinity(center, radius, d, le, pdf_dir, u_pos)
     }
 }

@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{EmissionSample, LightSample, infinite_disk_origin};
+use super::{EmissionSample, LightSample};
 use crate::sampling::{UNIFORM_SPHERE_PDF, uniform_sphere};
 use crate::spectrum::{SampledWavelengths, Spectrum};
 
@@ -45,13 +45,13 @@ impl EnvironmentLight {
         u_dir: Vec2,
     ) -> EmissionSample<N> {
         let d = uniform_sphere(u_dir);
-        let (o, pdf_pos) = infinite_disk_origin(center, radius, d, u_pos);
-        EmissionSample {
-            o,
+        EmissionSample::from_infinity(
+            center,
+            radius,
             d,
-            le: self.radiance.sample(w),
-            pdf_pos,
-            pdf_dir: UNIFORM_SPHERE_PDF,
-        }
+            self.radiance.sample(w),
+            UNIFORM_SPHERE_PDF,
+            u_pos,
+        )
     }
 }

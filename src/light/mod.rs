@@ -75,16 +75,29 @@ impl<const N: usize> EmissionSample<N> {
     pub fn weight(&self) -> SampledSpectrum<N> {
         self.le * (1.0 / (self.pdf_pos * self.pdf_dir))
     }
-}
 
-/// Origin of a particle travelling along `d` (unit) that enters the bounding sphere (`center`,
-/// `radius`): uniform on the disk of that radius perpendicular to `d`, placed a diameter
-/// upstream of the centre so it lies outside the sphere. Returns the origin and its area pdf.
-pub fn infinite_disk_origin(center: Vec3, radius: f32, d: Vec3, u: Vec2) -> (Vec3, f32) {
-    let f = crate::geometry::Frame::from_normal(d);
-    let p = crate::sampling::concentric_disk(u) * radius;
-    let o = center - d * (2.0 * radius) + f.s * p.x + f.t * p.y;
-    (o, 1.0 / (std::f32::consts::PI * radius * radius))
+    /// A particle from a light at infinity travelling along `d` (unit) with radiance `le`
+    /// chosen with density `pdf_dir` (sr⁻¹): its origin is uniform on the disk of the bounding
+    /// sphere (`center`, `radius`) perpendicular to `d` (from `u_pos`), placed a diameter
+    /// upstream of the centre so it lies outside the sphere.
+    pub fn from_infinity(
+        center: Vec3,
+        radius: f32,
+        d: Vec3,
+        le: SampledSpectrum<N>,
+        pdf_dir: f32,
+        u_pos: Vec2,
+    ) -> Self {
+        let f = crate::geometry::Frame::from_normal(d);
+        let p = crate::sampling::concentric_disk(u_pos) * radius;
+        Self {
+            o: center - d * (2.0 * radius) + f.s * p.x + f.t * p.y,
+            d,
+            le,
+            pdf_pos: 1.0 / (std::f32::consts::PI * radius * radius),
+            pdf_dir,
+        }
+    }
 }
 
 /// The sample of a point-like light at `position` seen from `p`: `intensity(wi)` gives the
