@@ -160,19 +160,11 @@ pub fn render(
                     for y in y0..y0 + th {
                         for x in x0..x0 + tw {
                             for i in a..b {
-                                let mut s = Sampler::new(opts.seed, x, y, i);
-                                let mut wl: SampledWavelengths<N_WAVELENGTHS> =
-                                    lambda.sample(s.get_1d());
-                                let offset = filter.sample(s.get_2d());
-                                let raster = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
-                                let ray = scene.camera.generate_ray(raster, s.get_2d());
+                                let (mut s, mut wl, ray) =
+                                    camera_sample(scene, &lambda, &filter, opts.seed, x, y, i);
                                 let l = integrator.radiance(ray, &mut wl, &mut s);
                                 if !tile.add(x, y, &wl, &l, bins.as_ref()) {
-                                    if non_finite(&wl, &l) == Some(NonFinite::NaN) {
-                                        nan.fetch_add(1, Ordering::Relaxed);
-                                    } else {
-                                        inf.fetch_add(1, Ordering::Relaxed);
-                                    }
+                                    count_dropped(&wl, &l, &nan, &inf);
                                 }
                             }
                         }
@@ -205,6 +197,47 @@ pub fn render(
         spp_done,
     };
     Ok((film, stats))
+}
+
+/// Camera sample `i` of pixel (x, y) under `seed`: the wavelengths, the filter offset and the
+/// lens position read the sampler's first dimensions in that order; returns the sampler (for
+/// the integrator's further dimensions), the wavelengths and the camera ray.
+#[inline]
+fn camera_sample(
+    scene: &Scene,
+    lambda: &WavelengthSampler,
+    filter: &Filter,
+    seed: u32,
+    x: u32,
+    y: u32,
+    i: u32,
+) -> (
+    Sampler,
+    SampledWavelengths<N_WAVELENGTHS>,
+    crate::geometry::Ray,
+) {
+    let mut s = Sampler::new(seed, x, y, i);
+    let wl = lambda.sample(s.get_1d());
+    let offset = filter.sample(s.get_2d());
+    let raster = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
+    let ray = scene.camera.generate_ray(raster, s.get_2d());
+    (s, wl, ray)
+}
+
+/// Counts a sample the film refused, as NaN or as infinite by its live values.
+#[inline]
+fn count_dropped<const N: usize>(
+    wl: &SampledWavelengths<N>,
+    l: &crate::spectrum::SampledSpectrum<N>,
+    nan: &AtomicU64,
+    inf: &AtomicU64,
+) {
+    let counter = if non_finite(wl, l) == Some(NonFinite::NaN) {
+        nan
+    } else {
+        inf
+    };
+    counter.fetch_add(1, Ordering::Relaxed);
 }
 
 /// Spreads a light-tracing splat at `raster` (pixels) over the pixels of the filter's support,
@@ -292,12 +325,7 @@ fn render_light(
                         &mut s,
                         &mut |raster, wl, l| {
                             if !splat_filtered(&mut tile, &filter, raster, wl, &l, bins.as_ref()) {
-                                let counter = if non_finite(wl, &l) == Some(NonFinite::NaN) {
-                                    &nan
-                                } else {
-                                    &inf
-                                };
-                                counter.fetch_add(1, Ordering::Relaxed);
+                                count_dropped(wl, &l, &nan, &inf);
                             }
                         },
                     );
@@ -330,19 +358,11 @@ fn render_light(
                     let mut tile = film.tile(0, y, w, 1);
                     for x in 0..w {
                         for i in 0..opts.spp {
-                            let mut s = Sampler::new(opts.seed ^ 0x534b_5900, x, y, i);
-                            let wl: SampledWavelengths<N_WAVELENGTHS> = lambda.sample(s.get_1d());
-                            let offset = filter.sample(s.get_2d());
-                            let raster = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
-                            let ray = scene.camera.generate_ray(raster, s.get_2d());
+                            let seed = opts.seed ^ 0x534b_5900;
+                            let (_, wl, ray) = camera_sample(scene, lambda, &filter, seed, x, y, i);
                             let l = crate::integrator::light::escaped(integrator, &ray, &wl);
                             if !tile.splat(x, y, &wl, &l, bins.as_ref()) {
-                                let counter = if l.0.iter().any(|v| v.is_nan()) {
-                                    &nan
-                                } else {
-                                    &inf
-                                };
-                                counter.fetch_add(1, Ordering::Relaxed);
+                                count_dropped(&wl, &l, &nan, &inf);
                             }
                         }
                     }
