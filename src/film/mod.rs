@@ -130,29 +130,10 @@ impl Tile {
         l: &SampledSpectrum<N>,
         bins: Option<&Bins>,
     ) -> bool {
-        if non_finite(w, l).is_some() {
+        if !self.splat_weighted(std::iter::once((x, y, 1.0)), w, l, bins) {
             return false;
         }
-        let i = ((y - self.y0) * self.width + (x - self.x0)) as usize;
-        let p = &mut self.pixels[i];
-        let inv_n = 1.0 / N as f64;
-        for j in 0..N {
-            if w.pdf[j] == 0.0 {
-                continue;
-            }
-            let v = l[j] as f64 / w.pdf[j] as f64 * inv_n;
-            let c = cmf().eval(w.lambda[j]);
-            p.xyz[0] += K_M * v * c[0] as f64;
-            p.xyz[1] += K_M * v * c[1] as f64;
-            p.xyz[2] += K_M * v * c[2] as f64;
-            p.band += v;
-            if let Some(b) = bins
-                && let Some(k) = b.index(w.lambda[j])
-            {
-                self.spectral[i * self.nbins + k] += v / b.width() as f64;
-            }
-        }
-        p.count += 1;
+        self.pixels[((y - self.y0) * self.width + (x - self.x0)) as usize].count += 1;
         true
     }
 
@@ -168,20 +149,15 @@ impl Tile {
         l: &SampledSpectrum<N>,
         bins: Option<&Bins>,
     ) -> bool {
-        if !self.add(x, y, w, l, bins) {
-            return false;
-        }
-        self.pixels[((y - self.y0) * self.width + (x - self.x0)) as usize].count -= 1;
-        true
+        self.splat_weighted(std::iter::once((x, y, 1.0)), w, l, bins)
     }
-}
 
-impl Tile {
-    /// Adds a light-tracing splat to several pixels, pixel (x, y) with weight `wgt` for each
-    /// `(x, y, wgt)` of `pixels` (image coordinates inside the tile), without counting samples
-    /// (see [`Tile::splat`]): the same sums as `splat(x, y, w, l·wgt)` for each, with the
-    /// colour-matching functions looked up once. Returns false, adding nothing, for NaN or
-    /// infinite values at a live wavelength ([`non_finite`]).
+    /// Adds one sample's estimate (the module's estimator, from `w` and `l`) to several pixels,
+    /// pixel (x, y) with weight `wgt` for each `(x, y, wgt)` of `pixels` (image coordinates
+    /// inside the tile), without counting samples; the estimate and its colour-matching
+    /// functions are computed once. [`Tile::add`] and [`Tile::splat`] are its one-pixel cases.
+    /// Returns false, adding nothing, for NaN or infinite values at a live wavelength
+    /// ([`non_finite`]).
     #[inline]
     pub fn splat_weighted<const N: usize>(
         &mut self,
@@ -193,7 +169,7 @@ impl Tile {
         if non_finite(w, l).is_some() {
             return false;
         }
-        // per-sample sums, as in `add`
+        // the sample's sums, once
         let inv_n = 1.0 / N as f64;
         let (mut xyz, mut band) = ([0.0f64; 3], 0.0f64);
         let mut per_bin = [(usize::MAX, 0.0f64); N];
@@ -221,9 +197,11 @@ impl Tile {
                 *a += c * wgt;
             }
             p.band += band * wgt;
-            for &(k, v) in &per_bin {
-                if k != usize::MAX {
-                    self.spectral[i * self.nbins + k] += v * wgt;
+            if bins.is_some() {
+                for &(k, v) in &per_bin {
+                    if k != usize::MAX {
+                        self.spectral[i * self.nbins + k] += v * wgt;
+                    }
                 }
             }
         }
