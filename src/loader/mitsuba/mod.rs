@@ -21,6 +21,7 @@
 
 mod bsdf;
 mod convert;
+mod sensor;
 mod shapes;
 mod xml;
 

@@ -3,7 +3,8 @@
 use std::collections::HashMap;
 
 use super::bsdf::bsdf;
-use super::convert::{Cx, R, camera_frame};
+use super::convert::{Cx, R};
+use super::sensor::camera_frame;
 use super::xml::Element;
 use crate::loader::desc::*;
 use crate::spectrum::Spectrum;

@@ -1,0 +1,217 @@
+//! Mitsuba sensors → camera and film settings: the field of view as Mitsuba derives it
+//! (`fov`, `fov_axis`, `focal_length`), the film, and camera frames from `to_world` (also used
+//! to place lights).
+
+use super::convert::{Cx, R};
+use super::xml::Element;
+use crate::loader::desc::*;
+use crate::units::{Angle, Length, angle, length};
+
+/// Mitsuba's horizontal field of view, degrees, for a film of `aspect` = width / height:
+/// `fov` on `fov_axis` (x, y, smaller, larger, diagonal; default x), or without `fov` the
+/// diagonal field of view of a lens of `focal_length` (default "50mm") on a 36 × 24 mm frame
+/// (Mitsuba 3.9.1 `parse_fov`, src/render/sensor.cpp; checked against its `x_fov`).
+fn x_fov(cx: &Cx<'_>, s: &Element, aspect: f64) -> R<f64> {
+    let fov = cx.opt_float(s, "fov")?;
+    let focal = cx.child(s, "focal_length");
+    let axis = cx.string(s, "fov_axis");
+    let (fov, axis) = match (fov, focal) {
+        (Some(_), Some(f)) => {
+            return Err(cx.err(
+                f,
+                "give either focal_length or fov, not both (as Mitsuba requires)",
+            ));
+        }
+        (Some(fov), None) => (fov, axis.unwrap_or_else(|| "x".into()).to_lowercase()),
+        (None, f) => {
+            if let Some(a) = cx.child(s, "fov_axis") {
+                return Err(cx.err(
+                    a,
+                    "fov_axis needs a fov (Mitsuba rejects it with focal_length)",
+                ));
+            }
+            let text = match f {
+                Some(f) => f.attr("value").unwrap_or("").to_string(),
+                None => "50mm".to_string(),
+            };
+            let mm: f64 = text
+                .trim()
+                .strip_suffix("mm")
+                .unwrap_or(text.trim())
+                .parse()
+                .ok()
+                .filter(|v: &f64| v.is_finite() && *v > 0.0)
+                .ok_or_else(|| {
+                    cx.err(
+                        f.unwrap_or(s),
+                        format!("focal_length \"{text}\" is not of the form <x>mm with x > 0"),
+                    )
+                })?;
+            let diagonal_mm = (36.0f64 * 36.0 + 24.0 * 24.0).sqrt();
+            (
+                (diagonal_mm / (2.0 * mm)).atan().to_degrees() * 2.0,
+                "diagonal".to_string(),
+            )
+        }
+    };
+    if !(fov > 0.0 && fov < 180.0) {
+        return Err(cx.err(s, format!("fov {fov}° is outside (0°, 180°)")));
+    }
+    let axis = match axis.as_str() {
+        "smaller" if aspect > 1.0 => "y",
+        "smaller" => "x",
+        "larger" if aspect > 1.0 => "x",
+        "larger" => "y",
+        a => a,
+    };
+    let half_tan = (fov.to_radians() / 2.0).tan();
+    let x_half_tan = match axis {
+        "x" => half_tan,
+        "y" => half_tan * aspect,
+        "diagonal" => half_tan / (1.0 + 1.0 / (aspect * aspect)).sqrt(),
+        o => {
+            return Err(cx.err(
+                s,
+                format!("fov_axis \"{o}\" is not one of x, y, smaller, larger, diagonal"),
+            ));
+        }
+    };
+    Ok(2.0 * x_half_tan.atan().to_degrees())
+}
+
+pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraDesc> {
+    let t = s.attr("type").unwrap_or("");
+    if t != "perspective" && t != "thinlens" {
+        return Err(cx.unsupported(s, "sensor", t));
+    }
+    for c in &s.children {
+        match (c.tag.as_str(), c.attr("type")) {
+            ("film", Some("hdrfilm")) => {
+                if let Some(w) = cx.opt_float(c, "width")? {
+                    film.width = w as u32;
+                }
+                if let Some(h) = cx.opt_float(c, "height")? {
+                    film.height = h as u32;
+                }
+                if film.width == 0 || film.height == 0 || film.width > 32768 || film.height > 32768
+                {
+                    return Err(cx.err(
+                        c,
+                        format!(
+                            "{}×{} is not a supported resolution",
+                            film.width, film.height
+                        ),
+                    ));
+                }
+                for f in c.children.iter().filter(|f| f.tag == "rfilter") {
+                    film.filter = match f.attr("type") {
+                        Some("box") => FilterDesc::Box,
+                        Some("gaussian") => {
+                            let s = cx.opt_float(f, "stddev")?.unwrap_or(0.5);
+                            if s <= 0.0 {
+                                return Err(
+                                    cx.err(f, format!("stddev must be positive, found {s}"))
+                                );
+                            }
+                            FilterDesc::MitsubaGaussian { stddev: s }
+                        }
+                        Some(o) => return Err(cx.unsupported(f, "rfilter", o)),
+                        None => return Err(cx.err(f, "missing type")),
+                    };
+                }
+            }
+            ("film", Some(o)) => return Err(cx.unsupported(c, "film", o)),
+            ("sampler", Some(o)) => {
+                if o != "independent" {
+                    return Err(cx.unsupported(c, "sampler", o));
+                }
+                if let Some(n) = cx.opt_float(c, "sample_count")? {
+                    film.spp = (n as u32).max(1);
+                }
+            }
+            _ => {}
+        }
+    }
+    film.loc = cx.loc(s);
+    let fov = x_fov(cx, s, film.width as f64 / film.height as f64)?;
+    let projection = Projection::Fov {
+        fov: Angle::new::<angle::degree>(fov),
+        axis: FovAxis::X,
+    };
+    let kind = if t == "thinlens" {
+        let r = cx.opt_float(s, "aperture_radius")?.unwrap_or(0.03);
+        let fd = cx.opt_float(s, "focus_distance")?.unwrap_or(1.0);
+        // aperture radius = f/(2N) with the focal length of a 36 mm sensor at this field of view
+        let hfov = fov.to_radians();
+        let focal = 0.036 / (2.0 * (hfov / 2.0).tan());
+        CameraKind::ThinLens {
+            projection,
+            f_number: focal / (2.0 * r.max(1e-9)),
+            focus_distance: Length::new::<length::meter>(fd),
+        }
+    } else {
+        CameraKind::Perspective { projection }
+    };
+    // the camera frame from to_world: origin, +z forward, +y up
+    let steps = match s.children.iter().find(|c| c.tag == "transform") {
+        Some(t) => cx.transform(t)?,
+        None => Vec::new(),
+    };
+    let (eye, target, up) = camera_frame(cx, s, &steps)?;
+    Ok(CameraDesc {
+        kind,
+        eye,
+        target,
+        up,
+        loc: cx.loc(s),
+    })
+}
+
+/// Eye, target and up of a sensor's `to_world`, by applying it to the camera's own frame.
+pub(super) fn camera_frame(
+    cx: &Cx<'_>,
+    s: &Element,
+    steps: &[TransformStep],
+) -> R<(Point, Point, [f64; 3])> {
+    use glam::{DMat4, DVec3};
+    let mut m = DMat4::IDENTITY;
+    for st in steps {
+        let next = match st {
+            TransformStep::Translate(p) => {
+                DMat4::from_translation(DVec3::new(p[0].value, p[1].value, p[2].value))
+            }
+            TransformStep::Scale(k) => DMat4::from_scale(DVec3::from(*k)),
+            TransformStep::Rotate { axis, angle } => {
+                DMat4::from_axis_angle(DVec3::from(*axis).normalize(), angle.value)
+            }
+            TransformStep::Matrix(a) => DMat4::from_cols_array(a).transpose(),
+            TransformStep::LookAt { eye, target, up } => {
+                let e = DVec3::new(eye[0].value, eye[1].value, eye[2].value);
+                let t = DVec3::new(target[0].value, target[1].value, target[2].value);
+                let d = (t - e).normalize();
+                let left = DVec3::from(*up).cross(d).normalize();
+                let new_up = d.cross(left);
+                DMat4::from_cols(
+                    left.extend(0.0),
+                    new_up.extend(0.0),
+                    d.extend(0.0),
+                    e.extend(1.0),
+                )
+            }
+        };
+        m = next * m;
+    }
+    let eye = m.transform_point3(DVec3::ZERO);
+    let fwd = m.transform_vector3(DVec3::Z);
+    let up = m.transform_vector3(DVec3::Y);
+    if fwd.length() == 0.0 || up.length() == 0.0 || !eye.is_finite() {
+        return Err(cx.err(s, "the sensor's to_world is degenerate"));
+    }
+    let target = eye + fwd.normalize();
+    let l = |x: f64| Length::new::<length::meter>(x);
+    Ok((
+        [l(eye.x), l(eye.y), l(eye.z)],
+        [l(target.x), l(target.y), l(target.z)],
+        up.normalize().to_array(),
+    ))
+}
