@@ -214,7 +214,15 @@ impl Bvh4 {
                 }
             }
             let hits = &mut hits[..nh];
-            hits.sort_unstable_by(|a, b| b.0.total_cmp(&a.0));
+            // farthest first, by insertion (at most four entries; the distances are not NaN,
+            // since the reciprocals are finite and a NaN entry fails the tests above)
+            for a in 1..nh {
+                let mut b = a;
+                while b > 0 && hits[b - 1].0 < hits[b].0 {
+                    hits.swap(b - 1, b);
+                    b -= 1;
+                }
+            }
             for &(tn, l) in hits.iter() {
                 stack[sp] = MaybeUninit::new((n.child[l], n.count[l], tn));
                 sp += 1;

@@ -211,7 +211,8 @@ pub fn escaped<const N: usize>(
     w: &SampledWavelengths<N>,
 ) -> SampledSpectrum<N> {
     let scene = it.scene;
-    if scene.accel.intersect(&scene.shapes, ray).is_some() {
+    // only whether the ray leaves the scene matters: an any-hit query
+    if scene.accel.occluded(&scene.shapes, ray) {
         return SampledSpectrum::zero();
     }
     let mut l = SampledSpectrum::zero();
