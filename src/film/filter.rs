@@ -18,7 +18,13 @@ pub struct Filter {
     /// 1 / ∫ f dx over [−radius, radius] for one axis (px⁻¹ → normalised), by the same
     /// midpoint rule as `cdf`, for [`Filter::weight`].
     inv_integral: f32,
+    /// Guide table for inverting `cdf` in O(1): `guide[j]` is the last cell whose CDF value is
+    /// ≤ j / GUIDE, so the search for u starts at `guide[⌊u·GUIDE⌋]` and walks a few cells.
+    guide: Vec<u32>,
 }
+
+/// Entries of the CDF's guide table.
+const GUIDE: usize = 1024;
 
 /// One axis of the filter, unnormalised, for |x| ≤ radius.
 #[derive(Clone, Copy, Debug)]
@@ -127,10 +133,17 @@ impl Filter {
             acc += kernel.eval(m as f32) as f64;
             sums.push(acc);
         }
-        let cdf = sums.iter().map(|&c| (c / acc) as f32).collect();
+        let cdf: Vec<f32> = sums.iter().map(|&c| (c / acc) as f32).collect();
+        let guide = (0..GUIDE)
+            .map(|j| {
+                let u = j as f32 / GUIDE as f32;
+                (cdf.partition_point(|&c| c <= u).clamp(1, CELLS) - 1) as u32
+            })
+            .collect();
         Self {
             radius,
             kernel,
+            guide,
             cdf,
             inv_integral: (1.0 / (acc * dx)) as f32,
         }
@@ -140,7 +153,15 @@ impl Filter {
     /// tabulated piecewise-constant kernel, tails included).
     fn sample_axis(&self, u: f32) -> f32 {
         let u = u.clamp(0.0, 1.0);
-        let i = self.cdf.partition_point(|&c| c <= u).clamp(1, CELLS) - 1;
+        if let Kernel::Box = self.kernel {
+            // the CDF is the identity: no table needed
+            return -self.radius + u * (2.0 * self.radius);
+        }
+        // the last cell i < CELLS with cdf[i] ≤ u, as a binary search would find it
+        let mut i = self.guide[((u * GUIDE as f32) as usize).min(GUIDE - 1)] as usize;
+        while i + 1 < CELLS && self.cdf[i + 1] <= u {
+            i += 1;
+        }
         let (c0, c1) = (self.cdf[i], self.cdf[i + 1]);
         let t = if c1 > c0 {
             ((u - c0) / (c1 - c0)).clamp(0.0, 1.0)
@@ -166,6 +187,31 @@ mod tests {
         assert!((f.sample(Vec2::ZERO).x + 0.5).abs() < 1e-5);
         assert!((f.sample(Vec2::splat(0.25)).x + 0.25).abs() < 1e-4);
         assert!((f.sample(Vec2::ONE).x - 0.5).abs() < 1e-5);
+    }
+
+    #[test]
+    fn guide_table_finds_the_cell_a_binary_search_finds() {
+        for d in [
+            FilterDesc::Gaussian {
+                sigma: 0.5,
+                radius: 1.5,
+            },
+            FilterDesc::MitsubaGaussian { stddev: 0.5 },
+        ] {
+            let f = Filter::from_desc(&d);
+            for k in 0..=100_000u32 {
+                let u = k as f32 / 100_000.0;
+                let i = f.cdf.partition_point(|&c| c <= u).clamp(1, CELLS) - 1;
+                let (c0, c1) = (f.cdf[i], f.cdf[i + 1]);
+                let t = if c1 > c0 {
+                    ((u - c0) / (c1 - c0)).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let want = -f.radius + (i as f32 + t) * (2.0 * f.radius / CELLS as f32);
+                assert_eq!(f.sample_axis(u), want, "{d:?} u = {u}");
+            }
+        }
     }
 
     #[test]

@@ -14,8 +14,12 @@ pub struct PiecewiseLinear {
     value: Vec<f32>,
     /// `Some(step)` when the λ_i are uniformly spaced by `step` nm.
     uniform_step: Option<f32>,
-    /// 1/step in nm⁻¹ for uniform tables (0 otherwise).
+    /// 1/step in nm⁻¹ for uniform tables; for others, cells of the guide table per nm.
     inv_step: f32,
+    /// Non-uniform tables: `guide[c]` is the last sample i with λ_i ≤ the start of guide cell
+    /// c (cells of 1/`inv_step` nm from λ_0), so a lookup starts there and walks forward a few
+    /// samples instead of a binary search. Empty for uniform tables.
+    guide: Vec<u32>,
 }
 
 /// Why a table of samples is not a valid piecewise-linear spectrum.
@@ -64,11 +68,28 @@ impl PiecewiseLinear {
             .iter()
             .enumerate()
             .all(|(i, &l)| (l - (lambda[0] + i as f32 * step)).abs() <= 1e-4 * step.max(1.0));
+        let (inv_step, guide) = if uniform {
+            (1.0 / step, Vec::new())
+        } else {
+            // four cells per sample on average: about one step of walking per lookup for
+            // roughly even spacing, a few more where samples crowd
+            let cells = 4 * lambda.len();
+            let inv = cells as f32 / (lambda[lambda.len() - 1] - lambda[0]);
+            let guide = (0..cells)
+                .map(|c| {
+                    let start = lambda[0] + c as f32 / inv;
+                    let i = lambda.partition_point(|&l| l <= start).saturating_sub(1);
+                    i.min(lambda.len() - 2) as u32
+                })
+                .collect();
+            (inv, guide)
+        };
         Ok(Self {
             lambda,
             value,
             uniform_step: uniform.then_some(step),
-            inv_step: if uniform { 1.0 / step } else { 0.0 },
+            inv_step,
+            guide,
         })
     }
 
@@ -98,11 +119,12 @@ impl PiecewiseLinear {
             let t = (x - i as f32).clamp(0.0, 1.0);
             return self.value[i] + t * (self.value[i + 1] - self.value[i]);
         }
-        let i = self
-            .lambda
-            .partition_point(|&l| l <= lambda_nm)
-            .saturating_sub(1)
-            .min(n - 2);
+        // the last sample i ≤ n − 2 with λ_i ≤ λ, as a binary search would find it
+        let c = (((lambda_nm - lo) * self.inv_step) as usize).min(self.guide.len() - 1);
+        let mut i = self.guide[c] as usize;
+        while i + 2 < n && self.lambda[i + 1] <= lambda_nm {
+            i += 1;
+        }
         let (l0, l1) = (self.lambda[i], self.lambda[i + 1]);
         let t = ((lambda_nm - l0) / (l1 - l0)).clamp(0.0, 1.0);
         self.value[i] + t * (self.value[i + 1] - self.value[i])
@@ -261,6 +283,40 @@ mod tests {
         assert_eq!(t.eval(f32::NAN), 0.0);
         let nu = PiecewiseLinear::new(vec![400.0, 410.0, 600.0], vec![0.0, 1.0, 20.0]).unwrap();
         assert!((nu.eval(505.0) - 10.5).abs() < 1e-5);
+    }
+
+    #[test]
+    fn non_uniform_lookup_matches_a_binary_search() {
+        // irregular spacing, crowded in places (gaps from 0.01 to 40 nm), knots hit exactly
+        let mut lambda = vec![360.0f32];
+        let mut k = 1u32;
+        while *lambda.last().unwrap() < 830.0 {
+            k = k.wrapping_mul(1_103_515_245).wrapping_add(12345);
+            let gap = [0.01, 0.5, 5.0, 40.0][(k >> 16) as usize % 4];
+            lambda.push(lambda.last().unwrap() + gap);
+        }
+        let value: Vec<f32> = (0..lambda.len()).map(|i| (i as f32 * 0.37).sin()).collect();
+        let t = PiecewiseLinear::new(lambda.clone(), value.clone()).unwrap();
+        assert!(t.uniform_step.is_none());
+        let binary = |x: f32| {
+            let n = lambda.len();
+            if !(x >= lambda[0] && x <= lambda[n - 1]) {
+                return 0.0;
+            }
+            let i = lambda
+                .partition_point(|&l| l <= x)
+                .saturating_sub(1)
+                .min(n - 2);
+            let f = ((x - lambda[i]) / (lambda[i + 1] - lambda[i])).clamp(0.0, 1.0);
+            value[i] + f * (value[i + 1] - value[i])
+        };
+        let probes = lambda
+            .iter()
+            .copied()
+            .chain((0..20_000).map(|j| 350.0 + j as f32 * 0.0249));
+        for x in probes {
+            assert_eq!(t.eval(x), binary(x), "λ = {x}");
+        }
     }
 
     #[test]
