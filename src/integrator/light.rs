@@ -216,8 +216,8 @@ pub fn escaped<const N: usize>(
         return SampledSpectrum::zero();
     }
     let mut l = SampledSpectrum::zero();
-    for light in &scene.lights {
-        l += light.escaped(ray.d, w);
+    for &i in &scene.infinite_lights {
+        l += scene.lights[i as usize].escaped(ray.d, w);
     }
     l
 }

@@ -38,7 +38,9 @@ pub(super) fn radiance<const N: usize>(
     loop {
         let Some(hit) = scene.accel.intersect(&scene.shapes, &ray) else {
             // Escaped: environment and sun disks, MIS-weighted against BSDF sampling.
-            for (i, light) in scene.lights.iter().enumerate() {
+            for &i in &scene.infinite_lights {
+                let i = i as usize;
+                let light = &scene.lights[i];
                 let le = light.escaped(ray.d, w);
                 if le.is_zero() {
                     continue;

@@ -26,8 +26,8 @@ pub(super) fn radiance<const N: usize>(
     let scene = it.scene;
     let Some(hit) = scene.accel.intersect(&scene.shapes, &ray) else {
         let mut l = SampledSpectrum::zero();
-        for light in &scene.lights {
-            l += light.escaped(ray.d, w);
+        for &i in &scene.infinite_lights {
+            l += scene.lights[i as usize].escaped(ray.d, w);
         }
         return l;
     };

@@ -200,6 +200,14 @@ impl Light {
         }
     }
 
+    /// Whether the light is at infinity: the only kind [`Light::escaped`] can be non-zero for.
+    pub fn is_at_infinity(&self) -> bool {
+        match self {
+            Light::Environment(_) | Light::Directional(_) => true,
+            Light::Point(_) | Light::Spot(_) | Light::Area(_) | Light::Beam(_) => false,
+        }
+    }
+
     /// Whether the light is a delta distribution in position or direction.
     pub fn is_delta(&self) -> bool {
         match self {

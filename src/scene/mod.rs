@@ -56,6 +56,9 @@ pub struct Scene {
     pub accel: Accel,
     pub materials: Vec<Material>,
     pub lights: Vec<Light>,
+    /// Indices into `lights` of the lights at infinity, which rays that escape can see (so an
+    /// escaped ray does not visit every light).
+    pub infinite_lights: Vec<u32>,
     /// Emitted power of each light over the wavelength range, W (lights at infinity: through a
     /// disk of the scene's radius), for light selection proportional to power.
     pub light_power: Vec<f64>,

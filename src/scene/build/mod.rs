@@ -65,12 +65,16 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         .collect();
     let camera = camera(desc).map_err(|e| err(desc.camera.loc, "camera".into(), e))?;
     let f = &desc.film;
+    let infinite_lights = (0..lights.len() as u32)
+        .filter(|&i| lights[i as usize].is_at_infinity())
+        .collect();
     Ok(Scene {
         shapes: shape_list,
         surfaces,
         accel,
         materials,
         lights,
+        infinite_lights,
         light_power,
         camera,
         film: FilmSettings {
