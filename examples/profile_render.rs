@@ -1,6 +1,8 @@
 //! Renders a scene without writing output, for profilers (`perf`, `valgrind --tool=callgrind`):
 //! `cargo run --release --example profile_render -- SCENE [SPP] [THREADS]`.
-//! Prints the render time and samples per second; the image is discarded.
+//! Prints the render time and samples per second; the image is discarded. With SPP = 0 it only
+//! loads and builds the scene and prints how long each took (for the large-mesh benchmark:
+//! `/usr/bin/time -v target/release/examples/profile_render SCENE 0` also gives peak memory).
 
 use std::sync::atomic::AtomicBool;
 use std::time::Instant;
@@ -18,14 +20,25 @@ fn main() {
     let threads: usize = args
         .next()
         .map_or(1, |s| s.parse().expect("THREADS is a number"));
+    let t_load = Instant::now();
     let desc = spectrace::loader::load_any(std::path::Path::new(&path), &[]).unwrap_or_else(|e| {
         eprintln!("{e}");
         std::process::exit(1)
     });
+    let load_secs = t_load.elapsed().as_secs_f64();
+    let t_build = Instant::now();
     let scene = spectrace::scene::build(&desc).unwrap_or_else(|e| {
         eprintln!("{e}");
         std::process::exit(1)
     });
+    if spp == 0 {
+        let triangles: usize = scene.shapes.iter().map(|s| s.primitive_count()).sum();
+        println!(
+            "{path}: {triangles} primitives; load {load_secs:.2} s, build {:.2} s",
+            t_build.elapsed().as_secs_f64()
+        );
+        return;
+    }
     let mut o = RenderOptions::from_scene(&scene);
     o.spp = spp;
     o.threads = Some(threads);

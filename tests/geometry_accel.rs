@@ -108,9 +108,20 @@ fn compare(accel: &Accel, shapes: &[Shape], ray: &Ray) -> Option<String> {
 
 #[test]
 fn closest_hit_matches_brute_force() {
+    closest_hit_matches_brute_force_with(Accel::build);
+}
+
+/// Large scenes are built in parts (a top tree over separately built parts); parts of 8
+/// primitives make this small scene take that path, with about 45 parts.
+#[test]
+fn closest_hit_matches_brute_force_when_built_in_parts() {
+    closest_hit_matches_brute_force_with(|s| Accel::build_in_parts(s, 8));
+}
+
+fn closest_hit_matches_brute_force_with(build: impl Fn(&[Shape]) -> Accel) {
     let mut rng = Rng::new(2024);
     let shapes = mixed_scene(&mut rng);
-    let accel = Accel::build(&shapes);
+    let accel = build(&shapes);
     let prims: usize = shapes.iter().map(Shape::primitive_count).sum();
     assert_eq!(accel.primitive_count(), prims);
     let (mut failures, mut hits, mut n) = (Vec::new(), 0, 0);

@@ -18,7 +18,6 @@ use super::shape::{Intersection, PrimHit, Shape, WatertightRay, intersect_triang
 use glam::Vec3;
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
-use obvhs::bvh2::Bvh2;
 use obvhs::bvh2::builder::build_bvh2;
 use std::time::Duration;
 
@@ -37,9 +36,11 @@ struct PrimRef {
 /// The BVH over a slice of shapes.
 #[derive(Clone)]
 pub struct Accel {
-    /// `None` when there are no primitives. Kept for its bounds; queries use `wide`.
-    bvh: Option<Bvh2>,
-    /// The same tree collapsed to 4-wide nodes (see `bvh4.rs`), which queries traverse.
+    /// Bounds (min, max) of the builder's root, m; `None` when there are no primitives. The
+    /// builder's binary tree itself is dropped once collapsed (it is the largest allocation of
+    /// a build: about 64 bytes per triangle).
+    root_bounds: Option<(Vec3, Vec3)>,
+    /// The builder's binary tree collapsed to 4-wide nodes (see `bvh4.rs`), which queries traverse.
     wide: Bvh4,
     /// Indexed by the BVH's primitive ids (already permuted, so no indirection at query time).
     prims: Vec<PrimRef>,
@@ -52,7 +53,7 @@ impl std::fmt::Debug for Accel {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Accel")
             .field("primitives", &self.prims.len())
-            .field("nodes", &self.bvh.as_ref().map_or(0, |b| b.nodes.len()))
+            .field("nodes4", &self.wide.node_count())
             .finish()
     }
 }
@@ -61,8 +62,16 @@ impl Accel {
     /// Builds one BVH over all primitives of all `shapes` (fine with none). Primitives with
     /// non-finite or empty bounds are left out.
     pub fn build(shapes: &[Shape]) -> Accel {
-        let mut refs = Vec::new();
-        let mut boxes = Vec::new();
+        Self::build_in_parts(shapes, PART)
+    }
+
+    /// [`Accel::build`] with parts of `part` primitives when there are more than 2·`part` (see
+    /// [`build_binary`]); exposed so that tests can exercise the parts on small scenes.
+    #[doc(hidden)]
+    pub fn build_in_parts(shapes: &[Shape], part: usize) -> Accel {
+        let total: usize = shapes.iter().map(|s| s.primitive_count()).sum();
+        let mut refs = Vec::with_capacity(total);
+        let mut boxes = Vec::with_capacity(total);
         for (s, shape) in shapes.iter().enumerate() {
             for i in 0..shape.primitive_count() {
                 let (lo, hi) = shape.primitive_aabb(i);
@@ -80,22 +89,16 @@ impl Accel {
         }
         if refs.is_empty() {
             return Accel {
-                bvh: None,
+                root_bounds: None,
                 wide: Bvh4::default(),
                 prims: Vec::new(),
                 tris: Vec::new(),
             };
         }
-        let bvh = build_bvh2(
-            &boxes,
-            BvhBuildParams::medium_build(),
-            &mut Duration::default(),
-        );
-        let prims: Vec<PrimRef> = bvh
-            .primitive_indices
-            .iter()
-            .map(|&i| refs[i as usize])
-            .collect();
+        let (binary, order) = build_binary(&boxes, part.max(1));
+        drop(boxes);
+        let prims: Vec<PrimRef> = order.iter().map(|&i| refs[i as usize]).collect();
+        drop((refs, order));
         let tris = prims
             .iter()
             .map(|pr| match &shapes[pr.shape as usize] {
@@ -103,19 +106,10 @@ impl Accel {
                 _ => [Vec3::ZERO; 3],
             })
             .collect();
-        let binary: Vec<BinaryNode> = bvh
-            .nodes
-            .iter()
-            .map(|n| BinaryNode {
-                min: n.aabb().min.into(),
-                max: n.aabb().max.into(),
-                count: n.prim_count,
-                first: n.first_index,
-            })
-            .collect();
+        let root_bounds = binary.first().map(|n| (n.min, n.max));
         Accel {
             wide: Bvh4::collapse(&binary),
-            bvh: Some(bvh),
+            root_bounds,
             prims,
             tris,
         }
@@ -128,9 +122,7 @@ impl Accel {
 
     /// World bounds (min, max) of everything indexed, m (slightly padded), or `None` if empty.
     pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
-        let root = self.bvh.as_ref()?.nodes.first()?;
-        let b = root.aabb();
-        Some((b.min.into(), b.max.into()))
+        self.root_bounds
     }
 
     /// The closest hit of `ray` (unit `d`) with `t` in (0, `ray.t_max`), or `None`.
@@ -190,6 +182,102 @@ impl Accel {
             .get(pr.shape as usize)?
             .intersect_primitive(pr.prim as usize, &ray)
     }
+}
+
+/// Primitives per part of a large scene's build (see [`build_binary`]).
+const PART: usize = 1 << 19;
+
+/// A binary tree over `boxes` (root at 0, inner children adjacent) and the primitive order its
+/// leaves index (`order[k]` is an index into `boxes`).
+///
+/// Up to 2·[`PART`] primitives: one obvhs build (PLOC, reinsertion, leaf collapse). Beyond
+/// that, obvhs's working set (about 200 bytes per primitive) would dominate peak memory: a
+/// 10M-triangle mesh peaked at 2.7 GB. So the primitives are ordered along a Morton curve of
+/// their centres, cut into parts of [`PART`], each part built alone, and a top tree built over
+/// the parts' root boxes; each top leaf is replaced by its part's root. The parts are compact
+/// cells of the curve, so the top levels are nearly what a single build would make; within a
+/// part the tree is obvhs's own.
+fn build_binary(boxes: &[Aabb], part: usize) -> (Vec<BinaryNode>, Vec<u32>) {
+    let params = BvhBuildParams::medium_build();
+    let one = |boxes: &[Aabb], params: BvhBuildParams| {
+        let bvh = build_bvh2(boxes, params, &mut Duration::default());
+        let nodes: Vec<BinaryNode> = bvh
+            .nodes
+            .iter()
+            .map(|n| BinaryNode {
+                min: n.aabb().min.into(),
+                max: n.aabb().max.into(),
+                count: n.prim_count,
+                first: n.first_index,
+            })
+            .collect();
+        (nodes, bvh.primitive_indices)
+    };
+    if boxes.len() <= 2 * part {
+        return one(boxes, params);
+    }
+    // Morton order of the box centres (21 bits per axis)
+    let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
+    for b in boxes {
+        let c: Vec3 = b.center().into();
+        (lo, hi) = (lo.min(c), hi.max(c));
+    }
+    let scale = ((1u32 << 21) - 1) as f32 / (hi - lo).max(Vec3::splat(f32::MIN_POSITIVE));
+    let spread = |x: f32| {
+        let mut v = (x.clamp(0.0, ((1u32 << 21) - 1) as f32) as u64) & 0x1f_ffff;
+        v = (v | v << 32) & 0x1f_0000_0000_ffff;
+        v = (v | v << 16) & 0x1f_0000_ff00_00ff;
+        v = (v | v << 8) & 0x100f_00f0_0f00_f00f;
+        v = (v | v << 4) & 0x10c3_0c30_c30c_30c3;
+        (v | v << 2) & 0x1249_2492_4924_9249
+    };
+    let mut keyed: Vec<(u64, u32)> = boxes
+        .iter()
+        .enumerate()
+        .map(|(i, b)| {
+            let c = (Vec3::from(b.center()) - lo) * scale;
+            (spread(c.x) | spread(c.y) << 1 | spread(c.z) << 2, i as u32)
+        })
+        .collect();
+    keyed.sort_unstable();
+    let sorted: Vec<u32> = keyed.into_iter().map(|(_, i)| i).collect();
+
+    // each part alone: its nodes appended after the top tree's, its primitives after the
+    // previous parts'
+    let mut parts = Vec::new();
+    let mut order = Vec::with_capacity(boxes.len());
+    for ids in sorted.chunks(part) {
+        let sub: Vec<Aabb> = ids.iter().map(|&i| boxes[i as usize]).collect();
+        let (nodes, local) = one(&sub, params);
+        parts.push((nodes, order.len() as u32));
+        order.extend(local.iter().map(|&k| ids[k as usize]));
+    }
+    let roots: Vec<Aabb> = parts
+        .iter()
+        .map(|(n, _)| Aabb::new(n[0].min.into(), n[0].max.into()))
+        .collect();
+    let top_params = BvhBuildParams {
+        max_prims_per_leaf: 1,
+        ..params
+    };
+    let (mut out, top_order) = one(&roots, top_params);
+    for t in 0..out.len() {
+        if out[t].count == 0 {
+            continue;
+        }
+        debug_assert_eq!(out[t].count, 1, "top leaves hold one part");
+        let (nodes, prim_base) = &parts[top_order[out[t].first as usize] as usize];
+        let node_base = out.len() as u32;
+        let shift = |n: &BinaryNode| BinaryNode {
+            first: n.first + if n.count == 0 { node_base } else { *prim_base },
+            ..*n
+        };
+        // the part's root takes the top leaf's place; its other nodes keep their offsets
+        // (the root's own slot, at node_base, stays unreferenced)
+        out[t] = shift(&nodes[0]);
+        out.extend(nodes.iter().map(shift));
+    }
+    (out, order)
 }
 
 /// Exact reciprocal directions for the slab test (±f32::MAX for zero components, so no 0·∞

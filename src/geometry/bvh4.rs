@@ -123,6 +123,11 @@ impl Bvh4 {
         Bvh4 { nodes, depth }
     }
 
+    /// Number of 4-wide nodes.
+    pub(crate) fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
     /// Visits the leaves whose boxes the ray `o + t·d` (with `inv_d` = 1/d, exact, ±f32::MAX
     /// for zero components) enters at t < the current limit, nearest box first. `leaf(id,
     /// t_max)` tests primitive `id` and returns the hit distance or ∞; a distance below the
