@@ -66,6 +66,21 @@ pub fn uniform_cone_pdf(one_minus_cos_max: f32) -> f32 {
     1.0 / (2.0 * PI * one_minus_cos_max)
 }
 
+/// Sample reuse: a uniform `u` that fell in [lo, hi) (a discrete choice made with it), rescaled
+/// to a fresh uniform number in [0, 1) (Mitsuba 3's `DiscreteDistribution::sample_reuse`;
+/// pbrt-v4 `SampleDiscrete`'s `uRemapped`). The choice and the point chosen with the rest of
+/// `u` then come from one stratified dimension instead of two independent ones, so a
+/// stratified set of `u` stays stratified within each choice. Returns 0.5 for an empty
+/// interval. Precision: log₂(1/(hi − lo)) of the 24 bits of `u` go to the choice.
+#[inline]
+pub fn reuse(u: f32, lo: f32, hi: f32) -> f32 {
+    if hi > lo {
+        ((u - lo) / (hi - lo)).clamp(0.0, 1.0 - f32::EPSILON / 2.0)
+    } else {
+        0.5
+    }
+}
+
 /// Uniform point on a triangle as barycentrics (b0, b1), b2 = 1 − b0 − b1 (Heitz 2019,
 /// "A Low-Distortion Map Between Triangle and Square").
 #[inline]

@@ -218,6 +218,7 @@ spp = 256
 [integrator]
 type = "path"
 max_depth = 1000
+rr_depth = 1
 [materials.wall]
 type = "diffuse"
 reflectance = 0.8

@@ -321,7 +321,7 @@ fn spawned_rays_do_not_rehit_a_large_tilted_disk() {
     let mut rng = Rng::new(3);
     let mut rehits = Vec::new();
     for _ in 0..4000 {
-        let s = shapes[0].sample_area(Vec2::new(rng.uniform(), rng.uniform()), 0.0);
+        let s = shapes[0].sample_area(Vec2::new(rng.uniform(), rng.uniform()));
         let it = accel
             .intersect(&shapes, &Ray::new(s.p + s.n * 10.0, -s.n))
             .expect("ray along the normal hits the disk");
@@ -358,8 +358,8 @@ fn shadow_rays_inside_a_box_are_never_blocked() {
     let mut rng = Rng::new(11);
     let mut blocked = Vec::new();
     for _ in 0..20000 {
-        let a = shapes[0].sample_area(Vec2::new(rng.uniform(), rng.uniform()), rng.uniform());
-        let b = shapes[0].sample_area(Vec2::new(rng.uniform(), rng.uniform()), rng.uniform());
+        let a = shapes[0].sample_area(Vec2::new(rng.uniform(), rng.uniform()));
+        let b = shapes[0].sample_area(Vec2::new(rng.uniform(), rng.uniform()));
         let ray = spawn_ray_to(a.p, a.p_error, a.n, b.p, b.p_error, b.n);
         if accel.occluded(&shapes, &ray) {
             blocked.push((a.p, b.p, a.n.dot(b.n)));

@@ -22,7 +22,7 @@ fn rotated(scale: Vec3, translate: Vec3) -> Transform {
 fn samples(shape: &Shape, seed: u64) -> Vec<SurfaceSample> {
     let mut rng = Rng::new(seed);
     (0..N)
-        .map(|_| shape.sample_area(Vec2::new(rng.uniform(), rng.uniform()), rng.uniform()))
+        .map(|_| shape.sample_area(Vec2::new(rng.uniform(), rng.uniform())))
         .collect()
 }
 

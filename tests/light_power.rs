@@ -84,7 +84,7 @@ fn intensity(s: &Scene, light: &Light, dir: Vec3, l: f32) -> f64 {
         _ => panic!("not point-like"),
     };
     let r = 3.0;
-    match light.sample_li(&s.shapes, pos + dir * r, &at(l), Vec2::ZERO, 0.0) {
+    match light.sample_li(&s.shapes, pos + dir * r, &at(l), Vec2::ZERO) {
         Some(ls) => ls.li[0] as f64 * (r * r) as f64,
         None => 0.0,
     }
@@ -219,7 +219,7 @@ fn directional_and_environment() {
     let p = Vec3::ZERO;
     let e = over_lambda(false, |l| {
         s.lights[0]
-            .sample_li(&s.shapes, p, &at(l), Vec2::ZERO, 0.0)
+            .sample_li(&s.shapes, p, &at(l), Vec2::ZERO)
             .map_or(0.0, |x| x.li[0] as f64)
     });
     assert_close(e, 1000.0, "directional irradiance");

@@ -265,7 +265,9 @@ fn max_depth_is_path_length() {
     assert!(e.contains("t.xml:2:") && e.contains("black"), "{e}");
     let e = err(&env_scene(-2, radiance, rect));
     assert!(e.contains("max_depth"), "{e}");
-    // rr_depth only changes the noise (Russian roulette is unbiased): accepted if valid
+    // rr_depth: where Russian roulette starts, Mitsuba's default 5 (its path integrator's
+    // documentation); it changes only the noise (roulette is unbiased)
+    assert_eq!(load(&env_scene(3, radiance, rect)).integrator.rr_depth, 5);
     let rr = |v: &str| {
         env_scene(3, radiance, rect).replace(
             "</integrator>",
@@ -273,6 +275,7 @@ fn max_depth_is_path_length() {
         )
     };
     assert_eq!(load(&rr("5")).integrator.max_depth, 2);
+    assert_eq!(load(&rr("2")).integrator.rr_depth, 2);
     assert!(err(&rr("0")).contains("rr_depth"));
     let e = err(&env_scene(3, radiance, rect).replace(
         "</integrator>",

@@ -37,16 +37,18 @@ pub fn trace<const N: usize>(
     splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, SampledSpectrum<N>),
 ) {
     let scene = it.scene;
-    let Some((li, p_sel)) = it.lights.pick(s.get_1d()) else {
+    let (u1, u2) = (s.get_2d(), s.get_2d());
+    // the light chosen with u1.x, reused for the point on it
+    let Some((li, p_sel, u1x)) = it.lights.pick_reuse(u1.x) else {
         return;
     };
-    let (u1, u2, u3) = (s.get_2d(), s.get_2d(), s.get_1d());
+    let u1 = Vec2::new(u1x, u1.y);
     let camera = &scene.camera;
     // emission: origin (with error and normal for offsetting), direction, particle weight
     let (origin, p_error, n0, dir, mut beta) = match &scene.lights[li] {
         Light::Area(a) => {
             let shape = &scene.shapes[a.shape as usize];
-            let ps = shape.sample_area(u1, u3);
+            let ps = shape.sample_area(u1);
             if ps.pdf_area <= 0.0 {
                 return;
             }

@@ -61,6 +61,16 @@ impl LightSelector {
         (self.prob[i] > 0.0).then_some((i, self.prob[i]))
     }
 
+    /// [`LightSelector::pick`], and `u` rescaled within the chosen light's CDF interval to a
+    /// fresh uniform number in [0, 1) ([`crate::sampling::reuse`]), so that one stratified
+    /// coordinate both chooses the light and samples it.
+    #[inline]
+    pub fn pick_reuse(&self, u: f32) -> Option<(usize, f32, f32)> {
+        let (i, p) = self.pick(u)?;
+        let lo = if i == 0 { 0.0 } else { self.cdf[i - 1] as f32 };
+        Some((i, p, crate::sampling::reuse(u, lo, self.cdf[i] as f32)))
+    }
+
     /// Probability of choosing light `i`.
     #[inline]
     pub fn prob(&self, i: usize) -> f32 {
@@ -74,6 +84,8 @@ pub struct Integrator<'a> {
     pub lights: LightSelector,
     pub kind: IntegratorKind,
     pub max_depth: u32,
+    /// Surface hits a camera path keeps before Russian roulette may end it (path tracer).
+    pub rr_depth: u32,
 }
 
 impl<'a> Integrator<'a> {
@@ -83,6 +95,7 @@ impl<'a> Integrator<'a> {
             lights: LightSelector::new(&scene.light_power),
             kind,
             max_depth,
+            rr_depth: crate::loader::desc::DEFAULT_RR_DEPTH,
         }
     }
 
@@ -226,5 +239,9 @@ mod tests {
         assert_eq!(s.pick(0.999), Some((1, 0.75)));
         assert_eq!(s.prob(2), 0.0);
         assert!(LightSelector::new(&[]).pick(0.3).is_none());
+        // reuse: the rest of u within the chosen interval, rescaled to [0, 1)
+        assert_eq!(s.pick_reuse(0.125), Some((0, 0.25, 0.5)));
+        assert_eq!(s.pick_reuse(0.625), Some((1, 0.75, 0.5)));
+        assert_eq!(s.pick_reuse(0.25), Some((1, 0.75, 0.0)));
     }
 }

@@ -30,10 +30,11 @@ pub(super) fn radiance<const N: usize>(
     let mut eta_scale = 1.0f32;
     let mut depth = 0u32;
     // Every bounce reads the same dimensions whatever happened before (pbrt-v4 §8.3: a fixed
-    // layout keeps each bounce's samples stratified across the pixel's samples): light choice
-    // 1D, light point 2D, light extra 1D, lobe choice 1D, direction 2D, roulette 1D, each 1D
-    // read taking a pair: 12 dimensions per bounce from `base`.
-    const BOUNCE_DIMS: u32 = 12;
+    // layout keeps each bounce's samples stratified across the pixel's samples): light 2D
+    // (its first coordinate also chooses the light and, on a mesh, the triangle, by sample
+    // reuse, so the points on each light stay stratified), lobe choice 1D, direction 2D,
+    // roulette 1D, each 1D read taking a pair: 8 dimensions per bounce from `base`.
+    const BOUNCE_DIMS: u32 = 8;
     let base = s.dimension();
     loop {
         let Some(hit) = scene.accel.intersect(&scene.shapes, &ray) else {
@@ -96,11 +97,11 @@ pub(super) fn radiance<const N: usize>(
 
         // Next-event estimation.
         if !sh.material.is_specular() {
-            let u_light = s.get_1d();
-            let (u, u_extra) = (s.get_2d(), s.get_1d());
-            if let Some((li, p_sel)) = it.lights.pick(u_light) {
+            let u = s.get_2d();
+            if let Some((li, p_sel, ux)) = it.lights.pick_reuse(u.x) {
                 let light = &scene.lights[li];
-                if let Some(ls) = light.sample_li(&scene.shapes, hit.p, w, u, u_extra) {
+                let u = glam::Vec2::new(ux, u.y);
+                if let Some(ls) = light.sample_li(&scene.shapes, hit.p, w, u) {
                     let wi = sh.frame.to_local(ls.wi);
                     let f = sh.material.eval(wo, wi, w, TransportMode::Radiance) * wi.z.abs();
                     if !f.is_zero()
@@ -124,9 +125,7 @@ pub(super) fn radiance<const N: usize>(
             }
         } else {
             // keep the dimension layout fixed
-            s.get_1d();
             s.get_2d();
-            s.get_1d();
         }
 
         // BSDF sampling.
@@ -143,10 +142,14 @@ pub(super) fn radiance<const N: usize>(
         ray = next;
 
         // Russian roulette on the throughput, corrected for radiance scaling by η²
-        // (pbrt-v4 §13.1.5). Its dimension is read at every bounce, used or not.
+        // (pbrt-v4 §13.1.5), deciding whether hit depth + 1 is reached: only hits past
+        // `rr_depth` may be cut (Mitsuba 3's `rr_depth`). Starting late costs time on long
+        // paths but keeps the second and third bounces free of roulette noise, which in
+        // scenes of low albedo lit by a sky cost more than the time saved (measured in
+        // BENCHMARKS.md). Its dimension is read at every bounce, used or not.
         let u_rr = s.get_1d();
         let rr = (beta * eta_scale).max_component();
-        if rr < 1.0 && depth > 1 {
+        if rr < 1.0 && depth >= it.rr_depth {
             let q = (1.0 - rr).max(0.0);
             if u_rr < q {
                 break;

@@ -92,8 +92,7 @@ pub(super) fn radiance<const N: usize>(
         if matches!(light, Light::Environment(_)) {
             continue;
         }
-        let (u, u_extra) = (s.get_2d(), s.get_1d());
-        let Some(ls) = light.sample_li(&scene.shapes, hit.p, w, u, u_extra) else {
+        let Some(ls) = light.sample_li(&scene.shapes, hit.p, w, s.get_2d()) else {
             continue;
         };
         let wi = sh.frame.to_local(ls.wi);

@@ -40,9 +40,8 @@ impl AreaLight {
         p: Vec3,
         w: &SampledWavelengths<N>,
         u: Vec2,
-        u_extra: f32,
     ) -> Option<LightSample<N>> {
-        let s = shapes[self.shape as usize].sample_area(u, u_extra);
+        let s = shapes[self.shape as usize].sample_area(u);
         let d = s.p - p;
         let r2 = d.length_squared();
         if r2 == 0.0 || s.pdf_area <= 0.0 {

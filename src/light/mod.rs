@@ -139,7 +139,7 @@ pub enum Light {
 }
 
 impl Light {
-    /// Samples incident light at `p`. `u` and `u_extra` are uniform in [0, 1).
+    /// Samples incident light at `p`. `u` is uniform in [0, 1)².
     /// Returns None when the sample carries no light (behind a one-sided emitter, outside a
     /// spot's cone, degenerate geometry).
     pub fn sample_li<const N: usize>(
@@ -148,12 +148,11 @@ impl Light {
         p: Vec3,
         w: &SampledWavelengths<N>,
         u: Vec2,
-        u_extra: f32,
     ) -> Option<LightSample<N>> {
         match self {
             Light::Point(l) => l.sample_li(p, w),
             Light::Spot(l) => l.sample_li(p, w),
-            Light::Area(l) => l.sample_li(shapes, p, w, u, u_extra),
+            Light::Area(l) => l.sample_li(shapes, p, w, u),
             Light::Directional(l) => l.sample_li(w, u),
             Light::Environment(l) => l.sample_li(w, u),
             Light::Beam(l) => l.sample_li(p, w),

@@ -119,7 +119,13 @@ pub enum IntegratorKind {
 pub struct IntegratorDesc {
     pub kind: IntegratorKind,
     pub max_depth: u32,
+    /// Russian roulette may end a camera path at surface hit k only when k > `rr_depth` (hits
+    /// counted from 1 at the first surface the camera ray meets): Mitsuba 3's `rr_depth`.
+    pub rr_depth: u32,
 }
+
+/// Default `rr_depth`, Mitsuba 3's: paths keep their first five surface hits.
+pub const DEFAULT_RR_DEPTH: u32 = 5;
 
 #[derive(Clone, Debug)]
 pub enum MaterialKind {

@@ -66,6 +66,7 @@ pub struct RawIntegrator {
     #[serde(rename = "type")]
     pub kind: Option<S<String>>,
     pub max_depth: Option<S<Value>>,
+    pub rr_depth: Option<S<Value>>,
 }
 
 #[derive(Deserialize, Debug)]

@@ -46,6 +46,9 @@ pub struct FilmSettings {
 pub struct IntegratorSettings {
     pub kind: IntegratorKind,
     pub max_depth: u32,
+    /// Surface hits a camera path keeps before Russian roulette may end it (see
+    /// [`crate::loader::desc::IntegratorDesc::rr_depth`]).
+    pub rr_depth: u32,
 }
 
 /// A render-ready scene. Shapes are in world space, metres.

@@ -6,7 +6,7 @@ use crate::geometry::error::GeometryError;
 use crate::geometry::float::gamma;
 use crate::geometry::ray::Ray;
 use crate::geometry::transform::Transform;
-use crate::sampling::uniform_triangle;
+use crate::sampling::{reuse, uniform_triangle};
 use glam::{Vec2, Vec3};
 
 /// A triangle mesh, transformed to world space at construction.
@@ -280,13 +280,22 @@ impl Mesh {
         }
     }
 
-    /// Uniform by area: the triangle is chosen with probability area_i / area using `u_extra`,
-    /// the point uniformly within it using `u`. `pdf_area = 1 / area`.
-    pub(crate) fn sample_area(&self, u: Vec2, u_extra: f32) -> SurfaceSample {
+    /// Uniform by area: the triangle is chosen with probability area_i / area using `u.x`, whose
+    /// position within the triangle's CDF interval, rescaled to [0, 1), and `u.y` place the
+    /// point uniformly within it (sample reuse: no extra dimension, and stratification of `u`
+    /// carries over to the surface). `pdf_area = 1 / area`.
+    /// `cdf[i − 1]`, the CDF below triangle `i` (0 for the first).
+    #[inline]
+    fn cdf_start(&self, i: usize) -> f32 {
+        if i == 0 { 0.0 } else { self.cdf[i - 1] }
+    }
+
+    pub(crate) fn sample_area(&self, u: Vec2) -> SurfaceSample {
         let i = self
             .cdf
-            .partition_point(|&c| c <= u_extra)
+            .partition_point(|&c| c <= u.x)
             .min(self.indices.len().saturating_sub(1));
+        let u = Vec2::new(reuse(u.x, self.cdf_start(i), self.cdf[i]), u.y);
         let (b0, b1) = uniform_triangle(u);
         let b = [b0, b1, (1.0 - b0 - b1).max(0.0)];
         let (p, p_error) = barycentric_point(self.vertices(i), b);

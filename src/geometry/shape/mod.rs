@@ -92,13 +92,14 @@ impl Shape {
         }
     }
 
-    /// A point uniformly distributed by area over the whole shape, from `u` in [0,1)² (and, for
-    /// meshes, `u_extra` in [0,1) to pick the triangle by area). `pdf_area = 1 / area`, m⁻².
-    pub fn sample_area(&self, u: Vec2, u_extra: f32) -> SurfaceSample {
+    /// A point uniformly distributed by area over the whole shape, from `u` in [0,1)² (meshes
+    /// pick the triangle with `u.x` and reuse what is left of it, so a stratified set of `u`
+    /// stays stratified over the surface). `pdf_area = 1 / area`, m⁻².
+    pub fn sample_area(&self, u: Vec2) -> SurfaceSample {
         match self {
             Shape::Sphere(s) => s.sample_area(u),
             Shape::Disk(d) => d.sample_area(u),
-            Shape::Mesh(m) => m.sample_area(u, u_extra),
+            Shape::Mesh(m) => m.sample_area(u),
         }
     }
 

@@ -509,6 +509,7 @@ pub(super) fn scene(
     let mut integrator = IntegratorDesc {
         kind: IntegratorKind::Path,
         max_depth: 1024,
+        rr_depth: DEFAULT_RR_DEPTH,
     };
     let mut camera = None;
     let mut materials: Vec<MaterialDesc> = Vec::new();
@@ -527,8 +528,8 @@ pub(super) fn scene(
                 if let Some(d) = cx.child(c, "max_depth") {
                     integrator.max_depth = max_depth(&cx, d)?;
                 }
-                // Mitsuba's rr_depth is where Russian roulette starts; roulette is unbiased, so
-                // it changes only the noise, never the expected image: checked, then ignored
+                // Mitsuba's rr_depth: roulette may end a path at vertex k > rr_depth (vertex 1
+                // is the first surface hit), the same meaning as spectrace's
                 if let Some(d) = cx.child(c, "rr_depth") {
                     let v = cx.float(d)?;
                     if v.fract() != 0.0 || v <= 0.0 {
@@ -536,6 +537,7 @@ pub(super) fn scene(
                             cx.err(d, format!("rr_depth must be a positive integer, not {v}"))
                         );
                     }
+                    integrator.rr_depth = v.min(1024.0) as u32;
                 }
                 if let Some(h) = cx.child(c, "hide_emitters")
                     && h.attr("value") == Some("true")

@@ -88,6 +88,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         integrator: IntegratorSettings {
             kind: desc.integrator.kind,
             max_depth: desc.integrator.max_depth,
+            rr_depth: desc.integrator.rr_depth,
         },
         wavelengths: range,
         bounds,

@@ -298,6 +298,7 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
     let mut d = IntegratorDesc {
         kind: IntegratorKind::Path,
         max_depth: 16,
+        rr_depth: DEFAULT_RR_DEPTH,
     };
     let Some(i) = i else { return Ok(d) };
     let i = i.get_ref();
@@ -317,6 +318,9 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
     }
     if let Some(m) = &i.max_depth {
         d.max_depth = cx.int(m, "integrator.max_depth", 1, 1024)? as u32;
+    }
+    if let Some(r) = &i.rr_depth {
+        d.rr_depth = cx.int(r, "integrator.rr_depth", 1, 1024)? as u32;
     }
     Ok(d)
 }
