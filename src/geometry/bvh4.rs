@@ -190,30 +190,12 @@ impl Bvh4 {
                 continue;
             }
             let n = &self.nodes[code as usize];
-            // Slab test of the four boxes (vectorised over lanes).
-            let mut t_near = [0f32; 4];
-            let mut t_far = [0f32; 4];
-            for l in 0..4 {
-                let mut lo = f32::NEG_INFINITY;
-                let mut hi = f32::INFINITY;
-                for a in 0..3 {
-                    let t0 = (n.lo[a][l] - o[a]) * inv[a];
-                    let t1 = (n.hi[a][l] - o[a]) * inv[a];
-                    lo = lo.max(t0.min(t1));
-                    hi = hi.min(t0.max(t1));
-                }
-                t_near[l] = lo;
-                t_far[l] = hi;
-            }
+            let (mask, t_near) = slab4(n, o, inv, t_max);
             // Push the lanes hit, farthest first, so the nearest is visited next.
             let mut hits = [(0f32, 0usize); 4];
             let mut nh = 0;
             for l in 0..4 {
-                if n.child[l] != EMPTY
-                    && t_far[l] >= t_near[l]
-                    && t_far[l] >= 0.0
-                    && t_near[l] < t_max
-                {
+                if mask & (1 << l) != 0 && n.child[l] != EMPTY {
                     hits[nh] = (t_near[l], l);
                     nh += 1;
                 }
@@ -234,6 +216,63 @@ impl Bvh4 {
             }
         }
         t_max
+    }
+}
+
+/// The slab test of a node's four boxes against the ray `o + t·d` (`inv` = 1/d, finite):
+/// bit l of the mask is set when box l is entered at some t in [0, `t_max`), i.e. t_far ≥
+/// t_near, t_far ≥ 0 and t_near < `t_max`; also returns each box's entry distance t_near.
+/// Per axis t0 = (lo − o)·inv and t1 = (hi − o)·inv, rounded as in obvhs's `Aabb::intersect_ray`
+/// (the robustness argument in `accel.rs` rests on these roundings). No NaN can arise: boxes,
+/// origin and reciprocals are finite.
+#[inline(always)]
+fn slab4(n: &Node4, o: [f32; 3], inv: [f32; 3], t_max: f32) -> (u32, [f32; 4]) {
+    #[cfg(target_arch = "x86_64")]
+    {
+        // SSE2 is part of x86_64: four boxes per instruction, no run-time detection
+        use std::arch::x86_64::*;
+        // SAFETY: SSE2 is always present on x86_64; the loads read the node's [f32; 4] rows
+        // (unaligned loads, so no alignment is assumed).
+        unsafe {
+            let axis = |a: usize| {
+                let (oa, ia) = (_mm_set1_ps(o[a]), _mm_set1_ps(inv[a]));
+                let t0 = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(n.lo[a].as_ptr()), oa), ia);
+                let t1 = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(n.hi[a].as_ptr()), oa), ia);
+                (_mm_min_ps(t0, t1), _mm_max_ps(t0, t1))
+            };
+            let (nx, fx) = axis(0);
+            let (ny, fy) = axis(1);
+            let (nz, fz) = axis(2);
+            let near = _mm_max_ps(_mm_max_ps(nx, ny), nz);
+            let far = _mm_min_ps(_mm_min_ps(fx, fy), fz);
+            let hit = _mm_and_ps(
+                _mm_and_ps(_mm_cmpge_ps(far, near), _mm_cmpge_ps(far, _mm_setzero_ps())),
+                _mm_cmplt_ps(near, _mm_set1_ps(t_max)),
+            );
+            let mut t_near = [0f32; 4];
+            _mm_storeu_ps(t_near.as_mut_ptr(), near);
+            (_mm_movemask_ps(hit) as u32, t_near)
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        let mut mask = 0;
+        let mut t_near = [0f32; 4];
+        for l in 0..4 {
+            let mut lo = f32::NEG_INFINITY;
+            let mut hi = f32::INFINITY;
+            for a in 0..3 {
+                let t0 = (n.lo[a][l] - o[a]) * inv[a];
+                let t1 = (n.hi[a][l] - o[a]) * inv[a];
+                lo = lo.max(t0.min(t1));
+                hi = hi.min(t0.max(t1));
+            }
+            t_near[l] = lo;
+            if hi >= lo && hi >= 0.0 && lo < t_max {
+                mask |= 1 << l;
+            }
+        }
+        (mask, t_near)
     }
 }
 
