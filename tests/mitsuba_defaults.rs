@@ -12,6 +12,7 @@ use std::path::Path;
 
 use serde::Deserialize;
 use spectrace::loader::SceneDesc;
+use spectrace::loader::desc::LightSelection;
 use spectrace::loader::mitsuba::load_str;
 
 #[derive(Deserialize)]
@@ -276,6 +277,22 @@ fn max_depth_is_path_length() {
     };
     assert_eq!(load(&rr("5")).integrator.max_depth, 2);
     assert_eq!(load(&rr("2")).integrator.rr_depth, 2);
+    // emitters are chosen in proportion to sampling_weight (Mitsuba's Emitter, default 1)
+    let desc = load(&env_scene(3, radiance, rect));
+    assert_eq!(desc.integrator.light_selection, LightSelection::Uniform);
+    assert!(desc.lights.iter().all(|l| l.sampling_weight == 1.0));
+    let weighted = env_scene(3, radiance, rect).replacen(
+        "</emitter>",
+        "<float name=\"sampling_weight\" value=\"2.5\"/></emitter>",
+        1,
+    );
+    assert_eq!(load(&weighted).lights[0].sampling_weight, 2.5);
+    let negative = weighted.replace("2.5", "-1");
+    assert!(
+        err(&negative).contains("sampling_weight"),
+        "{}",
+        err(&negative)
+    );
     assert!(err(&rr("0")).contains("rr_depth"));
     let e = err(&env_scene(3, radiance, rect).replace(
         "</integrator>",

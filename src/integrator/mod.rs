@@ -15,6 +15,7 @@ use glam::Vec3;
 use crate::geometry::{Frame, Intersection, Ray, spawn_ray, spawn_ray_to};
 use crate::light::LightSample;
 use crate::loader::desc::IntegratorKind;
+use crate::loader::desc::LightSelection;
 use crate::material::{BsdfSample, Material, TransportMode};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
@@ -92,7 +93,16 @@ impl<'a> Integrator<'a> {
     pub fn new(scene: &'a Scene, kind: IntegratorKind, max_depth: u32) -> Self {
         Self {
             scene,
-            lights: LightSelector::new(&scene.light_power),
+            lights: LightSelector::new(&match scene.integrator.light_selection {
+                LightSelection::Power => scene.light_power.clone(),
+                // every light that emits anything, in proportion to its sampling weight
+                LightSelection::Uniform => scene
+                    .light_power
+                    .iter()
+                    .zip(&scene.light_sampling_weights)
+                    .map(|(&p, &w)| if p > 0.0 { w } else { 0.0 })
+                    .collect(),
+            }),
             kind,
             max_depth,
             rr_depth: crate::loader::desc::DEFAULT_RR_DEPTH,

@@ -122,6 +122,21 @@ pub struct IntegratorDesc {
     /// Russian roulette may end a camera path at surface hit k only when k > `rr_depth` (hits
     /// counted from 1 at the first surface the camera ray meets): Mitsuba 3's `rr_depth`.
     pub rr_depth: u32,
+    /// How next-event estimation chooses among the lights.
+    pub light_selection: LightSelection,
+}
+
+/// Probabilities with which next-event estimation (and the light tracer) chooses a light. Either
+/// is unbiased; they differ in noise.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LightSelection {
+    /// In proportion to emitted power (pbrt-v4's `PowerLightSampler`): spectrace's default,
+    /// best when lights differ greatly in power.
+    Power,
+    /// Every emitting light alike, or in proportion to its `sampling_weight`: Mitsuba 3's rule
+    /// (weights 1 by default), better when a weak light is hard to sample well, such as a sky
+    /// beside a lamp.
+    Uniform,
 }
 
 /// Default `rr_depth`, Mitsuba 3's: paths keep their first five surface hits.
@@ -235,6 +250,8 @@ pub struct EmissionDesc {
     pub spectrum: Spectrum,
     pub amount: EmitAmount,
     pub two_sided: bool,
+    /// As [`LightDesc::sampling_weight`].
+    pub sampling_weight: f64,
     pub loc: Loc,
 }
 
@@ -319,5 +336,8 @@ pub enum LightKind {
 pub struct LightDesc {
     pub kind: LightKind,
     pub spectrum: Spectrum,
+    /// Relative weight for choosing this light under [`LightSelection::Uniform`] (Mitsuba's
+    /// `sampling_weight`, 1 by default).
+    pub sampling_weight: f64,
     pub loc: Loc,
 }

@@ -67,6 +67,7 @@ pub struct RawIntegrator {
     pub kind: Option<S<String>>,
     pub max_depth: Option<S<Value>>,
     pub rr_depth: Option<S<Value>>,
+    pub light_selection: Option<S<String>>,
 }
 
 #[derive(Deserialize, Debug)]

@@ -12,7 +12,7 @@ use crate::geometry::accel::Accel;
 use crate::geometry::camera::Camera;
 use crate::geometry::shape::Shape;
 use crate::light::Light;
-use crate::loader::desc::{FilterDesc, IntegratorKind};
+use crate::loader::desc::{FilterDesc, IntegratorKind, LightSelection};
 use crate::material::Material;
 use crate::spectrum::WavelengthRange;
 
@@ -49,6 +49,8 @@ pub struct IntegratorSettings {
     /// Surface hits a camera path keeps before Russian roulette may end it (see
     /// [`crate::loader::desc::IntegratorDesc::rr_depth`]).
     pub rr_depth: u32,
+    /// How next-event estimation chooses among the lights.
+    pub light_selection: LightSelection,
 }
 
 /// A render-ready scene. Shapes are in world space, metres.
@@ -65,6 +67,9 @@ pub struct Scene {
     /// Emitted power of each light over the wavelength range, W (lights at infinity: through a
     /// disk of the scene's radius), for light selection proportional to power.
     pub light_power: Vec<f64>,
+    /// Relative weight of each light under uniform light selection (Mitsuba's
+    /// `sampling_weight`, 1 unless the scene sets it).
+    pub light_sampling_weights: Vec<f64>,
     pub camera: Camera,
     pub film: FilmSettings,
     pub integrator: IntegratorSettings,

@@ -510,6 +510,8 @@ pub(super) fn scene(
         kind: IntegratorKind::Path,
         max_depth: 1024,
         rr_depth: DEFAULT_RR_DEPTH,
+        // Mitsuba chooses emitters in proportion to their sampling_weight, 1 by default
+        light_selection: LightSelection::Uniform,
     };
     let mut camera = None;
     let mut materials: Vec<MaterialDesc> = Vec::new();

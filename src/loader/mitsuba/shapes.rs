@@ -91,6 +91,7 @@ pub(super) fn shape(
                     spectrum: cx.spectrum_prop(c, "radiance", 1.0, true)?,
                     amount: EmitAmount::Scale(1.0),
                     two_sided: false,
+                    sampling_weight: sampling_weight(cx, c)?,
                     loc: cx.loc(c),
                 });
             }
@@ -224,6 +225,23 @@ pub(super) fn emitter(cx: &Cx<'_>, e: &Element) -> R<LightDesc> {
     Ok(LightDesc {
         kind,
         spectrum,
+        sampling_weight: sampling_weight(cx, e)?,
         loc: cx.loc(e),
     })
+}
+
+/// An emitter's `sampling_weight`: its relative probability of being chosen for emitter
+/// sampling (Mitsuba 3, `Emitter`), finite and ≥ 0, 1 by default.
+fn sampling_weight(cx: &Cx<'_>, e: &Element) -> R<f64> {
+    let Some(c) = cx.child(e, "sampling_weight") else {
+        return Ok(1.0);
+    };
+    let w = cx.float(c)?;
+    if !(w.is_finite() && w >= 0.0) {
+        return Err(cx.err(
+            c,
+            format!("sampling_weight must be a finite number ≥ 0, not {w}"),
+        ));
+    }
+    Ok(w)
 }

@@ -129,12 +129,13 @@ fn point_amount(a: &PointAmount, solid_angle: f64) -> (Per, f64) {
     }
 }
 
-/// All lights (scene lights, then one area light per emitting shape) and the surfaces table.
+/// All lights (scene lights, then one area light per emitting shape), their sampling weights
+/// ([`crate::loader::desc::LightDesc::sampling_weight`]) and the surfaces table.
 pub(super) fn lights(
     desc: &SceneDesc,
     shapes: &[Shape],
     r: WavelengthRange,
-) -> Result<(Vec<Light>, Vec<Surface>), LoadError> {
+) -> Result<(Vec<Light>, Vec<f64>, Vec<Surface>), LoadError> {
     let err = |loc: Loc, field: String, msg: String| LoadError::new(&desc.path, loc, field, msg);
     let mut lights = Vec::new();
     for (i, l) in desc.lights.iter().enumerate() {
@@ -218,6 +219,7 @@ pub(super) fn lights(
         };
         lights.push(light);
     }
+    let mut weights: Vec<f64> = desc.lights.iter().map(|l| l.sampling_weight).collect();
     let mut surfaces = Vec::with_capacity(shapes.len());
     for (i, (s, shape)) in desc.shapes.iter().zip(shapes).enumerate() {
         let mut light = None;
@@ -238,8 +240,9 @@ pub(super) fn lights(
                 radiance,
                 two_sided: em.two_sided,
             }));
+            weights.push(em.sampling_weight);
         }
         surfaces.push(surface(s.material, s.two_sided, light));
     }
-    Ok((lights, surfaces))
+    Ok((lights, weights, surfaces))
 }

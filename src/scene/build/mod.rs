@@ -45,7 +45,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         shape_list.push(shapes::shape(s).map_err(|e| err(s.loc, format!("shapes[{i}]"), e))?);
     }
 
-    let (lights, surfaces) = lights::lights(desc, &shape_list, range)?;
+    let (lights, light_sampling_weights, surfaces) = lights::lights(desc, &shape_list, range)?;
     let accel = Accel::build(&shape_list);
     let mut bounds = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
     for s in &shape_list {
@@ -75,6 +75,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         materials,
         lights,
         infinite_lights,
+        light_sampling_weights,
         light_power,
         camera,
         film: FilmSettings {
@@ -89,6 +90,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
             kind: desc.integrator.kind,
             max_depth: desc.integrator.max_depth,
             rr_depth: desc.integrator.rr_depth,
+            light_selection: desc.integrator.light_selection,
         },
         wavelengths: range,
         bounds,

@@ -299,6 +299,7 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
         kind: IntegratorKind::Path,
         max_depth: 16,
         rr_depth: DEFAULT_RR_DEPTH,
+        light_selection: LightSelection::Power,
     };
     let Some(i) = i else { return Ok(d) };
     let i = i.get_ref();
@@ -321,6 +322,19 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
     }
     if let Some(r) = &i.rr_depth {
         d.rr_depth = cx.int(r, "integrator.rr_depth", 1, 1024)? as u32;
+    }
+    if let Some(k) = &i.light_selection {
+        d.light_selection = match k.get_ref().as_str() {
+            "power" => LightSelection::Power,
+            "uniform" => LightSelection::Uniform,
+            o => {
+                return Err(cx.err(
+                    &k.span(),
+                    "integrator.light_selection",
+                    format!("\"{o}\": expected power or uniform"),
+                ));
+            }
+        };
     }
     Ok(d)
 }

@@ -317,6 +317,7 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
     Ok(LightDesc {
         kind,
         spectrum,
+        sampling_weight: 1.0,
         loc: cx.src.span(&sp),
     })
 }

@@ -284,6 +284,7 @@ pub(super) fn emission(cx: &Cx<'_>, e: &S<RawEmission>, f: &str) -> R<EmissionDe
         spectrum,
         amount,
         two_sided: e.two_sided.as_ref().is_some_and(|b| *b.get_ref()),
+        sampling_weight: 1.0,
         loc: cx.src.span(&sp),
     })
 }
