@@ -29,8 +29,6 @@ const BOX_PAD: f32 = 1.0 / (1 << 20) as f32;
 struct PrimRef {
     shape: u32,
     prim: u32,
-    /// Whether the primitive is a triangle, whose corners are copied into [`Accel::tris`].
-    triangle: bool,
 }
 
 /// The BVH over a slice of shapes.
@@ -45,7 +43,8 @@ pub struct Accel {
     /// Indexed by the BVH's primitive ids (already permuted, so no indirection at query time).
     prims: Vec<PrimRef>,
     /// Triangle corners (m) by BVH primitive id, copied from the meshes so that a leaf test reads
-    /// one contiguous record instead of shape → index → position; zero for other primitives.
+    /// one contiguous record instead of shape → index → position, and not `prims` at all; NaN
+    /// for other primitives (mesh vertices are finite, so NaN marks "not a triangle").
     tris: Vec<[Vec3; 3]>,
 }
 
@@ -83,7 +82,6 @@ impl Accel {
                 refs.push(PrimRef {
                     shape: s as u32,
                     prim: i as u32,
-                    triangle: matches!(shape, Shape::Mesh(_)),
                 });
             }
         }
@@ -103,7 +101,7 @@ impl Accel {
             .iter()
             .map(|pr| match &shapes[pr.shape as usize] {
                 Shape::Mesh(m) => m.vertices(pr.prim as usize),
-                _ => [Vec3::ZERO; 3],
+                _ => [Vec3::NAN; 3],
             })
             .collect();
         let root_bounds = binary.first().map(|n| (n.min, n.max));
@@ -172,11 +170,12 @@ impl Accel {
         wt: &WatertightRay,
         t_max: f32,
     ) -> Option<(f32, PrimHit)> {
-        let pr = self.prims[id];
-        if pr.triangle {
-            return intersect_triangle_with(self.tris[id], ray, wt, t_max)
+        let tri = self.tris[id];
+        if !tri[0].x.is_nan() {
+            return intersect_triangle_with(tri, ray, wt, t_max)
                 .map(|(t, b)| (t, PrimHit::Triangle { b }));
         }
+        let pr = self.prims[id];
         let ray = Ray { t_max, ..*ray };
         shapes
             .get(pr.shape as usize)?
