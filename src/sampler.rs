@@ -171,6 +171,50 @@ mod tests {
         );
     }
 
+    /// Every 2D projection the integrators read (each dimension pair, in any pixel) is a
+    /// (0, 2)-sequence: for every power of two n = 2^m ≤ 4096, each aligned block of n
+    /// consecutive samples puts exactly one point in every elementary interval of area 1/n,
+    /// [i/2^a, (i+1)/2^a) × [j/2^b, (j+1)/2^b) with a + b = m (Niederreiter 1992, §4.1; Owen
+    /// scrambling preserves it, Owen 1995). 1D reads are the pair's first coordinate, so they
+    /// are stratified into n intervals by the case a = m.
+    #[test]
+    fn every_pair_is_stratified_at_every_power_of_two() {
+        const M: u32 = 12;
+        for (seed, px, py) in [(0u32, 0u32, 0u32), (7, 3, 4), (123, 511, 77)] {
+            for dim in (0..40).step_by(2) {
+                // 2·4096 samples: the prefixes and the second aligned block of each size
+                let pts: Vec<(u32, u32)> = (0..2u32 << M)
+                    .map(|i| {
+                        let p = Sampler::new(seed, px, py, i).at_dimension(dim).get_2d();
+                        // the 24-bit fixed-point coordinates, exact
+                        ((p.x * (1 << 24) as f32) as u32, (p.y * (1 << 24) as f32) as u32)
+                    })
+                    .collect();
+                for m in 0..=M {
+                    let n = 1usize << m;
+                    for block in [&pts[..n], &pts[n..2 * n]] {
+                        for a in 0..=m {
+                            let b = m - a;
+                            let mut seen = vec![false; n];
+                            for &(x, y) in block {
+                                let cell = ((x >> (24 - a)) << b | (y >> (24 - b))) as usize;
+                                assert!(
+                                    !seen[cell],
+                                    "seed {seed}, pixel ({px}, {py}), dims {dim}–{}: two of {n} \
+                                     points in one {}×{} interval",
+                                    dim + 1,
+                                    1 << a,
+                                    1 << b
+                                );
+                                seen[cell] = true;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
     #[test]
     fn get_1d_is_the_first_coordinate_of_get_2d() {
         for i in 0..256 {
