@@ -187,7 +187,10 @@ mod tests {
                     .map(|i| {
                         let p = Sampler::new(seed, px, py, i).at_dimension(dim).get_2d();
                         // the 24-bit fixed-point coordinates, exact
-                        ((p.x * (1 << 24) as f32) as u32, (p.y * (1 << 24) as f32) as u32)
+                        (
+                            (p.x * (1 << 24) as f32) as u32,
+                            (p.y * (1 << 24) as f32) as u32,
+                        )
                     })
                     .collect();
                 for m in 0..=M {

@@ -245,6 +245,28 @@ fn samples_agree_with_eval_and_pdf() {
     }
 }
 
+/// `eval_pdf` (next-event estimation's one call) returns exactly what `eval` and `pdf` return,
+/// for every material, direction pair and transport mode.
+#[test]
+fn eval_pdf_is_eval_and_pdf() {
+    let w = wl();
+    let mut rng = Rng::new(29);
+    for (name, m) in opaque_materials().into_iter().chain(rough_dielectrics()) {
+        for _ in 0..20_000 {
+            let (wo, wi) = (random_dir(&mut rng), random_dir(&mut rng));
+            for mode in [RAD, IMP] {
+                let (f, pdf) = m.eval_pdf(wo, wi, &w, mode);
+                let want = (m.eval(wo, wi, &w, mode), m.pdf(wo, wi, &w, mode));
+                assert_eq!(
+                    (f.0.map(f32::to_bits), pdf.to_bits()),
+                    (want.0.0.map(f32::to_bits), want.1.to_bits()),
+                    "{name}: wo {wo}, wi {wi}"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn opaque_materials_are_one_sided() {
     let w = wl();

@@ -275,13 +275,17 @@ fn build_binary(boxes: &[Aabb], part: usize) -> (Vec<BinaryNode>, Vec<u32>) {
         assert_eq!(out[t].count, 1, "top leaves hold one part");
         let (nodes, prim_base) = &parts[top_order[out[t].first as usize] as usize];
         let node_base = out.len() as u32;
-        let shift = |n: &BinaryNode| BinaryNode {
-            first: n.first + if n.count == 0 { node_base } else { *prim_base },
-            ..*n
+        let shift = |n: &BinaryNode| {
+            let base = if n.count == 0 { node_base } else { *prim_base };
+            BinaryNode {
+                first: n.first + base,
+                ..*n
+            }
         };
         // the part's root takes the top leaf's place; its other nodes keep their offsets
         // (the root's own slot, at node_base, stays unreferenced)
-        out[t] = shift(&nodes[0]);
+        let root = shift(&nodes[0]);
+        out[t] = root;
         out.extend(nodes.iter().map(shift));
     }
     (out, order)

@@ -194,9 +194,9 @@ impl Bvh4 {
             // Push the lanes hit, farthest first, so the nearest is visited next.
             let mut hits = [(0f32, 0usize); 4];
             let mut nh = 0;
-            for l in 0..4 {
+            for (l, &tn) in t_near.iter().enumerate() {
                 if mask & (1 << l) != 0 && n.child[l] != EMPTY {
-                    hits[nh] = (t_near[l], l);
+                    hits[nh] = (tn, l);
                     nh += 1;
                 }
             }

@@ -103,7 +103,8 @@ pub(super) fn radiance<const N: usize>(
                 let u = glam::Vec2::new(ux, u.y);
                 if let Some(ls) = light.sample_li(&scene.shapes, hit.p, w, u) {
                     let wi = sh.frame.to_local(ls.wi);
-                    let f = sh.material.eval(wo, wi, w, TransportMode::Radiance) * wi.z.abs();
+                    let (f, bsdf_pdf) = sh.material.eval_pdf(wo, wi, w, TransportMode::Radiance);
+                    let f = f * wi.z.abs();
                     if !f.is_zero()
                         && !ls.li.is_zero()
                         && !it.occluded(&hit, sh.n_geom_toward(ls.wi), &ls)
@@ -112,12 +113,7 @@ pub(super) fn radiance<const N: usize>(
                         let wgt = if ls.delta {
                             1.0
                         } else {
-                            power_heuristic(
-                                1.0,
-                                p_light,
-                                1.0,
-                                sh.material.pdf(wo, wi, w, TransportMode::Radiance),
-                            )
+                            power_heuristic(1.0, p_light, 1.0, bsdf_pdf)
                         };
                         l += beta * f * ls.li * (wgt / p_light);
                     }

@@ -126,6 +126,18 @@ impl RoughConductor {
         let Some(wm) = Self::half(wo, wi) else {
             return SampledSpectrum::zero();
         };
+        self.eval_half(wo, wi, wm, w)
+    }
+
+    /// [`RoughConductor::eval`] for the half vector `wm` of (wo, wi).
+    #[inline]
+    fn eval_half<const N: usize>(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        wm: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
         let mf = self.microfacet();
         let k = mf.d(wm) * mf.g(wo, wi) / (4.0 * wo.z * wi.z);
         // wo·wm = wi·wm; their mean keeps the rounding symmetric (exact reciprocity).
@@ -139,6 +151,24 @@ impl RoughConductor {
             return 0.0;
         };
         self.microfacet().normal_pdf(wo, wm) / (4.0 * wo.dot(wm))
+    }
+
+    /// [`RoughConductor::eval`] and [`RoughConductor::pdf`] together, the half vector found
+    /// once (the same values as the two calls).
+    #[inline]
+    pub fn eval_pdf<const N: usize>(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> (SampledSpectrum<N>, f32) {
+        let Some(wm) = Self::half(wo, wi) else {
+            return (SampledSpectrum::zero(), 0.0);
+        };
+        (
+            self.eval_half(wo, wi, wm, w),
+            self.microfacet().normal_pdf(wo, wm) / (4.0 * wo.dot(wm)),
+        )
     }
 
     #[inline]
@@ -159,10 +189,10 @@ impl RoughConductor {
         if wi.z <= 0.0 {
             return None;
         }
-        let pdf = self.pdf(wo, wi);
+        let (f, pdf) = self.eval_pdf(wo, wi, w);
         if !(pdf > 0.0 && pdf.is_finite()) {
             return None;
         }
-        Some(BsdfSample::reflection(self.eval(wo, wi, w), wi, pdf))
+        Some(BsdfSample::reflection(f, wi, pdf))
     }
 }

@@ -145,6 +145,26 @@ impl Material {
         }
     }
 
+    /// [`Material::eval`] and [`Material::pdf`] together, for next-event estimation, which
+    /// needs both: the work they share (half vectors, indices, lobe values) is done once. The
+    /// same values as the two calls.
+    #[inline]
+    pub fn eval_pdf<const N: usize>(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+        mode: TransportMode,
+    ) -> (SampledSpectrum<N>, f32) {
+        match self {
+            Material::Diffuse(m) => (m.eval(wo, wi, w), m.pdf(wo, wi)),
+            Material::Phong(m) => m.eval_pdf(wo, wi, w),
+            Material::Dielectric(_) | Material::Conductor(_) => (SampledSpectrum::zero(), 0.0),
+            Material::RoughDielectric(m) => m.eval_pdf(wo, wi, w, mode),
+            Material::RoughConductor(m) => m.eval_pdf(wo, wi, w),
+        }
+    }
+
     /// Samples `wi` given `wo`: `uc` chooses a lobe, `u` the direction within it. `None` when
     /// the sample carries no contribution (wrong side, below the horizon, degenerate `wo`).
     #[inline]

@@ -114,8 +114,41 @@ impl Phong {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return SampledSpectrum::zero();
         }
-        let spec = (self.exponent + 2.0) * (0.5 * FRAC_1_PI) * self.lobe(wo, wi);
+        self.eval_with(w, self.lobe(wo, wi))
+    }
+
+    /// f for a pair (wo, wi) in the upper hemisphere whose [`Phong::lobe`] is `lobe`.
+    #[inline]
+    fn eval_with<const N: usize>(
+        &self,
+        w: &SampledWavelengths<N>,
+        lobe: f32,
+    ) -> SampledSpectrum<N> {
+        let spec = (self.exponent + 2.0) * (0.5 * FRAC_1_PI) * lobe;
         self.kd.sample(w) * FRAC_1_PI + self.ks.sample(w) * spec
+    }
+
+    /// The pdf of `wi` (upper hemisphere) for specular probability `ps` and lobe value `lobe`.
+    #[inline]
+    fn pdf_with(&self, wi: Vec3, ps: f32, lobe: f32) -> f32 {
+        let spec = (self.exponent + 1.0) / (2.0 * PI) * lobe;
+        (1.0 - ps) * cosine_hemisphere_pdf(wi.z) + ps * spec
+    }
+
+    /// [`Phong::eval`] and [`Phong::pdf`] together, the lobe computed once.
+    #[inline]
+    pub fn eval_pdf<const N: usize>(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> (SampledSpectrum<N>, f32) {
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return (SampledSpectrum::zero(), 0.0);
+        }
+        let lobe = self.lobe(wo, wi);
+        let ps = self.specular_probability(w);
+        (self.eval_with(w, lobe), self.pdf_with(wi, ps, lobe))
     }
 
     #[inline]
@@ -123,9 +156,7 @@ impl Phong {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return 0.0;
         }
-        let ps = self.specular_probability(w);
-        let spec = (self.exponent + 1.0) / (2.0 * PI) * self.lobe(wo, wi);
-        (1.0 - ps) * cosine_hemisphere_pdf(wi.z) + ps * spec
+        self.pdf_with(wi, self.specular_probability(w), self.lobe(wo, wi))
     }
 
     #[inline]
@@ -152,11 +183,13 @@ impl Phong {
         if wi.z <= 0.0 {
             return None;
         }
-        let pdf = self.pdf(wo, wi, w);
+        // the lobe probability, already known, and the lobe value, once for f and pdf
+        let lobe = self.lobe(wo, wi);
+        let pdf = self.pdf_with(wi, ps, lobe);
         if pdf <= 0.0 {
             return None;
         }
-        Some(BsdfSample::reflection(self.eval(wo, wi, w), wi, pdf))
+        Some(BsdfSample::reflection(self.eval_with(w, lobe), wi, pdf))
     }
 }
 

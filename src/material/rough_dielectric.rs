@@ -118,6 +118,20 @@ impl RoughDielectric {
         let Some(h) = Self::half(wo, wi, eta_hero) else {
             return SampledSpectrum::zero();
         };
+        self.eval_half(wo, wi, w, mode, eta_hero, &h)
+    }
+
+    /// [`RoughDielectric::eval`] for the half vector `h` of (wo, wi) at the hero's `eta_hero`.
+    #[inline]
+    fn eval_half<const N: usize>(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+        mode: TransportMode,
+        eta_hero: f32,
+        h: &Half,
+    ) -> SampledSpectrum<N> {
         let mf = self.microfacet();
         let dg = mf.d(h.wm) * mf.g(wo, wi);
         let (cos_om, cos_im) = (wo.dot(h.wm), wi.dot(h.wm));
@@ -155,6 +169,32 @@ impl RoughDielectric {
         let Some(h) = Self::half(wo, wi, eta) else {
             return 0.0;
         };
+        self.pdf_half(wo, wi, eta, &h)
+    }
+
+    /// [`RoughDielectric::eval`] and [`RoughDielectric::pdf`] together, the index and half
+    /// vector found once (the same values as the two calls).
+    #[inline]
+    pub fn eval_pdf<const N: usize>(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+        mode: TransportMode,
+    ) -> (SampledSpectrum<N>, f32) {
+        let eta = self.eta(w.lambda[0]);
+        let Some(h) = Self::half(wo, wi, eta) else {
+            return (SampledSpectrum::zero(), 0.0);
+        };
+        (
+            self.eval_half(wo, wi, w, mode, eta, &h),
+            self.pdf_half(wo, wi, eta, &h),
+        )
+    }
+
+    /// [`RoughDielectric::pdf`] for the half vector `h` of (wo, wi) at the hero's `eta`.
+    #[inline]
+    fn pdf_half(&self, wo: Vec3, wi: Vec3, eta: f32, h: &Half) -> f32 {
         let (cos_om, cos_im) = (wo.dot(h.wm), wi.dot(h.wm));
         let pdf_wm = self.microfacet().normal_pdf(wo, h.wm);
         let r = fresnel_dielectric(cos_om, eta);
@@ -194,8 +234,7 @@ impl RoughDielectric {
         if wi.z == 0.0 || (wi.z * wo.z < 0.0) != transmission {
             return None;
         }
-        let pdf = self.pdf(wo, wi, w);
-        let f = self.eval(wo, wi, w, mode);
+        let (f, pdf) = self.eval_pdf(wo, wi, w, mode);
         if !(pdf > 0.0 && pdf.is_finite() && f.is_finite()) {
             return None;
         }

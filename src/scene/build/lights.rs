@@ -129,13 +129,16 @@ fn point_amount(a: &PointAmount, solid_angle: f64) -> (Per, f64) {
     }
 }
 
+/// The lights, their sampling weights and the surfaces table, as [`lights`] returns them.
+type Lights = (Vec<Light>, Vec<f64>, Vec<Surface>);
+
 /// All lights (scene lights, then one area light per emitting shape), their sampling weights
 /// ([`crate::loader::desc::LightDesc::sampling_weight`]) and the surfaces table.
 pub(super) fn lights(
     desc: &SceneDesc,
     shapes: &[Shape],
     r: WavelengthRange,
-) -> Result<(Vec<Light>, Vec<f64>, Vec<Surface>), LoadError> {
+) -> Result<Lights, LoadError> {
     let err = |loc: Loc, field: String, msg: String| LoadError::new(&desc.path, loc, field, msg);
     let mut lights = Vec::new();
     for (i, l) in desc.lights.iter().enumerate() {
