@@ -86,7 +86,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parent.parent
 BENCH = ROOT / "target" / "bench"
 WORK = BENCH / "efficiency"
-SPECTRACE = ROOT / "target" / "release" / "spectrace"
+# SPECTRACE_BIN=path runs another spectrace build (e.g. an older commit's, for a same-run baseline)
+SPECTRACE = Path(os.environ.get("SPECTRACE_BIN", ROOT / "target" / "release" / "spectrace")).resolve()
 HEIGHTFIELD_XML = ROOT / "benchmarks" / "scenes" / "heightfield.xml"
 HEIGHTFIELD_PLY = ROOT / "benchmarks" / "scenes" / "heightfield.ply"
 DEFAULT_SCENES = "tests/reference/cornell/scene.xml@256x256,benchmarks/scenes/heightfield.xml"
@@ -478,7 +479,7 @@ def main() -> int:
                 [str(SPECTRACE), "--version"], capture_output=True, text=True
             ).stdout.strip()
             mtime = datetime.datetime.fromtimestamp(SPECTRACE.stat().st_mtime)
-            st_binary = {"path": str(SPECTRACE.relative_to(ROOT)), "mtime": mtime.isoformat()}
+            st_binary = {"path": str(SPECTRACE), "mtime": mtime.isoformat()}
         else:
             notes.append("target/release/spectrace is missing; spectrace skipped")
             configs.remove("spectrace")
