@@ -8,8 +8,10 @@
 //! the hero's pdf was divided by N when they were terminated, so the estimate stays unbiased.
 
 mod filter;
+mod splats;
 
 pub use filter::Filter;
+pub use splats::{Splat, SplatList};
 
 use crate::colour::cie::{K_M, cmf};
 use crate::colour::spaces::xyz_to_srgb;
@@ -166,10 +168,49 @@ impl Tile {
         l: &SampledSpectrum<N>,
         bins: Option<&Bins>,
     ) -> bool {
-        if non_finite(w, l).is_some() {
+        let Some(SampleSums { xyz, band, per_bin }) = SampleSums::new(w, l, bins) else {
             return false;
+        };
+        for (x, y, wgt) in pixels {
+            let wgt = wgt as f64;
+            let i = ((y - self.y0) * self.width + (x - self.x0)) as usize;
+            let p = &mut self.pixels[i];
+            for (a, c) in p.xyz.iter_mut().zip(xyz) {
+                *a += c * wgt;
+            }
+            p.band += band * wgt;
+            if bins.is_some() {
+                for &(k, v) in &per_bin {
+                    if k != usize::MAX {
+                        self.spectral[i * self.nbins + k] += v * wgt;
+                    }
+                }
+            }
         }
-        // the sample's sums, once
+        true
+    }
+}
+
+/// One sample's contribution to a pixel before its filter weight: XYZ (Y in cd/m²), band
+/// radiance (W·m⁻²·sr⁻¹) and, per wavelength, its spectral bin and value per nm (`usize::MAX`
+/// for no bin), from the module's estimator (1/N)·Σ L(λⱼ)/p(λⱼ)·….
+pub(crate) struct SampleSums<const N: usize> {
+    pub xyz: [f64; 3],
+    pub band: f64,
+    pub per_bin: [(usize, f64); N],
+}
+
+impl<const N: usize> SampleSums<N> {
+    /// None for NaN or infinite values at a live wavelength ([`non_finite`]).
+    #[inline]
+    pub fn new(
+        w: &SampledWavelengths<N>,
+        l: &SampledSpectrum<N>,
+        bins: Option<&Bins>,
+    ) -> Option<Self> {
+        if non_finite(w, l).is_some() {
+            return None;
+        }
         let inv_n = 1.0 / N as f64;
         let (mut xyz, mut band) = ([0.0f64; 3], 0.0f64);
         let mut per_bin = [(usize::MAX, 0.0f64); N];
@@ -189,23 +230,7 @@ impl Tile {
                 per_bin[j] = (k, v / b.width() as f64);
             }
         }
-        for (x, y, wgt) in pixels {
-            let wgt = wgt as f64;
-            let i = ((y - self.y0) * self.width + (x - self.x0)) as usize;
-            let p = &mut self.pixels[i];
-            for (a, c) in p.xyz.iter_mut().zip(xyz) {
-                *a += c * wgt;
-            }
-            p.band += band * wgt;
-            if bins.is_some() {
-                for &(k, v) in &per_bin {
-                    if k != usize::MAX {
-                        self.spectral[i * self.nbins + k] += v * wgt;
-                    }
-                }
-            }
-        }
-        true
+        Some(Self { xyz, band, per_bin })
     }
 }
 

@@ -248,23 +248,23 @@ fn count_dropped<const N: usize>(
 /// each with the filter's normalised weight f(raster − centre)/∫∫f (px⁻², times the pixel's
 /// unit area): the same reconstruction, ∫ L(x) f(x − centre) dx / ∫ f, that camera rays
 /// realise by sampling their offsets from the filter (pbrt-v4 §5.4.3). Pixels outside the
-/// image are skipped. `tile` covers the whole image. Returns false, adding nothing, if `l` is
-/// not finite.
+/// image (`size`, pixels) are skipped; `to` takes image coordinates. Returns false, adding
+/// nothing, if `l` is not finite.
 fn splat_filtered<const N: usize>(
-    tile: &mut crate::film::Tile,
+    to: &mut impl crate::film::Splat,
+    size: (u32, u32),
     filter: &Filter,
     raster: Vec2,
     wl: &SampledWavelengths<N>,
     l: &crate::spectrum::SampledSpectrum<N>,
     bins: Option<&crate::film::Bins>,
 ) -> bool {
-    debug_assert!(tile.x0 == 0 && tile.y0 == 0);
     let r = filter.radius;
     // pixels whose centre x + 0.5 lies within [raster − r, raster + r], one more on each side
     // for rounding; `Filter::weight` decides the half-open support exactly
     let lo = (raster - Vec2::splat(0.5 + r)).floor().max(Vec2::ZERO);
     let hi = ((raster + Vec2::splat(r - 0.5)).floor() + Vec2::ONE)
-        .min(Vec2::new(tile.width as f32 - 1.0, tile.height as f32 - 1.0));
+        .min(Vec2::new(size.0 as f32 - 1.0, size.1 as f32 - 1.0));
     if hi.x < lo.x || hi.y < lo.y {
         return non_finite(wl, l).is_none();
     }
@@ -275,11 +275,17 @@ fn splat_filtered<const N: usize>(
             let wgt = filter.weight(raster - Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
             (wgt > 0.0).then_some((x, y, wgt))
         });
-    tile.splat_weighted(pixels, wl, l, bins)
+    to.splat_weighted(pixels, wl, l, bins)
 }
 
-/// Light tracing: `spp × pixels` paths in a fixed number of chunks, each splatting into its own
-/// full-image tile; chunks are merged in order, so the image does not depend on the threads.
+/// Light paths per chunk of the light tracer: a chunk's splat list stays a few MB.
+const LIGHT_CHUNK: u64 = 4096;
+
+/// Light tracing: `spp × pixels` paths in chunks of [`LIGHT_CHUNK`] paths, each recording its
+/// splats in a [`crate::film::SplatList`] (memory for its splats, not a full-image tile, so
+/// there can be many chunks and every thread stays busy). Chunks are traced in batches of a few
+/// per thread and their lists applied to the film in chunk order, so the image does not depend
+/// on the number of threads.
 #[allow(clippy::too_many_arguments)]
 fn render_light(
     opts: &RenderOptions,
@@ -291,7 +297,6 @@ fn render_light(
     progress: &(dyn Fn(u64, u64) + Sync),
     start: Instant,
 ) -> Result<(Film, RenderStats), RenderError> {
-    const CHUNKS: u64 = 8;
     let (w, h) = (film.width, film.height);
     let pixels = w as u64 * h as u64;
     let total = pixels * opts.spp as u64;
@@ -299,50 +304,58 @@ fn render_light(
     let filter = film.filter.clone();
     let done = AtomicU64::new(0);
     let (nan, inf) = (AtomicU64::new(0), AtomicU64::new(0));
-    let tiles: Vec<(crate::film::Tile, u64)> = pool.install(|| {
-        (0..CHUNKS)
-            .into_par_iter()
-            .map(|c| {
-                let mut tile = film.tile(0, 0, w, h);
-                let (lo, hi) = (total * c / CHUNKS, total * (c + 1) / CHUNKS);
-                let mut traced = 0;
-                for i in lo..hi {
-                    if (i - lo) % 4096 == 0 {
-                        if cancel.load(Ordering::Relaxed) {
-                            break;
-                        }
-                        let n = done.fetch_add(4096.min(hi - i), Ordering::Relaxed);
-                        progress(n, total);
-                    }
-                    let px = i % pixels;
-                    let mut s = Sampler::new(
-                        opts.seed ^ 0x4c49_4748,
-                        (px % w as u64) as u32,
-                        (px / w as u64) as u32,
-                        (i / pixels) as u32,
-                    );
-                    let mut wl: SampledWavelengths<N_WAVELENGTHS> = lambda.sample(s.get_1d());
-                    crate::integrator::light::trace(
-                        integrator,
-                        filter.radius,
-                        &mut wl,
-                        &mut s,
-                        &mut |raster, wl, l| {
-                            if !splat_filtered(&mut tile, &filter, raster, wl, &l, bins.as_ref()) {
-                                count_dropped(wl, &l, &nan, &inf);
-                            }
-                        },
-                    );
-                    traced += 1;
-                }
-                (tile, traced)
-            })
-            .collect()
-    });
+    let chunks = total.div_ceil(LIGHT_CHUNK);
+    // lists alive at once: two per thread (a few MB each), whatever the image size
+    let batch = 2 * pool.current_num_threads().max(1) as u64;
     let mut paths = 0;
-    for (tile, traced) in &tiles {
-        film.merge(tile);
-        paths += traced;
+    let mut first = 0;
+    while first < chunks && !cancel.load(Ordering::Relaxed) {
+        let last = (first + batch).min(chunks);
+        let lists: Vec<(crate::film::SplatList, u64)> = pool.install(|| {
+            (first..last)
+                .into_par_iter()
+                .map(|c| {
+                    let mut list = crate::film::SplatList::new(w);
+                    let (lo, hi) = (c * LIGHT_CHUNK, ((c + 1) * LIGHT_CHUNK).min(total));
+                    if cancel.load(Ordering::Relaxed) {
+                        return (list, 0);
+                    }
+                    let n = done.fetch_add(hi - lo, Ordering::Relaxed);
+                    progress(n, total);
+                    let mut traced = 0;
+                    for i in lo..hi {
+                        let px = i % pixels;
+                        let mut s = Sampler::new(
+                            opts.seed ^ 0x4c49_4748,
+                            (px % w as u64) as u32,
+                            (px / w as u64) as u32,
+                            (i / pixels) as u32,
+                        );
+                        let mut wl: SampledWavelengths<N_WAVELENGTHS> = lambda.sample(s.get_1d());
+                        crate::integrator::light::trace(
+                            integrator,
+                            filter.radius,
+                            &mut wl,
+                            &mut s,
+                            &mut |raster, wl, l| {
+                                let b = bins.as_ref();
+                                let size = (w, h);
+                                if !splat_filtered(&mut list, size, &filter, raster, wl, &l, b) {
+                                    count_dropped(wl, &l, &nan, &inf);
+                                }
+                            },
+                        );
+                        traced += 1;
+                    }
+                    (list, traced)
+                })
+                .collect()
+        });
+        for (list, traced) in &lists {
+            film.apply(list);
+            paths += traced;
+        }
+        first = last;
     }
     film.set_path_count(paths.max(1));
     // Lights at infinity seen directly (sky, sun disk): camera rays with the filter's offsets,
