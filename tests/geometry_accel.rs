@@ -118,6 +118,13 @@ fn closest_hit_matches_brute_force_when_built_in_parts() {
     closest_hit_matches_brute_force_with(|s| Accel::build_in_parts(s, 8));
 }
 
+/// The 4-wide tree (CPUs without AVX; the default above is 8-wide where AVX exists).
+#[test]
+fn closest_hit_matches_brute_force_four_wide() {
+    closest_hit_matches_brute_force_with(|s| Accel::build_with(s, 1 << 19, 4));
+    closest_hit_matches_brute_force_with(|s| Accel::build_with(s, 8, 4));
+}
+
 fn closest_hit_matches_brute_force_with(build: impl Fn(&[Shape]) -> Accel) {
     let mut rng = Rng::new(2024);
     let shapes = mixed_scene(&mut rng);

@@ -12,9 +12,9 @@
 //! padded by 2⁻²⁰ of its largest coordinate so that rounding in the slab test cannot cull a
 //! primitive whose own (watertight, conservative) test would report a hit.
 
-use super::bvh4::{BinaryNode, Bvh4};
 use super::ray::Ray;
 use super::shape::{Intersection, PrimHit, Shape, WatertightRay, intersect_triangle_with};
+use super::wide::{BinaryNode, WideBvh};
 use glam::Vec3;
 use obvhs::BvhBuildParams;
 use obvhs::aabb::Aabb;
@@ -38,8 +38,9 @@ pub struct Accel {
     /// builder's binary tree itself is dropped once collapsed (it is the largest allocation of
     /// a build: about 64 bytes per triangle).
     root_bounds: Option<(Vec3, Vec3)>,
-    /// The builder's binary tree collapsed to 4-wide nodes (see `bvh4.rs`), which queries traverse.
-    wide: Bvh4,
+    /// The builder's binary tree collapsed to 8- or 4-wide nodes (see `wide.rs`), which queries
+    /// traverse.
+    wide: WideBvh,
     /// Indexed by the BVH's primitive ids (already permuted, so no indirection at query time).
     prims: Vec<PrimRef>,
     /// Triangle corners (m) by BVH primitive id, copied from the meshes so that a leaf test reads
@@ -52,7 +53,8 @@ impl std::fmt::Debug for Accel {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Accel")
             .field("primitives", &self.prims.len())
-            .field("nodes4", &self.wide.node_count())
+            .field("width", &self.wide.width())
+            .field("nodes", &self.wide.node_count())
             .finish()
     }
 }
@@ -61,13 +63,20 @@ impl Accel {
     /// Builds one BVH over all primitives of all `shapes` (fine with none). Primitives with
     /// non-finite or empty bounds are left out.
     pub fn build(shapes: &[Shape]) -> Accel {
-        Self::build_in_parts(shapes, PART)
+        Self::build_with(shapes, PART, 8)
     }
 
     /// [`Accel::build`] with parts of `part` primitives when there are more than 2·`part` (see
     /// [`build_binary`]); exposed so that tests can exercise the parts on small scenes.
     #[doc(hidden)]
     pub fn build_in_parts(shapes: &[Shape], part: usize) -> Accel {
+        Self::build_with(shapes, part, 8)
+    }
+
+    /// [`Accel::build`] with parts of `part` primitives and nodes at most `max_width` wide (8
+    /// where the CPU has AVX, else 4); exposed so that tests can exercise both widths.
+    #[doc(hidden)]
+    pub fn build_with(shapes: &[Shape], part: usize, max_width: usize) -> Accel {
         let total: usize = shapes.iter().map(|s| s.primitive_count()).sum();
         let mut refs = Vec::with_capacity(total);
         let mut boxes = Vec::with_capacity(total);
@@ -88,7 +97,7 @@ impl Accel {
         if refs.is_empty() {
             return Accel {
                 root_bounds: None,
-                wide: Bvh4::default(),
+                wide: WideBvh::default(),
                 prims: Vec::new(),
                 tris: Vec::new(),
             };
@@ -106,7 +115,7 @@ impl Accel {
             .collect();
         let root_bounds = binary.first().map(|n| (n.min, n.max));
         Accel {
-            wide: Bvh4::collapse(&binary),
+            wide: WideBvh::collapse(&binary, max_width),
             root_bounds,
             prims,
             tris,

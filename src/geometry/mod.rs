@@ -10,7 +10,6 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 pub mod accel;
-mod bvh4;
 pub mod camera;
 pub mod error;
 pub mod float;
@@ -18,6 +17,7 @@ pub mod frame;
 pub mod ray;
 pub mod shape;
 pub mod transform;
+mod wide;
 
 pub use accel::Accel;
 pub use camera::{Camera, FovAxis};

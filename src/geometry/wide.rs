@@ -1,0 +1,539 @@
+//! Wide BVHs: the binary tree from the builder (see `accel.rs`) collapsed so that each node
+//! holds the boxes of up to W children side by side (structure of arrays), tested together:
+//! W = 8 with AVX where the CPU has it (checked at run time), W = 4 with SSE otherwise (SSE2 is
+//! part of x86_64); other targets run the same code with scalar lanes.
+//!
+//! Why. A binary tree visits more nodes than a wide one and tests one box per memory load; on
+//! a large mesh traversal waits mostly on node loads, and an 8-wide tree has about two thirds
+//! of a 4-wide tree's levels. Wald et al., "Getting rid of packets", 2008; Embree's BVH4/BVH8.
+//!
+//! Robustness is the binary tree's: the same (padded) boxes, the same slab test as obvhs's
+//! `Aabb::intersect_ray` with exact reciprocals from the caller (±f32::MAX for zero components,
+//! so no 0·∞ NaN), and a box is entered when its entry distance is below the closest hit so far.
+//! Empty lanes are masked by their child code, never by a box that might compare true.
+//!
+//! Leaves are ranges `first..first + count` of primitive ids in the builder's order.
+
+use std::mem::MaybeUninit;
+
+use glam::Vec3;
+
+/// A node of the binary input tree: `count == 0` for an inner node whose children are
+/// `first` and `first + 1`; otherwise a leaf of primitives `first..first + count`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BinaryNode {
+    pub min: Vec3,
+    pub max: Vec3,
+    pub count: u32,
+    pub first: u32,
+}
+
+/// Child code of an unused lane.
+const EMPTY: u32 = u32::MAX;
+
+/// W children: boxes by axis and lane, and what each lane holds.
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+struct Node<const W: usize> {
+    /// Box minima, `lo[axis][lane]`, m.
+    lo: [[f32; W]; 3],
+    /// Box maxima, `hi[axis][lane]`, m.
+    hi: [[f32; W]; 3],
+    /// Inner child: node index; leaf: first primitive id; [`EMPTY`] if unused.
+    child: [u32; W],
+    /// 0 for an inner child, else the leaf's primitive count.
+    count: [u32; W],
+}
+
+impl<const W: usize> Node<W> {
+    const UNUSED: Node<W> = Node {
+        lo: [[0.0; W]; 3],
+        hi: [[0.0; W]; 3],
+        child: [EMPTY; W],
+        count: [0; W],
+    };
+}
+
+/// A traversal stack entry: (child code, leaf count or 0 for a node, entry distance in m).
+type Entry = (u32, u32, f32);
+
+/// Stack entries before traversal needs the heap; deeper trees (more than about 35 levels of
+/// 8-wide nodes, only from degenerate input) use a `Vec` per query.
+const STACK: usize = 256;
+
+/// A W-wide tree. Empty when built from no nodes.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Wide<const W: usize> {
+    nodes: Vec<Node<W>>,
+    /// Deepest chain of nodes, for the traversal stack size.
+    depth: usize,
+}
+
+/// The tree queries traverse: 8-wide where the CPU has AVX, else 4-wide.
+#[derive(Clone, Debug)]
+pub(crate) enum WideBvh {
+    Four(Wide<4>),
+    Eight(Wide<8>),
+}
+
+impl Default for WideBvh {
+    fn default() -> Self {
+        WideBvh::Four(Wide::default())
+    }
+}
+
+impl WideBvh {
+    /// The widest tree this CPU can traverse (`max_width` 8 or 4 caps it, for tests).
+    pub(crate) fn collapse(bin: &[BinaryNode], max_width: usize) -> WideBvh {
+        if max_width >= 8 && avx() {
+            WideBvh::Eight(Wide::collapse(bin))
+        } else {
+            WideBvh::Four(Wide::collapse(bin))
+        }
+    }
+
+    /// Number of nodes.
+    pub(crate) fn node_count(&self) -> usize {
+        match self {
+            WideBvh::Four(t) => t.nodes.len(),
+            WideBvh::Eight(t) => t.nodes.len(),
+        }
+    }
+
+    /// Lanes per node.
+    pub(crate) fn width(&self) -> usize {
+        match self {
+            WideBvh::Four(_) => 4,
+            WideBvh::Eight(_) => 8,
+        }
+    }
+
+    /// See [`Wide::traverse`].
+    #[inline]
+    pub(crate) fn traverse(
+        &self,
+        o: Vec3,
+        inv_d: Vec3,
+        t_max: f32,
+        any_hit: bool,
+        leaf: impl FnMut(usize, f32) -> f32,
+    ) -> f32 {
+        match self {
+            WideBvh::Four(t) => t.traverse(o, inv_d, t_max, any_hit, leaf),
+            WideBvh::Eight(t) => t.traverse(o, inv_d, t_max, any_hit, leaf),
+        }
+    }
+}
+
+/// Whether the CPU has AVX (cached by the standard library after the first call).
+#[inline]
+fn avx() -> bool {
+    #[cfg(target_arch = "x86_64")]
+    {
+        std::arch::is_x86_feature_detected!("avx")
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        false
+    }
+}
+
+impl<const W: usize> Wide<W> {
+    /// Collapses a binary tree (root at index 0) into W-wide nodes: each node takes its two
+    /// children and keeps opening the inner child of largest surface area until it has W.
+    fn collapse(bin: &[BinaryNode]) -> Self {
+        if bin.is_empty() {
+            return Self::default();
+        }
+        let area = |n: &BinaryNode| {
+            let e = (n.max - n.min).max(Vec3::ZERO);
+            e.x * e.y + e.y * e.z + e.z * e.x
+        };
+        let mut nodes = vec![Node::<W>::UNUSED];
+        let mut depth = 1;
+        // (binary node, wide node to fill, its depth)
+        let mut work = vec![(0usize, 0usize, 1usize)];
+        while let Some((b, out, d)) = work.pop() {
+            depth = depth.max(d);
+            let root = &bin[b];
+            let mut kids: Vec<usize> = if root.count > 0 {
+                vec![b]
+            } else {
+                vec![root.first as usize, root.first as usize + 1]
+            };
+            while kids.len() < W {
+                let open = kids
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, k)| bin[**k].count == 0)
+                    .max_by(|a, b| area(&bin[*a.1]).total_cmp(&area(&bin[*b.1])))
+                    .map(|(i, _)| i);
+                let Some(i) = open else { break };
+                let k = kids.swap_remove(i);
+                kids.push(bin[k].first as usize);
+                kids.push(bin[k].first as usize + 1);
+            }
+            for (lane, &k) in kids.iter().enumerate() {
+                let n = bin[k];
+                for a in 0..3 {
+                    nodes[out].lo[a][lane] = n.min[a];
+                    nodes[out].hi[a][lane] = n.max[a];
+                }
+                if n.count > 0 {
+                    nodes[out].child[lane] = n.first;
+                    nodes[out].count[lane] = n.count;
+                } else {
+                    let idx = nodes.len();
+                    nodes.push(Node::UNUSED);
+                    nodes[out].child[lane] = idx as u32;
+                    work.push((k, idx, d + 1));
+                }
+            }
+        }
+        Self { nodes, depth }
+    }
+
+    /// Visits the leaves whose boxes the ray `o + t·d` (with `inv_d` = 1/d, exact, ±f32::MAX
+    /// for zero components) enters at t < the current limit, nearest box first. `leaf(id,
+    /// t_max)` tests primitive `id` and returns the hit distance or ∞; a distance below the
+    /// limit becomes the new limit. With `any_hit`, returns at the first hit. Returns the final
+    /// limit (`t_max` if nothing was hit).
+    #[inline]
+    pub(crate) fn traverse(
+        &self,
+        o: Vec3,
+        inv_d: Vec3,
+        t_max: f32,
+        any_hit: bool,
+        leaf: impl FnMut(usize, f32) -> f32,
+    ) -> f32 {
+        if self.nodes.is_empty() {
+            return t_max;
+        }
+        let need = (W - 1) * self.depth + W;
+        if need <= STACK {
+            // Not initialised: a 3 KiB memset per ray cost more than the whole traversal.
+            let mut stack = [const { MaybeUninit::<Entry>::uninit() }; STACK];
+            self.dispatch(&mut stack, o, inv_d, t_max, any_hit, leaf)
+        } else {
+            let mut stack = vec![MaybeUninit::<Entry>::uninit(); need];
+            self.dispatch(&mut stack, o, inv_d, t_max, any_hit, leaf)
+        }
+    }
+
+    /// The traversal compiled for AVX when the tree is 8-wide (only built when the CPU has
+    /// it, see [`WideBvh::collapse`]), so that the 8-lane slab test inlines.
+    #[inline(always)]
+    fn dispatch(
+        &self,
+        stack: &mut [MaybeUninit<Entry>],
+        o: Vec3,
+        inv_d: Vec3,
+        t_max: f32,
+        any_hit: bool,
+        leaf: impl FnMut(usize, f32) -> f32,
+    ) -> f32 {
+        #[cfg(target_arch = "x86_64")]
+        if W == 8 {
+            // SAFETY: 8-wide trees exist only when `avx()` is true (WideBvh::collapse).
+            return unsafe { traverse_avx(self, stack, o, inv_d, t_max, any_hit, leaf) };
+        }
+        self.traverse_with(stack, o, inv_d, t_max, any_hit, leaf)
+    }
+
+    #[inline(always)]
+    fn traverse_with(
+        &self,
+        stack: &mut [MaybeUninit<Entry>],
+        o: Vec3,
+        inv_d: Vec3,
+        mut t_max: f32,
+        any_hit: bool,
+        mut leaf: impl FnMut(usize, f32) -> f32,
+    ) -> f32 {
+        stack[0] = MaybeUninit::new((0, 0, 0.0));
+        let mut sp = 1;
+        let (o, inv) = (o.to_array(), inv_d.to_array());
+        while sp > 0 {
+            sp -= 1;
+            // SAFETY: entries 0..sp were all written (each push writes stack[sp] before sp
+            // grows), so stack[sp] is initialised.
+            let (code, count, near) = unsafe { stack[sp].assume_init() };
+            if near >= t_max {
+                continue;
+            }
+            if count > 0 {
+                for id in code..code + count {
+                    let t = leaf(id as usize, t_max);
+                    if t < t_max {
+                        t_max = t;
+                        if any_hit {
+                            return t_max;
+                        }
+                    }
+                }
+                continue;
+            }
+            let n = &self.nodes[code as usize];
+            let (mask, t_near) = slab(n, o, inv, t_max);
+            // Push the lanes hit, farthest first, so the nearest is visited next.
+            let mut hits = [(0f32, 0usize); W];
+            let mut nh = 0;
+            let mut m = mask;
+            while m != 0 {
+                let l = m.trailing_zeros() as usize;
+                m &= m - 1;
+                if n.child[l] != EMPTY {
+                    hits[nh] = (t_near[l], l);
+                    nh += 1;
+                }
+            }
+            let hits = &mut hits[..nh];
+            // farthest first, by insertion (at most W entries; the distances are not NaN,
+            // since the reciprocals are finite and a NaN entry fails the tests above)
+            for a in 1..nh {
+                let mut b = a;
+                while b > 0 && hits[b - 1].0 < hits[b].0 {
+                    hits.swap(b - 1, b);
+                    b -= 1;
+                }
+            }
+            for &(tn, l) in hits.iter() {
+                stack[sp] = MaybeUninit::new((n.child[l], n.count[l], tn));
+                sp += 1;
+            }
+        }
+        t_max
+    }
+}
+
+/// [`Wide::traverse_with`] compiled with AVX enabled.
+///
+/// # Safety
+/// The CPU must have AVX.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+unsafe fn traverse_avx<const W: usize>(
+    t: &Wide<W>,
+    stack: &mut [MaybeUninit<Entry>],
+    o: Vec3,
+    inv_d: Vec3,
+    t_max: f32,
+    any_hit: bool,
+    leaf: impl FnMut(usize, f32) -> f32,
+) -> f32 {
+    t.traverse_with(stack, o, inv_d, t_max, any_hit, leaf)
+}
+
+/// The slab test of a node's W boxes against the ray `o + t·d` (`inv` = 1/d, finite): bit l of
+/// the mask is set when box l is entered at some t in [0, `t_max`), i.e. t_far ≥ t_near,
+/// t_far ≥ 0 and t_near < `t_max`; also returns each box's entry distance t_near. Per axis
+/// t0 = (lo − o)·inv and t1 = (hi − o)·inv, rounded as in obvhs's `Aabb::intersect_ray` (the
+/// robustness argument in `accel.rs` rests on these roundings). No NaN can arise: boxes, origin
+/// and reciprocals are finite. Every lane width computes the same roundings.
+#[inline(always)]
+fn slab<const W: usize>(n: &Node<W>, o: [f32; 3], inv: [f32; 3], t_max: f32) -> (u32, [f32; W]) {
+    let mut t_near = [0f32; W];
+    #[cfg(target_arch = "x86_64")]
+    {
+        use std::arch::x86_64::*;
+        if W == 4 {
+            // SSE2 is part of x86_64: four boxes per instruction.
+            // SAFETY: SSE2 is always present on x86_64; each row is W = 4 f32 (unaligned loads).
+            unsafe {
+                let axis = |a: usize| {
+                    let (oa, ia) = (_mm_set1_ps(o[a]), _mm_set1_ps(inv[a]));
+                    let t0 = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(n.lo[a].as_ptr()), oa), ia);
+                    let t1 = _mm_mul_ps(_mm_sub_ps(_mm_loadu_ps(n.hi[a].as_ptr()), oa), ia);
+                    (_mm_min_ps(t0, t1), _mm_max_ps(t0, t1))
+                };
+                let (nx, fx) = axis(0);
+                let (ny, fy) = axis(1);
+                let (nz, fz) = axis(2);
+                let near = _mm_max_ps(_mm_max_ps(nx, ny), nz);
+                let far = _mm_min_ps(_mm_min_ps(fx, fy), fz);
+                let hit = _mm_and_ps(
+                    _mm_and_ps(_mm_cmpge_ps(far, near), _mm_cmpge_ps(far, _mm_setzero_ps())),
+                    _mm_cmplt_ps(near, _mm_set1_ps(t_max)),
+                );
+                _mm_storeu_ps(t_near.as_mut_ptr(), near);
+                return (_mm_movemask_ps(hit) as u32, t_near);
+            }
+        }
+        if W == 8 {
+            // SAFETY: 8-wide nodes exist only when the CPU has AVX (WideBvh::collapse), and
+            // this runs inside `traverse_avx`; each row is W = 8 f32 (unaligned loads).
+            unsafe {
+                let mask = slab8_avx(
+                    n.lo.as_ptr().cast(),
+                    n.hi.as_ptr().cast(),
+                    o,
+                    inv,
+                    t_max,
+                    t_near.as_mut_ptr(),
+                );
+                return (mask, t_near);
+            }
+        }
+    }
+    let mut mask = 0;
+    for (l, tn) in t_near.iter_mut().enumerate() {
+        let mut lo = f32::NEG_INFINITY;
+        let mut hi = f32::INFINITY;
+        for a in 0..3 {
+            let t0 = (n.lo[a][l] - o[a]) * inv[a];
+            let t1 = (n.hi[a][l] - o[a]) * inv[a];
+            lo = lo.max(t0.min(t1));
+            hi = hi.min(t0.max(t1));
+        }
+        *tn = lo;
+        if hi >= lo && hi >= 0.0 && lo < t_max {
+            mask |= 1 << l;
+        }
+    }
+    (mask, t_near)
+}
+
+/// The 8-lane slab test on rows of 8 f32 (`lo`, `hi`: three rows each, by axis); writes the
+/// entry distances to `t_near` (8 f32) and returns the hit mask.
+///
+/// # Safety
+/// The CPU must have AVX; `lo` and `hi` must point to 24 readable f32, `t_near` to 8 writable.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx")]
+#[inline]
+unsafe fn slab8_avx(
+    lo: *const f32,
+    hi: *const f32,
+    o: [f32; 3],
+    inv: [f32; 3],
+    t_max: f32,
+    t_near: *mut f32,
+) -> u32 {
+    use std::arch::x86_64::*;
+    let axis = |a: usize| {
+        let (oa, ia) = (_mm256_set1_ps(o[a]), _mm256_set1_ps(inv[a]));
+        // SAFETY: rows a of lo and hi are within the 24 f32 the caller guarantees.
+        let (l, h) = unsafe {
+            (
+                _mm256_loadu_ps(lo.add(8 * a)),
+                _mm256_loadu_ps(hi.add(8 * a)),
+            )
+        };
+        let t0 = _mm256_mul_ps(_mm256_sub_ps(l, oa), ia);
+        let t1 = _mm256_mul_ps(_mm256_sub_ps(h, oa), ia);
+        (_mm256_min_ps(t0, t1), _mm256_max_ps(t0, t1))
+    };
+    let (nx, fx) = axis(0);
+    let (ny, fy) = axis(1);
+    let (nz, fz) = axis(2);
+    let near = _mm256_max_ps(_mm256_max_ps(nx, ny), nz);
+    let far = _mm256_min_ps(_mm256_min_ps(fx, fy), fz);
+    let hit = _mm256_and_ps(
+        _mm256_and_ps(
+            _mm256_cmp_ps::<_CMP_GE_OQ>(far, near),
+            _mm256_cmp_ps::<_CMP_GE_OQ>(far, _mm256_setzero_ps()),
+        ),
+        _mm256_cmp_ps::<_CMP_LT_OQ>(near, _mm256_set1_ps(t_max)),
+    );
+    // SAFETY: the caller guarantees 8 writable f32.
+    unsafe { _mm256_storeu_ps(t_near, near) };
+    _mm256_movemask_ps(hit) as u32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A binary tree over unit boxes at x = 0, 2, 4, …: leaves of one primitive each.
+    fn chain(n: usize) -> Vec<BinaryNode> {
+        // build a balanced tree recursively into a flat array (children adjacent)
+        fn build(lo: usize, hi: usize, out: &mut Vec<BinaryNode>, at: usize) {
+            let min = Vec3::new(2.0 * lo as f32, 0.0, 0.0);
+            let max = Vec3::new(2.0 * (hi - 1) as f32 + 1.0, 1.0, 1.0);
+            if hi - lo == 1 {
+                out[at] = BinaryNode {
+                    min,
+                    max,
+                    count: 1,
+                    first: lo as u32,
+                };
+                return;
+            }
+            let first = out.len();
+            out.push(out[at]);
+            out.push(out[at]);
+            out[at] = BinaryNode {
+                min,
+                max,
+                count: 0,
+                first: first as u32,
+            };
+            let mid = (lo + hi) / 2;
+            build(lo, mid, out, first);
+            build(mid, hi, out, first + 1);
+        }
+        let mut out = vec![
+            BinaryNode {
+                min: Vec3::ZERO,
+                max: Vec3::ZERO,
+                count: 0,
+                first: 0
+            };
+            1
+        ];
+        build(0, n, &mut out, 0);
+        out
+    }
+
+    #[test]
+    fn visits_every_leaf_on_the_ray_nearest_first() {
+        for (n, width) in [1, 2, 3, 5, 17, 64, 300]
+            .into_iter()
+            .flat_map(|n| [(n, 4), (n, 8)])
+        {
+            let bvh = WideBvh::collapse(&chain(n), width);
+            // a ray along +x through all boxes: the first box (id 0) is the closest hit
+            let mut seen = Vec::new();
+            let t = bvh.traverse(
+                Vec3::new(-1.0, 0.5, 0.5),
+                Vec3::new(1.0, f32::MAX, f32::MAX),
+                f32::INFINITY,
+                false,
+                |id, _| {
+                    seen.push(id);
+                    1.0 + 2.0 * id as f32
+                },
+            );
+            assert_eq!(t, 1.0, "n = {n}");
+            assert_eq!(seen.first(), Some(&0), "n = {n}: nearest leaf first");
+            // a ray missing everything visits nothing
+            let mut none = 0;
+            bvh.traverse(
+                Vec3::new(-1.0, 5.0, 0.5),
+                Vec3::new(1.0, f32::MAX, f32::MAX),
+                f32::INFINITY,
+                false,
+                |_, _| {
+                    none += 1;
+                    f32::INFINITY
+                },
+            );
+            assert_eq!(none, 0);
+            // without hits, every leaf on the ray is visited exactly once
+            let mut all = Vec::new();
+            bvh.traverse(
+                Vec3::new(-1.0, 0.5, 0.5),
+                Vec3::new(1.0, f32::MAX, f32::MAX),
+                f32::INFINITY,
+                false,
+                |id, _| {
+                    all.push(id);
+                    f32::INFINITY
+                },
+            );
+            all.sort_unstable();
+            assert_eq!(all, (0..n).collect::<Vec<_>>());
+        }
+    }
+}
