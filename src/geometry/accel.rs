@@ -38,7 +38,7 @@ pub struct Accel {
     /// builder's binary tree itself is dropped once collapsed (it is the largest allocation of
     /// a build: about 64 bytes per triangle).
     root_bounds: Option<(Vec3, Vec3)>,
-    /// The builder's binary tree collapsed to 8- or 4-wide nodes (see `wide.rs`), which queries
+    /// The builder's binary tree collapsed to 8- or 4-wide nodes (see `wide/`), which queries
     /// traverse.
     wide: WideBvh,
     /// Indexed by the BVH's primitive ids (already permuted, so no indirection at query time).
