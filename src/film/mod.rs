@@ -54,6 +54,29 @@ pub struct PixelSums {
     pub count: u64,
 }
 
+impl PixelSums {
+    /// Adds one sample's sums (XYZ, band radiance, and (bin, value) pairs into `spectral`,
+    /// this pixel's bins) times the filter weight `wgt`, without counting a sample: the one
+    /// accumulation step of tiles and of applied splat lists.
+    #[inline]
+    fn add_weighted(
+        &mut self,
+        spectral: &mut [f64],
+        xyz: [f64; 3],
+        band: f64,
+        bins: &[(usize, f64)],
+        wgt: f64,
+    ) {
+        for (a, c) in self.xyz.iter_mut().zip(xyz) {
+            *a += c * wgt;
+        }
+        self.band += band * wgt;
+        for &(k, v) in bins {
+            spectral[k] += v * wgt;
+        }
+    }
+}
+
 /// Spectral bins of the film's wavelength range.
 #[derive(Clone, Debug)]
 pub struct Bins {
@@ -153,7 +176,9 @@ impl Tile {
     ) -> bool {
         self.splat_weighted(std::iter::once((x, y, 1.0)), w, l, bins)
     }
+}
 
+impl Splat for Tile {
     /// Adds one sample's estimate (the module's estimator, from `w` and `l`) to several pixels,
     /// pixel (x, y) with weight `wgt` for each `(x, y, wgt)` of `pixels` (image coordinates
     /// inside the tile), without counting samples; the estimate and its colour-matching
@@ -161,43 +186,35 @@ impl Tile {
     /// Returns false, adding nothing, for NaN or infinite values at a live wavelength
     /// ([`non_finite`]).
     #[inline]
-    pub fn splat_weighted<const N: usize>(
+    fn splat_weighted<const N: usize>(
         &mut self,
         pixels: impl Iterator<Item = (u32, u32, f32)>,
         w: &SampledWavelengths<N>,
         l: &SampledSpectrum<N>,
         bins: Option<&Bins>,
     ) -> bool {
-        let Some(SampleSums { xyz, band, per_bin }) = SampleSums::new(w, l, bins) else {
+        let Some(s) = SampleSums::new(w, l, bins) else {
             return false;
         };
+        let nb = self.nbins;
         for (x, y, wgt) in pixels {
-            let wgt = wgt as f64;
             let i = ((y - self.y0) * self.width + (x - self.x0)) as usize;
-            let p = &mut self.pixels[i];
-            for (a, c) in p.xyz.iter_mut().zip(xyz) {
-                *a += c * wgt;
-            }
-            p.band += band * wgt;
-            if bins.is_some() {
-                for &(k, v) in &per_bin {
-                    if k != usize::MAX {
-                        self.spectral[i * self.nbins + k] += v * wgt;
-                    }
-                }
-            }
+            let spectral = &mut self.spectral[i * nb..(i + 1) * nb];
+            self.pixels[i].add_weighted(spectral, s.xyz, s.band, s.bins(), wgt as f64);
         }
         true
     }
 }
 
 /// One sample's contribution to a pixel before its filter weight: XYZ (Y in cd/m²), band
-/// radiance (W·m⁻²·sr⁻¹) and, per wavelength, its spectral bin and value per nm (`usize::MAX`
-/// for no bin), from the module's estimator (1/N)·Σ L(λⱼ)/p(λⱼ)·….
+/// radiance (W·m⁻²·sr⁻¹) and, per live wavelength inside a spectral bin, that bin and the
+/// value per nm (W·m⁻²·sr⁻¹·nm⁻¹), from the module's estimator (1/N)·Σ L(λⱼ)/p(λⱼ)·….
 pub(crate) struct SampleSums<const N: usize> {
     pub xyz: [f64; 3],
     pub band: f64,
-    pub per_bin: [(usize, f64); N],
+    /// (bin, value per nm); the first `nbins` entries are used.
+    per_bin: [(usize, f64); N],
+    nbins: usize,
 }
 
 impl<const N: usize> SampleSums<N> {
@@ -213,7 +230,7 @@ impl<const N: usize> SampleSums<N> {
         }
         let inv_n = 1.0 / N as f64;
         let (mut xyz, mut band) = ([0.0f64; 3], 0.0f64);
-        let mut per_bin = [(usize::MAX, 0.0f64); N];
+        let (mut per_bin, mut nbins) = ([(0, 0.0f64); N], 0);
         for j in 0..N {
             if w.pdf[j] == 0.0 {
                 continue;
@@ -227,10 +244,22 @@ impl<const N: usize> SampleSums<N> {
             if let Some(b) = bins
                 && let Some(k) = b.index(w.lambda[j])
             {
-                per_bin[j] = (k, v / b.width() as f64);
+                per_bin[nbins] = (k, v / b.width() as f64);
+                nbins += 1;
             }
         }
-        Some(Self { xyz, band, per_bin })
+        Some(Self {
+            xyz,
+            band,
+            per_bin,
+            nbins,
+        })
+    }
+
+    /// (bin, value per nm) of each live wavelength inside a spectral bin.
+    #[inline]
+    pub fn bins(&self) -> &[(usize, f64)] {
+        &self.per_bin[..self.nbins]
     }
 }
 

@@ -4,7 +4,7 @@
 //! which keeps every thread busy; applying the chunks' lists in chunk order makes the image
 //! independent of which thread traced which chunk.
 
-use super::{Bins, Film, SampleSums, Tile};
+use super::{Bins, Film, SampleSums};
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
 /// Where a sample's filtered splat goes: a tile (summed at once) or a [`SplatList`] (recorded).
@@ -19,19 +19,6 @@ pub trait Splat {
         l: &SampledSpectrum<N>,
         bins: Option<&Bins>,
     ) -> bool;
-}
-
-impl Splat for Tile {
-    #[inline]
-    fn splat_weighted<const N: usize>(
-        &mut self,
-        pixels: impl Iterator<Item = (u32, u32, f32)>,
-        w: &SampledWavelengths<N>,
-        l: &SampledSpectrum<N>,
-        bins: Option<&Bins>,
-    ) -> bool {
-        Tile::splat_weighted(self, pixels, w, l, bins)
-    }
 }
 
 /// One recorded sample: its sums and where its pixels and bins end in the list's arrays.
@@ -51,7 +38,7 @@ pub struct SplatList {
     /// (pixel index y·width + x, filter weight) of every splat, by sample.
     pixels: Vec<(u32, f32)>,
     /// (spectral bin, value per nm) of every sample that has bins.
-    bins: Vec<(u32, f64)>,
+    bins: Vec<(usize, f64)>,
 }
 
 impl SplatList {
@@ -90,14 +77,7 @@ impl Splat for SplatList {
         let width = self.width;
         self.pixels
             .extend(pixels.map(|(x, y, wgt)| (y * width + x, wgt)));
-        if bins.is_some() {
-            self.bins.extend(
-                s.per_bin
-                    .iter()
-                    .filter(|(k, _)| *k != usize::MAX)
-                    .map(|&(k, v)| (k as u32, v)),
-            );
-        }
+        self.bins.extend_from_slice(s.bins());
         self.samples.push(Recorded {
             xyz: s.xyz,
             band: s.band,
@@ -109,8 +89,8 @@ impl Splat for SplatList {
 }
 
 impl Film {
-    /// Adds every splat of `list`, in its order, with the arithmetic of
-    /// [`Tile::splat_weighted`] (sums × filter weight, in f64), without counting samples.
+    /// Adds every splat of `list`, in its order, as a tile adds splats (sums × filter weight,
+    /// in f64), without counting samples.
     pub fn apply(&mut self, list: &SplatList) {
         debug_assert_eq!(list.width, self.width);
         let nb = self.bins.as_ref().map_or(0, |b| b.count);
@@ -118,15 +98,9 @@ impl Film {
         for s in &list.samples {
             let (p1, b1) = (s.pixels_end as usize, s.bins_end as usize);
             for &(i, wgt) in &list.pixels[p0..p1] {
-                let (i, wgt) = (i as usize, wgt as f64);
-                let p = &mut self.sums[i];
-                for (a, c) in p.xyz.iter_mut().zip(s.xyz) {
-                    *a += c * wgt;
-                }
-                p.band += s.band * wgt;
-                for &(k, v) in &list.bins[b0..b1] {
-                    self.spectral[i * nb + k as usize] += v * wgt;
-                }
+                let i = i as usize;
+                let spectral = &mut self.spectral[i * nb..(i + 1) * nb];
+                self.sums[i].add_weighted(spectral, s.xyz, s.band, &list.bins[b0..b1], wgt as f64);
             }
             (p0, b0) = (p1, b1);
         }
