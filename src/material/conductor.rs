@@ -150,6 +150,13 @@ impl RoughConductor {
         let Some(wm) = Self::half(wo, wi) else {
             return 0.0;
         };
+        self.pdf_half(wo, wm)
+    }
+
+    /// [`RoughConductor::pdf`] for the half vector `wm` of (wo, wi): the density of sampling wm
+    /// times the reflection Jacobian 1/(4 wo·wm), sr⁻¹.
+    #[inline]
+    fn pdf_half(&self, wo: Vec3, wm: Vec3) -> f32 {
         self.microfacet().normal_pdf(wo, wm) / (4.0 * wo.dot(wm))
     }
 
@@ -165,10 +172,7 @@ impl RoughConductor {
         let Some(wm) = Self::half(wo, wi) else {
             return (SampledSpectrum::zero(), 0.0);
         };
-        (
-            self.eval_half(wo, wi, wm, w),
-            self.microfacet().normal_pdf(wo, wm) / (4.0 * wo.dot(wm)),
-        )
+        (self.eval_half(wo, wi, wm, w), self.pdf_half(wo, wm))
     }
 
     #[inline]
