@@ -83,6 +83,8 @@ from pathlib import Path
 
 import numpy as np
 
+from bench_common import cpu_model, loadavg, read_exr
+
 ROOT = Path(__file__).resolve().parent.parent
 BENCH = ROOT / "target" / "bench"
 WORK = BENCH / "efficiency"
@@ -309,20 +311,6 @@ class MitsubaWorker:
 # --------------------------------------------------------------------------- spectrace
 
 
-def read_exr(path: Path) -> tuple[dict[str, np.ndarray], dict]:
-    import OpenImageIO as oiio
-
-    inp = oiio.ImageInput.open(str(path))
-    if inp is None:
-        raise RuntimeError(f"cannot open {path}: {oiio.geterror()}")
-    spec = inp.spec()
-    px = inp.read_image(0, 0, 0, spec.nchannels, "float")
-    inp.close()
-    chans = {name: px[..., i].astype(np.float64) for i, name in enumerate(spec.channelnames)}
-    attrs = {a.name: a.value for a in spec.extra_attribs}
-    return chans, attrs
-
-
 def spectrace_render(
     scene: Path, spp: int, seed: int, threads: int, out: Path
 ) -> tuple[float, np.ndarray]:
@@ -341,23 +329,6 @@ def spectrace_render(
 
 
 # --------------------------------------------------------------------------- machine
-
-
-def loadavg() -> float:
-    try:
-        return os.getloadavg()[0]
-    except OSError:
-        return float("nan")
-
-
-def cpu_model() -> str:
-    try:
-        for ln in Path("/proc/cpuinfo").read_text().splitlines():
-            if ln.startswith("model name"):
-                return ln.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
 
 
 def git_head() -> str:

@@ -88,6 +88,8 @@ from pathlib import Path
 
 import numpy as np
 
+from bench_common import cpu_model, loadavg, read_exr
+
 ROOT = Path(__file__).resolve().parent.parent
 BENCH = ROOT / "target" / "bench"
 SCENE_TOML = ROOT / "scenes" / "cornell.toml"
@@ -331,20 +333,6 @@ class MitsubaWorker:
 # --------------------------------------------------------------------------- images
 
 
-def read_exr(path: Path) -> tuple[dict[str, np.ndarray], dict]:
-    import OpenImageIO as oiio
-
-    inp = oiio.ImageInput.open(str(path))
-    if inp is None:
-        raise RuntimeError(f"cannot open {path}: {oiio.geterror()}")
-    spec = inp.spec()
-    px = inp.read_image(0, 0, 0, spec.nchannels, "float")
-    inp.close()
-    chans = {name: px[..., i].astype(np.float64) for i, name in enumerate(spec.channelnames)}
-    attrs = {a.name: a.value for a in spec.extra_attribs}
-    return chans, attrs
-
-
 def write_xyz_exr(path: Path, x: np.ndarray, y: np.ndarray, z: np.ndarray) -> None:
     import OpenImageIO as oiio
 
@@ -395,23 +383,6 @@ def fit_c(points: list[dict]) -> float:
     """relMSE = c / t, least squares in log space over the points with spp ≥ 4."""
     use = [p for p in points if p["spp"] >= 4 and p["relmse"] > 0] or points
     return float(math.exp(np.mean([math.log(p["relmse"] * p["seconds"]) for p in use])))
-
-
-def loadavg() -> float:
-    try:
-        return os.getloadavg()[0]
-    except OSError:
-        return float("nan")
-
-
-def cpu_model() -> str:
-    try:
-        for ln in Path("/proc/cpuinfo").read_text().splitlines():
-            if ln.startswith("model name"):
-                return ln.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
 
 
 def main() -> int:
