@@ -85,7 +85,8 @@ pub struct Integrator<'a> {
     pub lights: LightSelector,
     pub kind: IntegratorKind,
     pub max_depth: u32,
-    /// Surface hits a camera path keeps before Russian roulette may end it (path tracer).
+    /// Surface hits a camera path keeps before Russian roulette may end it (path tracer): the
+    /// scene's `rr_depth`.
     pub rr_depth: u32,
 }
 
@@ -105,7 +106,7 @@ impl<'a> Integrator<'a> {
             }),
             kind,
             max_depth,
-            rr_depth: crate::loader::desc::DEFAULT_RR_DEPTH,
+            rr_depth: scene.integrator.rr_depth,
         }
     }
 

@@ -32,8 +32,6 @@ pub struct RenderOptions {
     pub seed: u32,
     pub integrator: IntegratorKind,
     pub max_depth: u32,
-    /// Surface hits a camera path keeps before Russian roulette may end it.
-    pub rr_depth: u32,
     pub spectral_bins: u32,
 }
 
@@ -46,7 +44,6 @@ impl RenderOptions {
             seed: 0,
             integrator: scene.integrator.kind,
             max_depth: scene.integrator.max_depth,
-            rr_depth: scene.integrator.rr_depth,
             spectral_bins: scene.film.spectral_bins,
         }
     }
@@ -96,8 +93,7 @@ pub fn render(
     );
     let (filter, bins) = (film.filter.clone(), film.bins.clone());
     let film = Mutex::new(film);
-    let mut integrator = Integrator::new(scene, opts.integrator, opts.max_depth);
-    integrator.rr_depth = opts.rr_depth;
+    let integrator = Integrator::new(scene, opts.integrator, opts.max_depth);
     let lambda = WavelengthSampler::visible(scene.wavelengths);
     let tiles: Vec<(u32, u32, u32, u32)> = (0..h.div_ceil(TILE))
         .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
