@@ -66,6 +66,42 @@ pub fn uniform_cone_pdf(one_minus_cos_max: f32) -> f32 {
     1.0 / (2.0 * PI * one_minus_cos_max)
 }
 
+/// A guide table for inverting a tabulated CDF in O(1) (Chen & Asau 1974's cutpoint method):
+/// for a CDF of n cells (n + 1 non-decreasing values from 0 to 1 at the cell edges), entry k is
+/// the cell that holds u = k / entries, so a search for u starts at entry ⌊u·entries⌋, which
+/// never lies past the answer, and walks forward a cell or two.
+#[derive(Clone, Debug, Default)]
+pub struct CdfGuide {
+    guide: Vec<u32>,
+}
+
+impl CdfGuide {
+    /// The table for `cdf` with `entries` (≥ 1) cutpoints.
+    pub fn new<T: Copy + Into<f64>>(cdf: &[T], entries: usize) -> Self {
+        let n = cdf.len() - 1;
+        let guide = (0..entries.max(1))
+            .map(|k| {
+                let u = k as f64 / entries as f64;
+                cdf[1..].partition_point(|&c| c.into() <= u).min(n - 1) as u32
+            })
+            .collect();
+        Self { guide }
+    }
+
+    /// The cell i < n with cdf[i] ≤ u < cdf[i + 1] (the last cell for u ≥ 1): the cell a binary
+    /// search finds, for u in [0, 1].
+    #[inline]
+    pub fn cell<T: Copy + Into<f64>>(&self, cdf: &[T], u: f64) -> usize {
+        let n = cdf.len() - 1;
+        let k = ((u * self.guide.len() as f64) as usize).min(self.guide.len() - 1);
+        let mut i = self.guide[k] as usize;
+        while i + 1 < n && cdf[i + 1].into() <= u {
+            i += 1;
+        }
+        i
+    }
+}
+
 /// Sample reuse: a uniform `u` that fell in [lo, hi) (a discrete choice made with it), rescaled
 /// to a fresh uniform number in [0, 1) (Mitsuba 3's `DiscreteDistribution::sample_reuse`;
 /// pbrt-v4 `SampleDiscrete`'s `uRemapped`). The choice and the point chosen with the rest of

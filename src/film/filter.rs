@@ -5,6 +5,7 @@
 use glam::Vec2;
 
 use crate::loader::desc::FilterDesc;
+use crate::sampling::CdfGuide;
 
 /// A separable pixel filter, sampled per axis by inverting a finely tabulated CDF.
 #[derive(Clone, Debug)]
@@ -18,9 +19,8 @@ pub struct Filter {
     /// 1 / ∫ f dx over [−radius, radius] for one axis (px⁻¹ → normalised), by the same
     /// midpoint rule as `cdf`, for [`Filter::weight`].
     inv_integral: f32,
-    /// Guide table for inverting `cdf` in O(1): `guide[j]` is the last cell whose CDF value is
-    /// ≤ j / GUIDE, so the search for u starts at `guide[⌊u·GUIDE⌋]` and walks a few cells.
-    guide: Vec<u32>,
+    /// Guide table for inverting `cdf` in O(1).
+    guide: CdfGuide,
 }
 
 /// Entries of the CDF's guide table.
@@ -134,12 +134,7 @@ impl Filter {
             sums.push(acc);
         }
         let cdf: Vec<f32> = sums.iter().map(|&c| (c / acc) as f32).collect();
-        let guide = (0..GUIDE)
-            .map(|j| {
-                let u = j as f32 / GUIDE as f32;
-                (cdf.partition_point(|&c| c <= u).clamp(1, CELLS) - 1) as u32
-            })
-            .collect();
+        let guide = CdfGuide::new(&cdf, GUIDE);
         Self {
             radius,
             kernel,
@@ -157,11 +152,7 @@ impl Filter {
             // the CDF is the identity: no table needed
             return -self.radius + u * (2.0 * self.radius);
         }
-        // the last cell i < CELLS with cdf[i] ≤ u, as a binary search would find it
-        let mut i = self.guide[((u * GUIDE as f32) as usize).min(GUIDE - 1)] as usize;
-        while i + 1 < CELLS && self.cdf[i + 1] <= u {
-            i += 1;
-        }
+        let i = self.guide.cell(&self.cdf, u as f64);
         let (c0, c1) = (self.cdf[i], self.cdf[i + 1]);
         let t = if c1 > c0 {
             ((u - c0) / (c1 - c0)).clamp(0.0, 1.0)

@@ -1,6 +1,7 @@
 //! Choosing wavelengths: the film's wavelength range and the hero-wavelength sampler.
 
 use super::sampled::SampledWavelengths;
+use crate::sampling::CdfGuide;
 
 /// The range of wavelengths a render covers, in nm. Chosen at run time; default 360–830 nm.
 /// Outside 360–830 nm the CIE colour-matching functions are zero, which is valid: such light
@@ -80,10 +81,8 @@ pub struct WavelengthSampler {
     cdf: Vec<f64>,
     /// Density of each bin in nm⁻¹.
     density: Vec<f32>,
-    /// Guide table (Chen & Wu 1974's "cutpoint" method): `guide[k]` is the first bin whose
-    /// upper CDF edge exceeds k/`guide.len()`, so sampling starts there and scans a bin or two
-    /// instead of a binary search: O(1) expected, and the same bin as the search.
-    guide: Vec<u32>,
+    /// Guide table for inverting `cdf` in O(1).
+    guide: CdfGuide,
 }
 
 impl WavelengthSampler {
@@ -117,12 +116,7 @@ impl WavelengthSampler {
             .iter()
             .map(|w| (w / total / bin_width) as f32)
             .collect();
-        let guide = (0..bins)
-            .map(|k| {
-                let u = k as f64 / bins as f64;
-                cdf[1..].partition_point(|&c| c <= u).min(bins - 1) as u32
-            })
-            .collect();
+        let guide = CdfGuide::new(&cdf, bins);
         Self {
             range,
             bin_width,
@@ -148,24 +142,11 @@ impl WavelengthSampler {
     /// One wavelength in nm from a uniform number `u` in [0, 1).
     pub fn sample_one(&self, u: f32) -> f32 {
         let u = (u as f64).clamp(0.0, 1.0);
-        let i = self.bin_of(u);
+        let i = self.guide.cell(&self.cdf, u);
         let (c0, c1) = (self.cdf[i], self.cdf[i + 1]);
         let t = if c1 > c0 { (u - c0) / (c1 - c0) } else { 0.5 };
         let l = self.range.min_nm as f64 + (i as f64 + t) * self.bin_width;
         (l as f32).clamp(self.range.min_nm, self.range.max_nm)
-    }
-
-    /// The first bin whose upper CDF edge exceeds `u` (the last bin for u = 1), from the guide
-    /// table: guide[⌊u·G⌋] never lies past the answer, since its level ⌊u·G⌋/G ≤ u.
-    #[inline]
-    fn bin_of(&self, u: f64) -> usize {
-        let last = self.density.len() - 1;
-        let k = ((u * self.guide.len() as f64) as usize).min(self.guide.len() - 1);
-        let mut i = self.guide[k] as usize;
-        while i < last && self.cdf[i + 1] <= u {
-            i += 1;
-        }
-        i
     }
 
     /// `N` wavelengths, the hero from `u` and the others at `u + j/N (mod 1)`.
@@ -200,7 +181,7 @@ mod tests {
             us.extend(s.cdf.iter().copied()); // exactly on bin edges
             for u in us {
                 let want = s.cdf[1..].partition_point(|&c| c <= u).min(last);
-                assert_eq!(s.bin_of(u), want, "u = {u}");
+                assert_eq!(s.guide.cell(&s.cdf, u), want, "u = {u}");
             }
         }
     }
