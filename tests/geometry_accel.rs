@@ -115,7 +115,7 @@ fn closest_hit_matches_brute_force() {
 /// primitives make this small scene take that path, with about 45 parts.
 #[test]
 fn closest_hit_matches_brute_force_when_built_in_parts() {
-    closest_hit_matches_brute_force_with(|s| Accel::build_in_parts(s, 8));
+    closest_hit_matches_brute_force_with(|s| Accel::build_with(s, 8, 8));
 }
 
 /// The 4-wide tree (CPUs without AVX; the default above is 8-wide where AVX exists).

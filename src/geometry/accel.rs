@@ -67,14 +67,8 @@ impl Accel {
     }
 
     /// [`Accel::build`] with parts of `part` primitives when there are more than 2·`part` (see
-    /// [`build_binary`]); exposed so that tests can exercise the parts on small scenes.
-    #[doc(hidden)]
-    pub fn build_in_parts(shapes: &[Shape], part: usize) -> Accel {
-        Self::build_with(shapes, part, 8)
-    }
-
-    /// [`Accel::build`] with parts of `part` primitives and nodes at most `max_width` wide (8
-    /// where the CPU has AVX, else 4); exposed so that tests can exercise both widths.
+    /// [`build_binary`]) and nodes at most `max_width` wide (8 where the CPU has AVX, else 4);
+    /// exposed so that tests can exercise the parts and both widths on small scenes.
     #[doc(hidden)]
     pub fn build_with(shapes: &[Shape], part: usize, max_width: usize) -> Accel {
         let total: usize = shapes.iter().map(|s| s.primitive_count()).sum();
