@@ -2,7 +2,7 @@
 
 use std::sync::Arc;
 
-use super::convert::{Cx, R};
+use super::cx::{Cx, R};
 use super::xml::Element;
 use crate::loader::desc::*;
 use crate::material::microfacet::Distribution;

@@ -20,9 +20,13 @@
 //! supported plugin of the same kind.
 
 mod bsdf;
-mod convert;
+mod cx;
+mod emitters;
+mod scene;
 mod sensor;
 mod shapes;
+mod spectra;
+mod transform;
 mod xml;
 
 use std::collections::HashMap;
@@ -59,5 +63,5 @@ pub fn load_str(
 ) -> Result<SceneDesc, LoadError> {
     let root = parse_file(text, path)?;
     let defines: HashMap<String, String> = defines.iter().cloned().collect();
-    convert::scene(root, text, path, &defines)
+    scene::scene(root, text, path, &defines)
 }

@@ -2,7 +2,7 @@
 //! (`fov`, `fov_axis`, `focal_length`), the film, and camera frames from `to_world` (also used
 //! to place lights).
 
-use super::convert::{Cx, R};
+use super::cx::{Cx, R};
 use super::xml::Element;
 use crate::loader::desc::*;
 use crate::units::{Angle, Length, angle, length};

@@ -3,12 +3,12 @@
 use std::collections::HashMap;
 
 use super::bsdf::bsdf;
-use super::convert::{Cx, R};
-use super::sensor::camera_frame;
+use super::cx::{Cx, R};
+use super::emitters::sampling_weight;
 use super::xml::Element;
 use crate::loader::desc::*;
 use crate::spectrum::Spectrum;
-use crate::units::{Angle, Length, angle, length};
+use crate::units::{Length, length};
 
 pub(super) fn shape(
     cx: &Cx<'_>,
@@ -134,114 +134,4 @@ fn mesh_normals(cx: &Cx<'_>, s: &Element) -> R<MeshNormals> {
             )),
         },
     }
-}
-
-pub(super) fn emitter(cx: &Cx<'_>, e: &Element) -> R<LightDesc> {
-    let t = e.attr("type").unwrap_or("");
-    let l = |x: f64| Length::new::<length::meter>(x);
-    let to_world = e.children.iter().find(|c| c.tag == "transform");
-    // Mitsuba places a point light by `position` or by `to_world` (its image of the origin),
-    // never both
-    let position = || -> R<Point> {
-        match (cx.child(e, "position"), to_world) {
-            (Some(_), Some(tr)) => Err(cx.err(
-                tr,
-                "give either position or to_world, not both (as Mitsuba requires)",
-            )),
-            (Some(p), None) => Ok(cx.vec3(p)?.map(l)),
-            (None, Some(tr)) => Ok(camera_frame(cx, e, &cx.transform(tr)?)?.0),
-            (None, None) => Ok([l(0.0), l(0.0), l(0.0)]),
-        }
-    };
-    let (kind, spectrum) = match t {
-        "point" => (
-            LightKind::Point {
-                position: position()?,
-                amount: PointAmount::Scale(1.0),
-            },
-            cx.spectrum_prop(e, "intensity", 1.0, true)?,
-        ),
-        "constant" => (
-            LightKind::Environment {
-                amount: EmitAmount::Scale(1.0),
-            },
-            cx.spectrum_prop(e, "radiance", 1.0, true)?,
-        ),
-        "directional" => {
-            // Mitsuba: `direction`, or the image of +z under `to_world`, never both
-            let d = match (cx.child(e, "direction"), to_world) {
-                (Some(_), Some(tr)) => {
-                    return Err(cx.err(
-                        tr,
-                        "give either direction or to_world, not both (as Mitsuba requires)",
-                    ));
-                }
-                (Some(d), None) => cx.vec3(d)?,
-                (None, Some(tr)) => {
-                    let (eye, target, _) = camera_frame(cx, e, &cx.transform(tr)?)?;
-                    [0, 1, 2].map(|i| target[i].value - eye[i].value)
-                }
-                (None, None) => [0.0, 0.0, 1.0],
-            };
-            (
-                LightKind::Directional {
-                    direction: d,
-                    angular_diameter: Angle::new::<angle::radian>(0.0),
-                    amount: DirectionalAmount::Scale(1.0),
-                },
-                cx.spectrum_prop(e, "irradiance", 1.0, true)?,
-            )
-        }
-        "spot" => {
-            let cutoff = cx.opt_float(e, "cutoff_angle")?.unwrap_or(20.0);
-            let width = cx.opt_float(e, "beam_width")?.unwrap_or(cutoff * 0.75);
-            let steps = match e.children.iter().find(|c| c.tag == "transform") {
-                Some(tr) => cx.transform(tr)?,
-                None => return Err(cx.err(e, "a spot needs a to_world with lookat")),
-            };
-            if let Some(t) = cx.child(e, "texture") {
-                return Err(cx.err(
-                    t,
-                    "a spot's projected texture is not supported (spectrace has no textures yet); remove it",
-                ));
-            }
-            let (eye, target, _) = camera_frame(cx, e, &steps)?;
-            (
-                LightKind::Spot {
-                    position: eye,
-                    target,
-                    cone_angle: Angle::new::<angle::degree>(cutoff),
-                    // Mitsuba's falloff is linear in the angle from beam_width to cutoff_angle
-                    // (src/emitters/spot.cpp, falloff_curve)
-                    falloff_start: Angle::new::<angle::degree>(width.min(cutoff)),
-                    falloff: SpotFalloff::LinearAngle,
-                    amount: PointAmount::Scale(1.0),
-                },
-                cx.spectrum_prop(e, "intensity", 1.0, true)?,
-            )
-        }
-        other => return Err(cx.unsupported(e, "emitter", other)),
-    };
-    Ok(LightDesc {
-        kind,
-        spectrum,
-        sampling_weight: sampling_weight(cx, e)?,
-        loc: cx.loc(e),
-    })
-}
-
-/// An emitter's `sampling_weight`: its relative probability of being chosen for emitter
-/// sampling (Mitsuba 3, `Emitter`), finite and ≥ 0, 1 by default.
-fn sampling_weight(cx: &Cx<'_>, e: &Element) -> R<f64> {
-    let Some(c) = cx.child(e, "sampling_weight") else {
-        return Ok(1.0);
-    };
-    let w = cx.float(c)?;
-    if !(w.is_finite() && w >= 0.0) {
-        return Err(cx.err(
-            c,
-            format!("sampling_weight must be a finite number ≥ 0, not {w}"),
-        ));
-    }
-    Ok(w)
 }

@@ -1,0 +1,218 @@
+//! The conversion context shared by every Mitsuba plugin family: the sources (for located
+//! errors), `default` parameters and `$` substitution, ids and `<ref>`, file resolution, and
+//! property readers (numbers, vectors, strings). Spectra are read in `spectra.rs`, transforms
+//! in `transform.rs`; plugin files import this module, never each other's callers.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use super::xml::Element;
+use crate::loader::error::{LoadError, SourceMap};
+use crate::spectrum::named::{Named, lookup};
+use crate::spectrum::{PiecewiseLinear, Spectrum};
+
+pub(super) type R<T> = Result<T, LoadError>;
+
+/// The supported plugins by kind (`what` of [`Cx::unsupported`]): an unknown type is only ever
+/// compared with plugins of its own kind.
+const PLUGINS: &[(&str, &[&str])] = &[
+    ("sensor", &["perspective", "thinlens"]),
+    ("film", &["hdrfilm"]),
+    ("rfilter", &["box", "gaussian"]),
+    ("sampler", &["independent"]),
+    ("integrator", &["path"]),
+    (
+        "shape",
+        &["obj", "ply", "rectangle", "cube", "sphere", "disk"],
+    ),
+    (
+        "bsdf",
+        &[
+            "diffuse",
+            "twosided",
+            "conductor",
+            "roughconductor",
+            "dielectric",
+            "roughdielectric",
+        ],
+    ),
+    (
+        "emitter",
+        &["area", "point", "spot", "constant", "directional"],
+    ),
+    ("shape emitter", &["area"]),
+    ("spectrum", &["blackbody", "d65"]),
+    (
+        "transform",
+        &["translate", "scale", "rotate", "matrix", "lookat"],
+    ),
+];
+
+/// Mitsuba 3's `MI_CIE_D65_NORMALIZATION` (`include/mitsuba/core/spectrum.h`, 3.9.1): its
+/// `d65` spectrum is the CIE D65 relative SPD (100 at 560 nm) times this, so that
+/// ∫ D65 ȳ dλ / ∫ ȳ dλ = 1 on its own 5 nm tables (checked against `mi.load_dict({"type": "d65"})`
+/// in tests/mitsuba_import.rs).
+pub(super) const MITSUBA_D65_NORMALIZATION: f64 = 1.0 / 98.99741751876255;
+
+/// Mitsuba's `d65` spectrum with `scale`: the CIE D65 table × scale × [`MITSUBA_D65_NORMALIZATION`],
+/// in the emitter's own units (W·m⁻²·sr⁻¹·nm⁻¹ for radiance).
+pub(super) fn mitsuba_d65(scale: f64) -> Arc<PiecewiseLinear> {
+    match lookup("cie-d65") {
+        Ok(Named::Curve {
+            spectrum: Spectrum::Piecewise(t),
+            ..
+        }) => Arc::new(t.scaled((scale * MITSUBA_D65_NORMALIZATION) as f32)),
+        // the table is embedded in the binary; its presence is tested in spectrum::named
+        _ => unreachable!("cie-d65 is missing from the embedded data"), // ok: embedded, tested
+    }
+}
+
+pub(super) struct Cx<'a> {
+    /// (file, text) of the scene and every included file.
+    pub(super) sources: Vec<(PathBuf, String)>,
+    pub(super) defines: &'a HashMap<String, String>,
+    pub(super) params: HashMap<String, String>,
+    pub(super) ids: HashMap<String, Element>,
+}
+
+impl Cx<'_> {
+    pub(super) fn err(&self, e: &Element, msg: impl Into<String>) -> LoadError {
+        let (file, text) = &self.sources[e.src];
+        let field = match e.attr("name") {
+            Some(n) => format!("<{} name=\"{n}\">", e.tag),
+            None => format!("<{}>", e.tag),
+        };
+        LoadError::new(file, SourceMap::new(text).loc(e.pos), field, msg)
+    }
+
+    pub(super) fn loc(&self, e: &Element) -> crate::loader::Loc {
+        SourceMap::new(&self.sources[e.src].1).loc(e.pos)
+    }
+
+    pub(super) fn dir(&self, e: &Element) -> PathBuf {
+        self.sources[e.src]
+            .0
+            .parent()
+            .map(Path::to_path_buf)
+            .unwrap_or_default()
+    }
+
+    pub(super) fn unsupported(&self, e: &Element, what: &str, kind: &str) -> LoadError {
+        let same_kind = PLUGINS
+            .iter()
+            .find(|(k, _)| *k == what)
+            .map(|(_, names)| *names)
+            .unwrap_or(&[]);
+        let near = same_kind
+            .iter()
+            .max_by(|a, b| strsim::jaro_winkler(kind, a).total_cmp(&strsim::jaro_winkler(kind, b)))
+            .copied();
+        let msg = match near {
+            Some(near) => format!(
+                "{what} type \"{kind}\" is not supported; the nearest supported {what} is \"{near}\" (supported: {})",
+                same_kind.join(", ")
+            ),
+            None => format!("{what} type \"{kind}\" is not supported"),
+        };
+        self.err(e, msg)
+    }
+
+    /// `$name` substitution in every attribute value, recursively.
+    pub(super) fn substitute(&self, e: &mut Element) -> R<()> {
+        for (k, v) in e.attrs.iter_mut() {
+            while let Some(i) = v.find('$') {
+                let rest = &v[i + 1..];
+                let end = rest
+                    .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+                    .unwrap_or(rest.len());
+                let name = &rest[..end];
+                let Some(value) = self.defines.get(name).or_else(|| self.params.get(name)) else {
+                    let (file, text) = &self.sources[e.src];
+                    return Err(LoadError::new(
+                        file,
+                        SourceMap::new(text).loc(e.pos),
+                        format!("<{}> {k}", e.tag),
+                        format!(
+                            "${name} is not defined: add <default name=\"{name}\" value=\"…\"/> or -D {name}=…"
+                        ),
+                    ));
+                };
+                *v = format!("{}{}{}", &v[..i], value, &rest[end..]);
+            }
+        }
+        for c in &mut e.children {
+            self.substitute(c)?;
+        }
+        Ok(())
+    }
+
+    pub(super) fn float(&self, e: &Element) -> R<f64> {
+        let v = e
+            .attr("value")
+            .ok_or_else(|| self.err(e, "missing value"))?;
+        let x: f64 = v
+            .trim()
+            .parse()
+            .map_err(|_| self.err(e, format!("\"{v}\" is not a number")))?;
+        if !x.is_finite() {
+            return Err(self.err(e, format!("\"{v}\" is not finite")));
+        }
+        Ok(x)
+    }
+
+    pub(super) fn floats(&self, e: &Element, s: &str) -> R<Vec<f64>> {
+        s.split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|t| !t.is_empty())
+            .map(|t| {
+                t.parse::<f64>()
+                    .ok()
+                    .filter(|x| x.is_finite())
+                    .ok_or_else(|| self.err(e, format!("\"{t}\" is not a number")))
+            })
+            .collect()
+    }
+
+    /// A `point`/`vector` from x, y, z or value attributes.
+    pub(super) fn vec3(&self, e: &Element) -> R<[f64; 3]> {
+        if let Some(v) = e.attr("value") {
+            let f = self.floats(e, v)?;
+            return match f.len() {
+                1 => Ok([f[0]; 3]),
+                3 => Ok([f[0], f[1], f[2]]),
+                _ => Err(self.err(e, format!("expected 1 or 3 numbers, found {}", f.len()))),
+            };
+        }
+        let mut out = [0.0; 3];
+        for (i, k) in ["x", "y", "z"].iter().enumerate() {
+            if let Some(v) = e.attr(k) {
+                out[i] = self.floats(e, v)?.first().copied().unwrap_or(0.0);
+            }
+        }
+        Ok(out)
+    }
+
+    pub(super) fn child<'e>(&self, e: &'e Element, name: &str) -> Option<&'e Element> {
+        e.children.iter().find(|c| c.attr("name") == Some(name))
+    }
+
+    pub(super) fn opt_float(&self, e: &Element, name: &str) -> R<Option<f64>> {
+        self.child(e, name).map(|c| self.float(c)).transpose()
+    }
+
+    pub(super) fn string(&self, e: &Element, name: &str) -> Option<String> {
+        self.child(e, name)
+            .and_then(|c| c.attr("value"))
+            .map(str::to_string)
+    }
+
+    pub(super) fn resolve<'e>(&'e self, e: &'e Element) -> R<&'e Element> {
+        if e.tag == "ref" {
+            let id = e.attr("id").ok_or_else(|| self.err(e, "missing id"))?;
+            return self.ids.get(id).ok_or_else(|| {
+                self.err(e, format!("refers to id \"{id}\", which is not defined"))
+            });
+        }
+        Ok(e)
+    }
+}

@@ -1,0 +1,187 @@
+//! The top level of a Mitsuba scene: includes, `default`s, ids, then each top-level element
+//! handed to its plugin family (sensor, integrator, bsdf, shape, emitter).
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use super::bsdf::bsdf;
+use super::cx::{Cx, R};
+use super::emitters::emitter;
+use super::sensor::sensor;
+use super::shapes::shape;
+use super::xml::Element;
+use crate::loader::desc::*;
+use crate::units::{Length, length};
+
+pub(super) fn scene(
+    mut root: Element,
+    text: &str,
+    path: &Path,
+    defines: &HashMap<String, String>,
+) -> R<SceneDesc> {
+    let mut cx = Cx {
+        sources: vec![(path.to_path_buf(), text.to_string())],
+        defines,
+        params: HashMap::new(),
+        ids: HashMap::new(),
+    };
+    if root.tag != "scene" {
+        return Err(cx.err(&root, "the root element must be <scene>"));
+    }
+    match root.attr("version") {
+        Some(v) if v.starts_with("3.") || v.starts_with("2.") => {}
+        Some(v) => {
+            return Err(cx.err(
+                &root,
+                format!("scene version {v} is not supported; use 2.x or 3.x"),
+            ));
+        }
+        None => return Err(cx.err(&root, "missing version (e.g. version=\"3.0.0\")")),
+    }
+    // includes, spliced in place (depth-limited)
+    let mut depth = 0;
+    while root.children.iter().any(|c| c.tag == "include") {
+        depth += 1;
+        if depth > 16 {
+            return Err(cx.err(&root, "includes nest more than 16 deep"));
+        }
+        let mut out = Vec::new();
+        for c in std::mem::take(&mut root.children) {
+            if c.tag != "include" {
+                out.push(c);
+                continue;
+            }
+            let f = c
+                .attr("filename")
+                .ok_or_else(|| cx.err(&c, "missing filename"))?;
+            let p = cx.dir(&c).join(f);
+            let t = std::fs::read_to_string(&p)
+                .map_err(|e| cx.err(&c, format!("cannot read {}: {e}", p.display())))?;
+            let mut inc = super::parse_file(&t, &p)?;
+            cx.sources.push((p, t));
+            inc.set_source(cx.sources.len() - 1);
+            out.extend(inc.children);
+        }
+        root.children = out;
+    }
+    for c in root.children.iter().filter(|c| c.tag == "default") {
+        let (Some(n), Some(v)) = (c.attr("name"), c.attr("value")) else {
+            return Err(cx.err(c, "a <default> needs name and value"));
+        };
+        cx.params.insert(n.to_string(), v.to_string());
+    }
+    cx.substitute(&mut root)?;
+    for c in &root.children {
+        if let Some(id) = c.attr("id") {
+            cx.ids.insert(id.to_string(), c.clone());
+        }
+    }
+
+    let mut film = FilmDesc {
+        width: 768,
+        height: 576,
+        spp: 4,
+        // Mitsuba's default rfilter
+        filter: FilterDesc::MitsubaGaussian { stddev: 0.5 },
+        spectral_bins: 0,
+        exposure_ev: None,
+        loc: Default::default(),
+    };
+    let mut integrator = IntegratorDesc {
+        kind: IntegratorKind::Path,
+        max_depth: 1024,
+        rr_depth: DEFAULT_RR_DEPTH,
+        // Mitsuba chooses emitters in proportion to their sampling_weight, 1 by default
+        light_selection: LightSelection::Uniform,
+    };
+    let mut camera = None;
+    let mut materials: Vec<MaterialDesc> = Vec::new();
+    let mut material_ids: HashMap<String, (usize, bool)> = HashMap::new();
+    let mut shapes = Vec::new();
+    let mut lights = Vec::new();
+
+    for c in &root.children {
+        match c.tag.as_str() {
+            "default" | "include" => {}
+            "integrator" => {
+                let t = c.attr("type").unwrap_or("");
+                if t != "path" {
+                    return Err(cx.unsupported(c, "integrator", t));
+                }
+                if let Some(d) = cx.child(c, "max_depth") {
+                    integrator.max_depth = max_depth(&cx, d)?;
+                }
+                // Mitsuba's rr_depth: roulette may end a path at vertex k > rr_depth (vertex 1
+                // is the first surface hit), the same meaning as spectrace's
+                if let Some(d) = cx.child(c, "rr_depth") {
+                    let v = cx.float(d)?;
+                    if v.fract() != 0.0 || v <= 0.0 {
+                        return Err(
+                            cx.err(d, format!("rr_depth must be a positive integer, not {v}"))
+                        );
+                    }
+                    integrator.rr_depth = v.min(1024.0) as u32;
+                }
+                if let Some(h) = cx.child(c, "hide_emitters")
+                    && h.attr("value") == Some("true")
+                {
+                    return Err(cx.err(
+                        h,
+                        "hide_emitters = true is not supported: spectrace always shows emitters seen directly",
+                    ));
+                }
+            }
+            "sensor" => camera = Some(sensor(&cx, c, &mut film)?),
+            "bsdf" => {
+                if let Some(id) = c.attr("id") {
+                    let (m, two) = bsdf(&cx, c, id)?;
+                    material_ids.insert(id.to_string(), (materials.len(), two));
+                    materials.push(m);
+                }
+            }
+            "shape" => shapes.push(shape(&cx, c, &mut materials, &material_ids)?),
+            "emitter" => lights.push(emitter(&cx, c)?),
+            "spectrum" | "texture" | "rgb" | "float" => {}
+            other => {
+                return Err(cx.err(
+                    c,
+                    format!("<{other}> is not supported at the top level of a scene"),
+                ));
+            }
+        }
+    }
+    let camera = camera.ok_or_else(|| cx.err(&root, "the scene has no <sensor>"))?;
+    let nm = |x: f64| Length::new::<length::nanometer>(x);
+    Ok(SceneDesc {
+        path: path.to_path_buf(),
+        wavelength_range: [nm(360.0), nm(830.0)],
+        camera,
+        film,
+        integrator,
+        materials,
+        shapes,
+        lights,
+    })
+}
+
+/// Mitsuba's `max_depth` (path length: 1 = emitters seen directly, 2 = one bounce, −1 =
+/// unlimited) as spectrace's number of bounces (0 = emitters seen directly; 1024 = unlimited).
+/// Mitsuba's 0 renders black and anything below −1 is an error in Mitsuba: both are refused.
+fn max_depth(cx: &Cx<'_>, d: &Element) -> R<u32> {
+    let v = cx.float(d)?;
+    if v.fract() != 0.0 {
+        return Err(cx.err(d, format!("max_depth must be an integer, not {v}")));
+    }
+    match v as i64 {
+        -1 => Ok(1024),
+        0 => Err(cx.err(
+            d,
+            "max_depth 0 renders a black image in Mitsuba; use 1 for emitters seen directly",
+        )),
+        n if n < -1 => Err(cx.err(
+            d,
+            format!("max_depth must be -1 (unlimited) or at least 1, not {n}"),
+        )),
+        n => Ok((n - 1).min(1024) as u32),
+    }
+}
