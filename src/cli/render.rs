@@ -106,6 +106,9 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
 }
 
 fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), CliError> {
+    for n in &desc.notes {
+        eprintln!("note: {n}");
+    }
     let scene = crate::scene::build(&desc)?;
     let mut opts = RenderOptions::from_scene(&scene);
     if let Some(s) = args.spp {

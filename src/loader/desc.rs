@@ -28,6 +28,9 @@ pub struct SceneDesc {
     pub materials: Vec<MaterialDesc>,
     pub shapes: Vec<ShapeDesc>,
     pub lights: Vec<LightDesc>,
+    /// What the loader wants the user to know without refusing the file ("file:line: message"),
+    /// e.g. a Mitsuba sampler replaced by spectrace's own. Printed once by the CLI.
+    pub notes: Vec<String>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -14,13 +14,23 @@ use crate::spectrum::{PiecewiseLinear, Spectrum};
 
 pub(super) type R<T> = Result<T, LoadError>;
 
+/// Mitsuba 3.9.1's samplers. spectrace reads their `sample_count` and renders with its own
+/// Owen-scrambled Sobol sampler, whichever is named (and says so once).
+pub(super) const SAMPLERS: &[&str] = &[
+    "independent",
+    "stratified",
+    "multijitter",
+    "orthogonal",
+    "ldsampler",
+];
+
 /// The supported plugins by kind (`what` of [`Cx::unsupported`]): an unknown type is only ever
 /// compared with plugins of its own kind.
 const PLUGINS: &[(&str, &[&str])] = &[
     ("sensor", &["perspective", "thinlens"]),
     ("film", &["hdrfilm"]),
     ("rfilter", &["box", "gaussian"]),
-    ("sampler", &["independent"]),
+    ("sampler", SAMPLERS),
     ("integrator", &["path"]),
     (
         "shape",
@@ -74,6 +84,12 @@ pub(super) struct Cx<'a> {
     pub(super) defines: &'a HashMap<String, String>,
     pub(super) params: HashMap<String, String>,
     pub(super) ids: HashMap<String, Element>,
+    /// Folders searched for relative file names, first to last: those of `<path>` elements,
+    /// the latest first (Mitsuba prepends them to its file resolver), then the scene's folder.
+    pub(super) search: Vec<PathBuf>,
+    /// Things the user should know, once each (message, located line): e.g. a Mitsuba sampler
+    /// replaced by spectrace's.
+    pub(super) notes: std::cell::RefCell<Vec<(String, String)>>,
 }
 
 impl Cx<'_> {
@@ -90,12 +106,32 @@ impl Cx<'_> {
         SourceMap::new(&self.sources[e.src].1).loc(e.pos)
     }
 
-    pub(super) fn dir(&self, e: &Element) -> PathBuf {
-        self.sources[e.src]
-            .0
-            .parent()
-            .map(Path::to_path_buf)
-            .unwrap_or_default()
+    /// A relative file name as Mitsuba's file resolver finds it: the first of the search
+    /// folders where it exists, else the scene's folder (where the error will then name it).
+    /// Absolute names are kept.
+    pub(super) fn resolve_file(&self, name: &str) -> PathBuf {
+        let p = Path::new(name);
+        if p.is_absolute() {
+            return p.to_path_buf();
+        }
+        self.search
+            .iter()
+            .map(|d| d.join(p))
+            .find(|c| c.exists())
+            .unwrap_or_else(|| self.search.last().cloned().unwrap_or_default().join(p))
+    }
+
+    /// Records a note for the user, located at `e`, once per distinct message.
+    pub(super) fn note(&self, e: &Element, msg: impl Into<String>) {
+        let msg = msg.into();
+        let mut notes = self.notes.borrow_mut();
+        if notes.iter().any(|(m, _)| *m == msg) {
+            return;
+        }
+        let (file, text) = &self.sources[e.src];
+        let loc = SourceMap::new(text).loc(e.pos);
+        let line = format!("{}:{}: {msg}", file.display(), loc.line);
+        notes.push((msg, line));
     }
 
     pub(super) fn unsupported(&self, e: &Element, what: &str, kind: &str) -> LoadError {

@@ -24,6 +24,8 @@ pub(super) fn scene(
         defines,
         params: HashMap::new(),
         ids: HashMap::new(),
+        search: vec![path.parent().map(Path::to_path_buf).unwrap_or_default()],
+        notes: Default::default(),
     };
     if root.tag != "scene" {
         return Err(cx.err(&root, "the root element must be <scene>"));
@@ -38,29 +40,48 @@ pub(super) fn scene(
         }
         None => return Err(cx.err(&root, "missing version (e.g. version=\"3.0.0\")")),
     }
-    // includes, spliced in place (depth-limited)
+    // `<path>` folders and includes in document order, as Mitsuba's parser meets them: a path
+    // joins the file resolver (searched before the scene's folder, the latest first), and an
+    // include is resolved by it, against the scene's folder and not the including file's;
+    // included children are spliced in place (depth-limited)
     let mut depth = 0;
-    while root.children.iter().any(|c| c.tag == "include") {
+    while root
+        .children
+        .iter()
+        .any(|c| c.tag == "include" || c.tag == "path")
+    {
         depth += 1;
         if depth > 16 {
             return Err(cx.err(&root, "includes nest more than 16 deep"));
         }
         let mut out = Vec::new();
         for c in std::mem::take(&mut root.children) {
-            if c.tag != "include" {
-                out.push(c);
-                continue;
+            match c.tag.as_str() {
+                "path" => {
+                    let v = c
+                        .attr("value")
+                        .ok_or_else(|| cx.err(&c, "missing value (a folder)"))?;
+                    let scene_dir = cx.search.last().cloned().unwrap_or_default();
+                    let dir = scene_dir.join(v);
+                    if !dir.is_dir() {
+                        return Err(cx.err(&c, format!("folder {} does not exist", dir.display())));
+                    }
+                    cx.search.insert(0, dir);
+                }
+                "include" => {
+                    let f = c
+                        .attr("filename")
+                        .ok_or_else(|| cx.err(&c, "missing filename"))?;
+                    let p = cx.resolve_file(f);
+                    let t = std::fs::read_to_string(&p)
+                        .map_err(|e| cx.err(&c, format!("cannot read {}: {e}", p.display())))?;
+                    let mut inc = super::parse_file(&t, &p)?;
+                    cx.sources.push((p, t));
+                    inc.set_source(cx.sources.len() - 1);
+                    out.extend(inc.children);
+                }
+                _ => out.push(c),
             }
-            let f = c
-                .attr("filename")
-                .ok_or_else(|| cx.err(&c, "missing filename"))?;
-            let p = cx.dir(&c).join(f);
-            let t = std::fs::read_to_string(&p)
-                .map_err(|e| cx.err(&c, format!("cannot read {}: {e}", p.display())))?;
-            let mut inc = super::parse_file(&t, &p)?;
-            cx.sources.push((p, t));
-            inc.set_source(cx.sources.len() - 1);
-            out.extend(inc.children);
         }
         root.children = out;
     }
@@ -102,7 +123,7 @@ pub(super) fn scene(
 
     for c in &root.children {
         match c.tag.as_str() {
-            "default" | "include" => {}
+            "default" => {}
             "integrator" => {
                 let t = c.attr("type").unwrap_or("");
                 if t != "path" {
@@ -140,8 +161,18 @@ pub(super) fn scene(
                 }
             }
             "shape" => shapes.push(shape(&cx, c, &mut materials, &material_ids)?),
+            // an area emitter at the top level is a declaration that shapes refer to by id
+            "emitter" if c.attr("type") == Some("area") => {
+                if c.attr("id").is_none() {
+                    return Err(cx.err(
+                        c,
+                        "an area emitter belongs inside a <shape> (or give it an id and <ref> it from one)",
+                    ));
+                }
+            }
             "emitter" => lights.push(emitter(&cx, c)?),
-            "spectrum" | "texture" | "rgb" | "float" => {}
+            // declarations that sensors, shapes and BSDFs refer to by id
+            "spectrum" | "texture" | "rgb" | "float" | "sampler" | "rfilter" => {}
             other => {
                 return Err(cx.err(
                     c,
@@ -161,6 +192,7 @@ pub(super) fn scene(
         materials,
         shapes,
         lights,
+        notes: cx.notes.into_inner().into_iter().map(|(_, l)| l).collect(),
     })
 }
 

@@ -2,7 +2,7 @@
 //! (`fov`, `fov_axis`, `focal_length`), the film, and camera frames from `to_world` (also used
 //! to place lights).
 
-use super::cx::{Cx, R};
+use super::cx::{Cx, R, SAMPLERS};
 use super::xml::Element;
 use crate::loader::desc::*;
 use crate::units::{Angle, Length, angle, length};
@@ -85,6 +85,11 @@ pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraD
         return Err(cx.unsupported(s, "sensor", t));
     }
     for c in &s.children {
+        // a film or sampler declared at the top level and referred to here
+        let c = match c.tag.as_str() {
+            "ref" => cx.resolve(c)?,
+            _ => c,
+        };
         match (c.tag.as_str(), c.attr("type")) {
             ("film", Some("hdrfilm")) => {
                 if let Some(w) = cx.opt_float(c, "width")? {
@@ -122,9 +127,13 @@ pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraD
             }
             ("film", Some(o)) => return Err(cx.unsupported(c, "film", o)),
             ("sampler", Some(o)) => {
-                if o != "independent" {
+                if !SAMPLERS.contains(&o) {
                     return Err(cx.unsupported(c, "sampler", o));
                 }
+                cx.note(
+                    c,
+                    format!("Mitsuba's \"{o}\" sampler: spectrace renders with its own Owen-scrambled Sobol sampler (its sample_count is kept)"),
+                );
                 if let Some(n) = cx.opt_float(c, "sample_count")? {
                     film.spp = (n as u32).max(1);
                 }

@@ -27,7 +27,7 @@ pub(super) fn shape(
                 .string(s, "filename")
                 .ok_or_else(|| cx.err(s, "missing filename"))?;
             ShapeKind::Obj {
-                path: cx.dir(s).join(f),
+                path: cx.resolve_file(&f),
                 normals: mesh_normals(cx, s)?,
             }
         }
@@ -54,7 +54,7 @@ pub(super) fn shape(
                 .string(s, "filename")
                 .ok_or_else(|| cx.err(s, "missing filename"))?;
             ShapeKind::Ply {
-                path: cx.dir(s).join(f),
+                path: cx.resolve_file(&f),
                 normals: mesh_normals(cx, s)?,
             }
         }
@@ -75,26 +75,22 @@ pub(super) fn shape(
                 two_sided = two;
                 materials.push(m);
             }
+            // a reference to a BSDF, or to an area emitter declared at the top level
+            "ref" if cx.resolve(c)?.tag == "emitter" => {
+                emission = Some(area_emitter(cx, cx.resolve(c)?)?);
+            }
             "ref" => {
                 let id = c.attr("id").unwrap_or("");
                 let &(m, two) = ids.get(id).ok_or_else(|| {
-                    cx.err(c, format!("refers to bsdf \"{id}\", which is not defined"))
+                    cx.err(
+                        c,
+                        format!("refers to \"{id}\", which is not a <bsdf> or area <emitter> declared before it"),
+                    )
                 })?;
                 material = Some(m);
                 two_sided = two;
             }
-            "emitter" => {
-                if c.attr("type") != Some("area") {
-                    return Err(cx.unsupported(c, "shape emitter", c.attr("type").unwrap_or("")));
-                }
-                emission = Some(EmissionDesc {
-                    spectrum: cx.spectrum_prop(c, "radiance", 1.0, true)?,
-                    amount: EmitAmount::Scale(1.0),
-                    two_sided: false,
-                    sampling_weight: sampling_weight(cx, c)?,
-                    loc: cx.loc(c),
-                });
-            }
+            "emitter" => emission = Some(area_emitter(cx, c)?),
             _ => {}
         }
     }
@@ -134,4 +130,18 @@ fn mesh_normals(cx: &Cx<'_>, s: &Element) -> R<MeshNormals> {
             )),
         },
     }
+}
+
+/// A shape's area emitter: `radiance` (Mitsuba's D65-shaped spectrum), `sampling_weight`.
+fn area_emitter(cx: &Cx<'_>, c: &Element) -> R<EmissionDesc> {
+    if c.attr("type") != Some("area") {
+        return Err(cx.unsupported(c, "shape emitter", c.attr("type").unwrap_or("")));
+    }
+    Ok(EmissionDesc {
+        spectrum: cx.spectrum_prop(c, "radiance", 1.0, true)?,
+        amount: EmitAmount::Scale(1.0),
+        two_sided: false,
+        sampling_weight: sampling_weight(cx, c)?,
+        loc: cx.loc(c),
+    })
 }

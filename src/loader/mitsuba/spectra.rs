@@ -67,7 +67,7 @@ impl Cx<'_> {
                     };
                 }
                 if let Some(f) = e.attr("filename") {
-                    let path = self.dir(e).join(f);
+                    let path = self.resolve_file(f);
                     let text = std::fs::read_to_string(&path).map_err(|er| {
                         self.err(
                             e,

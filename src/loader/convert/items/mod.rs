@@ -135,6 +135,7 @@ pub(super) fn scene(cx: &mut Cx<'_>, raw: RawScene) -> R<SceneDesc> {
         materials,
         shapes,
         lights,
+        notes: Vec::new(),
     })
 }
 

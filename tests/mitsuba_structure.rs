@@ -1,0 +1,181 @@
+//! Mitsuba scene structure read as Mitsuba 3.9.1 reads it: `<path>` folders join the file
+//! resolver, includes resolve against the scene's folder (not the including file's), area
+//! emitters and samplers declared at the top level are referred to by id, and every Mitsuba
+//! sampler name is accepted with a note. Each layout below was loaded by Mitsuba 3.9.1 itself
+//! (`scripts/check_mitsuba_structure.py` builds the same folders and prints what Mitsuba found).
+
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use spectrace::loader::mitsuba::load;
+
+/// A fresh folder under the system's temporary folder.
+fn fresh_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("spectrace-mi-{name}-{}", std::process::id()));
+    let _ = fs::remove_dir_all(&d);
+    fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn write(p: &Path, text: &str) {
+    fs::create_dir_all(p.parent().unwrap()).unwrap();
+    fs::write(p, text).unwrap();
+}
+
+/// One triangle in the z = 0 plane, as OBJ, with `n` extra vertices so files can be told apart.
+fn obj(n: usize) -> String {
+    let mut s = String::from("v 0 0 0\nv 1 0 0\nv 0 1 0\n");
+    for _ in 0..n {
+        s.push_str("v 0 0 0\n");
+    }
+    s + "f 1 2 3\n"
+}
+
+const HEAD: &str = r#"<scene version="3.0.0">
+  <sensor type="perspective">
+    <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+  </sensor>
+  <emitter type="constant"/>
+"#;
+
+/// `<path>` folders are searched before the scene's folder, the latest first; a name found in
+/// none of them is read from the scene's folder.
+#[test]
+fn path_folders_are_searched_latest_first() {
+    let d = fresh_dir("path");
+    write(&d.join("a/tri.obj"), &obj(1));
+    write(&d.join("b/tri.obj"), &obj(2));
+    write(&d.join("tri.obj"), &obj(3));
+    write(&d.join("only_here.obj"), &obj(4));
+    let scene = format!(
+        r#"{HEAD}  <path value="a"/>
+  <path value="b"/>
+  <shape type="obj"><string name="filename" value="tri.obj"/></shape>
+  <shape type="obj"><string name="filename" value="only_here.obj"/></shape>
+</scene>"#
+    );
+    write(&d.join("scene.xml"), &scene);
+    let desc = load(&d.join("scene.xml"), &[]).unwrap();
+    let paths: Vec<PathBuf> = desc
+        .shapes
+        .iter()
+        .map(|s| match &s.kind {
+            spectrace::loader::desc::ShapeKind::Obj { path, .. } => path.clone(),
+            other => panic!("not an obj: {other:?}"),
+        })
+        .collect();
+    assert_eq!(paths[0], d.join("b/tri.obj"), "the latest <path> wins");
+    assert_eq!(paths[1], d.join("only_here.obj"));
+
+    // a folder that does not exist is a located error
+    write(
+        &d.join("bad.xml"),
+        &format!("{HEAD}  <path value=\"nowhere\"/>\n</scene>"),
+    );
+    let e = load(&d.join("bad.xml"), &[]).unwrap_err().to_string();
+    assert!(e.contains("bad.xml:7") && e.contains("nowhere"), "{e}");
+}
+
+/// An include inside an included file is resolved against the scene's folder, as Mitsuba's
+/// file resolver does, not against the folder of the file that includes it.
+#[test]
+fn includes_resolve_against_the_scene_folder() {
+    let d = fresh_dir("include");
+    write(
+        &d.join("parts/shapes.xml"),
+        r#"<scene version="3.0.0"><include filename="parts/light.xml"/>
+  <shape type="sphere"/></scene>"#,
+    );
+    write(
+        &d.join("parts/light.xml"),
+        r#"<scene version="3.0.0"><emitter type="point"><point name="position" value="0, 3, 0"/></emitter></scene>"#,
+    );
+    // the same name relative to parts/ would be parts/parts/light.xml, which does not exist
+    write(
+        &d.join("scene.xml"),
+        &format!("{HEAD}  <include filename=\"parts/shapes.xml\"/>\n</scene>"),
+    );
+    let desc = load(&d.join("scene.xml"), &[]).unwrap();
+    assert_eq!(desc.shapes.len(), 1);
+    assert_eq!(
+        desc.lights.len(),
+        2,
+        "the constant and the included point light"
+    );
+}
+
+/// An area emitter declared at the top level with an id is a declaration: the shapes that
+/// refer to it emit, and it is not a light of its own. A sampler declared at the top level is
+/// referred to from the sensor; its `sample_count` is read.
+#[test]
+fn top_level_emitters_and_samplers_are_referred_to() {
+    let d = fresh_dir("refs");
+    write(
+        &d.join("scene.xml"),
+        r#"<scene version="3.0.0">
+  <sampler type="ldsampler" id="s"><integer name="sample_count" value="64"/></sampler>
+  <emitter type="area" id="lamp"><rgb name="radiance" value="3, 3, 3"/></emitter>
+  <sensor type="perspective">
+    <ref id="s"/>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+  </sensor>
+  <shape type="sphere"><ref id="lamp"/></shape>
+  <shape type="disk"/>
+</scene>"#,
+    );
+    let desc = load(&d.join("scene.xml"), &[]).unwrap();
+    assert_eq!(desc.film.spp, 64);
+    assert!(desc.lights.is_empty());
+    assert!(desc.shapes[0].emission.is_some() && desc.shapes[1].emission.is_none());
+    assert!(
+        desc.notes.len() == 1 && desc.notes[0].contains("ldsampler"),
+        "{:?}",
+        desc.notes
+    );
+    spectrace::scene::build(&desc).expect("builds");
+
+    // an area emitter at the top level without an id belongs in a shape
+    write(
+        &d.join("bad.xml"),
+        &format!("{HEAD}  <emitter type=\"area\"/>\n</scene>"),
+    );
+    let e = load(&d.join("bad.xml"), &[]).unwrap_err().to_string();
+    assert!(
+        e.contains("bad.xml:7") && e.contains("inside a <shape>"),
+        "{e}"
+    );
+}
+
+/// Every sampler Mitsuba 3.9.1 names is accepted; another name is refused with the list.
+#[test]
+fn every_mitsuba_sampler_is_accepted() {
+    let d = fresh_dir("samplers");
+    for name in [
+        "independent",
+        "stratified",
+        "multijitter",
+        "orthogonal",
+        "ldsampler",
+    ] {
+        let f = d.join(format!("{name}.xml"));
+        write(
+            &f,
+            &(HEAD.replace(
+                "<film",
+                &format!(
+                    "<sampler type=\"{name}\"><integer name=\"sample_count\" value=\"9\"/></sampler><film"
+                ),
+            ) + "</scene>"),
+        );
+        let desc = load(&f, &[]).unwrap();
+        assert_eq!(desc.film.spp, 9, "{name}");
+    }
+    let f = d.join("bad.xml");
+    write(
+        &f,
+        &(HEAD.replace("<film", "<sampler type=\"sobol\"/><film") + "</scene>"),
+    );
+    let e = load(&f, &[]).unwrap_err().to_string();
+    assert!(e.contains("\"sobol\"") && e.contains("ldsampler"), "{e}");
+}
