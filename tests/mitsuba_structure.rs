@@ -147,16 +147,18 @@ fn top_level_emitters_and_samplers_are_referred_to() {
     );
 }
 
-/// Every sampler Mitsuba 3.9.1 names is accepted; another name is refused with the list.
+/// Every sampler Mitsuba 3.9.1 names is accepted, and spectrace renders as many samples as it
+/// would (sample_count 10: Mitsuba's `sampler.sample_count()` reports 10, 16, 12, 25, 16);
+/// another name is refused with the list.
 #[test]
 fn every_mitsuba_sampler_is_accepted() {
     let d = fresh_dir("samplers");
-    for name in [
-        "independent",
-        "stratified",
-        "multijitter",
-        "orthogonal",
-        "ldsampler",
+    for (name, spp) in [
+        ("independent", 10),
+        ("stratified", 16),
+        ("multijitter", 12),
+        ("orthogonal", 25),
+        ("ldsampler", 16),
     ] {
         let f = d.join(format!("{name}.xml"));
         write(
@@ -164,12 +166,12 @@ fn every_mitsuba_sampler_is_accepted() {
             &(HEAD.replace(
                 "<film",
                 &format!(
-                    "<sampler type=\"{name}\"><integer name=\"sample_count\" value=\"9\"/></sampler><film"
+                    "<sampler type=\"{name}\"><integer name=\"sample_count\" value=\"10\"/></sampler><film"
                 ),
             ) + "</scene>"),
         );
         let desc = load(&f, &[]).unwrap();
-        assert_eq!(desc.film.spp, 9, "{name}");
+        assert_eq!(desc.film.spp, spp, "{name}");
     }
     let f = d.join("bad.xml");
     write(

@@ -130,13 +130,26 @@ pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraD
                 if !SAMPLERS.contains(&o) {
                     return Err(cx.unsupported(c, "sampler", o));
                 }
+                let asked = match cx.opt_float(c, "sample_count")? {
+                    Some(n) if n >= 1.0 && n.fract() == 0.0 => n.min(1e9) as u32,
+                    Some(n) => {
+                        return Err(cx.err(
+                            c,
+                            format!("sample_count must be a positive integer, not {n}"),
+                        ));
+                    }
+                    // Mitsuba's default sample count
+                    None => 4,
+                };
+                film.spp = mitsuba_sample_count(o, asked);
                 cx.note(
                     c,
-                    format!("Mitsuba's \"{o}\" sampler: spectrace renders with its own Owen-scrambled Sobol sampler (its sample_count is kept)"),
+                    if film.spp == asked {
+                        format!("Mitsuba's \"{o}\" sampler: spectrace renders {asked} samples per pixel with its own Owen-scrambled Sobol sampler")
+                    } else {
+                        format!("Mitsuba's \"{o}\" sampler renders {} samples per pixel for sample_count {asked}; spectrace renders as many, with its own Owen-scrambled Sobol sampler", film.spp)
+                    },
                 );
-                if let Some(n) = cx.opt_float(c, "sample_count")? {
-                    film.spp = (n as u32).max(1);
-                }
             }
             _ => {}
         }
@@ -223,4 +236,60 @@ pub(super) fn camera_frame(
         [l(target.x), l(target.y), l(target.z)],
         up.normalize().to_array(),
     ))
+}
+
+/// The samples per pixel Mitsuba 3.9.1's sampler `name` renders for `sample_count` n (each
+/// rounds up to the structure it needs; measured in Mitsuba with `sampler.sample_count()`):
+/// `stratified` ⌈√n⌉², `multijitter` r·⌈n/r⌉ with r = ⌊√n⌋, `orthogonal` p² for the smallest
+/// prime p ≥ ⌈√n⌉ (at least 4), `ldsampler` the next power of 4 (at least 4), `independent` n.
+fn mitsuba_sample_count(name: &str, n: u32) -> u32 {
+    let root = (n as f64).sqrt().ceil() as u32;
+    match name {
+        "stratified" => root * root,
+        "multijitter" => {
+            let r = ((n as f64).sqrt().floor() as u32).max(1);
+            r * n.div_ceil(r)
+        }
+        "orthogonal" => {
+            let is_prime = |p: u32| {
+                p >= 2
+                    && (2..)
+                        .take_while(|d| d * d <= p)
+                        .all(|d| !p.is_multiple_of(d))
+            };
+            let p = (root.max(2)..).find(|&p| is_prime(p)).unwrap_or(root);
+            p * p
+        }
+        "ldsampler" => {
+            let mut s = 4;
+            while s < n {
+                s *= 4;
+            }
+            s
+        }
+        _ => n,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::mitsuba_sample_count as c;
+
+    /// The counts Mitsuba 3.9.1 reports for these requests (`mi.load_dict({"type": name,
+    /// "sample_count": n}).sample_count()`).
+    #[test]
+    fn sample_counts_round_as_mitsuba() {
+        let asked = [1, 2, 3, 4, 5, 10, 16, 17, 64, 100];
+        for (name, got) in [
+            ("stratified", [1, 4, 4, 4, 9, 16, 16, 25, 64, 100]),
+            ("multijitter", [1, 2, 3, 4, 6, 12, 16, 20, 64, 100]),
+            ("orthogonal", [4, 4, 4, 4, 9, 25, 25, 25, 121, 121]),
+            ("ldsampler", [4, 4, 4, 4, 16, 16, 16, 64, 64, 256]),
+        ] {
+            for (n, want) in asked.iter().zip(got) {
+                assert_eq!(c(name, *n), want, "{name} {n}");
+            }
+        }
+        assert_eq!(c("independent", 7), 7);
+    }
 }
