@@ -1,4 +1,5 @@
-//! Image files: float32 OpenEXR (plain and spectral) and 8-bit sRGB PNG.
+//! Image files: float32 OpenEXR (plain and spectral) and 8-bit sRGB PNG out; PNG, EXR and
+//! Radiance HDR in as RGB, for textures and environment maps.
 //!
 //! Plain data in, plain data out: channels are `&[f32]` slices, row-major, top row first, with
 //! `width * height` values each. No renderer type appears here, so the film can change without
@@ -16,12 +17,16 @@
 //! | `exr_attrs.rs` | names, text encoding and header attributes ↔ `exr` |
 //! | `spectral_names.rs` | `S0.<λ>nm` channel names (Fichet et al. 2021), [`spectral_channels`] |
 //! | `png_out.rs` | [`write_png_linear`], [`write_png_srgb8`] |
+//! | `rgb_in.rs` | [`read_rgb`]: PNG, EXR, HDR as RGB with their [`Encoding`] |
+//! | `hdr_in.rs` | Radiance RGBE files |
 
 mod atomic;
 mod exr_attrs;
 mod exr_read;
 mod exr_write;
+mod hdr_in;
 mod png_out;
+mod rgb_in;
 mod spectral_names;
 
 use std::path::{Path, PathBuf};
@@ -30,6 +35,7 @@ pub use atomic::write_atomically;
 pub use exr_read::read_exr;
 pub use exr_write::{write_exr, write_spectral_exr};
 pub use png_out::{write_png_linear, write_png_srgb8};
+pub use rgb_in::{Encoding, RgbImage, read_rgb};
 pub use spectral_names::{EMISSIVE_UNITS, SPECTRAL_LAYOUT_VERSION, spectral_channels};
 
 /// One float32 channel, row-major, top row first, `width * height` values.

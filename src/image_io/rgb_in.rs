@@ -1,0 +1,152 @@
+//! Reading images as RGB for textures and environment maps: PNG (8 or 16 bit, grey, grey +
+//! alpha, RGB, RGBA, palette), OpenEXR (R, G, B or Y channels) and Radiance HDR (RGBE).
+
+use std::path::Path;
+
+use super::{ImageError, invalid, pixel_count, read_exr};
+
+/// How an image's stored values relate to linear light.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Encoding {
+    /// Stored values are linear (EXR, HDR).
+    Linear,
+    /// Stored values are sRGB-encoded (8- and 16-bit PNG): the reader of the texture decides
+    /// whether to linearise them (Mitsuba's `raw = false`, its default) or not.
+    Srgb,
+}
+
+/// An RGB image, row-major, top row first, values as stored (see `encoding`), in [0, 1] for
+/// integer formats and any finite value for float formats.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RgbImage {
+    pub width: usize,
+    pub height: usize,
+    pub rgb: Vec<[f32; 3]>,
+    pub encoding: Encoding,
+    /// Whether the file had one (grey) channel, copied to R, G and B.
+    pub grey: bool,
+}
+
+/// Reads `path` by its extension (`.png`, `.exr`, `.hdr`/`.rgbe`; case-insensitive). Fails with
+/// an error naming the file for other extensions, unreadable or corrupt files, EXR files without
+/// R, G, B or Y channels, and non-finite values.
+pub fn read_rgb(path: &Path) -> Result<RgbImage, ImageError> {
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+        .unwrap_or_default();
+    let img = match ext.as_str() {
+        "png" => read_png(path)?,
+        "exr" => exr_rgb(path)?,
+        "hdr" | "rgbe" | "pic" => super::hdr_in::read_hdr(path)?,
+        _ => {
+            return Err(invalid(
+                path,
+                format!(
+                    "unsupported image type \".{ext}\"; use .png, .exr or .hdr (JPEG is not read yet: convert it to PNG)"
+                ),
+            ));
+        }
+    };
+    if let Some(i) = img
+        .rgb
+        .iter()
+        .position(|p| p.iter().any(|v| !v.is_finite()))
+    {
+        return Err(invalid(
+            path,
+            format!(
+                "pixel (x {}, y {}) is not finite: {:?}",
+                i % img.width,
+                i / img.width,
+                img.rgb[i]
+            ),
+        ));
+    }
+    Ok(img)
+}
+
+fn exr_rgb(path: &Path) -> Result<RgbImage, ImageError> {
+    let e = read_exr(path)?;
+    let n = pixel_count(path, e.width, e.height)?;
+    let rgb = match (
+        e.channel("R"),
+        e.channel("G"),
+        e.channel("B"),
+        e.channel("Y"),
+    ) {
+        (Some(r), Some(g), Some(b), _) => (0..n).map(|i| [r[i], g[i], b[i]]).collect(),
+        (None, None, None, Some(y)) => y.iter().map(|&v| [v; 3]).collect(),
+        _ => {
+            let names: Vec<&str> = e.channels.iter().map(|(n, _)| n.as_str()).collect();
+            return Err(invalid(
+                path,
+                format!(
+                    "needs channels R, G and B (or Y alone); the file has {}",
+                    names.join(", ")
+                ),
+            ));
+        }
+    };
+    Ok(RgbImage {
+        width: e.width,
+        height: e.height,
+        rgb,
+        encoding: Encoding::Linear,
+        grey: e.channel("R").is_none(),
+    })
+}
+
+fn read_png(path: &Path) -> Result<RgbImage, ImageError> {
+    let file = std::fs::File::open(path).map_err(|source| ImageError::Io {
+        path: path.to_path_buf(),
+        action: "cannot open".to_string(),
+        source,
+    })?;
+    let codec = |e: png::DecodingError| ImageError::Codec {
+        path: path.to_path_buf(),
+        action: "cannot decode PNG",
+        source: Box::new(e),
+    };
+    let mut decoder = png::Decoder::new(std::io::BufReader::new(file));
+    // palettes to RGB(A), fewer than 8 bits to 8; 16 bits stay 16
+    decoder.set_transformations(png::Transformations::EXPAND);
+    let mut reader = decoder.read_info().map_err(codec)?;
+    let mut buf = vec![
+        0;
+        reader
+            .output_buffer_size()
+            .ok_or_else(|| invalid(path, "the image is too large"))?
+    ];
+    let info = reader.next_frame(&mut buf).map_err(codec)?;
+    let (w, h) = (info.width as usize, info.height as usize);
+    let n = pixel_count(path, w, h)?;
+    let channels = info.color_type.samples();
+    let wide = info.bit_depth == png::BitDepth::Sixteen;
+    let sample = |i: usize| -> f32 {
+        if wide {
+            u16::from_be_bytes([buf[2 * i], buf[2 * i + 1]]) as f32 / 65535.0
+        } else {
+            buf[i] as f32 / 255.0
+        }
+    };
+    let row = info.line_size / if wide { 2 } else { 1 };
+    let mut rgb = Vec::with_capacity(n);
+    for y in 0..h {
+        for x in 0..w {
+            let i = y * row + x * channels;
+            rgb.push(match channels {
+                1 | 2 => [sample(i); 3],
+                _ => [sample(i), sample(i + 1), sample(i + 2)],
+            });
+        }
+    }
+    Ok(RgbImage {
+        width: w,
+        height: h,
+        rgb,
+        encoding: Encoding::Srgb,
+        grey: channels <= 2,
+    })
+}
