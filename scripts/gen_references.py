@@ -69,6 +69,8 @@ SPP = {
     "gaussian_edge": 32768,
     "smooth_mesh": 8192,
     "spot_ramp": 8192,
+    # issue 10
+    "textures": 4096,
 }
 DEFAULT_SPP = 1024
 

@@ -27,4 +27,5 @@ pub mod sampler;
 pub mod sampling;
 pub mod scene;
 pub mod spectrum;
+pub mod texture;
 pub mod units;

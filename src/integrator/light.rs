@@ -142,19 +142,19 @@ pub fn trace<const N: usize>(
         let Some(hit) = scene.accel.intersect(&scene.shapes, &ray) else {
             break;
         };
-        let Some(sh) = it.shading(&hit, ray.d) else {
+        let Some(sh) = it.shading(&hit, ray.d, w) else {
             break;
         };
         // wo points back toward where the light came from (pbrt's convention for importance)
         let wo = sh.frame.to_local(-ray.d);
-        if sh.material.is_dispersive() && !sh.material.is_specular() {
+        if sh.bsdf.is_dispersive() && !sh.bsdf.is_specular() {
             w.terminate_secondary();
         }
-        if !sh.material.is_specular()
+        if !sh.bsdf.is_specular()
             && let Some(c) = camera.connect(hit.p, margin)
         {
             let wc = sh.frame.to_local(c.wi);
-            let f = sh.material.eval(wo, wc, w, TransportMode::Importance);
+            let f = sh.bsdf.eval(wo, wc, w, TransportMode::Importance);
             if !f.is_zero()
                 && !occluded_to_camera(
                     it,

@@ -16,7 +16,7 @@ use crate::geometry::{Frame, Intersection, Ray, spawn_ray, spawn_ray_to};
 use crate::light::LightSample;
 use crate::loader::desc::IntegratorKind;
 use crate::loader::desc::LightSelection;
-use crate::material::{BsdfSample, Material, TransportMode};
+use crate::material::{Bsdf, BsdfSample, Material, TransportMode};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
@@ -125,20 +125,21 @@ impl<'a> Integrator<'a> {
     }
 }
 
-/// The shading situation at a surface hit, seen from the incoming ray.
-pub(crate) struct Shading<'a> {
-    pub material: &'a Material,
+/// The shading situation at a surface hit, seen from the incoming ray: the material at the hit
+/// (textures looked up) and the shading frame.
+pub(crate) struct Shading<'a, const N: usize> {
+    pub bsdf: Bsdf<'a, N>,
     pub frame: Frame,
     /// Geometric normal on the side the material uses (flipped for a two-sided back face).
     pub n_geom: Vec3,
 }
 
-impl Shading<'_> {
+impl<const N: usize> Shading<'_, N> {
     /// The BSDF-sampling step shared by camera and light paths: samples the material with
     /// (uc, u) from `s`, keeps only the hero wavelength at any dispersive material, multiplies `beta`
     /// by f·|cos θ|/pdf and returns the sample with the ray that continues the path. None ends
     /// the path (no sample, zero pdf or zero value).
-    pub fn scatter<const N: usize>(
+    pub fn scatter(
         &self,
         hit: &Intersection,
         wo: Vec3,
@@ -150,10 +151,10 @@ impl Shading<'_> {
         let (uc, u) = (s.get_1d(), s.get_2d());
         // Terminate at every dispersive hit, before choosing a lobe: a choice made with the
         // hero's F(λ₀) that terminates on one branch only biases the secondaries.
-        if self.material.is_dispersive() {
+        if self.bsdf.is_dispersive() {
             w.terminate_secondary();
         }
-        let bs = self.material.sample(wo, w, uc, u, mode)?;
+        let bs = self.bsdf.sample(wo, w, uc, u, mode)?;
         if bs.pdf <= 0.0 || bs.f.is_zero() {
             return None;
         }
@@ -202,8 +203,14 @@ impl Shading<'_> {
 }
 
 impl Integrator<'_> {
-    /// Material and frame at `hit` for a ray travelling along `dir`; None for a black emitter.
-    pub(crate) fn shading(&self, hit: &Intersection, dir: Vec3) -> Option<Shading<'_>> {
+    /// Material (looked up at the hit's uv for the wavelengths `w`) and frame at `hit` for a
+    /// ray travelling along `dir`; None for a black emitter.
+    pub(crate) fn shading<const N: usize>(
+        &self,
+        hit: &Intersection,
+        dir: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> Option<Shading<'_, N>> {
         let surf = &self.scene.surfaces[hit.shape as usize];
         let material = &self.scene.materials[surf.material? as usize];
         let (mut ng, mut ns) = (hit.n_geom, hit.n_shading);
@@ -216,7 +223,7 @@ impl Integrator<'_> {
             ns = -ns;
         }
         Some(Shading {
-            material,
+            bsdf: material.at(hit.uv, w),
             frame: Frame::from_normal(ns),
             n_geom: ng,
         })

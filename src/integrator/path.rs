@@ -82,7 +82,7 @@ pub(super) fn radiance<const N: usize>(
             "bounce {depth} starts at a shifted sampler dimension"
         );
         depth += 1;
-        let Some(sh) = it.shading(&hit, ray.d) else {
+        let Some(sh) = it.shading(&hit, ray.d, w) else {
             break;
         };
         let wo = sh.frame.to_local(-ray.d);
@@ -91,19 +91,19 @@ pub(super) fn radiance<const N: usize>(
         // Fresnel term (pbrt-v4 §14.1.3, `TerminateSecondary` on `BSDF::HasDispersion`
         // hits; Wilkie et al. 2014 §4.2). Terminating only when transmission is sampled with
         // probability 1 − F(λ₀) biases the secondaries.
-        if sh.material.is_dispersive() {
+        if sh.bsdf.is_dispersive() {
             w.terminate_secondary();
         }
 
         // Next-event estimation.
-        if !sh.material.is_specular() {
+        if !sh.bsdf.is_specular() {
             let u = s.get_2d();
             if let Some((li, p_sel, ux)) = it.lights.pick_reuse(u.x) {
                 let light = &scene.lights[li];
                 let u = glam::Vec2::new(ux, u.y);
                 if let Some(ls) = light.sample_li(&scene.shapes, hit.p, w, u) {
                     let wi = sh.frame.to_local(ls.wi);
-                    let (f, bsdf_pdf) = sh.material.eval_pdf(wo, wi, w, TransportMode::Radiance);
+                    let (f, bsdf_pdf) = sh.bsdf.eval_pdf(wo, wi, w, TransportMode::Radiance);
                     let f = f * wi.z.abs();
                     if !f.is_zero()
                         && !ls.li.is_zero()

@@ -36,16 +36,16 @@ pub(super) fn radiance<const N: usize>(
         Some(li) => scene.lights[li as usize].emitted(hit.n_geom, -ray.d, w),
         None => SampledSpectrum::zero(),
     };
-    let Some(sh) = it.shading(&hit, ray.d) else {
+    let Some(sh) = it.shading(&hit, ray.d, w) else {
         return l;
     };
     let wo = sh.frame.to_local(-ray.d);
 
-    if sh.material.is_specular() {
+    if sh.bsdf.is_specular() {
         if depth >= it.max_depth {
             return l;
         }
-        if sh.material.is_dispersive() {
+        if sh.bsdf.is_dispersive() {
             w.terminate_secondary();
         }
         // Both lobes, each once: uc = 0 picks reflection when F > 0, uc → 1 picks transmission
@@ -54,7 +54,7 @@ pub(super) fn radiance<const N: usize>(
         let (mut done_reflection, mut done_transmission) = (false, false);
         for uc in [0.0, 1.0 - f32::EPSILON] {
             let Some(bs) =
-                sh.material
+                sh.bsdf
                     .sample(wo, w, uc, glam::Vec2::splat(0.5), TransportMode::Radiance)
             else {
                 continue;
@@ -77,8 +77,8 @@ pub(super) fn radiance<const N: usize>(
     }
 
     // ambient: k_d · I_a for every uniform environment light
-    let kd = match sh.material {
-        Material::Diffuse(m) => Some(m.reflectance.sample(w)),
+    let kd = match sh.bsdf.material {
+        Material::Diffuse(_) => Some(sh.bsdf.albedo),
         Material::Phong(m) => Some(m.kd.sample(w)),
         _ => None,
     };
@@ -96,7 +96,7 @@ pub(super) fn radiance<const N: usize>(
             continue;
         };
         let wi = sh.frame.to_local(ls.wi);
-        let f = sh.material.eval(wo, wi, w, TransportMode::Radiance) * wi.z.abs();
+        let f = sh.bsdf.eval(wo, wi, w, TransportMode::Radiance) * wi.z.abs();
         if f.is_zero() || it.occluded(&hit, sh.n_geom_toward(ls.wi), &ls) {
             continue;
         }

@@ -6,6 +6,7 @@ use std::path::PathBuf;
 pub use crate::material::microfacet::Distribution;
 use crate::spectrum::Spectrum;
 use crate::spectrum::ior::{ComplexIor, Ior};
+pub use crate::texture::{TexFilter, Wrap};
 use crate::units::{
     Angle, Illuminance, Irradiance, Length, Luminance, LuminousFlux, LuminousIntensity, Power,
     Radiance, RadiantIntensity,
@@ -148,7 +149,7 @@ pub const DEFAULT_RR_DEPTH: u32 = 5;
 #[derive(Clone, Debug)]
 pub enum MaterialKind {
     Diffuse {
-        reflectance: Spectrum,
+        reflectance: TextureDesc,
     },
     Phong {
         kd: Spectrum,
@@ -168,6 +169,37 @@ pub enum MaterialKind {
         roughness: Option<f64>,
         distribution: Distribution,
     },
+}
+
+/// A spectral quantity that may vary over a surface (see `crate::texture`).
+#[derive(Clone, Debug)]
+pub enum TextureDesc {
+    /// The same spectrum everywhere.
+    Uniform(Spectrum),
+    /// Mitsuba's checkerboard: `a` on the checks where the fractional parts of `to_uv`(uv) are
+    /// both ≤ ½ or both > ½, else `b`.
+    Checkerboard {
+        a: Spectrum,
+        b: Spectrum,
+        to_uv: Vec<TransformStep>,
+    },
+    /// An image file (PNG, EXR, HDR), read when the scene is built.
+    Bitmap {
+        path: PathBuf,
+        filter: TexFilter,
+        wrap: Wrap,
+        /// Use 8- and 16-bit values as stored instead of decoding sRGB; colour images cannot
+        /// then be spectra (Mitsuba's `raw`), so only grey images are accepted with it.
+        raw: bool,
+        to_uv: Vec<TransformStep>,
+        loc: Loc,
+    },
+}
+
+impl From<Spectrum> for TextureDesc {
+    fn from(s: Spectrum) -> Self {
+        TextureDesc::Uniform(s)
+    }
 }
 
 #[derive(Clone, Debug)]

@@ -5,7 +5,8 @@ use std::f32::consts::FRAC_1_PI;
 
 use super::BsdfSample;
 use crate::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
-use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
+use crate::spectrum::SampledSpectrum;
+use crate::texture::Texture;
 
 /// Ideal diffuse reflection, f = ρ(λ)/π, sampled with the cosine-weighted hemisphere.
 ///
@@ -14,13 +15,15 @@ use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
 /// directional albedo is ρ for every `wo`), so ρ ≤ 1 conserves energy.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Lambert {
-    /// Reflectance ρ(λ), dimensionless, in [0, 1].
-    pub reflectance: Spectrum,
+    /// Reflectance ρ(λ), dimensionless, in [0, 1], possibly varying over the surface.
+    pub reflectance: Texture,
 }
 
 impl Lambert {
-    pub fn new(reflectance: Spectrum) -> Self {
-        Self { reflectance }
+    pub fn new(reflectance: impl Into<Texture>) -> Self {
+        Self {
+            reflectance: reflectance.into(),
+        }
     }
 
     #[inline]
@@ -28,12 +31,12 @@ impl Lambert {
         &self,
         wo: Vec3,
         wi: Vec3,
-        w: &SampledWavelengths<N>,
+        rho: SampledSpectrum<N>,
     ) -> SampledSpectrum<N> {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return SampledSpectrum::zero();
         }
-        self.reflectance.sample(w) * FRAC_1_PI
+        rho * FRAC_1_PI
     }
 
     #[inline]
@@ -48,7 +51,7 @@ impl Lambert {
     pub fn sample<const N: usize>(
         &self,
         wo: Vec3,
-        w: &SampledWavelengths<N>,
+        rho: SampledSpectrum<N>,
         u: Vec2,
     ) -> Option<BsdfSample<N>> {
         if wo.z <= 0.0 {
@@ -59,17 +62,14 @@ impl Lambert {
         if pdf <= 0.0 {
             return None;
         }
-        Some(BsdfSample::reflection(
-            self.reflectance.sample(w) * FRAC_1_PI,
-            wi,
-            pdf,
-        ))
+        Some(BsdfSample::reflection(rho * FRAC_1_PI, wi, pdf))
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::spectrum::{SampledWavelengths, Spectrum};
 
     #[test]
     fn lambert_weight_is_reflectance_and_one_sided() {
@@ -79,12 +79,13 @@ mod tests {
             pdf: [1.0; 4],
         };
         let wo = Vec3::new(0.0, 0.6, 0.8);
-        let s = m.sample(wo, &w, Vec2::new(0.3, 0.7)).unwrap();
+        let rho = m.reflectance.sample(Vec2::ZERO, &w);
+        let s = m.sample(wo, rho, Vec2::new(0.3, 0.7)).unwrap();
         let weight = s.f * s.wi.z / s.pdf;
         assert!(weight.0.iter().all(|&x| (x - 0.7).abs() < 1e-5));
         assert_eq!(s.pdf, m.pdf(wo, s.wi));
-        assert!(m.sample(-wo, &w, Vec2::new(0.3, 0.7)).is_none());
-        assert!(m.eval(wo, -s.wi, &w).is_zero());
+        assert!(m.sample(-wo, rho, Vec2::new(0.3, 0.7)).is_none());
+        assert!(m.eval(wo, -s.wi, rho).is_zero());
         assert_eq!(m.pdf(-wo, s.wi), 0.0);
     }
 }

@@ -108,7 +108,22 @@ pub enum Material {
 }
 
 impl Material {
-    /// f(wo, wi) per wavelength in sr⁻¹, without the cosine. 0 for delta lobes.
+    /// The material at a surface point with surface coordinates `uv`, for the wavelengths `w`:
+    /// its textures are looked up here, once per hit (pbrt-v4's `GetBSDF`), and the returned
+    /// [`Bsdf`] is what integrators evaluate and sample.
+    #[inline]
+    pub fn at<const N: usize>(&self, uv: Vec2, w: &SampledWavelengths<N>) -> Bsdf<'_, N> {
+        let albedo = match self {
+            Material::Diffuse(m) => m.reflectance.sample(uv, w),
+            _ => SampledSpectrum::zero(),
+        };
+        Bsdf {
+            material: self,
+            albedo,
+        }
+    }
+
+    /// [`Bsdf::eval`] at uv = (0, 0): for untextured materials, the value anywhere.
     #[inline]
     pub fn eval<const N: usize>(
         &self,
@@ -117,37 +132,22 @@ impl Material {
         w: &SampledWavelengths<N>,
         mode: TransportMode,
     ) -> SampledSpectrum<N> {
-        match self {
-            Material::Diffuse(m) => m.eval(wo, wi, w),
-            Material::Phong(m) => m.eval(wo, wi, w),
-            Material::Dielectric(_) | Material::Conductor(_) => SampledSpectrum::zero(),
-            Material::RoughDielectric(m) => m.eval(wo, wi, w, mode),
-            Material::RoughConductor(m) => m.eval(wo, wi, w),
-        }
+        self.at(Vec2::ZERO, w).eval(wo, wi, w, mode)
     }
 
-    /// Density (sr⁻¹) with which [`Material::sample`] returns `wi` given `wo`, for the hero
-    /// wavelength. 0 for delta lobes.
+    /// [`Bsdf::pdf`] at uv = (0, 0).
     #[inline]
     pub fn pdf<const N: usize>(
         &self,
         wo: Vec3,
         wi: Vec3,
         w: &SampledWavelengths<N>,
-        _mode: TransportMode,
+        mode: TransportMode,
     ) -> f32 {
-        match self {
-            Material::Diffuse(m) => m.pdf(wo, wi),
-            Material::Phong(m) => m.pdf(wo, wi, w),
-            Material::Dielectric(_) | Material::Conductor(_) => 0.0,
-            Material::RoughDielectric(m) => m.pdf(wo, wi, w),
-            Material::RoughConductor(m) => m.pdf(wo, wi),
-        }
+        self.at(Vec2::ZERO, w).pdf(wo, wi, w, mode)
     }
 
-    /// [`Material::eval`] and [`Material::pdf`] together, for next-event estimation, which
-    /// needs both: the work they share (half vectors, indices, lobe values) is done once. The
-    /// same values as the two calls.
+    /// [`Bsdf::eval_pdf`] at uv = (0, 0).
     #[inline]
     pub fn eval_pdf<const N: usize>(
         &self,
@@ -156,17 +156,10 @@ impl Material {
         w: &SampledWavelengths<N>,
         mode: TransportMode,
     ) -> (SampledSpectrum<N>, f32) {
-        match self {
-            Material::Diffuse(m) => (m.eval(wo, wi, w), m.pdf(wo, wi)),
-            Material::Phong(m) => m.eval_pdf(wo, wi, w),
-            Material::Dielectric(_) | Material::Conductor(_) => (SampledSpectrum::zero(), 0.0),
-            Material::RoughDielectric(m) => m.eval_pdf(wo, wi, w, mode),
-            Material::RoughConductor(m) => m.eval_pdf(wo, wi, w),
-        }
+        self.at(Vec2::ZERO, w).eval_pdf(wo, wi, w, mode)
     }
 
-    /// Samples `wi` given `wo`: `uc` chooses a lobe, `u` the direction within it. `None` when
-    /// the sample carries no contribution (wrong side, below the horizon, degenerate `wo`).
+    /// [`Bsdf::sample`] at uv = (0, 0).
     #[inline]
     pub fn sample<const N: usize>(
         &self,
@@ -176,14 +169,7 @@ impl Material {
         u: Vec2,
         mode: TransportMode,
     ) -> Option<BsdfSample<N>> {
-        match self {
-            Material::Diffuse(m) => m.sample(wo, w, u),
-            Material::Phong(m) => m.sample(wo, w, uc, u),
-            Material::Dielectric(m) => m.sample(wo, w, uc, mode),
-            Material::RoughDielectric(m) => m.sample(wo, w, uc, u, mode),
-            Material::Conductor(m) => m.sample(wo, w),
-            Material::RoughConductor(m) => m.sample(wo, w, u),
-        }
+        self.at(Vec2::ZERO, w).sample(wo, w, uc, u, mode)
     }
 
     /// Whether the material has only delta lobes (smooth dielectric, smooth conductor), so that
@@ -203,5 +189,104 @@ impl Material {
             Material::RoughDielectric(m) => m.int_ior.is_dispersive(),
             _ => false,
         }
+    }
+}
+
+/// A material at one surface point, for one set of wavelengths: its textured values looked up
+/// (see [`Material::at`]). Evaluating and sampling follow the conventions of this module.
+#[derive(Clone, Copy, Debug)]
+pub struct Bsdf<'a, const N: usize> {
+    pub material: &'a Material,
+    /// The textured reflectance at the point (Lambert's ρ), dimensionless; zero for materials
+    /// without one.
+    pub albedo: SampledSpectrum<N>,
+}
+
+impl<const N: usize> Bsdf<'_, N> {
+    /// f(wo, wi) per wavelength in sr⁻¹, without the cosine. 0 for delta lobes.
+    #[inline]
+    pub fn eval(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+        mode: TransportMode,
+    ) -> SampledSpectrum<N> {
+        match self.material {
+            Material::Diffuse(m) => m.eval(wo, wi, self.albedo),
+            Material::Phong(m) => m.eval(wo, wi, w),
+            Material::Dielectric(_) | Material::Conductor(_) => SampledSpectrum::zero(),
+            Material::RoughDielectric(m) => m.eval(wo, wi, w, mode),
+            Material::RoughConductor(m) => m.eval(wo, wi, w),
+        }
+    }
+
+    /// Density (sr⁻¹) with which [`Material::sample`] returns `wi` given `wo`, for the hero
+    /// wavelength. 0 for delta lobes.
+    #[inline]
+    pub fn pdf(&self, wo: Vec3, wi: Vec3, w: &SampledWavelengths<N>, _mode: TransportMode) -> f32 {
+        match self.material {
+            Material::Diffuse(m) => m.pdf(wo, wi),
+            Material::Phong(m) => m.pdf(wo, wi, w),
+            Material::Dielectric(_) | Material::Conductor(_) => 0.0,
+            Material::RoughDielectric(m) => m.pdf(wo, wi, w),
+            Material::RoughConductor(m) => m.pdf(wo, wi),
+        }
+    }
+
+    /// [`Material::eval`] and [`Material::pdf`] together, for next-event estimation, which
+    /// needs both: the work they share (half vectors, indices, lobe values) is done once. The
+    /// same values as the two calls.
+    #[inline]
+    pub fn eval_pdf(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+        mode: TransportMode,
+    ) -> (SampledSpectrum<N>, f32) {
+        match self.material {
+            Material::Diffuse(m) => (m.eval(wo, wi, self.albedo), m.pdf(wo, wi)),
+            Material::Phong(m) => m.eval_pdf(wo, wi, w),
+            Material::Dielectric(_) | Material::Conductor(_) => (SampledSpectrum::zero(), 0.0),
+            Material::RoughDielectric(m) => m.eval_pdf(wo, wi, w, mode),
+            Material::RoughConductor(m) => m.eval_pdf(wo, wi, w),
+        }
+    }
+
+    /// Samples `wi` given `wo`: `uc` chooses a lobe, `u` the direction within it. `None` when
+    /// the sample carries no contribution (wrong side, below the horizon, degenerate `wo`).
+    #[inline]
+    pub fn sample(
+        &self,
+        wo: Vec3,
+        w: &SampledWavelengths<N>,
+        uc: f32,
+        u: Vec2,
+        mode: TransportMode,
+    ) -> Option<BsdfSample<N>> {
+        match self.material {
+            Material::Diffuse(m) => m.sample(wo, self.albedo, u),
+            Material::Phong(m) => m.sample(wo, w, uc, u),
+            Material::Dielectric(m) => m.sample(wo, w, uc, mode),
+            Material::RoughDielectric(m) => m.sample(wo, w, uc, u, mode),
+            Material::Conductor(m) => m.sample(wo, w),
+            Material::RoughConductor(m) => m.sample(wo, w, u),
+        }
+    }
+
+    /// Whether the material has only delta lobes (smooth dielectric, smooth conductor), so that
+    /// light sampling (next-event estimation) is pointless.
+    #[inline]
+    pub fn is_specular(&self) -> bool {
+        self.material.is_specular()
+    }
+
+    /// Whether transmission through this material depends on wavelength in direction, so that
+    /// a transmission event (sampled, or evaluated for light sampling) must terminate the
+    /// secondary wavelengths.
+    #[inline]
+    pub fn is_dispersive(&self) -> bool {
+        self.material.is_dispersive()
     }
 }

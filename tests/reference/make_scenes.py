@@ -690,11 +690,125 @@ Exercises: vertex normals computed for OBJ meshes, shading normals.""",
     write("smooth_mesh", s + FOOTER)
 
 
+def write_png(path, width, height, pixels, channels=3):
+    """An 8-bit PNG (grey when channels = 1, else RGB) from rows of byte values, top row first,
+    with the standard library only (zlib + struct)."""
+    import struct
+    import zlib
+
+    raw = b"".join(b"\x00" + bytes(v for px in row for v in (px if channels > 1 else [px]))
+                   for row in pixels)
+
+    def chunk(tag, data):
+        return (struct.pack(">I", len(data)) + tag + data
+                + struct.pack(">I", zlib.crc32(tag + data) & 0xFFFFFFFF))
+
+    colour_type = 2 if channels == 3 else 0
+    png = (b"\x89PNG\r\n\x1a\n"
+           + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, colour_type, 0, 0, 0))
+           + chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "wb") as f:
+        f.write(png)
+
+
+def textures():
+    d = os.path.join(HERE, "textures")
+    # 4 × 4 RGB, 16 distinct sRGB colours: orientation (row 0 at v = 0) and nearest filtering
+    grid = [[(40 + 60 * x, 30 + 60 * y, 200 - 50 * x) for x in range(4)] for y in range(4)]
+    write_png(os.path.join(d, "grid.png"), 4, 4, grid)
+    # 8 × 4 grey ramp: bilinear filtering, grey images, the sphere's uv
+    ramp = [[20 + 30 * x + 5 * y for x in range(8)] for y in range(4)]
+    write_png(os.path.join(d, "ramp.png"), 8, 4, ramp, channels=1)
+    # 2 × 2 RGB for the OBJ quad: OBJ's v flip, mirror wrap, to_uv
+    quad = [[(230, 40, 40), (40, 200, 60)], [(50, 60, 220), (240, 220, 40)]]
+    write_png(os.path.join(d, "quad.png"), 2, 2, quad)
+    with open(os.path.join(d, "quad.obj"), "w") as f:
+        f.write("# a unit quad in the z = 0 plane facing +z, vt in OBJ's v-up convention\n"
+                "v -0.5 0 0\nv 0.5 0 0\nv 0.5 1 0\nv -0.5 1 0\n"
+                "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n")
+    s = header(
+        """Textures as Mitsuba reads them: a checkerboard floor (color0 a neutral, color1 the
+ColorChecker red, to_uv scale 4: 8 × 8 checks of 0.5 m), a back wall with a 4 × 4 RGB PNG
+(nearest: row 0 of the file at v = 0), a sphere with an 8 × 4 grey PNG ramp (bilinear, the
+sphere's uv), an OBJ quad with vt and a 2 × 2 RGB PNG (OBJ's v flip, mirror wrap, to_uv
+scale 1.5, which makes the quad's pattern asymmetric so a missing flip shows), under a D65 area light and a dim constant environment.
+Exercises: checkerboard, bitmap (PNG, sRGB decoding, nearest/bilinear, repeat/mirror, to_uv),
+uv of rectangles, spheres and OBJ meshes.""",
+        "0, 1.3, 3.2",
+        "0, 0.6, 0",
+        50,
+        64,
+        4,
+    )
+    s += f"""
+    <shape type="rectangle">
+        <transform name="to_world">
+            <scale value="2"/>
+            <rotate x="1" angle="-90"/>
+        </transform>
+        <bsdf type="diffuse">
+            <texture type="checkerboard" name="reflectance">
+                <spectrum name="color0" value="0.7"/>
+                <spectrum name="color1" value="{colorchecker("red")}"/>
+                <transform name="to_uv"><scale x="4" y="4"/></transform>
+            </texture>
+        </bsdf>
+    </shape>
+
+    <shape type="rectangle">
+        <transform name="to_world">
+            <scale value="1.2"/>
+            <translate x="0" y="1.2" z="-1"/>
+        </transform>
+        <bsdf type="diffuse">
+            <texture type="bitmap" name="reflectance">
+                <string name="filename" value="grid.png"/>
+                <string name="filter_type" value="nearest"/>
+            </texture>
+        </bsdf>
+    </shape>
+
+    <shape type="sphere">
+        <point name="center" x="-0.75" y="0.4" z="0.2"/>
+        <float name="radius" value="0.4"/>
+        <bsdf type="diffuse">
+            <texture type="bitmap" name="reflectance">
+                <string name="filename" value="ramp.png"/>
+            </texture>
+        </bsdf>
+    </shape>
+
+    <shape type="obj">
+        <string name="filename" value="quad.obj"/>
+        <transform name="to_world">
+            <scale value="0.9"/>
+            <rotate y="1" angle="-20"/>
+            <translate x="0.75" y="0.05" z="0.1"/>
+        </transform>
+        <bsdf type="diffuse">
+            <texture type="bitmap" name="reflectance">
+                <string name="filename" value="quad.png"/>
+                <string name="wrap_mode" value="mirror"/>
+                <transform name="to_uv"><scale x="1.5" y="1.5"/></transform>
+            </texture>
+        </bsdf>
+    </shape>
+
+{area_rect(0.5, "0.3, 2.6, 1.2", illuminant('d65', 30.0))}
+    <emitter type="constant">
+        <spectrum name="radiance" value="{illuminant('d65', 0.3)}"/>
+    </emitter>
+"""
+    write("textures", s + FOOTER)
+
+
 SCENES = {
     f.__name__: f
     for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
               dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional,
-              spot_ramp, gaussian_edge, smooth_mesh)
+              spot_ramp, gaussian_edge, smooth_mesh, textures)
 }
 
 if __name__ == "__main__":

@@ -15,7 +15,9 @@ impl Mesh {
     ///
     /// Vertex normals and uvs are kept if any object has them; objects without them get zero
     /// normals (the shading normal falls back to the geometric one) and zero uvs. Coordinates are
-    /// taken as metres, uvs as written in the file.
+    /// taken as metres. A `vt u v` (v up, the OBJ convention) becomes uv = (u, 1 − v), so that v
+    /// runs down an image from its first stored row, as textures look it up (and as Mitsuba
+    /// reads OBJ files).
     ///
     /// Errors name the path: `cannot open mesh <path>: <io error>` if the file cannot be opened
     /// or read, `malformed OBJ <path>: <tobj's message>` if it cannot be parsed (e.g. a bad
@@ -75,7 +77,11 @@ impl Mesh {
             }
             if any_uvs {
                 if mesh.texcoords.len() == 2 * count {
-                    uvs.extend(mesh.texcoords.chunks_exact(2).map(Vec2::from_slice));
+                    uvs.extend(
+                        mesh.texcoords
+                            .chunks_exact(2)
+                            .map(|t| Vec2::new(t[0], 1.0 - t[1])),
+                    );
                 } else {
                     uvs.resize(base + count, Vec2::ZERO);
                 }

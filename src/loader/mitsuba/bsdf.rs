@@ -117,7 +117,7 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
             return Ok((m, true));
         }
         "diffuse" => MaterialKind::Diffuse {
-            reflectance: cx.spectrum_prop(b, "reflectance", 0.5, false)?,
+            reflectance: cx.texture_prop(b, "reflectance", 0.5)?,
         },
         "dielectric" | "roughdielectric" => MaterialKind::Dielectric {
             ior: Ior::Constant(ior_of(cx, "int_ior", 1.5046)? as f32),

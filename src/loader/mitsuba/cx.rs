@@ -53,6 +53,7 @@ const PLUGINS: &[(&str, &[&str])] = &[
     ),
     ("shape emitter", &["area"]),
     ("spectrum", &["blackbody", "d65"]),
+    ("texture", &["checkerboard", "bitmap"]),
     (
         "transform",
         &["translate", "scale", "rotate", "matrix", "lookat"],

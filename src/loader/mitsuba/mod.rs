@@ -26,6 +26,7 @@ mod scene;
 mod sensor;
 mod shapes;
 mod spectra;
+mod textures;
 mod transform;
 mod xml;
 

@@ -100,7 +100,7 @@ pub(super) fn shape(
         materials.push(MaterialDesc {
             name: format!("default@{}", cx.loc(s).line),
             kind: MaterialKind::Diffuse {
-                reflectance: Spectrum::Constant(0.5),
+                reflectance: Spectrum::Constant(0.5).into(),
             },
             loc: cx.loc(s),
         });

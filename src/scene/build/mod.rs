@@ -3,6 +3,7 @@
 
 mod lights;
 mod shapes;
+mod textures;
 
 use glam::Vec3;
 
@@ -109,7 +110,7 @@ pub(super) fn surface(material: Option<usize>, two_sided: bool, light: Option<us
 fn material(k: &MaterialKind) -> Result<Material, String> {
     Ok(match k {
         MaterialKind::Diffuse { reflectance } => Material::Diffuse(Lambert {
-            reflectance: reflectance.clone(),
+            reflectance: textures::texture(reflectance)?,
         }),
         MaterialKind::Phong { kd, ks, exponent } => {
             Material::Phong(Phong::new(kd.clone(), ks.clone(), *exponent as f32)?)

@@ -10,14 +10,24 @@ use crate::units::plain;
 
 /// The object-to-world transform: the scene unit's scale, then the steps in order.
 fn transform(s: &ShapeDesc, unit_scale: bool) -> Result<Transform, String> {
+    steps(&s.transform, s.unit_m, unit_scale)
+}
+
+/// Transform steps composed in order, after the scale `unit_m` when `unit_scale`; a matrix's
+/// translation column is in units of `unit_m` metres.
+pub(super) fn steps(
+    list: &[TransformStep],
+    unit_m: f64,
+    unit_scale: bool,
+) -> Result<Transform, String> {
     let e = |r: Result<Transform, crate::geometry::GeometryError>| r.map_err(|e| e.to_string());
-    let u = s.unit_m as f32;
+    let u = unit_m as f32;
     let mut t = if unit_scale {
         e(Transform::scale(Vec3::splat(u)))?
     } else {
         Transform::identity()
     };
-    for step in &s.transform {
+    for step in list {
         let next = match step {
             TransformStep::Translate(p) => e(Transform::translate(v3(p)))?,
             TransformStep::Rotate { axis, angle } => e(Transform::rotate(
@@ -34,7 +44,7 @@ fn transform(s: &ShapeDesc, unit_scale: bool) -> Result<Transform, String> {
                 for r in 0..4 {
                     for c in 0..4 {
                         // row-major input; the translation column is in scene units
-                        let v = m[r * 4 + c] * if c == 3 && r < 3 { s.unit_m } else { 1.0 };
+                        let v = m[r * 4 + c] * if c == 3 && r < 3 { unit_m } else { 1.0 };
                         cols[c * 4 + r] = v as f32;
                     }
                 }

@@ -1,0 +1,103 @@
+//! Mitsuba textures: a property that may be a `<texture>` (`checkerboard`, `bitmap`), a `<ref>`
+//! to one declared at the top level, or a plain spectrum. Read as Mitsuba 3.9.1 reads them
+//! (`src/textures/checkerboard.cpp`, `bitmap.cpp`; see `crate::texture`).
+
+use super::cx::{Cx, R};
+use super::xml::Element;
+use crate::loader::desc::{TexFilter, TextureDesc, Wrap};
+use crate::spectrum::Spectrum;
+
+impl Cx<'_> {
+    /// The texture or spectrum of child `name` of `e`, `default` when absent (a reflectance:
+    /// not an emitter's spectrum).
+    pub(super) fn texture_prop(&self, e: &Element, name: &str, default: f32) -> R<TextureDesc> {
+        let Some(c) = self.child(e, name) else {
+            return Ok(Spectrum::Constant(default).into());
+        };
+        let t = self.resolve(c)?;
+        if t.tag != "texture" {
+            return Ok(self.spectrum(c, false)?.into());
+        }
+        let to_uv = match t
+            .children
+            .iter()
+            .find(|c| c.tag == "transform" && c.attr("name") == Some("to_uv"))
+        {
+            Some(tr) => self.transform(tr)?,
+            None => Vec::new(),
+        };
+        match t.attr("type").unwrap_or("") {
+            "checkerboard" => {
+                let colour = |key: &str, default: f32| -> R<Spectrum> {
+                    match self.child(t, key) {
+                        Some(c) if self.resolve(c)?.tag == "texture" => Err(self.err(
+                            c,
+                            "a checkerboard's colours are spectra here, not nested textures",
+                        )),
+                        Some(c) => self.spectrum(c, false),
+                        None => Ok(Spectrum::Constant(default)),
+                    }
+                };
+                Ok(TextureDesc::Checkerboard {
+                    a: colour("color0", 0.4)?,
+                    b: colour("color1", 0.2)?,
+                    to_uv,
+                })
+            }
+            "bitmap" => {
+                let f = self
+                    .string(t, "filename")
+                    .ok_or_else(|| self.err(t, "missing filename"))?;
+                let path = self.resolve_file(&f);
+                if !path.is_file() {
+                    return Err(
+                        self.err(t, format!("image file {} does not exist", path.display()))
+                    );
+                }
+                // errors about a property point at its element
+                let at = |key: &str| self.child(t, key).unwrap_or(t);
+                let filter = match self.string(t, "filter_type").as_deref() {
+                    None | Some("bilinear") => TexFilter::Bilinear,
+                    Some("nearest") => TexFilter::Nearest,
+                    Some(o) => {
+                        return Err(self.err(
+                            at("filter_type"),
+                            format!("filter_type \"{o}\" is not one of \"bilinear\", \"nearest\""),
+                        ));
+                    }
+                };
+                let wrap = match self.string(t, "wrap_mode").as_deref() {
+                    None | Some("repeat") => Wrap::Repeat,
+                    Some("mirror") => Wrap::Mirror,
+                    Some("clamp") => Wrap::Clamp,
+                    Some(o) => {
+                        return Err(self.err(
+                            at("wrap_mode"),
+                            format!(
+                                "wrap_mode \"{o}\" is not one of \"repeat\", \"mirror\", \"clamp\""
+                            ),
+                        ));
+                    }
+                };
+                let raw = match self.string(t, "raw").as_deref() {
+                    None | Some("false") => false,
+                    Some("true") => true,
+                    Some(o) => {
+                        return Err(
+                            self.err(at("raw"), format!("raw: expected true or false, found {o}"))
+                        );
+                    }
+                };
+                Ok(TextureDesc::Bitmap {
+                    path,
+                    filter,
+                    wrap,
+                    raw,
+                    to_uv,
+                    loc: self.loc(t),
+                })
+            }
+            other => Err(self.unsupported(t, "texture", other)),
+        }
+    }
+}

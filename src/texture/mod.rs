@@ -1,0 +1,100 @@
+//! Textures: spectral quantities that vary over a surface (reflectance, and whatever else a
+//! material reads through a [`Texture`]), looked up at a hit's surface coordinates `uv`.
+//!
+//! # Conventions
+//!
+//! - `uv` is the shape's parameterisation ([`crate::geometry::Intersection::uv`]), mapped by
+//!   the texture's own [`UvTransform`] (Mitsuba's `to_uv`) before the lookup.
+//! - Values are per wavelength, dimensionless for reflectances, in the unit of the quantity
+//!   the material reads.
+//! - RGB texels become spectra once, when the scene is built (Jakob–Hanika coefficients per
+//!   texel, from the same table as flat RGB values); a lookup evaluates at most four texel
+//!   sigmoids per wavelength and never fits anything.
+//!
+//! | file | what it holds |
+//! | --- | --- |
+//! | `mod.rs` | [`Texture`] (closed enum), [`UvTransform`] |
+//! | `checkerboard.rs` | [`Checkerboard`], Mitsuba's two-colour checks |
+//! | `bitmap.rs` | [`Bitmap`]: images with nearest or bilinear filtering and wrap modes |
+
+mod bitmap;
+mod checkerboard;
+
+use std::sync::Arc;
+
+use glam::Vec2;
+
+pub use bitmap::{Bitmap, BitmapError, TexFilter, Wrap};
+pub use checkerboard::Checkerboard;
+
+use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
+
+/// An affine map of the plane, uv' = M·uv + t, for a texture's `to_uv`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct UvTransform {
+    /// Rows of [M | t].
+    pub rows: [[f32; 3]; 2],
+}
+
+impl UvTransform {
+    pub const IDENTITY: UvTransform = UvTransform {
+        rows: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+    };
+
+    #[inline]
+    pub fn apply(&self, uv: Vec2) -> Vec2 {
+        let [a, b] = self.rows;
+        Vec2::new(
+            a[0] * uv.x + a[1] * uv.y + a[2],
+            b[0] * uv.x + b[1] * uv.y + b[2],
+        )
+    }
+}
+
+/// A spectrum that may vary over a surface. Closed enum, matched per lookup.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Texture {
+    /// The same spectrum everywhere.
+    Uniform(Spectrum),
+    Checkerboard(Arc<Checkerboard>),
+    Bitmap(Arc<Bitmap>),
+}
+
+impl From<Spectrum> for Texture {
+    fn from(s: Spectrum) -> Self {
+        Texture::Uniform(s)
+    }
+}
+
+impl Texture {
+    /// The value at surface coordinates `uv` for the wavelengths `w`.
+    #[inline]
+    pub fn sample<const N: usize>(
+        &self,
+        uv: Vec2,
+        w: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
+        match self {
+            Texture::Uniform(s) => s.sample(w),
+            Texture::Checkerboard(c) => c.sample(uv, w),
+            Texture::Bitmap(b) => b.sample(uv, w),
+        }
+    }
+
+    /// The spectrum when the texture is uniform, else None.
+    pub fn as_uniform(&self) -> Option<&Spectrum> {
+        match self {
+            Texture::Uniform(s) => Some(s),
+            _ => None,
+        }
+    }
+
+    /// The largest value over the surface at `lambda_nm`, an upper bound for energy checks.
+    pub fn max_at(&self, lambda_nm: f32) -> f32 {
+        match self {
+            Texture::Uniform(s) => s.eval(lambda_nm),
+            Texture::Checkerboard(c) => c.a.eval(lambda_nm).max(c.b.eval(lambda_nm)),
+            Texture::Bitmap(b) => b.max_at(lambda_nm),
+        }
+    }
+}
