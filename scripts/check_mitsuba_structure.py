@@ -3,7 +3,9 @@
 Mitsuba 3.9.1 finds in them, the truth those tests assert:
 
 - `<path>` folders are searched latest first (the mesh found is b/tri.obj, bbox max (2, 2, 0));
-- an include inside an included file resolves against the scene's folder (2 emitters);
+- an include is found next to the including file, then by the resolver (3 emitters); a mesh
+  named in an included file resolves against the scene's folder (bbox max (3, 3, 0)), and a
+  `<path>` in an included file has no effect;
 - a top-level area emitter with an id, referred to from a shape, makes that shape emit and is
   not an emitter of its own (1 emitter); a top-level sampler referred to from the sensor gives
   the sensor its sample_count.
@@ -47,13 +49,21 @@ with tempfile.TemporaryDirectory() as d:
     s = mi.load_file(f"{d}/path.xml")
     print("path: mesh bbox max", [list(sh.bbox().max) for sh in s.shapes()])
 
-    write(f"{d}/parts/shapes.xml", """<scene version="3.0.0"><include filename="parts/light.xml"/>
-  <shape type="sphere"/></scene>""")
+    write(f"{d}/parts/shapes.xml", """<scene version="3.0.0">
+  <path value="meshes"/>
+  <include filename="light.xml"/>
+  <include filename="parts/light2.xml"/>
+  <shape type="obj"><string name="filename" value="tri.obj"/></shape></scene>""")
     write(f"{d}/parts/light.xml", """<scene version="3.0.0"><emitter type="point">
   <point name="position" value="0, 3, 0"/></emitter></scene>""")
+    write(f"{d}/parts/light2.xml", """<scene version="3.0.0"><emitter type="point">
+  <point name="position" value="0, 4, 0"/></emitter></scene>""")
+    write(f"{d}/parts/tri.obj", tri(1))
+    write(f"{d}/parts/meshes/tri.obj", tri(2))
     write(f"{d}/include.xml", HEAD + '  <include filename="parts/shapes.xml"/>\n</scene>')
     s = mi.load_file(f"{d}/include.xml")
-    print("include: shapes", len(s.shapes()), "emitters", len(s.emitters()))
+    print("include: emitters", len(s.emitters()),
+          "mesh bbox max", [list(sh.bbox().max) for sh in s.shapes()])
 
     write(f"{d}/refs.xml", """<scene version="3.0.0">
   <sampler type="ldsampler" id="s"><integer name="sample_count" value="64"/></sampler>

@@ -77,31 +77,53 @@ fn path_folders_are_searched_latest_first() {
     assert!(e.contains("bad.xml:7") && e.contains("nowhere"), "{e}");
 }
 
-/// An include inside an included file is resolved against the scene's folder, as Mitsuba's
-/// file resolver does, not against the folder of the file that includes it.
+/// An include is looked for next to the file that includes it, then by the scene's resolver;
+/// every other file an included file names (here a mesh) is resolved by the scene's resolver,
+/// not against the included file's folder; a `<path>` in an included file has no effect.
 #[test]
-fn includes_resolve_against_the_scene_folder() {
+fn includes_resolve_as_mitsuba() {
     let d = fresh_dir("include");
     write(
         &d.join("parts/shapes.xml"),
-        r#"<scene version="3.0.0"><include filename="parts/light.xml"/>
-  <shape type="sphere"/></scene>"#,
+        r#"<scene version="3.0.0">
+  <path value="meshes"/>
+  <include filename="light.xml"/>
+  <include filename="parts/light2.xml"/>
+  <shape type="obj"><string name="filename" value="tri.obj"/></shape></scene>"#,
     );
     write(
         &d.join("parts/light.xml"),
         r#"<scene version="3.0.0"><emitter type="point"><point name="position" value="0, 3, 0"/></emitter></scene>"#,
     );
-    // the same name relative to parts/ would be parts/parts/light.xml, which does not exist
+    write(
+        &d.join("parts/light2.xml"),
+        r#"<scene version="3.0.0"><emitter type="point"><point name="position" value="0, 4, 0"/></emitter></scene>"#,
+    );
+    write(&d.join("parts/tri.obj"), &obj(1));
+    write(&d.join("parts/meshes/tri.obj"), &obj(2));
+    write(&d.join("tri.obj"), &obj(3));
     write(
         &d.join("scene.xml"),
         &format!("{HEAD}  <include filename=\"parts/shapes.xml\"/>\n</scene>"),
     );
     let desc = load(&d.join("scene.xml"), &[]).unwrap();
-    assert_eq!(desc.shapes.len(), 1);
     assert_eq!(
         desc.lights.len(),
-        2,
-        "the constant and the included point light"
+        3,
+        "the constant and both included point lights"
+    );
+    match &desc.shapes[0].kind {
+        spectrace::loader::desc::ShapeKind::Obj { path, .. } => {
+            assert_eq!(path, &d.join("tri.obj"))
+        }
+        other => panic!("not an obj: {other:?}"),
+    }
+    assert!(
+        desc.notes
+            .iter()
+            .any(|n| n.contains("<path> inside an included file")),
+        "{:?}",
+        desc.notes
     );
 }
 

@@ -40,10 +40,13 @@ pub(super) fn scene(
         }
         None => return Err(cx.err(&root, "missing version (e.g. version=\"3.0.0\")")),
     }
-    // `<path>` folders and includes in document order, as Mitsuba's parser meets them: a path
-    // joins the file resolver (searched before the scene's folder, the latest first), and an
-    // include is resolved by it, against the scene's folder and not the including file's;
-    // included children are spliced in place (depth-limited)
+    // `<path>` folders and includes in document order, as Mitsuba 3.9.1's parser meets them: a
+    // path of the scene file joins the file resolver (searched before the scene's folder, the
+    // latest first); one inside an included file has no effect in Mitsuba (it changes a copy
+    // of the resolver) and is skipped with a note. An include is looked for next to the file
+    // that includes it, then by the resolver. Everything else an included file names (meshes,
+    // images, spectra) is resolved by the scene's resolver, not against the included file's
+    // folder. Included children are spliced in place (depth-limited).
     let mut depth = 0;
     while root
         .children
@@ -56,15 +59,26 @@ pub(super) fn scene(
         }
         let mut out = Vec::new();
         for c in std::mem::take(&mut root.children) {
+            let own_dir = cx.sources[c.src]
+                .0
+                .parent()
+                .map(Path::to_path_buf)
+                .unwrap_or_default();
             match c.tag.as_str() {
+                "path" if c.src != 0 => cx.note(
+                    &c,
+                    "a <path> inside an included file has no effect (as in Mitsuba); put it in the scene file",
+                ),
                 "path" => {
                     let v = c
                         .attr("value")
                         .ok_or_else(|| cx.err(&c, "missing value (a folder)"))?;
-                    let scene_dir = cx.search.last().cloned().unwrap_or_default();
-                    let dir = scene_dir.join(v);
+                    let dir = own_dir.join(v);
                     if !dir.is_dir() {
-                        return Err(cx.err(&c, format!("folder {} does not exist", dir.display())));
+                        return Err(cx.err(
+                            &c,
+                            format!("folder {} does not exist", dir.display()),
+                        ));
                     }
                     cx.search.insert(0, dir);
                 }
@@ -72,7 +86,10 @@ pub(super) fn scene(
                     let f = c
                         .attr("filename")
                         .ok_or_else(|| cx.err(&c, "missing filename"))?;
-                    let p = cx.resolve_file(f);
+                    let p = match own_dir.join(f) {
+                        p if p.is_file() => p,
+                        _ => cx.resolve_file(f),
+                    };
                     let t = std::fs::read_to_string(&p)
                         .map_err(|e| cx.err(&c, format!("cannot read {}: {e}", p.display())))?;
                     let mut inc = super::parse_file(&t, &p)?;
