@@ -71,6 +71,7 @@ SPP = {
     "spot_ramp": 8192,
     # issue 10
     "textures": 4096,
+    "envmap": 4096,
 }
 DEFAULT_SPP = 1024
 

@@ -3,7 +3,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cargo build --release
-for s in cornell furnace radiometry phong gems prism; do
+for s in cornell furnace radiometry phong gems prism textures; do
   spp=16
   [ "$s" = gems ] && spp=32
   target/release/spectrace render "scenes/$s.toml" -o "target/$s.exr" --png "docs/images/$s.png" --spp "$spp" --quiet

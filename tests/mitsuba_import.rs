@@ -112,9 +112,9 @@ fn import_errors_are_located_and_suggest_alternatives() {
         "<include filename=\"missing.xml\"/><integrator type=\"path\">",
     ));
     assert!(e.contains("missing.xml"), "{e}");
-    let e = err(&PLANE.replace("<emitter type=\"point\">", "<emitter type=\"envmap\">"));
+    let e = err(&PLANE.replace("<emitter type=\"point\">", "<emitter type=\"projector\">"));
     assert!(
-        e.contains("envmap") && e.contains("nearest supported"),
+        e.contains("projector") && e.contains("nearest supported"),
         "{e}"
     );
     let e = err(&PLANE.replace(

@@ -128,6 +128,11 @@ pub fn trace<const N: usize>(
             let e = l.sample_le(c, r, w, u1, u2);
             (e.o, Vec3::ZERO, Vec3::ZERO, e.d, e.weight() * (1.0 / p_sel))
         }
+        Light::EnvMap(l) => {
+            let (c, r) = scene.bounding_sphere();
+            let e = l.sample_le(c, r, w, u1, u2);
+            (e.o, Vec3::ZERO, Vec3::ZERO, e.d, e.weight() * (1.0 / p_sel))
+        }
     };
     if beta.is_zero() {
         return;
@@ -197,7 +202,7 @@ fn occluded_to_camera(it: &Integrator<'_>, p: Vec3, p_error: Vec3, n: Vec3, eye:
 /// [`escaped`] along camera rays.
 pub fn has_visible_infinite_lights(it: &Integrator<'_>) -> bool {
     it.scene.lights.iter().any(|l| match l {
-        Light::Environment(_) => true,
+        Light::Environment(_) | Light::EnvMap(_) => true,
         Light::Directional(d) => !d.is_delta(),
         Light::Area(_) | Light::Point(_) | Light::Spot(_) | Light::Beam(_) => false,
     })

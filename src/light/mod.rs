@@ -5,7 +5,7 @@
 //! | light | spectrum unit |
 //! | --- | --- |
 //! | point, spot | spectral intensity, W·sr⁻¹·nm⁻¹ |
-//! | area, environment | spectral radiance, W·m⁻²·sr⁻¹·nm⁻¹ |
+//! | area, environment, environment map | spectral radiance, W·m⁻²·sr⁻¹·nm⁻¹ |
 //! | directional | spectral irradiance on a plane perpendicular to it, W·m⁻²·nm⁻¹ |
 //! | beam | total spectral power, W·nm⁻¹ |
 //!
@@ -16,7 +16,9 @@
 mod area;
 mod beam;
 mod directional;
+mod distribution2d;
 mod environment;
+mod envmap;
 mod point;
 mod spot;
 
@@ -24,6 +26,7 @@ pub use area::AreaLight;
 pub use beam::BeamLight;
 pub use directional::DirectionalLight;
 pub use environment::EnvironmentLight;
+pub use envmap::EnvMapLight;
 pub use point::PointLight;
 pub use spot::SpotLight;
 
@@ -135,6 +138,7 @@ pub enum Light {
     Area(AreaLight),
     Directional(DirectionalLight),
     Environment(EnvironmentLight),
+    EnvMap(Box<EnvMapLight>),
     Beam(BeamLight),
 }
 
@@ -155,6 +159,7 @@ impl Light {
             Light::Area(l) => l.sample_li(shapes, p, w, u),
             Light::Directional(l) => l.sample_li(w, u),
             Light::Environment(l) => l.sample_li(w, u),
+            Light::EnvMap(l) => l.sample_li(w, u),
             Light::Beam(l) => l.sample_li(p, w),
         }
     }
@@ -167,6 +172,7 @@ impl Light {
             Light::Area(l) => l.pdf_li(p, wi, p_light, n_light, shapes[l.shape as usize].area()),
             Light::Directional(l) => l.pdf_li(wi),
             Light::Environment(_) => crate::sampling::UNIFORM_SPHERE_PDF,
+            Light::EnvMap(l) => l.pdf_li(wi),
             Light::Point(_) | Light::Spot(_) | Light::Beam(_) => 0.0,
         }
     }
@@ -194,6 +200,7 @@ impl Light {
     ) -> SampledSpectrum<N> {
         match self {
             Light::Environment(l) => l.radiance.sample(w),
+            Light::EnvMap(l) => l.escaped(dir, w),
             Light::Directional(l) => l.escaped(dir, w),
             _ => SampledSpectrum::zero(),
         }
@@ -202,7 +209,7 @@ impl Light {
     /// Whether the light is at infinity: the only kind [`Light::escaped`] can be non-zero for.
     pub fn is_at_infinity(&self) -> bool {
         match self {
-            Light::Environment(_) | Light::Directional(_) => true,
+            Light::Environment(_) | Light::EnvMap(_) | Light::Directional(_) => true,
             Light::Point(_) | Light::Spot(_) | Light::Area(_) | Light::Beam(_) => false,
         }
     }
@@ -212,7 +219,7 @@ impl Light {
         match self {
             Light::Point(_) | Light::Spot(_) | Light::Beam(_) => true,
             Light::Directional(l) => l.is_delta(),
-            Light::Area(_) | Light::Environment(_) => false,
+            Light::Area(_) | Light::Environment(_) | Light::EnvMap(_) => false,
         }
     }
 
@@ -232,6 +239,7 @@ impl Light {
             Light::Environment(l) => {
                 4.0 * pi * pi * (scene_radius as f64).powi(2) * band(&l.radiance)
             }
+            Light::EnvMap(l) => pi * (scene_radius as f64).powi(2) * l.band_radiant_exitance(range),
             Light::Beam(l) => band(&l.power),
         }
     }

@@ -357,6 +357,15 @@ pub enum LightKind {
     },
     /// Uniform radiance from every direction.
     Environment { amount: EmitAmount },
+    /// Radiance from a latitude–longitude image (see `crate::light::EnvMapLight`): the light's
+    /// `spectrum` is the illuminant an RGB (1, 1, 1) pixel has, and `amount` scales it
+    /// (`Scale`), or sets the mean radiance or luminance over the sphere.
+    EnvMap {
+        path: PathBuf,
+        /// Rotation from the map's frame (+y up) to the world.
+        transform: Vec<TransformStep>,
+        amount: EmitAmount,
+    },
     /// A collimated beam leaving a disk of `radius` at `position` toward `target`; `amount` is
     /// its total power (W or lm) or a scale of a spectrum already in W·nm⁻¹.
     Beam {

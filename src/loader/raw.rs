@@ -134,4 +134,8 @@ pub struct RawLight {
     pub falloff: Option<S<Value>>,
     pub angular_diameter: Option<S<Value>>,
     pub radius: Option<S<Value>>,
+    /// An environment map's image file.
+    pub image: Option<S<String>>,
+    /// An environment map's rotation (transform steps, as shapes have).
+    pub transform: Option<S<Vec<S<Value>>>>,
 }

@@ -804,11 +804,65 @@ uv of rectangles, spheres and OBJ meshes.""",
     write("textures", s + FOOTER)
 
 
+
+def envmap():
+    d = os.path.join(HERE, "envmap")
+    # 32 × 16 lat-long sRGB PNG: a blue sky brightening to the zenith, a warm ground, a bright
+    # 2 × 2 patch (the "sun") and a green column that marks u = 0.25 (+x in the map's frame)
+    w, h = 32, 16
+    px = []
+    for j in range(h):
+        row = []
+        for i in range(w):
+            if j < h // 2:
+                t = 1 - j / (h // 2)
+                c = (int(60 + 80 * t), int(110 + 90 * t), int(200 + 55 * t))
+            else:
+                c = (90, 70, 50)
+            if i in (10, 11) and j in (3, 4):
+                c = (255, 250, 235)
+            if i == 8 and 5 <= j < 12:
+                c = (40, 200, 60)
+            row.append(c)
+        px.append(row)
+    write_png(os.path.join(d, "sky.png"), w, h, px)
+    s = header(
+        """An environment map (`envmap`) from a 32 × 16 sRGB PNG: sky gradient, warm ground, a
+bright patch and a green column at u = 0.25, rotated by `to_world` (60° about y) and scaled by
+`scale` 3; seen directly behind a perfect mirror sphere (Mitsuba's default conductor, reflecting
+the map) and a diffuse sphere on a diffuse disk. No other light.
+Exercises: envmap directions (u = 0 toward -z, v = 0 at +y), bilinear lookup, sRGB decoding,
+to_world, scale, importance sampling with MIS.""",
+        "0, 1.0, 4",
+        "0, 0.7, 0",
+        55,
+        64,
+        6,
+    )
+    s += f"""
+    <emitter type="envmap">
+        <string name="filename" value="sky.png"/>
+        <float name="scale" value="3"/>
+        <transform name="to_world"><rotate y="1" angle="60"/></transform>
+    </emitter>
+
+{sphere((-0.7, 0.6, 0), 0.6, '        <bsdf type="conductor"/>' + chr(10), "a perfect mirror (Mitsuba's default conductor)")}
+{sphere((0.8, 0.5, 0.3), 0.5, diffuse(colorchecker("orange"), indent="        "))}
+    <shape type="disk">
+        <transform name="to_world">
+            <scale value="2.5"/>
+            <rotate x="1" angle="-90"/>
+        </transform>
+{diffuse(colorchecker("neutral-8"), indent="        ")}    </shape>
+"""
+    write("envmap", s + FOOTER)
+
+
 SCENES = {
     f.__name__: f
     for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
               dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional,
-              spot_ramp, gaussian_edge, smooth_mesh, textures)
+              spot_ramp, gaussian_edge, smooth_mesh, textures, envmap)
 }
 
 if __name__ == "__main__":

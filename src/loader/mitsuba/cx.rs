@@ -49,7 +49,7 @@ const PLUGINS: &[(&str, &[&str])] = &[
     ),
     (
         "emitter",
-        &["area", "point", "spot", "constant", "directional"],
+        &["area", "point", "spot", "constant", "directional", "envmap"],
     ),
     ("shape emitter", &["area"]),
     ("spectrum", &["blackbody", "d65"]),

@@ -1,10 +1,11 @@
 //! Mitsuba emitters that are not shapes: `point`, `spot`, `constant`, `directional`; and
 //! `sampling_weight`, which area emitters read too.
 
-use super::cx::{Cx, R};
+use super::cx::{Cx, R, mitsuba_d65};
 use super::sensor::camera_frame;
 use super::xml::Element;
 use crate::loader::desc::*;
+use crate::spectrum::Spectrum;
 use crate::units::{Angle, Length, angle, length};
 
 pub(super) fn emitter(cx: &Cx<'_>, e: &Element) -> R<LightDesc> {
@@ -89,6 +90,39 @@ pub(super) fn emitter(cx: &Cx<'_>, e: &Element) -> R<LightDesc> {
                     amount: PointAmount::Scale(1.0),
                 },
                 cx.spectrum_prop(e, "intensity", 1.0, true)?,
+            )
+        }
+        "envmap" => {
+            let f = cx
+                .string(e, "filename")
+                .ok_or_else(|| cx.err(e, "missing filename (a latitude–longitude image)"))?;
+            let path = cx.resolve_file(&f);
+            if !path.is_file() {
+                return Err(cx.err(e, format!("image file {} does not exist", path.display())));
+            }
+            let scale = cx.opt_float(e, "scale")?.unwrap_or(1.0);
+            if scale < 0.0 {
+                return Err(cx.err(e, format!("scale must be ≥ 0, not {scale}")));
+            }
+            if let Some(m) = cx.child(e, "mis_compensation")
+                && m.attr("value") == Some("true")
+            {
+                cx.note(
+                    m,
+                    "mis_compensation changes only how Mitsuba samples the map, not the image; spectrace samples it by luminance",
+                );
+            }
+            (
+                LightKind::EnvMap {
+                    path,
+                    transform: match to_world {
+                        Some(tr) => cx.transform(tr)?,
+                        None => Vec::new(),
+                    },
+                    amount: EmitAmount::Scale(scale),
+                },
+                // an RGB (1, 1, 1) pixel is Mitsuba's normalised D65, as for `constant`
+                Spectrum::Piecewise(mitsuba_d65(1.0)),
             )
         }
         other => return Err(cx.unsupported(e, "emitter", other)),

@@ -13,6 +13,11 @@
 //! | area power | Φ/(π A B), two-sided Φ/(2π A B) (Φ = π L A) |
 //! | beam power Φ (W or lm) | Φ/B or Φ/V (spread over the beam's disk) |
 //! | scale s | s (S is already absolute) |
+//! | environment map: mean radiance L̄ or luminance L̄_v over the sphere | 4π L̄ / ∫∫ M dλ dω or 4π L̄_v / (K_m ∫∫ M ȳ dλ dω), M the map under S |
+//!
+//! An environment map's S is the illuminant of an RGB (1, 1, 1) pixel: Mitsuba's normalised
+//! D65 for Mitsuba files (as its `envmap`), and for TOML files D65 of luminance 1 cd/m², so that
+//! `scale` s makes such a pixel s cd/m².
 //!
 //! **Watts and lumens count the film's wavelength range only.** B and V are integrals over that
 //! range, so a spectrum with power outside it gets a different k when the range changes. For a
@@ -30,7 +35,8 @@ use crate::colour::cie::{K_M, cmf};
 use crate::geometry::Frame;
 use crate::geometry::shape::Shape;
 use crate::light::{
-    AreaLight, BeamLight, DirectionalLight, EnvironmentLight, Light, PointLight, SpotLight,
+    AreaLight, BeamLight, DirectionalLight, EnvMapLight, EnvironmentLight, Light, PointLight,
+    SpotLight,
 };
 use crate::loader::desc::{DirectionalAmount, EmitAmount, LightKind, PointAmount, SceneDesc};
 use crate::loader::{LoadError, Loc};
@@ -129,6 +135,65 @@ fn point_amount(a: &PointAmount, solid_angle: f64) -> (Per, f64) {
     }
 }
 
+/// An environment map: the image read (8- and 16-bit files decoded from sRGB, as Mitsuba
+/// does), its rotation, and its illuminant scaled by `amount`: `Scale(k)` multiplies it;
+/// `Radiance(L)` and `Luminance(Lv)` set the mean over the sphere, 1/(4π) ∫ L dω, of the band
+/// radiance or of the luminance K_m ∫ L ȳ dλ.
+fn envmap(
+    path: &std::path::Path,
+    transform: &[crate::loader::desc::TransformStep],
+    amount: &EmitAmount,
+    illuminant: &Spectrum,
+    r: WavelengthRange,
+) -> Result<EnvMapLight, String> {
+    let img = crate::image_io::read_rgb(path).map_err(|e| e.to_string())?;
+    let rgb: Vec<[f32; 3]> = if img.encoding == crate::image_io::Encoding::Srgb {
+        img.rgb
+            .iter()
+            .map(|p| p.map(super::textures::srgb_to_linear))
+            .collect()
+    } else {
+        img.rgb
+    };
+    let m = super::shapes::steps(transform, 1.0, false)?.matrix();
+    let rot = glam::Mat3::from_mat4(m);
+    let at = |s: Spectrum| {
+        EnvMapLight::new(img.width, img.height, &rgb, s, rot)
+            .map_err(|e| format!("{}: {e}", path.display()))
+    };
+    let unit = at(illuminant.clone())?;
+    let four_pi = 4.0 * std::f64::consts::PI;
+    let k = match amount {
+        EmitAmount::Scale(k) => *k,
+        EmitAmount::Radiance(l) => {
+            let b = unit.band_radiant_exitance(r) / four_pi;
+            l.get::<radiance::watt_per_square_meter_steradian>() / b
+        }
+        EmitAmount::Luminance(lv) => {
+            let y =
+                K_M * unit.weighted_integral(
+                    WavelengthRange {
+                        min_nm: r.min_nm.max(360.0),
+                        max_nm: r.max_nm.min(830.0),
+                    },
+                    |l| cmf().y_bar(l) as f64,
+                ) / four_pi;
+            lv.get::<luminance::candela_per_square_meter>() / y
+        }
+        EmitAmount::Power(_) | EmitAmount::LuminousFlux(_) => {
+            return Err(
+                "an environment map takes scale, radiance or luminance, not a power".into(),
+            );
+        }
+    };
+    if !(k.is_finite() && k >= 0.0) {
+        return Err(format!(
+            "the environment map's scale ({k}) is not a finite number ≥ 0 (is the image black?)"
+        ));
+    }
+    at(illuminant.scaled(k as f32))
+}
+
 /// The lights, their sampling weights and the surfaces table, as [`lights`] returns them.
 type Lights = (Vec<Light>, Vec<f64>, Vec<Surface>);
 
@@ -219,6 +284,13 @@ pub(super) fn lights(
                     radiance: scaled(&l.spectrum, per, g, r).map_err(e)?,
                 })
             }
+            LightKind::EnvMap {
+                path,
+                transform,
+                amount,
+            } => Light::EnvMap(Box::new(
+                envmap(path, transform, amount, &l.spectrum, r).map_err(e)?,
+            )),
         };
         lights.push(light);
     }

@@ -25,7 +25,7 @@ fn uv_transform(list: &[TransformStep]) -> Result<UvTransform, String> {
 
 /// The sRGB transfer function inverted (IEC 61966-2-1), as Mitsuba decodes 8- and 16-bit
 /// images when it loads them.
-fn srgb_to_linear(c: f32) -> f32 {
+pub(super) fn srgb_to_linear(c: f32) -> f32 {
     if c <= 0.04045 {
         c / 12.92
     } else {

@@ -6,7 +6,7 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
     let sp = l.span();
     let f = format!("lights[{i}]");
     let l = l.get_ref();
-    let all = present!(l; kind, spectrum, position, target, direction, power, intensity, radiance, luminance, irradiance, scale, cone_angle, falloff_start, falloff, angular_diameter, radius);
+    let all = present!(l; kind, spectrum, position, target, direction, power, intensity, radiance, luminance, irradiance, scale, cone_angle, falloff_start, falloff, angular_diameter, radius, image, transform);
     let ty = cx.required(
         &l.kind,
         &sp,
@@ -262,6 +262,41 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
                 amount,
             }
         }
+        "environment" if l.image.is_some() => {
+            cx.only(
+                "an environment map (an environment light with an image)",
+                &f,
+                &all,
+                &[
+                    "kind",
+                    "image",
+                    "transform",
+                    "radiance",
+                    "luminance",
+                    "scale",
+                ],
+            )?;
+            let (file, span) = match &l.image {
+                Some(i) => (i.get_ref().as_str(), i.span()),
+                None => ("", sp.clone()),
+            };
+            let path = cx.path(file);
+            if !path.is_file() {
+                return Err(cx.err(
+                    &span,
+                    format!("{f}.image"),
+                    format!("image file not found: {}", path.display()),
+                ));
+            }
+            LightKind::EnvMap {
+                path,
+                transform: match &l.transform {
+                    Some(t) => shapes::transform(cx, t, &format!("{f}.transform"))?,
+                    None => Vec::new(),
+                },
+                amount: emit_amount(cx, &sp, &f, &l.radiance, &l.luminance, &None, &l.scale)?,
+            }
+        }
         "environment" => {
             cx.only(
                 "an environment light",
@@ -313,6 +348,15 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
                 ),
             ));
         }
+    };
+    // an environment map's pixels are linear sRGB under D65: RGB (1, 1, 1) is D65 of luminance
+    // 1 cd/m² before `scale` (or the luminance or radiance that replaces it)
+    let spectrum = match kind {
+        LightKind::EnvMap { .. } => Spectrum::Piecewise(std::sync::Arc::new(
+            crate::spectrum::rgb2spec::d65_unit_luminance()
+                .scaled((1.0 / crate::colour::cie::K_M) as f32),
+        )),
+        _ => spectrum,
     };
     Ok(LightDesc {
         kind,
