@@ -155,3 +155,91 @@ scale = {scale}
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A map that is dark but for one bright patch: the irradiance on a plane facing +y estimated
+/// with light sampling and BSDF (cosine) sampling combined by the power heuristic, as the path
+/// tracer does, has an RMS error several times smaller than cosine sampling alone for the same
+/// number of samples, against E from quadrature.
+#[test]
+fn light_sampling_beats_bsdf_sampling_on_a_bright_patch() {
+    let (w, h) = (64, 33);
+    let rgb: Vec<[f32; 3]> = (0..w * h)
+        .map(|k| {
+            let (i, j) = (k % w, k / w);
+            if (20..22).contains(&i) && (9..11).contains(&j) {
+                [500.0; 3]
+            } else {
+                [0.02; 3]
+            }
+        })
+        .collect();
+    let m = EnvMapLight::new(w, h, &rgb, Spectrum::Constant(1.0), Mat3::IDENTITY).unwrap();
+    let wl = SampledWavelengths::<4> {
+        lambda: [550.0; 4],
+        pdf: [1.0; 4],
+    };
+    let l = |d: Vec3| m.escaped(d, &wl).0[0] as f64;
+    // reference: the upper hemisphere on a fine (θ, φ) grid
+    let (nt, np) = (800, 1600);
+    let mut e_ref = 0.0;
+    for a in 0..nt {
+        let th = std::f64::consts::FRAC_PI_2 * (a as f64 + 0.5) / nt as f64;
+        for b in 0..np {
+            let ph = 2.0 * std::f64::consts::PI * (b as f64 + 0.5) / np as f64;
+            let d = Vec3::new(
+                (th.sin() * ph.cos()) as f32,
+                th.cos() as f32,
+                (th.sin() * ph.sin()) as f32,
+            );
+            e_ref += l(d) * th.cos() * th.sin();
+        }
+    }
+    e_ref *= (std::f64::consts::FRAC_PI_2 / nt as f64) * (2.0 * std::f64::consts::PI / np as f64);
+    let cosine = |u: Vec2| {
+        let r = u.x.sqrt();
+        let phi = 2.0 * std::f32::consts::PI * u.y;
+        Vec3::new(r * phi.cos(), (1.0 - u.x).max(0.0).sqrt(), r * phi.sin())
+    };
+    let cos_pdf = |d: Vec3| (d.y.max(0.0) / std::f32::consts::PI) as f64;
+    let mut rng = Rng::new(3);
+    let (trials, n) = (400, 16);
+    let (mut err_mis, mut err_bsdf) = (0.0, 0.0);
+    for _ in 0..trials {
+        let (mut mis, mut bsdf) = (0.0, 0.0);
+        for _ in 0..n {
+            // light sample, weighted against the cosine density
+            let u = Vec2::new(rng.uniform(), rng.uniform());
+            if let Some(s) = m.sample_li(&wl, u)
+                && s.wi.y > 0.0
+            {
+                let (pl, pb) = (s.pdf as f64, cos_pdf(s.wi));
+                mis += s.li.0[0] as f64 * s.wi.y as f64 * pl / (pl * pl + pb * pb);
+            }
+            // cosine sample: alone, and weighted against the light density
+            let d = cosine(Vec2::new(rng.uniform(), rng.uniform()));
+            let (pb, pl) = (cos_pdf(d), m.pdf_li(d) as f64);
+            if pb > 0.0 {
+                let f = l(d) * d.y as f64;
+                bsdf += f / pb;
+                mis += f * pb / (pl * pl + pb * pb);
+            }
+        }
+        err_mis += (mis / n as f64 - e_ref).powi(2);
+        err_bsdf += (bsdf / n as f64 - e_ref).powi(2);
+    }
+    let (rms_mis, rms_bsdf) = (
+        (err_mis / trials as f64).sqrt(),
+        (err_bsdf / trials as f64).sqrt(),
+    );
+    println!(
+        "E = {e_ref:.4}; RMS error with {n} samples: MIS {rms_mis:.4}, cosine only {rms_bsdf:.4}"
+    );
+    assert!(
+        rms_mis < 0.05 * e_ref,
+        "MIS is not converging: {rms_mis} vs E = {e_ref}"
+    );
+    assert!(
+        rms_bsdf > 5.0 * rms_mis,
+        "light sampling should win by far: MIS {rms_mis}, cosine {rms_bsdf}"
+    );
+}

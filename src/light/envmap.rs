@@ -12,9 +12,10 @@
 //!   sigmoids and, separately, the four s, and multiplies them by the illuminant:
 //!   L(λ) = (Σ wₖ sigmoidₖ(λ)) · (Σ wₖ sₖ) · illuminant(λ), W·m⁻²·sr⁻¹·nm⁻¹. The illuminant
 //!   carries the absolute scale (the build step's table in `scene/build/lights.rs`).
-//! - **Sampling**: a piecewise-constant density over the cells between pixel centres, ∝ the
-//!   largest luminance of the cell's four pixels × sin θ at the cell's centre, so the density
-//!   is positive wherever the radiance is; the solid-angle pdf is p(u, v) / (2π² sin θ).
+//! - **Sampling**: a cell between four pixel centres ∝ their mean luminance × sin θ at the
+//!   cell's centre, then a point in it by the bilinear interpolation of their luminance (the
+//!   density follows the map's own bilinear radiance, so it is positive wherever the radiance
+//!   is); the solid-angle pdf is p(u, v) / (2π² sin θ).
 
 use std::f32::consts::PI;
 
@@ -36,8 +37,22 @@ pub struct EnvMapLight {
     pub illuminant: Spectrum,
     to_world: Mat3,
     to_local: Mat3,
-    /// Over (u − ½/W, v) cells: W columns × (H − 1) rows.
+    /// Luminance of each pixel (Rec. 709 weights of its linear RGB): the sampling density is
+    /// bilinear in it within each cell.
+    lum: Vec<f32>,
+    /// Chooses a cell ∝ its mean corner luminance × sin θ at its centre: over (u − ½/W, v),
+    /// W columns × (H − 1) rows.
     dist: Distribution2D,
+}
+
+/// A sample of the linear density ∝ (1 − t)·a + t·b on [0, 1] (pbrt-v4 `SampleLinear`).
+#[inline]
+fn sample_linear(u: f32, a: f32, b: f32) -> f32 {
+    if u == 0.0 && a == 0.0 {
+        return 0.0;
+    }
+    let x = u * (a + b) / (a + (a * a + u * (b * b - a * a)).max(0.0).sqrt());
+    x.clamp(0.0, 1.0 - f32::EPSILON / 2.0)
 }
 
 /// sRGB / Rec. 709 luminance weights of linear RGB.
@@ -79,10 +94,12 @@ impl EnvMapLight {
             let sin = (PI * (r as f32 + 0.5) / rows as f32).sin();
             for c in 0..width {
                 let c1 = (c + 1) % width;
-                let m = lum[r * width + c]
-                    .max(lum[r * width + c1])
-                    .max(lum[(r + 1) * width + c])
-                    .max(lum[(r + 1) * width + c1]);
+                // the integral of the bilinear luminance over the cell
+                let m = 0.25
+                    * (lum[r * width + c]
+                        + lum[r * width + c1]
+                        + lum[(r + 1) * width + c]
+                        + lum[(r + 1) * width + c1]);
                 weights.push(m * sin);
             }
         }
@@ -100,6 +117,7 @@ impl EnvMapLight {
             illuminant,
             to_world,
             to_local,
+            lum,
             dist,
         })
     }
@@ -162,10 +180,20 @@ impl EnvMapLight {
     /// A world direction toward the map from `u`, with its solid-angle pdf; None where sin θ = 0.
     #[inline]
     fn sample_dir(&self, u: Vec2) -> Option<(Vec3, Vec2, f32)> {
-        let (p, pdf_uv) = self.dist.sample(u);
-        let mut uu = p.x + self.shift();
+        // a cell, then a point within it by the bilinear luminance of its corners (pbrt-v4
+        // `SampleBilinear`, the remainder of `u` reused)
+        let (p, _) = self.dist.sample(u);
+        let (cols, rows) = (self.width as f32, (self.height - 1) as f32);
+        let (cx, cy) = ((p.x * cols).floor(), (p.y * rows).floor());
+        let (fx, fy) = (p.x * cols - cx, p.y * rows - cy);
+        let [w00, w10, w01, w11] = self.corners(cx as usize, cy as usize);
+        let y = sample_linear(fy, w00 + w10, w01 + w11);
+        let x = sample_linear(fx, w00 + (w01 - w00) * y, w10 + (w11 - w10) * y);
+        let q = Vec2::new((cx + x) / cols, (cy + y) / rows);
+        let pdf_uv = self.pdf_uv(q);
+        let mut uu = q.x + self.shift();
         uu -= uu.floor();
-        let (theta, phi) = (PI * p.y, 2.0 * PI * uu);
+        let (theta, phi) = (PI * q.y, 2.0 * PI * uu);
         let (sin_t, cos_t) = theta.sin_cos();
         if !(sin_t > 0.0) || !(pdf_uv > 0.0) {
             return None;
@@ -173,7 +201,37 @@ impl EnvMapLight {
         let (sin_p, cos_p) = phi.sin_cos();
         let local = Vec3::new(sin_p * sin_t, cos_t, -cos_p * sin_t);
         let wi = (self.to_world * local).normalize();
-        Some((wi, Vec2::new(uu, p.y), pdf_uv / (2.0 * PI * PI * sin_t)))
+        Some((wi, Vec2::new(uu, q.y), pdf_uv / (2.0 * PI * PI * sin_t)))
+    }
+
+    /// Luminance at the corners (c, r), (c + 1, r), (c, r + 1), (c + 1, r + 1) of cell (c, r).
+    #[inline]
+    fn corners(&self, c: usize, r: usize) -> [f32; 4] {
+        let wd = self.width;
+        let (c, r) = (c.min(wd - 1), r.min(self.height - 2));
+        let c1 = (c + 1) % wd;
+        [
+            self.lum[r * wd + c],
+            self.lum[r * wd + c1],
+            self.lum[(r + 1) * wd + c],
+            self.lum[(r + 1) * wd + c1],
+        ]
+    }
+
+    /// The sampling density on the (u − ½/W, v) square at `q`: the cell's density times the
+    /// bilinear luminance at `q` over the cell's mean.
+    #[inline]
+    fn pdf_uv(&self, q: Vec2) -> f32 {
+        let (cols, rows) = (self.width as f32, (self.height - 1) as f32);
+        let (cx, cy) = ((q.x * cols).floor(), (q.y * rows).floor());
+        let (x, y) = (q.x * cols - cx, q.y * rows - cy);
+        let [w00, w10, w01, w11] = self.corners(cx as usize, cy as usize);
+        let sum = w00 + w10 + w01 + w11;
+        if !(sum > 0.0) {
+            return 0.0;
+        }
+        let bilerp = (1.0 - y) * ((1.0 - x) * w00 + x * w10) + y * ((1.0 - x) * w01 + x * w11);
+        self.dist.pdf(q) * 4.0 * bilerp / sum
     }
 
     /// A direction toward the map, by the luminance of its pixels.
@@ -204,7 +262,7 @@ impl EnvMapLight {
         }
         let mut us = uv.x - self.shift();
         us -= us.floor();
-        self.dist.pdf(Vec2::new(us, uv.y)) / (2.0 * PI * PI * sin_t)
+        self.pdf_uv(Vec2::new(us, uv.y.min(1.0 - f32::EPSILON / 2.0))) / (2.0 * PI * PI * sin_t)
     }
 
     /// A particle from the map (light tracing): a direction by [`EnvMapLight::sample_li`]'s
