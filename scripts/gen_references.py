@@ -72,6 +72,7 @@ SPP = {
     # issue 10
     "textures": 4096,
     "envmap": 4096,
+    "plastics": 4096,
 }
 DEFAULT_SPP = 1024
 

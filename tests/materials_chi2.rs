@@ -12,7 +12,7 @@ use chi2::{Chi2Outcome, Grid, chi2_test, gamma_q, ln_gamma, sidak};
 use glam::{Vec2, Vec3};
 use spectrace::material::microfacet::Distribution;
 use spectrace::material::{
-    Lambert, Material, Phong, RoughConductor, RoughDielectric, TransportMode,
+    Lambert, Material, Phong, Plastic, RoughConductor, RoughDielectric, TransportMode,
 };
 use spectrace::spectrum::named::{Named, lookup};
 use spectrace::spectrum::{PiecewiseLinear, SampledWavelengths, Spectrum};
@@ -154,6 +154,34 @@ fn cases() -> Vec<Case> {
             }
         }
     }
+    // Plastics (Mitsuba's `plastic` and `roughplastic`): the smooth coating's delta reflection
+    // is not a direction with a density, so its samples count as rejected, as many as the
+    // diffuse part's density falls short of 1
+    for (rough, grid) in [
+        (None, COARSE),
+        (Some((0.1, Distribution::Beckmann)), FINE),
+        (Some((0.3, Distribution::Ggx)), COARSE),
+    ] {
+        for &t in &angles {
+            let m = Plastic::new(
+                Spectrum::Constant(0.5).into(),
+                0.5,
+                1.0,
+                1.49,
+                1.000277,
+                false,
+                rough,
+            )
+            .unwrap();
+            v.push(Case {
+                name: format!("Plastic {rough:?} θo={t}"),
+                material: Material::Plastic(m),
+                wo: dir(t, phi, false),
+                w: wavelengths(550.0),
+                grid,
+            });
+        }
+    }
     v
 }
 
@@ -166,7 +194,9 @@ fn run(m: &Material, wo: Vec3, w: &SampledWavelengths<4>, grid: Grid, seed: u64)
         || {
             let uc = rng.uniform();
             let u = Vec2::new(rng.uniform(), rng.uniform());
-            m.sample(wo, w, uc, u, mode).map(|s| s.wi)
+            m.sample(wo, w, uc, u, mode)
+                .filter(|s| !s.specular)
+                .map(|s| s.wi)
         },
         |d| m.pdf(wo, d, w, mode) as f64,
     )

@@ -169,6 +169,18 @@ pub enum MaterialKind {
         roughness: Option<f64>,
         distribution: Distribution,
     },
+    /// A diffuse base under a dielectric coating (Mitsuba's `plastic`, and `roughplastic` when
+    /// `roughness` is given; see `crate::material::Plastic`).
+    Plastic {
+        diffuse: TextureDesc,
+        /// A factor on the coating's reflection (Mitsuba's `specular_reflectance`), 1 by default.
+        specular: f64,
+        int_ior: f64,
+        exterior_ior: f64,
+        nonlinear: bool,
+        roughness: Option<f64>,
+        distribution: Distribution,
+    },
 }
 
 /// A spectral quantity that may vary over a surface (see `crate::texture`).

@@ -85,6 +85,8 @@ pub struct RawMaterial {
     pub eta: Option<S<Value>>,
     pub k: Option<S<Value>>,
     pub roughness: Option<S<Value>>,
+    /// A plastic's internal scattering model (Mitsuba's `nonlinear`).
+    pub nonlinear: Option<S<bool>>,
 }
 
 #[derive(Deserialize, Debug)]

@@ -38,12 +38,14 @@ pub mod fresnel;
 mod lambert;
 pub mod microfacet;
 mod phong;
+mod plastic;
 mod rough_dielectric;
 
 pub use conductor::{Conductor, RoughConductor};
 pub use dielectric::Dielectric;
 pub use lambert::Lambert;
 pub use phong::Phong;
+pub use plastic::{Plastic, RoughCoating, fresnel_diffuse_reflectance};
 pub use rough_dielectric::RoughDielectric;
 
 use glam::{Vec2, Vec3};
@@ -105,6 +107,7 @@ pub enum Material {
     RoughDielectric(RoughDielectric),
     Conductor(Conductor),
     RoughConductor(RoughConductor),
+    Plastic(Plastic),
 }
 
 impl Material {
@@ -115,6 +118,7 @@ impl Material {
     pub fn at<const N: usize>(&self, uv: Vec2, w: &SampledWavelengths<N>) -> Bsdf<'_, N> {
         let albedo = match self {
             Material::Diffuse(m) => m.reflectance.sample(uv, w),
+            Material::Plastic(m) => m.diffuse.sample(uv, w),
             _ => SampledSpectrum::zero(),
         };
         Bsdf {
@@ -197,8 +201,8 @@ impl Material {
 #[derive(Clone, Copy, Debug)]
 pub struct Bsdf<'a, const N: usize> {
     pub material: &'a Material,
-    /// The textured reflectance at the point (Lambert's ρ), dimensionless; zero for materials
-    /// without one.
+    /// The textured reflectance at the point (Lambert's ρ, a plastic's diffuse base),
+    /// dimensionless; zero for materials without one.
     pub albedo: SampledSpectrum<N>,
 }
 
@@ -218,6 +222,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::Dielectric(_) | Material::Conductor(_) => SampledSpectrum::zero(),
             Material::RoughDielectric(m) => m.eval(wo, wi, w, mode),
             Material::RoughConductor(m) => m.eval(wo, wi, w),
+            Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).0,
         }
     }
 
@@ -231,6 +236,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::Dielectric(_) | Material::Conductor(_) => 0.0,
             Material::RoughDielectric(m) => m.pdf(wo, wi, w),
             Material::RoughConductor(m) => m.pdf(wo, wi),
+            Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).1,
         }
     }
 
@@ -251,6 +257,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::Dielectric(_) | Material::Conductor(_) => (SampledSpectrum::zero(), 0.0),
             Material::RoughDielectric(m) => m.eval_pdf(wo, wi, w, mode),
             Material::RoughConductor(m) => m.eval_pdf(wo, wi, w),
+            Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo),
         }
     }
 
@@ -272,6 +279,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::RoughDielectric(m) => m.sample(wo, w, uc, u, mode),
             Material::Conductor(m) => m.sample(wo, w),
             Material::RoughConductor(m) => m.sample(wo, w, u),
+            Material::Plastic(m) => m.sample(wo, self.albedo, uc, u),
         }
     }
 

@@ -179,6 +179,16 @@ impl Bitmap {
         }
     }
 
+    /// The mean over texels of `spectral`, a mean over wavelengths of a texel's value.
+    pub fn mean(&self, spectral: impl Fn(&dyn Fn(f32) -> f32) -> f32) -> f32 {
+        let n = (self.width * self.height) as f64;
+        let sum: f64 = match &self.texels {
+            Texels::Grey(v) => v.iter().map(|&x| x as f64).sum(),
+            Texels::Colour(c) => c.iter().map(|p| spectral(&|l| p.eval(l)) as f64).sum(),
+        };
+        (sum / n) as f32
+    }
+
     /// The largest texel value at `lambda_nm`.
     pub fn max_at(&self, lambda_nm: f32) -> f32 {
         match &self.texels {

@@ -89,6 +89,24 @@ impl Texture {
         }
     }
 
+    /// The mean value over the surface and over 16 wavelengths from 360 to 830 nm (as Mitsuba's
+    /// `mean()` of its textures), for sampling weights.
+    pub fn mean(&self) -> f32 {
+        let spectral = |f: &dyn Fn(f32) -> f32| -> f32 {
+            (0..16)
+                .map(|k| f(360.0 + 470.0 * k as f32 / 15.0))
+                .sum::<f32>()
+                / 16.0
+        };
+        match self {
+            Texture::Uniform(s) => spectral(&|l| s.eval(l)),
+            Texture::Checkerboard(c) => {
+                0.5 * (spectral(&|l| c.a.eval(l)) + spectral(&|l| c.b.eval(l)))
+            }
+            Texture::Bitmap(b) => b.mean(spectral),
+        }
+    }
+
     /// The largest value over the surface at `lambda_nm`, an upper bound for energy checks.
     pub fn max_at(&self, lambda_nm: f32) -> f32 {
         match self {

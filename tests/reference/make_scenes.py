@@ -858,11 +858,59 @@ to_world, scale, importance sampling with MIS.""",
     write("envmap", s + FOOTER)
 
 
+
+def plastics():
+    def plastic(kind, spec, extra=""):
+        return (f'        <bsdf type="{kind}">\n'
+                f'            <spectrum name="diffuse_reflectance" value="{spec}"/>\n'
+                f'{extra}        </bsdf>\n')
+    s = header(
+        """Four plastic spheres on a diffuse floor: smooth `plastic` (ColorChecker red, Mitsuba's
+defaults int_ior polypropylene 1.49, ext_ior air), `roughplastic` with Mitsuba's defaults
+(Beckmann, alpha 0.1; blue), `roughplastic` GGX alpha 0.3 with `nonlinear` (green), and a
+smooth `plastic` with int_ior 1.9 and a checkerboard diffuse_reflectance; a D65 area light
+and a dim constant environment.
+Exercises: the coating's Fresnel reflection and transmittance, the internal-scattering
+normalisation (linear and nonlinear), the rough coating's tabulated transmittance and internal
+reflectance, the specular sampling weight, textures in a plastic.""",
+        "0, 1.6, 4.2",
+        "0, 0.4, 0",
+        50,
+        64,
+        6,
+    )
+    checker = """        <bsdf type="plastic">
+            <float name="int_ior" value="1.9"/>
+            <texture type="checkerboard" name="diffuse_reflectance">
+                <spectrum name="color0" value="0.8"/>
+                <spectrum name="color1" value="0.1"/>
+                <transform name="to_uv"><scale x="6" y="3"/></transform>
+            </texture>
+        </bsdf>
+"""
+    s += (sphere((-1.35, 0.45, 0), 0.45, plastic("plastic", colorchecker("red")))
+          + sphere((-0.45, 0.45, 0), 0.45, plastic("roughplastic", colorchecker("blue")))
+          + sphere((0.45, 0.45, 0), 0.45, plastic(
+              "roughplastic", colorchecker("green"),
+              '            <string name="distribution" value="ggx"/>\n'
+              '            <float name="alpha" value="0.3"/>\n'
+              '            <boolean name="nonlinear" value="true"/>\n'))
+          + sphere((1.35, 0.45, 0), 0.45, checker)
+          + floor_rect(3, colorchecker("neutral-8"))
+          + area_rect(0.6, "0.5, 2.8, 1.5", illuminant('d65', 20.0))
+          + f"""
+    <emitter type="constant">
+        <spectrum name="radiance" value="{illuminant('d65', 0.2)}"/>
+    </emitter>
+""")
+    write("plastics", s + FOOTER)
+
+
 SCENES = {
     f.__name__: f
     for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
               dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional,
-              spot_ramp, gaussian_edge, smooth_mesh, textures, envmap)
+              spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics)
 }
 
 if __name__ == "__main__":

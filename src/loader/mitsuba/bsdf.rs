@@ -196,8 +196,49 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
                 distribution: distribution()?,
             }
         }
+        // Mitsuba's plastics: defaults diffuse_reflectance 0.5, int_ior polypropylene (1.49),
+        // ext_ior air, nonlinear false; roughplastic's alpha is isotropic only
         "plastic" | "roughplastic" => {
-            return Err(cx.err(b, "plastic has no faithful mapping in spectrace yet; use \"diffuse\", or \"dielectric\" over a \"diffuse\" base in a later version"));
+            let specular = match cx.child(b, "specular_reflectance") {
+                None => 1.0,
+                Some(c) => match cx.spectrum(c, false)? {
+                    Spectrum::Constant(v) if v >= 0.0 => v as f64,
+                    _ => {
+                        return Err(cx.err(
+                            c,
+                            "a plastic's specular_reflectance must be one number ≥ 0 here (a spectrum or texture is not supported)",
+                        ));
+                    }
+                },
+            };
+            for k in ["alpha_u", "alpha_v"] {
+                if let Some(c) = cx.child(b, k) {
+                    return Err(cx.err(
+                        c,
+                        "roughplastic is isotropic in Mitsuba: give alpha, not alpha_u/alpha_v",
+                    ));
+                }
+            }
+            let nonlinear = match cx.string(b, "nonlinear").as_deref() {
+                None | Some("false") => false,
+                Some("true") => true,
+                Some(o) => {
+                    return Err(cx.err(b, format!("nonlinear: expected true or false, found {o}")));
+                }
+            };
+            MaterialKind::Plastic {
+                diffuse: cx.texture_prop(b, "diffuse_reflectance", 0.5)?,
+                specular,
+                int_ior: ior_of(cx, "int_ior", 1.49)?,
+                exterior_ior: ior_of(cx, "ext_ior", 1.000277)?,
+                nonlinear,
+                roughness: if t == "roughplastic" {
+                    alpha(cx)?
+                } else {
+                    None
+                },
+                distribution: distribution()?,
+            }
         }
         other => return Err(cx.unsupported(b, "bsdf", other)),
     };

@@ -45,6 +45,8 @@ const PLUGINS: &[(&str, &[&str])] = &[
             "roughconductor",
             "dielectric",
             "roughdielectric",
+            "plastic",
+            "roughplastic",
         ],
     ),
     (

@@ -14,7 +14,7 @@ use crate::geometry::transform::Transform;
 use crate::loader::desc::{CameraKind, FovAxis, MaterialKind, Projection, SceneDesc};
 use crate::loader::{LoadError, Loc};
 use crate::material::{
-    Conductor, Dielectric, Lambert, Material, Phong, RoughConductor, RoughDielectric,
+    Conductor, Dielectric, Lambert, Material, Phong, Plastic, RoughConductor, RoughDielectric,
 };
 use crate::spectrum::WavelengthRange;
 use crate::units::plain;
@@ -151,6 +151,27 @@ fn material(k: &MaterialKind) -> Result<Material, String> {
             RoughConductor::new(ior.clone(), *exterior_ior as f32, *a as f32)
                 .with_distribution(*distribution),
         ),
+        MaterialKind::Plastic {
+            diffuse,
+            specular,
+            int_ior,
+            exterior_ior,
+            nonlinear,
+            roughness,
+            distribution,
+        } => {
+            let diffuse = textures::texture(diffuse)?;
+            let mean = diffuse.mean();
+            Material::Plastic(Plastic::new(
+                diffuse,
+                mean,
+                *specular as f32,
+                *int_ior as f32,
+                *exterior_ior as f32,
+                *nonlinear,
+                roughness.map(|a| (a as f32, *distribution)),
+            )?)
+        }
     })
 }
 

@@ -163,12 +163,12 @@ pub(super) fn material(
     let sp = m.span();
     let f = format!("materials.{}", name.get_ref());
     let m = m.get_ref();
-    let all = present!(m; kind, reflectance, kd, ks, exponent, ior, exterior_ior, metal, eta, k, roughness);
+    let all = present!(m; kind, reflectance, kd, ks, exponent, ior, exterior_ior, metal, eta, k, roughness, nonlinear);
     let ty = cx.required(
         &m.kind,
         &sp,
         &format!("{f}.type"),
-        "diffuse, phong, dielectric or conductor",
+        "diffuse, phong, dielectric, conductor or plastic",
     )?;
     let roughness = |cx: &Cx<'_>| -> R<Option<f64>> {
         match &m.roughness {
@@ -280,6 +280,50 @@ pub(super) fn material(
                 distribution: Distribution::Ggx,
             }
         }
+        "plastic" => {
+            cx.only(
+                "a plastic material",
+                &f,
+                &all,
+                &[
+                    "kind",
+                    "reflectance",
+                    "ior",
+                    "exterior_ior",
+                    "roughness",
+                    "nonlinear",
+                ],
+            )?;
+            let r = cx.required(
+                &m.reflectance,
+                &sp,
+                &format!("{f}.reflectance"),
+                "the diffuse base's reflectance",
+            )?;
+            let int_ior = match &m.ior {
+                None => 1.49,
+                Some(i) => {
+                    let n = cx.number(i, &format!("{f}.ior"))?;
+                    if !(n > 0.0 && n.is_finite()) {
+                        return Err(cx.err(
+                            &i.span(),
+                            format!("{f}.ior"),
+                            format!("expected a positive index, found {n}"),
+                        ));
+                    }
+                    n
+                }
+            };
+            MaterialKind::Plastic {
+                diffuse: reflectance_texture(cx, r, &format!("{f}.reflectance"), range)?,
+                specular: 1.0,
+                int_ior,
+                exterior_ior: exterior(cx)?,
+                nonlinear: m.nonlinear.as_ref().is_some_and(|b| *b.get_ref()),
+                roughness: roughness(cx)?,
+                distribution: Distribution::Ggx,
+            }
+        }
         "conductor" => {
             cx.only(
                 "a conductor material",
@@ -306,7 +350,7 @@ pub(super) fn material(
             }
         }
         o => {
-            return Err(cx.err(&ty.span(), format!("{f}.type"), format!("unknown material type \"{o}\"; expected diffuse, phong, dielectric or conductor")));
+            return Err(cx.err(&ty.span(), format!("{f}.type"), format!("unknown material type \"{o}\"; expected diffuse, phong, dielectric, conductor or plastic")));
         }
     };
     Ok(MaterialDesc {
