@@ -73,6 +73,8 @@ SPP = {
     "textures": 4096,
     "envmap": 4096,
     "plastics": 4096,
+    "serialized": 4096,
+    "direct": 4096,
 }
 DEFAULT_SPP = 1024
 

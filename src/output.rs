@@ -33,6 +33,8 @@ pub struct RenderInfo<'a> {
     pub range: WavelengthRange,
     /// Whether X, Y, Z, R, G, B were divided by K_m·∫ȳ (see [`to_mitsuba_scale`]).
     pub mitsuba_units: bool,
+    /// Also write the second moments `m2.X`, `m2.Y`, `m2.Z` (Mitsuba's `moment` integrator).
+    pub moment: bool,
 }
 
 /// Mitsuba 3.9.1's XYZ film multiplies by `MI_CIE_Y_NORMALIZATION` = 1/106.7502594, not by
@@ -49,6 +51,9 @@ pub fn to_mitsuba_scale(img: &mut Image) {
     for p in img.xyz.iter_mut().chain(img.rgb.iter_mut()) {
         *p = p.map(|v| v * k);
     }
+    for p in img.xyz_m2.iter_mut() {
+        *p = p.map(|v| v * k * k);
+    }
 }
 
 /// Writes the EXR (spectral when the image has bins).
@@ -61,7 +66,12 @@ pub fn write_exr(path: &Path, img: &Image, info: &RenderInfo<'_>) -> Result<(), 
     let r = plane(&|i| img.rgb[i][0]);
     let g = plane(&|i| img.rgb[i][1]);
     let b = plane(&|i| img.rgb[i][2]);
-    let channels = [
+    let (mx, my, mz) = (
+        plane(&|i| img.xyz_m2[i][0]),
+        plane(&|i| img.xyz_m2[i][1]),
+        plane(&|i| img.xyz_m2[i][2]),
+    );
+    let mut channels = vec![
         Channel {
             name: "X",
             data: &x,
@@ -91,14 +101,25 @@ pub fn write_exr(path: &Path, img: &Image, info: &RenderInfo<'_>) -> Result<(), 
             data: &img.band,
         },
     ];
+    if info.moment {
+        for (name, data) in [("m2.X", &mx), ("m2.Y", &my), ("m2.Z", &mz)] {
+            channels.push(Channel { name, data });
+        }
+    }
     let xyz_units = if info.mitsuba_units {
         "X,Y,Z: CIE 1931 2deg on Mitsuba 3.9.1's scale (cd/m^2 divided by 683.002 x 106.7502594)"
     } else {
         "X,Y,Z: CIE 1931 2deg, Y = luminance in cd/m^2"
     };
     let units = format!(
-        "{xyz_units}; R,G,B: linear sRGB (Rec.709 primaries, D65) on the same scale; L: radiance over {}-{} nm in W.m^-2.sr^-1",
-        info.range.min_nm, info.range.max_nm
+        "{xyz_units}; R,G,B: linear sRGB (Rec.709 primaries, D65) on the same scale; L: radiance over {}-{} nm in W.m^-2.sr^-1{}",
+        info.range.min_nm,
+        info.range.max_nm,
+        if info.moment {
+            "; m2.X,m2.Y,m2.Z: second moments, the mean of the squared sample values of X,Y,Z (their units squared)"
+        } else {
+            ""
+        }
     );
     let attrs = [
         ("spectrace:units", AttrValue::Text(units)),

@@ -203,3 +203,108 @@ fn every_mitsuba_sampler_is_accepted() {
     let e = load(&f, &[]).unwrap_err().to_string();
     assert!(e.contains("\"sobol\"") && e.contains("ldsampler"), "{e}");
 }
+
+/// Mitsuba's `null` BSDF: light passes straight through, but the crossing counts toward
+/// `max_depth` (Mitsuba 3.9.1 renders an emitter behind a null rectangle black at max_depth 1
+/// and at its full radiance from max_depth 2). With the same seed the wavelengths are the same,
+/// so the emitter seen through the null surface gives exactly the image of the emitter alone.
+#[test]
+fn null_bsdf_passes_light_and_counts_a_bounce() {
+    let scene = |depth: i32, null: bool| {
+        let blocker = if null {
+            r#"<shape type="rectangle">
+    <transform name="to_world"><scale value="10"/><translate z="1"/></transform>
+    <bsdf type="null"/>
+  </shape>"#
+        } else {
+            ""
+        };
+        format!(
+            r#"<scene version="3.0.0">
+  <integrator type="path"><integer name="max_depth" value="{depth}"/></integrator>
+  <sensor type="perspective">
+    <float name="fov" value="20"/>
+    <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0"/></transform>
+    <sampler type="independent"><integer name="sample_count" value="4"/></sampler>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film>
+  </sensor>
+  {blocker}
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="10"/><translate z="-1"/></transform>
+    <emitter type="area"><spectrum name="radiance" value="2"/></emitter>
+  </shape>
+</scene>"#
+        )
+    };
+    let band = |depth: i32, null: bool| -> Vec<f32> {
+        let desc = spectrace::loader::mitsuba::load_str(
+            &scene(depth, null),
+            std::path::Path::new("null.xml"),
+            &[],
+        )
+        .unwrap();
+        let s = spectrace::scene::build(&desc).unwrap();
+        let mut o = spectrace::render::RenderOptions::from_scene(&s);
+        o.threads = Some(1);
+        let cancel = std::sync::atomic::AtomicBool::new(false);
+        let (film, _) = spectrace::render::render(&s, &o, &cancel, &|_, _| {}).unwrap();
+        film.image().band
+    };
+    let alone = band(1, false);
+    assert!(alone.iter().all(|&l| l > 100.0));
+    assert!(
+        band(1, true).iter().all(|&l| l == 0.0),
+        "the null crossing uses the only bounce"
+    );
+    for depth in [2, 3] {
+        let through = band(depth, true);
+        for (a, b) in alone.iter().zip(&through) {
+            assert!(
+                (a - b).abs() <= 1e-5 * a,
+                "max_depth {depth}: {b} through null, {a} alone"
+            );
+        }
+    }
+}
+
+/// `direct` reads its sample counts as Mitsuba (`shading_samples` sets both, each count
+/// overrides it); `volpath` without media is `path` with the same depth; `moment` wraps one.
+#[test]
+fn integrators_read_as_mitsuba() {
+    use spectrace::loader::desc::IntegratorKind;
+    let load = |integrator: &str| {
+        let xml = HEAD.replacen(
+            "<scene version=\"3.0.0\">",
+            &format!("<scene version=\"3.0.0\">{integrator}"),
+            1,
+        ) + "</scene>";
+        spectrace::loader::mitsuba::load_str(&xml, std::path::Path::new("i.xml"), &[])
+            .unwrap()
+            .integrator
+    };
+    let d = load(
+        r#"<integrator type="direct"><integer name="shading_samples" value="3"/><integer name="bsdf_samples" value="2"/></integrator>"#,
+    );
+    assert_eq!(
+        d.kind,
+        IntegratorKind::Direct {
+            emitter_samples: 3,
+            bsdf_samples: 2
+        }
+    );
+    let v =
+        load(r#"<integrator type="volpath"><integer name="max_depth" value="5"/></integrator>"#);
+    assert_eq!(
+        (v.kind, v.max_depth, v.moment),
+        (IntegratorKind::Path, 4, false)
+    );
+    let m = load(r#"<integrator type="moment"><integrator type="direct"/></integrator>"#);
+    assert!(m.moment);
+    assert_eq!(
+        m.kind,
+        IntegratorKind::Direct {
+            emitter_samples: 1,
+            bsdf_samples: 1
+        }
+    );
+}

@@ -60,6 +60,7 @@ fn spectral_exr_reads_back_with_the_same_bins_and_values() {
         inf_samples: 0,
         range: scene.wavelengths,
         mitsuba_units: false,
+        moment: false,
     };
     spectrace::output::write_exr(&path, &img, &info).unwrap();
     let back = read_exr(&path).unwrap();

@@ -178,6 +178,7 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
         IntegratorKind::Path => "path",
         IntegratorKind::Light => "light",
         IntegratorKind::Whitted => "whitted",
+        IntegratorKind::Direct { .. } => "direct",
     };
     let info = RenderInfo {
         scene_file: &args.scene.display().to_string(),
@@ -194,6 +195,7 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
         inf_samples: stats.inf_samples,
         range: scene.wavelengths,
         mitsuba_units: args.mitsuba_units,
+        moment: scene.integrator.moment,
     };
     write_exr(&exr, &image, &info)?;
     let ev = write_png(&png, &image, args.exposure.or(scene.film.exposure_ev))?;

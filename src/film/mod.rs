@@ -49,6 +49,8 @@ pub struct PixelSums {
     pub xyz: [f64; 3],
     /// Σ band radiance estimates, W·m⁻²·sr⁻¹.
     pub band: f64,
+    /// Σ of the squared XYZ estimates of camera samples, (cd/m²)², for second moments.
+    pub xyz_sq: [f64; 3],
     /// Number of samples that reached the pixel (NaN/∞ samples are not counted); for light
     /// tracing, the number of light paths traced in all.
     pub count: u64,
@@ -114,6 +116,9 @@ pub struct Image {
     /// Mean spectral radiance per bin, W·m⁻²·sr⁻¹·nm⁻¹: `spectral[b][pixel]`.
     pub spectral: Vec<Vec<f32>>,
     pub bins: Option<Bins>,
+    /// Second moment of the camera samples' XYZ, the mean of their squares, (cd/m²)² (zero
+    /// for light-tracing splats); its excess over the squared mean is the sample variance.
+    pub xyz_m2: Vec<[f32; 3]>,
 }
 
 /// Accumulation for one rectangle of pixels (a tile), written by one thread.
@@ -155,10 +160,18 @@ impl Tile {
         l: &SampledSpectrum<N>,
         bins: Option<&Bins>,
     ) -> bool {
-        if !self.splat_weighted(std::iter::once((x, y, 1.0)), w, l, bins) {
+        let Some(s) = SampleSums::new(w, l, bins) else {
             return false;
+        };
+        let nb = self.nbins;
+        let i = ((y - self.y0) * self.width + (x - self.x0)) as usize;
+        let spectral = &mut self.spectral[i * nb..(i + 1) * nb];
+        let p = &mut self.pixels[i];
+        p.add_weighted(spectral, s.xyz, s.band, s.bins(), 1.0);
+        for k in 0..3 {
+            p.xyz_sq[k] += s.xyz[k] * s.xyz[k];
         }
-        self.pixels[((y - self.y0) * self.width + (x - self.x0)) as usize].count += 1;
+        p.count += 1;
         true
     }
 
@@ -330,6 +343,7 @@ impl Film {
                 let (a, b) = (&mut self.sums[dst], &t.pixels[src]);
                 for k in 0..3 {
                     a.xyz[k] += b.xyz[k] * scale;
+                    a.xyz_sq[k] += b.xyz_sq[k] * scale * scale;
                 }
                 a.band += b.band * scale;
                 a.count += b.count;
@@ -360,6 +374,7 @@ impl Film {
         let mut xyz = Vec::with_capacity(n);
         let mut rgb = Vec::with_capacity(n);
         let mut band = Vec::with_capacity(n);
+        let mut xyz_m2 = Vec::with_capacity(n);
         let mut spectral = vec![Vec::with_capacity(n); nb];
         for (i, s) in self.sums.iter().enumerate() {
             let inv = if s.count > 0 {
@@ -371,6 +386,7 @@ impl Film {
             xyz.push(m.map(|v| v as f32));
             rgb.push(xyz_to_srgb(m).map(|v| v as f32));
             band.push((s.band * inv) as f32);
+            xyz_m2.push(s.xyz_sq.map(|v| (v * inv) as f32));
             for (k, sp) in spectral.iter_mut().enumerate() {
                 sp.push((self.spectral[i * nb + k] * inv) as f32);
             }
@@ -383,6 +399,7 @@ impl Film {
             band,
             spectral,
             bins: self.bins.clone(),
+            xyz_m2,
         }
     }
 }

@@ -6,6 +6,7 @@
 //! wavelengths, W·m⁻²·sr⁻¹·nm⁻¹. It may terminate the secondary wavelengths; the film then
 //! drops them (their pdf is 0).
 
+mod direct;
 pub mod light;
 mod path;
 mod whitted;
@@ -121,6 +122,10 @@ impl<'a> Integrator<'a> {
             // `light` traces from the lights (see `light::trace`); camera rays use `path`
             IntegratorKind::Path | IntegratorKind::Light => path::radiance(self, ray, w, s),
             IntegratorKind::Whitted => whitted::radiance(self, ray, w, s, 0),
+            IntegratorKind::Direct {
+                emitter_samples,
+                bsdf_samples,
+            } => direct::radiance(self, ray, w, s, emitter_samples, bsdf_samples),
         }
     }
 }
@@ -216,7 +221,7 @@ impl Integrator<'_> {
         let (mut ng, mut ns) = (hit.n_geom, hit.n_shading);
         let transmissive = matches!(
             material,
-            Material::Dielectric(_) | Material::RoughDielectric(_)
+            Material::Dielectric(_) | Material::RoughDielectric(_) | Material::Null
         );
         if surf.two_sided && !transmissive && ng.dot(-dir) < 0.0 {
             ng = -ng;

@@ -117,6 +117,12 @@ pub enum IntegratorKind {
     Path,
     Light,
     Whitted,
+    /// Mitsuba's `direct`: emission seen directly plus direct lighting at the first hit from
+    /// this many light and BSDF samples, combined by MIS.
+    Direct {
+        emitter_samples: u32,
+        bsdf_samples: u32,
+    },
 }
 
 #[derive(Clone, Debug)]
@@ -128,6 +134,9 @@ pub struct IntegratorDesc {
     pub rr_depth: u32,
     /// How next-event estimation chooses among the lights.
     pub light_selection: LightSelection,
+    /// Also write each pixel's second moment (the mean of the squared sample values), as
+    /// Mitsuba's `moment` integrator does around another one.
+    pub moment: bool,
 }
 
 /// Probabilities with which next-event estimation (and the light tracer) chooses a light. Either
@@ -169,6 +178,8 @@ pub enum MaterialKind {
         roughness: Option<f64>,
         distribution: Distribution,
     },
+    /// No surface: light passes straight through (Mitsuba's `null`).
+    Null,
     /// A diffuse base under a dielectric coating (Mitsuba's `plastic`, and `roughplastic` when
     /// `roughness` is given; see `crate::material::Plastic`).
     Plastic {
@@ -253,6 +264,13 @@ pub enum ShapeKind {
     /// A Wavefront OBJ mesh; coordinates in the scene's length unit.
     Obj {
         path: PathBuf,
+        normals: MeshNormals,
+    },
+    /// Mesh `shape_index` of a Mitsuba `.serialized` file; coordinates in the scene's length
+    /// unit.
+    Serialized {
+        path: PathBuf,
+        shape_index: usize,
         normals: MeshNormals,
     },
     /// A Stanford PLY mesh; coordinates in the scene's length unit.

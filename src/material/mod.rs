@@ -108,6 +108,9 @@ pub enum Material {
     Conductor(Conductor),
     RoughConductor(RoughConductor),
     Plastic(Plastic),
+    /// Mitsuba's `null`: no surface for light, which passes straight through (a delta
+    /// transmission of weight 1 that still counts as a scattering event, as in Mitsuba).
+    Null,
 }
 
 impl Material {
@@ -180,7 +183,10 @@ impl Material {
     /// light sampling (next-event estimation) is pointless.
     #[inline]
     pub fn is_specular(&self) -> bool {
-        matches!(self, Material::Dielectric(_) | Material::Conductor(_))
+        matches!(
+            self,
+            Material::Dielectric(_) | Material::Conductor(_) | Material::Null
+        )
     }
 
     /// Whether transmission through this material depends on wavelength in direction, so that
@@ -219,7 +225,9 @@ impl<const N: usize> Bsdf<'_, N> {
         match self.material {
             Material::Diffuse(m) => m.eval(wo, wi, self.albedo),
             Material::Phong(m) => m.eval(wo, wi, w),
-            Material::Dielectric(_) | Material::Conductor(_) => SampledSpectrum::zero(),
+            Material::Dielectric(_) | Material::Conductor(_) | Material::Null => {
+                SampledSpectrum::zero()
+            }
             Material::RoughDielectric(m) => m.eval(wo, wi, w, mode),
             Material::RoughConductor(m) => m.eval(wo, wi, w),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).0,
@@ -233,7 +241,7 @@ impl<const N: usize> Bsdf<'_, N> {
         match self.material {
             Material::Diffuse(m) => m.pdf(wo, wi),
             Material::Phong(m) => m.pdf(wo, wi, w),
-            Material::Dielectric(_) | Material::Conductor(_) => 0.0,
+            Material::Dielectric(_) | Material::Conductor(_) | Material::Null => 0.0,
             Material::RoughDielectric(m) => m.pdf(wo, wi, w),
             Material::RoughConductor(m) => m.pdf(wo, wi),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).1,
@@ -254,7 +262,9 @@ impl<const N: usize> Bsdf<'_, N> {
         match self.material {
             Material::Diffuse(m) => (m.eval(wo, wi, self.albedo), m.pdf(wo, wi)),
             Material::Phong(m) => m.eval_pdf(wo, wi, w),
-            Material::Dielectric(_) | Material::Conductor(_) => (SampledSpectrum::zero(), 0.0),
+            Material::Dielectric(_) | Material::Conductor(_) | Material::Null => {
+                (SampledSpectrum::zero(), 0.0)
+            }
             Material::RoughDielectric(m) => m.eval_pdf(wo, wi, w, mode),
             Material::RoughConductor(m) => m.eval_pdf(wo, wi, w),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo),
@@ -280,6 +290,16 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::Conductor(m) => m.sample(wo, w),
             Material::RoughConductor(m) => m.sample(wo, w, u),
             Material::Plastic(m) => m.sample(wo, self.albedo, uc, u),
+            // straight through: f·|cos θᵢ|/pdf = 1
+            Material::Null => (wo.z != 0.0).then(|| BsdfSample {
+                f: SampledSpectrum::splat(1.0 / wo.z.abs()),
+                wi: -wo,
+                pdf: 1.0,
+                specular: true,
+                transmission: true,
+                dispersive: false,
+                eta: 1.0,
+            }),
         }
     }
 

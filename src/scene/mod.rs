@@ -51,6 +51,8 @@ pub struct IntegratorSettings {
     pub rr_depth: u32,
     /// How next-event estimation chooses among the lights.
     pub light_selection: LightSelection,
+    /// Write second moments (see [`crate::loader::desc::IntegratorDesc::moment`]).
+    pub moment: bool,
 }
 
 /// A render-ready scene. Shapes are in world space, metres.

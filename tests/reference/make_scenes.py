@@ -906,11 +906,93 @@ reflectance, the specular sampling weight, textures in a plastic.""",
     write("plastics", s + FOOTER)
 
 
+
+def serialized():
+    # the meshes are written by scripts/gen_serialized.py
+    s = header(
+        """Mitsuba `serialized` meshes (scripts/gen_serialized.py): mesh 1 of a version-4 file (a
+float64 height field with uvs and no normals: Mitsuba's smooth vertex normals; ColorChecker
+orange), placed by `to_world`, and a version-3 quad with uvs carrying a checkerboard, under a
+directional light (D65 / 100 × 3) and a dim constant environment.
+Exercises: the serialized format (versions 3 and 4, float32/float64, shape_index, the mesh
+table), smooth normals for meshes without them, serialized uvs (not flipped).""",
+        "0.3, 2.2, 2.8",
+        "0, 0.2, 0",
+        45,
+        64,
+        4,
+    )
+    s += f"""
+    <shape type="serialized">
+        <string name="filename" value="meshes.serialized"/>
+        <integer name="shape_index" value="1"/>
+        <transform name="to_world"><scale value="1.2"/></transform>
+{diffuse(colorchecker("orange"), indent="        ")}    </shape>
+
+    <shape type="serialized">
+        <string name="filename" value="quad_v3.serialized"/>
+        <transform name="to_world">
+            <scale value="0.6"/>
+            <translate x="0" y="0.75" z="-1.1"/>
+        </transform>
+        <bsdf type="diffuse">
+            <texture type="checkerboard" name="reflectance">
+                <spectrum name="color0" value="0.75"/>
+                <spectrum name="color1" value="0.15"/>
+                <transform name="to_uv"><scale x="4" y="2"/></transform>
+            </texture>
+        </bsdf>
+    </shape>
+
+    <emitter type="directional">
+        <vector name="direction" x="-0.6" y="-1" z="-0.5"/>
+        <spectrum name="irradiance" value="{illuminant('d65', 3.0)}"/>
+    </emitter>
+    <emitter type="constant">
+        <spectrum name="radiance" value="{illuminant('d65', 0.1)}"/>
+    </emitter>
+"""
+    write("serialized", s + FOOTER)
+
+
+
+def direct():
+    s = header(
+        """Mitsuba's `direct` integrator with emitter_samples 2 and bsdf_samples 3: a rough conductor
+sphere (aluminium, GGX alpha 0.15) and a diffuse sphere on a diffuse floor, a small D65 area
+light and a dim constant environment; one bounce only, the light and BSDF samples combined by
+the power heuristic with the sample counts.
+Exercises: the direct integrator, its sample counts and MIS weights.""",
+        "0, 1.2, 3.5",
+        "0, 0.4, 0",
+        45,
+        64,
+        2,
+    )
+    s = s.replace("""    <integrator type="path">
+        <integer name="max_depth" value="2"/>
+    </integrator>""", """    <integrator type="direct">
+        <integer name="emitter_samples" value="2"/>
+        <integer name="bsdf_samples" value="3"/>
+    </integrator>""")
+    al = conductor_xml("al", rough=0.15)
+    s += (sphere((-0.55, 0.45, 0), 0.45, al)
+          + sphere((0.6, 0.4, 0.2), 0.4, diffuse(colorchecker("yellow"), indent="        "))
+          + floor_rect(3, colorchecker("neutral-8"))
+          + area_rect(0.3, "0.8, 2.0, 0.8", illuminant('d65', 40.0))
+          + f"""
+    <emitter type="constant">
+        <spectrum name="radiance" value="{illuminant('d65', 0.2)}"/>
+    </emitter>
+""")
+    write("direct", s + FOOTER)
+
+
 SCENES = {
     f.__name__: f
     for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
               dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional,
-              spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics)
+              spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics, serialized, direct)
 }
 
 if __name__ == "__main__":

@@ -13,6 +13,7 @@ mod disk;
 mod mesh;
 mod obj;
 mod ply;
+mod serialized;
 mod sphere;
 mod triangle;
 

@@ -116,6 +116,8 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
             let (m, _) = bsdf(cx, inner, name)?;
             return Ok((m, true));
         }
+        // light passes straight through; each crossing still counts toward max_depth
+        "null" => MaterialKind::Null,
         "diffuse" => MaterialKind::Diffuse {
             reflectance: cx.texture_prop(b, "reflectance", 0.5)?,
         },

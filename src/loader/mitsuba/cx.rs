@@ -31,10 +31,18 @@ const PLUGINS: &[(&str, &[&str])] = &[
     ("film", &["hdrfilm"]),
     ("rfilter", &["box", "gaussian"]),
     ("sampler", SAMPLERS),
-    ("integrator", &["path"]),
+    ("integrator", &["path", "volpath", "direct", "moment"]),
     (
         "shape",
-        &["obj", "ply", "rectangle", "cube", "sphere", "disk"],
+        &[
+            "obj",
+            "ply",
+            "serialized",
+            "rectangle",
+            "cube",
+            "sphere",
+            "disk",
+        ],
     ),
     (
         "bsdf",
@@ -47,6 +55,7 @@ const PLUGINS: &[(&str, &[&str])] = &[
             "roughdielectric",
             "plastic",
             "roughplastic",
+            "null",
         ],
     ),
     (

@@ -131,6 +131,7 @@ pub(super) fn scene(
         rr_depth: DEFAULT_RR_DEPTH,
         // Mitsuba chooses emitters in proportion to their sampling_weight, 1 by default
         light_selection: LightSelection::Uniform,
+        moment: false,
     };
     let mut camera = None;
     let mut materials: Vec<MaterialDesc> = Vec::new();
@@ -141,34 +142,7 @@ pub(super) fn scene(
     for c in &root.children {
         match c.tag.as_str() {
             "default" => {}
-            "integrator" => {
-                let t = c.attr("type").unwrap_or("");
-                if t != "path" {
-                    return Err(cx.unsupported(c, "integrator", t));
-                }
-                if let Some(d) = cx.child(c, "max_depth") {
-                    integrator.max_depth = max_depth(&cx, d)?;
-                }
-                // Mitsuba's rr_depth: roulette may end a path at vertex k > rr_depth (vertex 1
-                // is the first surface hit), the same meaning as spectrace's
-                if let Some(d) = cx.child(c, "rr_depth") {
-                    let v = cx.float(d)?;
-                    if v.fract() != 0.0 || v <= 0.0 {
-                        return Err(
-                            cx.err(d, format!("rr_depth must be a positive integer, not {v}"))
-                        );
-                    }
-                    integrator.rr_depth = v.min(1024.0) as u32;
-                }
-                if let Some(h) = cx.child(c, "hide_emitters")
-                    && h.attr("value") == Some("true")
-                {
-                    return Err(cx.err(
-                        h,
-                        "hide_emitters = true is not supported: spectrace always shows emitters seen directly",
-                    ));
-                }
-            }
+            "integrator" => integrator_settings(&cx, c, &mut integrator)?,
             "sensor" => camera = Some(sensor(&cx, c, &mut film)?),
             "bsdf" => {
                 if let Some(id) = c.attr("id") {
@@ -178,6 +152,7 @@ pub(super) fn scene(
                 }
             }
             "shape" => shapes.push(shape(&cx, c, &mut materials, &material_ids)?),
+            "medium" => return Err(cx.err(c, "participating media (`medium`, e.g. homogeneous) are not supported yet; remove the medium (volpath renders a scene without media as path does)")),
             // an area emitter at the top level is a declaration that shapes refer to by id
             "emitter" if c.attr("type") == Some("area") => {
                 if c.attr("id").is_none() {
@@ -233,4 +208,70 @@ fn max_depth(cx: &Cx<'_>, d: &Element) -> R<u32> {
         )),
         n => Ok((n - 1).min(1024) as u32),
     }
+}
+
+/// An `<integrator>`: `path` (and `volpath`, the same in a scene without media) with
+/// `max_depth`, `rr_depth`; `direct` with its sample counts; `moment` around one of them (its
+/// image plus second moments).
+fn integrator_settings(cx: &Cx<'_>, c: &Element, integrator: &mut IntegratorDesc) -> R<()> {
+    let t = c.attr("type").unwrap_or("");
+    if t == "moment" {
+        let inner = c
+            .children
+            .iter()
+            .find(|i| i.tag == "integrator")
+            .ok_or_else(|| cx.err(c, "a moment integrator needs a nested <integrator>"))?;
+        integrator.moment = true;
+        return integrator_settings(cx, inner, integrator);
+    }
+    if t == "direct" {
+        // Mitsuba's `shading_samples` sets both counts; each count given overrides it
+        let count = |key: &str| -> R<Option<u32>> {
+            match cx.child(c, key) {
+                None => Ok(None),
+                Some(e) => {
+                    let v = cx.float(e)?;
+                    if v.fract() != 0.0 || !(0.0..=1e6).contains(&v) {
+                        return Err(cx.err(e, format!("{key} must be an integer ≥ 0, not {v}")));
+                    }
+                    Ok(Some(v as u32))
+                }
+            }
+        };
+        let shading = count("shading_samples")?.unwrap_or(1);
+        let emitter_samples = count("emitter_samples")?.unwrap_or(shading);
+        let bsdf_samples = count("bsdf_samples")?.unwrap_or(shading);
+        if emitter_samples + bsdf_samples == 0 {
+            return Err(cx.err(c, "direct needs at least one emitter or BSDF sample"));
+        }
+        integrator.kind = IntegratorKind::Direct {
+            emitter_samples,
+            bsdf_samples,
+        };
+        return Ok(());
+    }
+    if t != "path" && t != "volpath" {
+        return Err(cx.unsupported(c, "integrator", t));
+    }
+    if let Some(d) = cx.child(c, "max_depth") {
+        integrator.max_depth = max_depth(cx, d)?;
+    }
+    // Mitsuba's rr_depth: roulette may end a path at vertex k > rr_depth (vertex 1 is the
+    // first surface hit), the same meaning as spectrace's
+    if let Some(d) = cx.child(c, "rr_depth") {
+        let v = cx.float(d)?;
+        if v.fract() != 0.0 || v <= 0.0 {
+            return Err(cx.err(d, format!("rr_depth must be a positive integer, not {v}")));
+        }
+        integrator.rr_depth = v.min(1024.0) as u32;
+    }
+    if let Some(h) = cx.child(c, "hide_emitters")
+        && h.attr("value") == Some("true")
+    {
+        return Err(cx.err(
+            h,
+            "hide_emitters = true is not supported: spectrace always shows emitters seen directly",
+        ));
+    }
+    Ok(())
 }

@@ -58,6 +58,23 @@ pub(super) fn shape(
                 normals: mesh_normals(cx, s)?,
             }
         }
+        "serialized" => {
+            let f = cx
+                .string(s, "filename")
+                .ok_or_else(|| cx.err(s, "missing filename"))?;
+            let shape_index = match cx.opt_float(s, "shape_index")? {
+                None => 0,
+                Some(i) if i >= 0.0 && i.fract() == 0.0 => i as usize,
+                Some(i) => {
+                    return Err(cx.err(s, format!("shape_index must be an integer ≥ 0, not {i}")));
+                }
+            };
+            ShapeKind::Serialized {
+                path: cx.resolve_file(&f),
+                shape_index,
+                normals: mesh_normals(cx, s)?,
+            }
+        }
         other => return Err(cx.unsupported(s, "shape", other)),
     };
     if cx.child(s, "flip_normals").and_then(|f| f.attr("value")) == Some("true") {
@@ -75,6 +92,9 @@ pub(super) fn shape(
                 two_sided = two;
                 materials.push(m);
             }
+            "ref" if c.attr("name") == Some("interior") || c.attr("name") == Some("exterior") => {
+                return Err(cx.err(c, "participating media (`medium`, e.g. homogeneous) are not supported yet; remove the medium (volpath renders a scene without media as path does)"));
+            }
             // a reference to a BSDF, or to an area emitter declared at the top level
             "ref" if cx.resolve(c)?.tag == "emitter" => {
                 emission = Some(area_emitter(cx, cx.resolve(c)?)?);
@@ -91,6 +111,7 @@ pub(super) fn shape(
                 two_sided = two;
             }
             "emitter" => emission = Some(area_emitter(cx, c)?),
+            "medium" => return Err(cx.err(c, "participating media (`medium`, e.g. homogeneous) are not supported yet; remove the medium (volpath renders a scene without media as path does)")),
             _ => {}
         }
     }

@@ -92,6 +92,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
             max_depth: desc.integrator.max_depth,
             rr_depth: desc.integrator.rr_depth,
             light_selection: desc.integrator.light_selection,
+            moment: desc.integrator.moment,
         },
         wavelengths: range,
         bounds,
@@ -151,6 +152,7 @@ fn material(k: &MaterialKind) -> Result<Material, String> {
             RoughConductor::new(ior.clone(), *exterior_ior as f32, *a as f32)
                 .with_distribution(*distribution),
         ),
+        MaterialKind::Null => Material::Null,
         MaterialKind::Plastic {
             diffuse,
             specular,

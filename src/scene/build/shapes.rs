@@ -86,6 +86,15 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
             let mesh = Mesh::load_obj(path, &transform(s, true)?).map_err(|e| e.to_string())?;
             Shape::Mesh(with_normals(mesh, *normals))
         }
+        ShapeKind::Serialized {
+            path,
+            shape_index,
+            normals,
+        } => {
+            let mesh = Mesh::load_serialized(path, *shape_index, &transform(s, true)?)
+                .map_err(|e| e.to_string())?;
+            Shape::Mesh(with_normals(mesh, *normals))
+        }
         ShapeKind::Ply { path, normals } => {
             let mesh = Mesh::load_ply(path, &transform(s, true)?).map_err(|e| e.to_string())?;
             Shape::Mesh(with_normals(mesh, *normals))

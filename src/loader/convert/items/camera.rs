@@ -300,6 +300,7 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
         max_depth: 16,
         rr_depth: DEFAULT_RR_DEPTH,
         light_selection: LightSelection::Power,
+        moment: false,
     };
     let Some(i) = i else { return Ok(d) };
     let i = i.get_ref();
