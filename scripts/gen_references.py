@@ -75,6 +75,7 @@ SPP = {
     "plastics": 4096,
     "serialized": 4096,
     "direct": 4096,
+    "orthographic": 4096,
 }
 DEFAULT_SPP = 1024
 

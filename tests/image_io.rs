@@ -393,3 +393,46 @@ fn png_from_encoded_bytes_is_written_verbatim() {
     assert_eq!(got, pixels);
     assert_eq!(listing(&dir), ["bytes.png"]);
 }
+
+/// Texture and environment-map inputs read as RGB: a JPEG of two flat sRGB blocks written by
+/// OpenImageIO (`scripts/gen_test_images.py`) decodes to its code values within 2/255, marked
+/// sRGB-encoded; a 16-bit grey PNG keeps its 16 bits; an unknown extension names the formats.
+#[test]
+fn rgb_inputs_decode_to_their_values() {
+    use spectrace::image_io::{Encoding, read_rgb};
+    let jpg = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/images/blocks.jpg");
+    let img = read_rgb(&jpg).unwrap();
+    assert_eq!(
+        (img.width, img.height, img.encoding),
+        (16, 8, Encoding::Srgb)
+    );
+    for (i, p) in img.rgb.iter().enumerate() {
+        let want = if i % 16 < 8 {
+            [200.0, 60.0, 30.0]
+        } else {
+            [20.0, 90.0, 220.0]
+        };
+        for k in 0..3 {
+            assert!(
+                (p[k] * 255.0 - want[k]).abs() <= 2.0,
+                "pixel {i}: {p:?} vs {want:?}"
+            );
+        }
+    }
+    let dir = scratch("rgb_inputs");
+    let png = dir.join("grey16.png");
+    {
+        let f = std::fs::File::create(&png).unwrap();
+        let mut e = png::Encoder::new(f, 2, 1);
+        e.set_color(png::ColorType::Grayscale);
+        e.set_depth(png::BitDepth::Sixteen);
+        let mut w = e.write_header().unwrap();
+        w.write_image_data(&[0x12, 0x34, 0xFF, 0xFF]).unwrap();
+    }
+    let img = read_rgb(&png).unwrap();
+    assert!(img.grey && img.encoding == Encoding::Srgb);
+    assert_eq!(img.rgb[0], [0x1234 as f32 / 65535.0; 3]);
+    assert_eq!(img.rgb[1], [1.0; 3]);
+    let e = read_rgb(&dir.join("x.tga")).unwrap_err().to_string();
+    assert!(e.contains(".tga") && e.contains(".jpg"), "{e}");
+}

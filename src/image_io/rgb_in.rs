@@ -1,5 +1,6 @@
 //! Reading images as RGB for textures and environment maps: PNG (8 or 16 bit, grey, grey +
-//! alpha, RGB, RGBA, palette), OpenEXR (R, G, B or Y channels) and Radiance HDR (RGBE).
+//! alpha, RGB, RGBA, palette), JPEG (8-bit grey or RGB, with jpeg-decoder), OpenEXR (R, G, B or
+//! Y channels) and Radiance HDR (RGBE).
 
 use std::path::Path;
 
@@ -27,7 +28,8 @@ pub struct RgbImage {
     pub grey: bool,
 }
 
-/// Reads `path` by its extension (`.png`, `.exr`, `.hdr`/`.rgbe`; case-insensitive). Fails with
+/// Reads `path` by its extension (`.png`, `.jpg`/`.jpeg`, `.exr`, `.hdr`/`.rgbe`;
+/// case-insensitive). Fails with
 /// an error naming the file for other extensions, unreadable or corrupt files, EXR files without
 /// R, G, B or Y channels, and non-finite values.
 pub fn read_rgb(path: &Path) -> Result<RgbImage, ImageError> {
@@ -38,14 +40,13 @@ pub fn read_rgb(path: &Path) -> Result<RgbImage, ImageError> {
         .unwrap_or_default();
     let img = match ext.as_str() {
         "png" => read_png(path)?,
+        "jpg" | "jpeg" => read_jpeg(path)?,
         "exr" => exr_rgb(path)?,
         "hdr" | "rgbe" | "pic" => super::hdr_in::read_hdr(path)?,
         _ => {
             return Err(invalid(
                 path,
-                format!(
-                    "unsupported image type \".{ext}\"; use .png, .exr or .hdr (JPEG is not read yet: convert it to PNG)"
-                ),
+                format!("unsupported image type \".{ext}\"; use .png, .jpg, .exr or .hdr"),
             ));
         }
     };
@@ -148,5 +149,52 @@ fn read_png(path: &Path) -> Result<RgbImage, ImageError> {
         rgb,
         encoding: Encoding::Srgb,
         grey: channels <= 2,
+    })
+}
+
+/// An 8-bit JPEG (sRGB-encoded, as JPEG files are): grey or RGB; CMYK and 16-bit lossless files
+/// are refused.
+fn read_jpeg(path: &Path) -> Result<RgbImage, ImageError> {
+    let file = std::fs::File::open(path).map_err(|source| ImageError::Io {
+        path: path.to_path_buf(),
+        action: "cannot open".to_string(),
+        source,
+    })?;
+    let mut decoder = jpeg_decoder::Decoder::new(std::io::BufReader::new(file));
+    let pixels = decoder.decode().map_err(|e| ImageError::Codec {
+        path: path.to_path_buf(),
+        action: "cannot decode JPEG",
+        source: Box::new(e),
+    })?;
+    let info = decoder
+        .info()
+        .ok_or_else(|| invalid(path, "the JPEG has no image header"))?;
+    let (w, h) = (info.width as usize, info.height as usize);
+    let n = pixel_count(path, w, h)?;
+    let byte = |v: u8| v as f32 / 255.0;
+    let (rgb, grey) = match info.pixel_format {
+        jpeg_decoder::PixelFormat::L8 if pixels.len() == n => {
+            (pixels.iter().map(|&v| [byte(v); 3]).collect(), true)
+        }
+        jpeg_decoder::PixelFormat::RGB24 if pixels.len() == 3 * n => (
+            pixels
+                .chunks_exact(3)
+                .map(|p| [byte(p[0]), byte(p[1]), byte(p[2])])
+                .collect(),
+            false,
+        ),
+        other => {
+            return Err(invalid(
+                path,
+                format!("JPEG pixel format {other:?} is not read (only 8-bit grey or RGB)"),
+            ));
+        }
+    };
+    Ok(RgbImage {
+        width: w,
+        height: h,
+        rgb,
+        encoding: Encoding::Srgb,
+        grey,
     })
 }

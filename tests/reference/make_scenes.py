@@ -988,11 +988,56 @@ Exercises: the direct integrator, its sample counts and MIS weights.""",
     write("direct", s + FOOTER)
 
 
+
+def orthographic():
+    s = header(
+        """An `orthographic` sensor (to_world: scale 1.5, then lookat from above at an angle) on a
+96 × 64 film, over a checkerboard floor (checks of 0.5 m) with a diffuse sphere, a D65 area
+light and a dim constant environment.
+Exercises: the orthographic view (2 × 1.5 m wide, the height by the film's aspect), placement
+by to_world.""",
+        "0, 3, 3",
+        "0, 0, 0",
+        40,
+        64,
+        3,
+        size=(96, 64),
+    )
+    i = s.index('    <sensor type="perspective">')
+    j = s.index('<transform name="to_world">', i)
+    k = s.index('</transform>', j) + len('</transform>')
+    s = (s[:i] + '    <sensor type="orthographic">\n        <transform name="to_world">\n'
+         '            <scale value="1.5"/>\n'
+         '            <lookat origin="0.5, 3, 3" target="0, 0, 0" up="0, 1, 0"/>\n'
+         '        </transform>' + s[k:])
+    s += f"""
+    <shape type="rectangle">
+        <transform name="to_world">
+            <scale value="3"/>
+            <rotate x="1" angle="-90"/>
+        </transform>
+        <bsdf type="diffuse">
+            <texture type="checkerboard" name="reflectance">
+                <spectrum name="color0" value="0.7"/>
+                <spectrum name="color1" value="0.2"/>
+                <transform name="to_uv"><scale x="6" y="6"/></transform>
+            </texture>
+        </bsdf>
+    </shape>
+{sphere((0.3, 0.5, 0.2), 0.5, diffuse(colorchecker("blue"), indent="        "))}
+{area_rect(0.5, "0.5, 3.0, 1.0", illuminant('d65', 20.0))}
+    <emitter type="constant">
+        <spectrum name="radiance" value="{illuminant('d65', 0.2)}"/>
+    </emitter>
+"""
+    write("orthographic", s + FOOTER)
+
+
 SCENES = {
     f.__name__: f
     for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
               dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional,
-              spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics, serialized, direct)
+              spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics, serialized, direct, orthographic)
 }
 
 if __name__ == "__main__":

@@ -27,7 +27,7 @@ pub(super) const SAMPLERS: &[&str] = &[
 /// The supported plugins by kind (`what` of [`Cx::unsupported`]): an unknown type is only ever
 /// compared with plugins of its own kind.
 const PLUGINS: &[(&str, &[&str])] = &[
-    ("sensor", &["perspective", "thinlens"]),
+    ("sensor", &["perspective", "thinlens", "orthographic"]),
     ("film", &["hdrfilm"]),
     ("rfilter", &["box", "gaussian"]),
     ("sampler", SAMPLERS),

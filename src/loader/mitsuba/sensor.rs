@@ -81,7 +81,7 @@ fn x_fov(cx: &Cx<'_>, s: &Element, aspect: f64) -> R<f64> {
 
 pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraDesc> {
     let t = s.attr("type").unwrap_or("");
-    if t != "perspective" && t != "thinlens" {
+    if t != "perspective" && t != "thinlens" && t != "orthographic" {
         return Err(cx.unsupported(s, "sensor", t));
     }
     for c in &s.children {
@@ -155,6 +155,36 @@ pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraD
         }
     }
     film.loc = cx.loc(s);
+    // the camera frame from to_world: origin, +z forward, +y up
+    let steps = match s.children.iter().find(|c| c.tag == "transform") {
+        Some(t) => cx.transform(t)?,
+        None => Vec::new(),
+    };
+    let (eye, target, up) = camera_frame(cx, s, &steps)?;
+    if t == "orthographic" {
+        // Mitsuba's orthographic sensor sees x ∈ [−1, 1] of its local frame (y by the film's
+        // aspect), mapped by to_world: the view is 2·|to_world · x̂| wide
+        let m = to_world_matrix(&steps);
+        let (sx, sy) = (
+            m.transform_vector3(glam::DVec3::X).length(),
+            m.transform_vector3(glam::DVec3::Y).length(),
+        );
+        if (sx - sy).abs() > 1e-9 * sx.max(sy) {
+            return Err(cx.err(
+                s,
+                format!("an orthographic to_world must scale x and y alike (found {sx} and {sy}): spectrace's pixels are square"),
+            ));
+        }
+        return Ok(CameraDesc {
+            kind: CameraKind::Orthographic {
+                view_width: Length::new::<length::meter>(2.0 * sx),
+            },
+            eye,
+            target,
+            up,
+            loc: cx.loc(s),
+        });
+    }
     let fov = x_fov(cx, s, film.width as f64 / film.height as f64)?;
     let projection = Projection::Fov {
         fov: Angle::new::<angle::degree>(fov),
@@ -174,12 +204,6 @@ pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraD
     } else {
         CameraKind::Perspective { projection }
     };
-    // the camera frame from to_world: origin, +z forward, +y up
-    let steps = match s.children.iter().find(|c| c.tag == "transform") {
-        Some(t) => cx.transform(t)?,
-        None => Vec::new(),
-    };
-    let (eye, target, up) = camera_frame(cx, s, &steps)?;
     Ok(CameraDesc {
         kind,
         eye,
@@ -195,34 +219,8 @@ pub(super) fn camera_frame(
     s: &Element,
     steps: &[TransformStep],
 ) -> R<(Point, Point, [f64; 3])> {
-    use glam::{DMat4, DVec3};
-    let mut m = DMat4::IDENTITY;
-    for st in steps {
-        let next = match st {
-            TransformStep::Translate(p) => {
-                DMat4::from_translation(DVec3::new(p[0].value, p[1].value, p[2].value))
-            }
-            TransformStep::Scale(k) => DMat4::from_scale(DVec3::from(*k)),
-            TransformStep::Rotate { axis, angle } => {
-                DMat4::from_axis_angle(DVec3::from(*axis).normalize(), angle.value)
-            }
-            TransformStep::Matrix(a) => DMat4::from_cols_array(a).transpose(),
-            TransformStep::LookAt { eye, target, up } => {
-                let e = DVec3::new(eye[0].value, eye[1].value, eye[2].value);
-                let t = DVec3::new(target[0].value, target[1].value, target[2].value);
-                let d = (t - e).normalize();
-                let left = DVec3::from(*up).cross(d).normalize();
-                let new_up = d.cross(left);
-                DMat4::from_cols(
-                    left.extend(0.0),
-                    new_up.extend(0.0),
-                    d.extend(0.0),
-                    e.extend(1.0),
-                )
-            }
-        };
-        m = next * m;
-    }
+    use glam::DVec3;
+    let m = to_world_matrix(steps);
     let eye = m.transform_point3(DVec3::ZERO);
     let fwd = m.transform_vector3(DVec3::Z);
     let up = m.transform_vector3(DVec3::Y);
@@ -269,6 +267,39 @@ fn mitsuba_sample_count(name: &str, n: u32) -> u32 {
         }
         _ => n,
     }
+}
+
+/// The matrix of `to_world` steps applied in order.
+fn to_world_matrix(steps: &[TransformStep]) -> glam::DMat4 {
+    use glam::{DMat4, DVec3};
+    let mut m = DMat4::IDENTITY;
+    for st in steps {
+        let next = match st {
+            TransformStep::Translate(p) => {
+                DMat4::from_translation(DVec3::new(p[0].value, p[1].value, p[2].value))
+            }
+            TransformStep::Scale(k) => DMat4::from_scale(DVec3::from(*k)),
+            TransformStep::Rotate { axis, angle } => {
+                DMat4::from_axis_angle(DVec3::from(*axis).normalize(), angle.value)
+            }
+            TransformStep::Matrix(a) => DMat4::from_cols_array(a).transpose(),
+            TransformStep::LookAt { eye, target, up } => {
+                let e = DVec3::new(eye[0].value, eye[1].value, eye[2].value);
+                let t = DVec3::new(target[0].value, target[1].value, target[2].value);
+                let d = (t - e).normalize();
+                let left = DVec3::from(*up).cross(d).normalize();
+                let new_up = d.cross(left);
+                DMat4::from_cols(
+                    left.extend(0.0),
+                    new_up.extend(0.0),
+                    d.extend(0.0),
+                    e.extend(1.0),
+                )
+            }
+        };
+        m = next * m;
+    }
+    m
 }
 
 #[cfg(test)]
