@@ -119,9 +119,9 @@ fn import_errors_are_located_and_suggest_alternatives() {
     );
     let e = err(&PLANE.replace(
         "<bsdf type=\"diffuse\" id=\"grey\">",
-        "<bsdf type=\"thindielectric\" id=\"grey\">",
+        "<bsdf type=\"blendbsdf\" id=\"grey\">",
     ));
-    assert!(e.contains("thindielectric"), "{e}");
+    assert!(e.contains("blendbsdf"), "{e}");
     let e = err("<scene version=\"3.0.0\"><sensor type=\"perspective\">");
     assert!(e.contains("never closed") || e.contains("t.xml:1:"), "{e}");
     let e = err(&PLANE.replace("version=\"3.0.0\"", "version=\"0.5\""));

@@ -221,7 +221,10 @@ impl Integrator<'_> {
         let (mut ng, mut ns) = (hit.n_geom, hit.n_shading);
         let transmissive = matches!(
             material,
-            Material::Dielectric(_) | Material::RoughDielectric(_) | Material::Null
+            Material::Dielectric(_)
+                | Material::RoughDielectric(_)
+                | Material::Null
+                | Material::ThinDielectric { .. }
         );
         if surf.two_sided && !transmissive && ng.dot(-dir) < 0.0 {
             ng = -ng;

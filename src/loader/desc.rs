@@ -180,6 +180,11 @@ pub enum MaterialKind {
     },
     /// No surface: light passes straight through (Mitsuba's `null`).
     Null,
+    /// A sheet of negligible thickness (Mitsuba's `thindielectric`), indices as a dielectric's.
+    ThinDielectric {
+        int_ior: f64,
+        exterior_ior: f64,
+    },
     /// A diffuse base under a dielectric coating (Mitsuba's `plastic`, and `roughplastic` when
     /// `roughness` is given; see `crate::material::Plastic`).
     Plastic {

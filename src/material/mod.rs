@@ -108,6 +108,13 @@ pub enum Material {
     Conductor(Conductor),
     RoughConductor(RoughConductor),
     Plastic(Plastic),
+    /// Mitsuba's `thindielectric`: a sheet of index `eta` (relative to the outside) too thin to
+    /// offset a ray. Reflectance with the sheet's inner reflections, R = 2F/(1 + F) for the
+    /// Fresnel reflectance F at the incidence angle, else straight through: two delta lobes
+    /// of weight 1 chosen with probabilities R and 1 − R.
+    ThinDielectric {
+        eta: f32,
+    },
     /// Mitsuba's `null`: no surface for light, which passes straight through (a delta
     /// transmission of weight 1 that still counts as a scattering event, as in Mitsuba).
     Null,
@@ -185,7 +192,10 @@ impl Material {
     pub fn is_specular(&self) -> bool {
         matches!(
             self,
-            Material::Dielectric(_) | Material::Conductor(_) | Material::Null
+            Material::Dielectric(_)
+                | Material::Conductor(_)
+                | Material::Null
+                | Material::ThinDielectric { .. }
         )
     }
 
@@ -225,9 +235,10 @@ impl<const N: usize> Bsdf<'_, N> {
         match self.material {
             Material::Diffuse(m) => m.eval(wo, wi, self.albedo),
             Material::Phong(m) => m.eval(wo, wi, w),
-            Material::Dielectric(_) | Material::Conductor(_) | Material::Null => {
-                SampledSpectrum::zero()
-            }
+            Material::Dielectric(_)
+            | Material::Conductor(_)
+            | Material::Null
+            | Material::ThinDielectric { .. } => SampledSpectrum::zero(),
             Material::RoughDielectric(m) => m.eval(wo, wi, w, mode),
             Material::RoughConductor(m) => m.eval(wo, wi, w),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).0,
@@ -241,7 +252,10 @@ impl<const N: usize> Bsdf<'_, N> {
         match self.material {
             Material::Diffuse(m) => m.pdf(wo, wi),
             Material::Phong(m) => m.pdf(wo, wi, w),
-            Material::Dielectric(_) | Material::Conductor(_) | Material::Null => 0.0,
+            Material::Dielectric(_)
+            | Material::Conductor(_)
+            | Material::Null
+            | Material::ThinDielectric { .. } => 0.0,
             Material::RoughDielectric(m) => m.pdf(wo, wi, w),
             Material::RoughConductor(m) => m.pdf(wo, wi),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).1,
@@ -262,9 +276,10 @@ impl<const N: usize> Bsdf<'_, N> {
         match self.material {
             Material::Diffuse(m) => (m.eval(wo, wi, self.albedo), m.pdf(wo, wi)),
             Material::Phong(m) => m.eval_pdf(wo, wi, w),
-            Material::Dielectric(_) | Material::Conductor(_) | Material::Null => {
-                (SampledSpectrum::zero(), 0.0)
-            }
+            Material::Dielectric(_)
+            | Material::Conductor(_)
+            | Material::Null
+            | Material::ThinDielectric { .. } => (SampledSpectrum::zero(), 0.0),
             Material::RoughDielectric(m) => m.eval_pdf(wo, wi, w, mode),
             Material::RoughConductor(m) => m.eval_pdf(wo, wi, w),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo),
@@ -290,6 +305,28 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::Conductor(m) => m.sample(wo, w),
             Material::RoughConductor(m) => m.sample(wo, w, u),
             Material::Plastic(m) => m.sample(wo, self.albedo, uc, u),
+            Material::ThinDielectric { eta } => {
+                let c = wo.z.abs();
+                if c == 0.0 {
+                    return None;
+                }
+                let f = fresnel::fresnel_dielectric(c, *eta);
+                let r = 2.0 * f / (1.0 + f);
+                let (wi, p, transmission) = if uc < r {
+                    (Vec3::new(-wo.x, -wo.y, wo.z), r, false)
+                } else {
+                    (-wo, 1.0 - r, true)
+                };
+                Some(BsdfSample {
+                    f: SampledSpectrum::splat(p / c),
+                    wi,
+                    pdf: p,
+                    specular: true,
+                    transmission,
+                    dispersive: false,
+                    eta: 1.0,
+                })
+            }
             // straight through: f·|cos θᵢ|/pdf = 1
             Material::Null => (wo.z != 0.0).then(|| BsdfSample {
                 f: SampledSpectrum::splat(1.0 / wo.z.abs()),

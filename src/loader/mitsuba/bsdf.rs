@@ -118,6 +118,10 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
         }
         // light passes straight through; each crossing still counts toward max_depth
         "null" => MaterialKind::Null,
+        "thindielectric" => MaterialKind::ThinDielectric {
+            int_ior: ior_of(cx, "int_ior", 1.5046)?,
+            exterior_ior: ior_of(cx, "ext_ior", 1.000277)?,
+        },
         "diffuse" => MaterialKind::Diffuse {
             reflectance: cx.texture_prop(b, "reflectance", 0.5)?,
         },

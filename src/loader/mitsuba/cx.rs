@@ -56,6 +56,7 @@ const PLUGINS: &[(&str, &[&str])] = &[
             "plastic",
             "roughplastic",
             "null",
+            "thindielectric",
         ],
     ),
     (

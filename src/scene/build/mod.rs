@@ -153,6 +153,12 @@ fn material(k: &MaterialKind) -> Result<Material, String> {
                 .with_distribution(*distribution),
         ),
         MaterialKind::Null => Material::Null,
+        MaterialKind::ThinDielectric {
+            int_ior,
+            exterior_ior,
+        } => Material::ThinDielectric {
+            eta: (*int_ior / *exterior_ior) as f32,
+        },
         MaterialKind::Plastic {
             diffuse,
             specular,
