@@ -89,6 +89,19 @@ fn horizontal_irradiance(rows: &[f64]) -> f64 {
 
 #[test]
 fn plane_under_a_sky_gradient_matches_the_closed_form() {
+    plane_under_sky("scale = 1000", |rows| horizontal_irradiance(rows) * 1000.0);
+}
+
+/// The map's brightness set by the illuminance on a plane facing its zenith: the plane then
+/// reflects exactly ρ/π · E_v, whatever the map's shape (to its quadrature's accuracy).
+#[test]
+fn illuminance_sets_the_horizontal_illuminance() {
+    plane_under_sky("irradiance = \"10000 lx\"", |_| 10_000.0);
+}
+
+/// A plane of ρ = 0.6 facing the zenith under the sky below, the map's brightness set by
+/// `amount`; `e_v(rows)` is the illuminance on the plane, lx.
+fn plane_under_sky(amount: &str, e_v: impl Fn(&[f64]) -> f64) {
     let (w, h) = (8usize, 9usize);
     let rows: Vec<f64> = (0..h)
         .map(|j| if j <= 4 { 1.0 - 0.2 * j as f64 } else { 0.1 })
@@ -110,7 +123,6 @@ fn plane_under_a_sky_gradient_matches_the_closed_form() {
     )
     .unwrap();
     let rho = 0.6;
-    let scale = 1000.0;
     let scene = scene_from(&format!(
         r#"
 [camera]
@@ -140,14 +152,14 @@ transform = [{{ scale = 1000 }}, {{ rotate = {{ axis = [1, 0, 0], angle = "-90 d
 [[lights]]
 type = "environment"
 image = {:?}
-scale = {scale}
+{amount}
 "#,
         exr.display().to_string()
     ));
     let (img, stats) = render_with(&scene, |_| {});
     assert_eq!(stats.nan_samples + stats.inf_samples, 0);
     let mean_y: f64 = img.xyz.iter().map(|p| p[1] as f64).sum::<f64>() / img.xyz.len() as f64;
-    let want = rho / std::f64::consts::PI * horizontal_irradiance(&rows) * scale;
+    let want = rho / std::f64::consts::PI * e_v(&rows);
     println!("Y = {mean_y:.4} cd/m², closed form {want:.4}");
     assert!(
         (mean_y / want - 1.0).abs() < 0.005,

@@ -305,6 +305,21 @@ pub enum MeshNormals {
 }
 
 /// How much light an area emitter gives; its spectrum gives the shape.
+/// How bright an environment map is (see `scene/build/lights.rs`).
+#[derive(Clone, Debug)]
+pub enum EnvMapAmount {
+    /// A factor on the illuminant of an RGB (1, 1, 1) pixel.
+    Scale(f64),
+    /// Mean band radiance over the sphere.
+    Radiance(Radiance),
+    /// Mean luminance over the sphere.
+    Luminance(Luminance),
+    /// Irradiance on a plane facing the map's zenith (+y of its frame, after its transform).
+    Irradiance(Irradiance),
+    /// Illuminance on a plane facing the map's zenith.
+    Illuminance(Illuminance),
+}
+
 #[derive(Clone, Debug)]
 pub enum EmitAmount {
     Radiance(Radiance),
@@ -399,7 +414,7 @@ pub enum LightKind {
         path: PathBuf,
         /// Rotation from the map's frame (+y up) to the world.
         transform: Vec<TransformStep>,
-        amount: EmitAmount,
+        amount: EnvMapAmount,
     },
     /// A collimated beam leaving a disk of `radius` at `position` toward `target`; `amount` is
     /// its total power (W or lm) or a scale of a spectrum already in W·nm⁻¹.

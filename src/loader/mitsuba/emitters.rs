@@ -119,7 +119,7 @@ pub(super) fn emitter(cx: &Cx<'_>, e: &Element) -> R<LightDesc> {
                         Some(tr) => cx.transform(tr)?,
                         None => Vec::new(),
                     },
-                    amount: EmitAmount::Scale(scale),
+                    amount: EnvMapAmount::Scale(scale),
                 },
                 // an RGB (1, 1, 1) pixel is Mitsuba's normalised D65, as for `constant`
                 Spectrum::Piecewise(mitsuba_d65(1.0)),

@@ -38,7 +38,9 @@ use crate::light::{
     AreaLight, BeamLight, DirectionalLight, EnvMapLight, EnvironmentLight, Light, PointLight,
     SpotLight,
 };
-use crate::loader::desc::{DirectionalAmount, EmitAmount, LightKind, PointAmount, SceneDesc};
+use crate::loader::desc::{
+    DirectionalAmount, EmitAmount, EnvMapAmount, LightKind, PointAmount, SceneDesc,
+};
 use crate::loader::{LoadError, Loc};
 use crate::scene::Surface;
 use crate::spectrum::{Spectrum, WavelengthRange};
@@ -138,11 +140,12 @@ fn point_amount(a: &PointAmount, solid_angle: f64) -> (Per, f64) {
 /// An environment map: the image read (8- and 16-bit files decoded from sRGB, as Mitsuba
 /// does), its rotation, and its illuminant scaled by `amount`: `Scale(k)` multiplies it;
 /// `Radiance(L)` and `Luminance(Lv)` set the mean over the sphere, 1/(4π) ∫ L dω, of the band
-/// radiance or of the luminance K_m ∫ L ȳ dλ.
+/// radiance or of the luminance K_m ∫ L ȳ dλ; `Irradiance(E)` and `Illuminance(Ev)` set
+/// ∫ L cos θ dω (band, or K_m ∫ ȳ) on a plane facing the map's zenith.
 fn envmap(
     path: &std::path::Path,
     transform: &[crate::loader::desc::TransformStep],
-    amount: &EmitAmount,
+    amount: &EnvMapAmount,
     illuminant: &Spectrum,
     r: WavelengthRange,
 ) -> Result<EnvMapLight, String> {
@@ -163,27 +166,31 @@ fn envmap(
     };
     let unit = at(illuminant.clone())?;
     let four_pi = 4.0 * std::f64::consts::PI;
+    let visible = WavelengthRange {
+        min_nm: r.min_nm.max(360.0),
+        max_nm: r.max_nm.min(830.0),
+    };
+    let y_bar = |l: f32| cmf().y_bar(l) as f64;
+    // cos θ on a plane facing the map's zenith
+    let zenith = rot.mul_vec3(glam::Vec3::Y).normalize();
+    let cosine = |d: glam::Vec3| d.dot(zenith).max(0.0) as f64;
     let k = match amount {
-        EmitAmount::Scale(k) => *k,
-        EmitAmount::Radiance(l) => {
+        EnvMapAmount::Scale(k) => *k,
+        EnvMapAmount::Radiance(l) => {
             let b = unit.band_radiant_exitance(r) / four_pi;
             l.get::<radiance::watt_per_square_meter_steradian>() / b
         }
-        EmitAmount::Luminance(lv) => {
-            let y =
-                K_M * unit.weighted_integral(
-                    WavelengthRange {
-                        min_nm: r.min_nm.max(360.0),
-                        max_nm: r.max_nm.min(830.0),
-                    },
-                    |l| cmf().y_bar(l) as f64,
-                ) / four_pi;
+        EnvMapAmount::Luminance(lv) => {
+            let y = K_M * unit.weighted_integral(visible, y_bar) / four_pi;
             lv.get::<luminance::candela_per_square_meter>() / y
         }
-        EmitAmount::Power(_) | EmitAmount::LuminousFlux(_) => {
-            return Err(
-                "an environment map takes scale, radiance or luminance, not a power".into(),
-            );
+        EnvMapAmount::Irradiance(e) => {
+            let b = unit.integral_where(r, &|_| 1.0, cosine);
+            e.get::<irradiance::watt_per_square_meter>() / b
+        }
+        EnvMapAmount::Illuminance(ev) => {
+            let y = K_M * unit.integral_where(visible, &y_bar, cosine);
+            ev.get::<illuminance::lux>() / y
         }
     };
     if !(k.is_finite() && k >= 0.0) {

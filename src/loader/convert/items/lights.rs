@@ -273,6 +273,7 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
                     "transform",
                     "radiance",
                     "luminance",
+                    "irradiance",
                     "scale",
                 ],
             )?;
@@ -294,7 +295,7 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
                     Some(t) => shapes::transform(cx, t, &format!("{f}.transform"))?,
                     None => Vec::new(),
                 },
-                amount: emit_amount(cx, &sp, &f, &l.radiance, &l.luminance, &None, &l.scale)?,
+                amount: envmap_amount(cx, &sp, &f, l)?,
             }
         }
         "environment" => {
@@ -364,4 +365,55 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
         sampling_weight: 1.0,
         loc: cx.src.span(&sp),
     })
+}
+
+/// An environment map's brightness: exactly one of `scale`, `radiance` or `luminance` (means
+/// over the sphere), `irradiance` (W/m² or lx on a plane facing the map's zenith).
+fn envmap_amount(cx: &Cx<'_>, sp: &Range<usize>, f: &str, l: &RawLight) -> R<EnvMapAmount> {
+    let (which, v) = one_amount(
+        cx,
+        sp,
+        f,
+        &[
+            ("scale", &l.scale),
+            ("radiance", &l.radiance),
+            ("luminance", &l.luminance),
+            ("irradiance", &l.irradiance),
+        ],
+    )?;
+    let field = format!("{f}.{which}");
+    let (amount, si) = match which {
+        "radiance" => {
+            let r: Radiance = cx.quantity(v, &field)?;
+            let x = r.get::<radiance::watt_per_square_meter_steradian>();
+            (EnvMapAmount::Radiance(r), x)
+        }
+        "luminance" => {
+            let q: Luminance = cx.quantity(v, &field)?;
+            let x = q.get::<luminance::candela_per_square_meter>();
+            (EnvMapAmount::Luminance(q), x)
+        }
+        "irradiance" => match cx.quantity_of(v, &field, &[D::Irradiance, D::Illuminance])? {
+            (D::Irradiance, e) => (
+                EnvMapAmount::Irradiance(Irradiance::new::<irradiance::watt_per_square_meter>(e)),
+                e,
+            ),
+            (_, lx) => (
+                EnvMapAmount::Illuminance(Illuminance::new::<illuminance::lux>(lx)),
+                lx,
+            ),
+        },
+        _ => {
+            let k = cx.number(v, &field)?;
+            (EnvMapAmount::Scale(k), k)
+        }
+    };
+    if !(si >= 0.0) {
+        return Err(cx.err(
+            &v.span(),
+            field,
+            format!("light cannot be negative, found {si}"),
+        ));
+    }
+    Ok(amount)
 }
