@@ -436,3 +436,24 @@ fn rgb_inputs_decode_to_their_values() {
     let e = read_rgb(&dir.join("x.tga")).unwrap_err().to_string();
     assert!(e.contains(".tga") && e.contains(".jpg"), "{e}");
 }
+
+/// Inputs that cannot be a texture: an EXR without colour channels, a corrupt PNG, a missing
+/// file. Each error names the file and what is wrong.
+#[test]
+fn unusable_images_are_named_errors() {
+    use spectrace::image_io::read_rgb;
+    let dir = scratch("unusable_images");
+    let exr = dir.join("alpha.exr");
+    write_exr(&exr, 2, 1, &[ch("A", &[0.5, 1.0])], &[]).unwrap();
+    let e = read_rgb(&exr).unwrap_err().to_string();
+    assert!(
+        e.contains("alpha.exr") && e.contains("R, G and B") && e.contains("A"),
+        "{e}"
+    );
+    let png = dir.join("broken.png");
+    fs::write(&png, b"\x89PNG\r\n\x1a\nnot really").unwrap();
+    let e = read_rgb(&png).unwrap_err().to_string();
+    assert!(e.contains("broken.png") && e.contains("PNG"), "{e}");
+    let e = read_rgb(&dir.join("nope.jpg")).unwrap_err().to_string();
+    assert!(e.contains("nope.jpg"), "{e}");
+}

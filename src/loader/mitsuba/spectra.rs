@@ -124,6 +124,10 @@ impl Cx<'_> {
                     .map(|t| Spectrum::Piecewise(Arc::new(t)))
                     .map_err(|er| self.err(e, er.to_string()))
             }
+            "texture" => Err(self.err(
+                e,
+                "a texture is not supported here: spectrace reads textures for a diffuse reflectance and a plastic's diffuse_reflectance; give a <spectrum>, <rgb> or <float>",
+            )),
             other => Err(self.err(
                 e,
                 format!("<{other}> cannot give a spectrum; use <float>, <spectrum> or <rgb>"),
