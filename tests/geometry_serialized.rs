@@ -50,6 +50,13 @@ fn bad_files_are_named_errors() {
     std::fs::write(&cut, &bytes[..24]).unwrap();
     let e = Mesh::load_serialized(&cut, 0, &id).unwrap_err().to_string();
     assert!(e.contains("ends early or is corrupt"), "{e}");
+    // a mesh table whose count claims 2³² − 1 meshes: an error, not an overflow
+    let mut table = bytes.clone();
+    let n = table.len();
+    table[n - 4..].copy_from_slice(&u32::MAX.to_le_bytes());
+    std::fs::write(&cut, &table).unwrap();
+    let e = Mesh::load_serialized(&cut, 7, &id).unwrap_err().to_string();
+    assert!(e.contains("mesh table"), "{e}");
     std::fs::write(&cut, b"not a mesh").unwrap();
     let e = Mesh::load_serialized(&cut, 0, &id).unwrap_err().to_string();
     assert!(e.contains("0x041C"), "{e}");

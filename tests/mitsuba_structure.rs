@@ -327,3 +327,22 @@ fn integrators_read_as_mitsuba() {
         }
     );
 }
+
+/// `$name` is substituted once, left to right, as Mitsuba does: a default that names itself
+/// leaves its text in place (then a located number error), instead of growing for ever.
+#[test]
+fn self_referring_defaults_do_not_loop() {
+    let xml = HEAD.replacen(
+        "<scene version=\"3.0.0\">",
+        "<scene version=\"3.0.0\"><default name=\"spp\" value=\"1$spp\"/>",
+        1,
+    )
+    .replace(
+        "<film",
+        "<sampler type=\"independent\"><integer name=\"sample_count\" value=\"$spp\"/></sampler><film",
+    ) + "</scene>";
+    let e = spectrace::loader::mitsuba::load_str(&xml, std::path::Path::new("d.xml"), &[])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("\"1$spp\" is not a number"), "{e}");
+}

@@ -208,3 +208,61 @@ fn deterministic_across_thread_counts() {
     assert_ne!(a.xyz, c.xyz, "a different seed gives a different image");
     let _ = IntegratorKind::Path;
 }
+
+/// The `whitted` integrator traces a smooth plastic's coating as a mirror of weight F: a black
+/// base (ρ = 0, index 1.49) seen head-on under a uniform sky reflects exactly F(0) =
+/// ((1.49 − 1)/(1.49 + 1))² of the sky, pixel by pixel against the sky seen directly with the
+/// same seed (the same wavelengths).
+#[test]
+fn whitted_reflects_a_smooth_plastic_coating() {
+    let scene = |with_plastic: bool| {
+        let shape = if with_plastic {
+            r#"
+[materials.coat]
+type = "plastic"
+reflectance = 0
+ior = 1.49
+
+[[shapes]]
+type = "rectangle"
+material = "coat"
+transform = [{ scale = 10 }]
+"#
+        } else {
+            ""
+        };
+        support::render::scene_from(&format!(
+            r#"
+[camera]
+type = "orthographic"
+eye = [0, 0, 1]
+target = [0, 0, 0]
+up = [0, 1, 0]
+view_width = "1 m"
+
+[film]
+width = 4
+height = 4
+spp = 4
+
+[integrator]
+type = "whitted"
+max_depth = 2
+{shape}
+[[lights]]
+type = "environment"
+radiance = "1 W/m^2/sr"
+"#
+        ))
+    };
+    let (coat, _) = support::render::render_with(&scene(true), |_| {});
+    // the camera looks down −z: the sky straight behind the camera is what the mirror shows
+    let (sky, _) = support::render::render_with(&scene(false), |_| {});
+    let f = ((1.49f64 - 1.0) / (1.49 + 1.0)).powi(2);
+    for (c, s) in coat.band.iter().zip(&sky.band) {
+        assert!(
+            ((c / s) as f64 / f - 1.0).abs() < 1e-4,
+            "{c} / {s} vs F = {f}"
+        );
+    }
+}

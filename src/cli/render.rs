@@ -131,6 +131,13 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
             IntegratorArg::Whitted => IntegratorKind::Whitted,
         };
     }
+    if scene.integrator.moment && opts.integrator == IntegratorKind::Light {
+        // light paths splat into many pixels: a per-pixel second moment of samples is not
+        // defined for them
+        eprintln!(
+            "note: the light tracer writes no second moments (m2.*); the scene's moment integrator applies to camera-ray integrators"
+        );
+    }
     if let Some(b) = args.spectral_bins {
         if b > 1000 {
             return Err(CliError::Usage(
@@ -195,7 +202,7 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
         inf_samples: stats.inf_samples,
         range: scene.wavelengths,
         mitsuba_units: args.mitsuba_units,
-        moment: scene.integrator.moment,
+        moment: scene.integrator.moment && opts.integrator != IntegratorKind::Light,
     };
     write_exr(&exr, &image, &info)?;
     let ev = write_png(&png, &image, args.exposure.or(scene.film.exposure_ev))?;

@@ -1,8 +1,10 @@
 //! Radiance HDR (RGBE) files: the text header (`FORMAT=32-bit_rle_rgbe`, a `-Y h +X w`
 //! resolution line), then scanlines flat or with the adaptive run-length encoding of Greg
 //! Ward's `ray/src/common/color.c` (each of the four components in turn, runs marked by a count
-//! above 128). A value is (m + 0.5)·2^(e − 136) for a mantissa m and a shared exponent e > 0,
-//! and 0 for e = 0 (the convention of Radiance's `colr_color`).
+//! above 128). A value is m·2^(e − 136) for a mantissa m and a shared exponent e > 0, and 0 for
+//! e = 0: Greg Ward's and Bruce Walter's `rgbe2float`, which Mitsuba 3.9.1 (checked with
+//! `mi.Bitmap`), stb_image and OpenImageIO follow. (Radiance's own `colr_color` adds ½ to m,
+//! which would make a channel stored as 0 non-zero.)
 
 use std::path::Path;
 
@@ -55,8 +57,16 @@ pub(crate) fn read_hdr(path: &Path) -> Result<RgbImage, ImageError> {
         )));
     };
     let n = pixel_count(path, w, h)?;
-    let mut rgbe = vec![[0u8; 4]; n];
     let data = &bytes[pos..];
+    // every scanline takes at least 4 bytes and every run at most 127 pixels of one component:
+    // a header promising more pixels than the data can hold is refused before allocating
+    if h.saturating_mul(4) > data.len() || n / 127 > data.len() {
+        return Err(bad(&format!(
+            "{w} × {h} pixels promised by the header, {} bytes of pixel data",
+            data.len()
+        )));
+    }
+    let mut rgbe = vec![[0u8; 4]; n];
     let mut p = 0;
     let mut take = |k: usize| -> Result<&[u8], ImageError> {
         let s = data
@@ -110,7 +120,7 @@ pub(crate) fn read_hdr(path: &Path) -> Result<RgbImage, ImageError> {
                 [0.0; 3]
             } else {
                 let f = (e as f32 - 136.0).exp2();
-                [r, g, b].map(|m| (m as f32 + 0.5) * f)
+                [r, g, b].map(|m| m as f32 * f)
             }
         })
         .collect();
@@ -127,8 +137,9 @@ pub(crate) fn read_hdr(path: &Path) -> Result<RgbImage, ImageError> {
 mod tests {
     use super::*;
 
-    /// A 9×2 file, the first scanline run-length encoded and the second... also encoded; pixel
-    /// values from the RGBE definition.
+    /// A 9 × 2 file, both scanlines run-length encoded; pixel values m·2^(e − 136) (Mitsuba
+    /// 3.9.1's `mi.Bitmap` reads [128, 64, 200, 129] as [1, 0.5, 1.5625]); a header promising
+    /// more pixels than the file holds is an error, not an allocation.
     #[test]
     fn reads_rle_scanlines() {
         let w = 9usize;
@@ -145,10 +156,27 @@ mod tests {
         let p = std::env::temp_dir().join(format!("spectrace-hdr-{}.hdr", std::process::id()));
         std::fs::write(&p, &f).unwrap();
         let img = read_hdr(&p).unwrap();
-        std::fs::remove_file(&p).ok();
         assert_eq!((img.width, img.height), (9, 2));
+        std::fs::write(
+            &p,
+            b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 100000 +X 100000\n\x02\x02",
+        )
+        .unwrap();
+        let e = read_hdr(&p).unwrap_err().to_string();
+        assert!(e.contains("100000 × 100000"), "{e}");
+        std::fs::write(
+            &p,
+            [
+                b"#?RADIANCE\n\n-Y 1 +X 2\n".as_slice(),
+                &[128, 64, 200, 129, 0, 0, 0, 0],
+            ]
+            .concat(),
+        )
+        .unwrap();
+        assert_eq!(read_hdr(&p).unwrap().rgb[0], [1.0, 0.5, 1.5625]);
+        std::fs::remove_file(&p).ok();
         let s = (129.0f32 - 136.0).exp2();
-        assert_eq!(img.rgb[3], [100.5 * s, 3.5 * s, 0.5 * s]);
-        assert_eq!(img.rgb[9 + 8], [101.5 * s, 8.5 * s, 0.5 * s]);
+        assert_eq!(img.rgb[3], [100.0 * s, 3.0 * s, 0.0]);
+        assert_eq!(img.rgb[9 + 8], [101.0 * s, 8.0 * s, 0.0]);
     }
 }

@@ -7,7 +7,8 @@
 //! - Diffuse and specular from each light: f·L_i·cos θ with the material's BRDF (for Phong the
 //!   normalised k_d/π + k_s(n+2)/(2π)cosⁿα), one light sample per light.
 //! - Reflection and refraction: both lobes of a smooth dielectric are traced (F and 1 − F), a
-//!   smooth conductor's mirror lobe with its complex Fresnel term.
+//!   smooth conductor's mirror lobe with its complex Fresnel term, a smooth plastic's coating
+//!   (F) on top of its diffuse base's direct lighting.
 
 use super::Integrator;
 use crate::geometry::{Ray, spawn_ray};
@@ -101,6 +102,20 @@ pub(super) fn radiance<const N: usize>(
             continue;
         }
         l += f * ls.li * (1.0 / ls.pdf);
+    }
+    // a smooth plastic's coating reflects like a mirror, weight F·specular: traced as the
+    // specular lobes above are (uc = 0 chooses the coating whenever it reflects at all)
+    if let Material::Plastic(p) = sh.bsdf.material
+        && p.rough.is_none()
+        && depth < it.max_depth
+        && let Some(bs) =
+            sh.bsdf
+                .sample(wo, w, 0.0, glam::Vec2::splat(0.5), TransportMode::Radiance)
+        && bs.specular
+    {
+        let wi = sh.frame.to_world(bs.wi);
+        let next = spawn_ray(hit.p, hit.p_error, sh.n_geom_toward(wi), wi);
+        l += bs.f * bs.wi.z.abs() * radiance(it, next, w, s, depth + 1);
     }
     l
 }

@@ -97,11 +97,9 @@ impl Distribution2D {
         (p, self.density[r * self.cols + c])
     }
 
-    /// The density on [0, 1)² at `p` (wrapped into the square).
+    /// The density on [0, 1)² in cell (column `c`, row `r`).
     #[inline]
-    pub fn pdf(&self, p: Vec2) -> f32 {
-        let c = ((p.x - p.x.floor()) * self.cols as f32) as usize;
-        let r = ((p.y - p.y.floor()) * self.rows as f32) as usize;
+    pub fn pdf_cell(&self, c: usize, r: usize) -> f32 {
         self.density[r.min(self.rows - 1) * self.cols + c.min(self.cols - 1)]
     }
 }
@@ -124,7 +122,7 @@ mod tests {
                 let (p, pdf) = d.sample(u);
                 let cell = (p.y * 2.0) as usize * 3 + (p.x * 3.0) as usize;
                 counts[cell] += 1;
-                assert_eq!(pdf, d.pdf(p));
+                assert_eq!(pdf, d.pdf_cell((p.x * 3.0) as usize, (p.y * 2.0) as usize));
                 assert!((pdf - w[cell] / (8.0 / 6.0)).abs() < 1e-5);
             }
         }

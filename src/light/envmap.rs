@@ -184,13 +184,23 @@ impl EnvMapLight {
         // `SampleBilinear`, the remainder of `u` reused)
         let (p, _) = self.dist.sample(u);
         let (cols, rows) = (self.width as f32, (self.height - 1) as f32);
-        let (cx, cy) = ((p.x * cols).floor(), (p.y * rows).floor());
-        let (fx, fy) = (p.x * cols - cx, p.y * rows - cy);
-        let [w00, w10, w01, w11] = self.corners(cx as usize, cy as usize);
+        let (cx, cy) = (
+            ((p.x * cols) as usize).min(self.width - 1),
+            ((p.y * rows) as usize).min(self.height - 2),
+        );
+        let (fx, fy) = (
+            (p.x * cols - cx as f32).clamp(0.0, 1.0),
+            (p.y * rows - cy as f32).clamp(0.0, 1.0),
+        );
+        let [w00, w10, w01, w11] = self.corners(cx, cy);
         let y = sample_linear(fy, w00 + w10, w01 + w11);
         let x = sample_linear(fx, w00 + (w01 - w00) * y, w10 + (w11 - w10) * y);
-        let q = Vec2::new((cx + x) / cols, (cy + y) / rows);
-        let pdf_uv = self.pdf_uv(q);
+        // the density from the cell it was drawn in (not re-derived from a rounded position)
+        let pdf_uv = self.pdf_in_cell(cx, cy, x, y);
+        let q = Vec2::new(
+            ((cx as f32 + x) / cols).min(1.0 - f32::EPSILON / 2.0),
+            ((cy as f32 + y) / rows).min(1.0),
+        );
         let mut uu = q.x + self.shift();
         uu -= uu.floor();
         let (theta, phi) = (PI * q.y, 2.0 * PI * uu);
@@ -218,20 +228,30 @@ impl EnvMapLight {
         ]
     }
 
-    /// The sampling density on the (u − ½/W, v) square at `q`: the cell's density times the
-    /// bilinear luminance at `q` over the cell's mean.
+    /// The sampling density on the (u − ½/W, v) square at `q` ∈ [0, 1]²: the cell's density
+    /// times the bilinear luminance at `q` over the cell's mean.
     #[inline]
     fn pdf_uv(&self, q: Vec2) -> f32 {
         let (cols, rows) = (self.width as f32, (self.height - 1) as f32);
-        let (cx, cy) = ((q.x * cols).floor(), (q.y * rows).floor());
-        let (x, y) = (q.x * cols - cx, q.y * rows - cy);
-        let [w00, w10, w01, w11] = self.corners(cx as usize, cy as usize);
+        let (cx, cy) = (
+            ((q.x * cols) as usize).min(self.width - 1),
+            ((q.y * rows) as usize).min(self.height - 2),
+        );
+        let x = (q.x * cols - cx as f32).clamp(0.0, 1.0);
+        let y = (q.y * rows - cy as f32).clamp(0.0, 1.0);
+        self.pdf_in_cell(cx, cy, x, y)
+    }
+
+    /// The density on the (u − ½/W, v) square at (x, y) ∈ [0, 1]² within cell (cx, cy).
+    #[inline]
+    fn pdf_in_cell(&self, cx: usize, cy: usize, x: f32, y: f32) -> f32 {
+        let [w00, w10, w01, w11] = self.corners(cx, cy);
         let sum = w00 + w10 + w01 + w11;
         if !(sum > 0.0) {
             return 0.0;
         }
         let bilerp = (1.0 - y) * ((1.0 - x) * w00 + x * w10) + y * ((1.0 - x) * w01 + x * w11);
-        self.dist.pdf(q) * 4.0 * bilerp / sum
+        self.dist.pdf_cell(cx, cy) * 4.0 * bilerp / sum
     }
 
     /// A direction toward the map, by the luminance of its pixels.
@@ -262,7 +282,10 @@ impl EnvMapLight {
         }
         let mut us = uv.x - self.shift();
         us -= us.floor();
-        self.pdf_uv(Vec2::new(us, uv.y.min(1.0 - f32::EPSILON / 2.0))) / (2.0 * PI * PI * sin_t)
+        if us >= 1.0 {
+            us = 0.0;
+        }
+        self.pdf_uv(Vec2::new(us, uv.y)) / (2.0 * PI * PI * sin_t)
     }
 
     /// A particle from the map (light tracing): a direction by [`EnvMapLight::sample_li`]'s

@@ -148,8 +148,10 @@ impl Bitmap {
         w: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
         let p = self.to_uv.apply(uv);
+        // a non-finite uv (a mesh file's NaN texture coordinate, an overflowing to_uv) reads
+        // what uv (0, 0) reads rather than blending NaNs
+        let p = if p.is_finite() { p } else { Vec2::ZERO };
         let (wf, hf) = (self.width as f32, self.height as f32);
-        // NaN uv (never expected) lands on texel 0 through the saturating casts
         match self.filter {
             TexFilter::Nearest => {
                 let i = self.wrap_index((p.x * wf).floor() as i64, self.width);
@@ -247,5 +249,8 @@ mod tests {
         assert!((at(&r, -0.1, 0.25) - 1.6).abs() < 1e-5);
         let c = grey(3, 2, TexFilter::Bilinear, Wrap::Clamp);
         assert!((at(&c, 0.0, 0.25) - 0.0).abs() < 1e-6);
+        // a non-finite uv reads what uv (0, 0) reads, never NaN
+        assert_eq!(at(&r, f32::NAN, 0.5), at(&r, 0.0, 0.0));
+        assert_eq!(at(&r, f32::INFINITY, f32::NEG_INFINITY), at(&r, 0.0, 0.0));
     }
 }

@@ -43,7 +43,9 @@ impl Mesh {
             message: m,
         };
         let u16_at = |o: usize| -> Option<u16> {
-            Some(u16::from_le_bytes(bytes.get(o..o + 2)?.try_into().ok()?))
+            Some(u16::from_le_bytes(
+                bytes.get(o..o.checked_add(2)?)?.try_into().ok()?,
+            ))
         };
         let (Some(MAGIC), Some(version)) = (u16_at(0), u16_at(2)) else {
             return Err(bad(
@@ -69,27 +71,37 @@ impl Mesh {
                     "shape_index {index} is out of range: the file holds {count} meshes"
                 )));
             }
+            // the table's entry for `index`, counted back from the end (numbers from the file:
+            // checked arithmetic, so a corrupt table is an error, never an overflow)
             let off = if version == 4 {
-                let o = n - 4 - 8 * (count - index);
-                bytes
-                    .get(o..o + 8)
+                8usize
+                    .checked_mul(count - index)
+                    .and_then(|k| n.checked_sub(k.checked_add(4)?))
+                    .and_then(|o| bytes.get(o..o + 8))
                     .and_then(|b| b.try_into().ok())
                     .map(u64::from_le_bytes)
             } else {
-                let o = n - 4 * (count - index + 1);
-                bytes
-                    .get(o..o + 4)
+                4usize
+                    .checked_mul(count - index + 1)
+                    .and_then(|k| n.checked_sub(k))
+                    .and_then(|o| bytes.get(o..o + 4))
                     .and_then(|b| b.try_into().ok())
                     .map(|b| u32::from_le_bytes(b) as u64)
             };
-            off.ok_or_else(|| bad("the mesh table is truncated".into()))? as usize
+            off.and_then(|o| usize::try_from(o).ok())
+                .ok_or_else(|| bad("the mesh table is truncated or corrupt".into()))?
         };
         if u16_at(start) != Some(MAGIC) {
             return Err(bad(format!(
                 "mesh {index} does not start with the 0x041C header"
             )));
         }
-        let mut z = flate2::read::ZlibDecoder::new(bytes.get(start + 4..).unwrap_or(&[]));
+        let mut z = flate2::read::ZlibDecoder::new(
+            start
+                .checked_add(4)
+                .and_then(|s| bytes.get(s..))
+                .unwrap_or(&[]),
+        );
         let mut r = Reader { z: &mut z, path };
         let flags = r.u32()?;
         if version == 4 {
@@ -125,7 +137,8 @@ impl Mesh {
         if flags & 0x8 != 0 {
             vec3s(&mut r)?;
         }
-        let mut indices = Vec::with_capacity(nt);
+        // grown as triangles arrive: a corrupt count cannot reserve memory the stream lacks
+        let mut indices = Vec::with_capacity(nt.min(1 << 20));
         for _ in 0..nt {
             let t = [r.u32()?, r.u32()?, r.u32()?];
             if t.iter().any(|&i| i as usize >= nv) {

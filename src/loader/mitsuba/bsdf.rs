@@ -118,10 +118,22 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
         }
         // light passes straight through; each crossing still counts toward max_depth
         "null" => MaterialKind::Null,
-        "thindielectric" => MaterialKind::ThinDielectric {
-            int_ior: ior_of(cx, "int_ior", 1.5046)?,
-            exterior_ior: ior_of(cx, "ext_ior", 1.000277)?,
-        },
+        "thindielectric" => {
+            for k in ["specular_reflectance", "specular_transmittance"] {
+                if let Some(c) = cx.child(b, k) {
+                    return Err(cx.err(
+                        c,
+                        format!(
+                            "a thindielectric's {k} is not supported (it is 1, Mitsuba's default)"
+                        ),
+                    ));
+                }
+            }
+            MaterialKind::ThinDielectric {
+                int_ior: ior_of(cx, "int_ior", 1.5046)?,
+                exterior_ior: ior_of(cx, "ext_ior", 1.000277)?,
+            }
+        }
         "diffuse" => MaterialKind::Diffuse {
             reflectance: cx.texture_prop(b, "reflectance", 0.5)?,
         },

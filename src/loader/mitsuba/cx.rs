@@ -170,7 +170,10 @@ impl Cx<'_> {
     /// `$name` substitution in every attribute value, recursively.
     pub(super) fn substitute(&self, e: &mut Element) -> R<()> {
         for (k, v) in e.attrs.iter_mut() {
-            while let Some(i) = v.find('$') {
+            // one pass, left to right, as Mitsuba substitutes: an inserted value is not
+            // scanned again (so a value that names itself cannot loop)
+            let mut from = 0;
+            while let Some(i) = v[from..].find('$').map(|i| i + from) {
                 let rest = &v[i + 1..];
                 let end = rest
                     .find(|c: char| !(c.is_alphanumeric() || c == '_'))
@@ -187,6 +190,7 @@ impl Cx<'_> {
                         ),
                     ));
                 };
+                from = i + value.len();
                 *v = format!("{}{}{}", &v[..i], value, &rest[end..]);
             }
         }
