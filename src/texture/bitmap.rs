@@ -113,11 +113,6 @@ impl Bitmap {
         Ok(())
     }
 
-    /// (width, height) in texels.
-    pub fn size(&self) -> (usize, usize) {
-        (self.width, self.height)
-    }
-
     #[inline]
     fn wrap_index(&self, i: i64, n: usize) -> usize {
         let n = n as i64;
@@ -189,14 +184,6 @@ impl Bitmap {
             Texels::Colour(c) => c.iter().map(|p| spectral(&|l| p.eval(l)) as f64).sum(),
         };
         (sum / n) as f32
-    }
-
-    /// The largest texel value at `lambda_nm`.
-    pub fn max_at(&self, lambda_nm: f32) -> f32 {
-        match &self.texels {
-            Texels::Grey(v) => v.iter().copied().fold(0.0, f32::max),
-            Texels::Colour(c) => c.iter().map(|p| p.eval(lambda_nm)).fold(0.0, f32::max),
-        }
     }
 }
 

@@ -81,14 +81,6 @@ impl Texture {
         }
     }
 
-    /// The spectrum when the texture is uniform, else None.
-    pub fn as_uniform(&self) -> Option<&Spectrum> {
-        match self {
-            Texture::Uniform(s) => Some(s),
-            _ => None,
-        }
-    }
-
     /// The mean value over the surface and over 16 wavelengths from 360 to 830 nm (as Mitsuba's
     /// `mean()` of its textures), for sampling weights.
     pub fn mean(&self) -> f32 {
@@ -104,15 +96,6 @@ impl Texture {
                 0.5 * (spectral(&|l| c.a.eval(l)) + spectral(&|l| c.b.eval(l)))
             }
             Texture::Bitmap(b) => b.mean(spectral),
-        }
-    }
-
-    /// The largest value over the surface at `lambda_nm`, an upper bound for energy checks.
-    pub fn max_at(&self, lambda_nm: f32) -> f32 {
-        match self {
-            Texture::Uniform(s) => s.eval(lambda_nm),
-            Texture::Checkerboard(c) => c.a.eval(lambda_nm).max(c.b.eval(lambda_nm)),
-            Texture::Bitmap(b) => b.max_at(lambda_nm),
         }
     }
 }
