@@ -76,6 +76,7 @@ SPP = {
     "serialized": 4096,
     "direct": 4096,
     "orthographic": 4096,
+    "mask": 4096,
 }
 DEFAULT_SPP = 1024
 

@@ -154,6 +154,20 @@ fn cases() -> Vec<Case> {
             }
         }
     }
+    // Mitsuba's `mask` (opacity 0.6) around a rough conductor: the straight-through lobe counts
+    // as rejected, as many as the nested density (times 0.6) falls short of 1
+    for &t in &angles {
+        v.push(Case {
+            name: format!("Mask 0.6 over RoughConductor θo={t}"),
+            material: Material::Mask(Box::new(spectrace::material::Mask {
+                opacity: Spectrum::Constant(0.6).into(),
+                inner: Material::RoughConductor(RoughConductor::new(gold(), 1.0, 0.3)),
+            })),
+            wo: dir(t, phi, false),
+            w: wavelengths(550.0),
+            grid: COARSE,
+        });
+    }
     // Plastics (Mitsuba's `plastic` and `roughplastic`): the smooth coating's delta reflection
     // is not a direction with a density, so its samples count as rejected, as many as the
     // diffuse part's density falls short of 1

@@ -180,6 +180,12 @@ pub enum MaterialKind {
     },
     /// No surface: light passes straight through (Mitsuba's `null`).
     Null,
+    /// A partly transparent surface (Mitsuba's `mask`): `opacity` (a number or a grey image)
+    /// of the nested material, the rest straight through.
+    Mask {
+        opacity: TextureDesc,
+        inner: Box<MaterialKind>,
+    },
     /// A sheet of negligible thickness (Mitsuba's `thindielectric`), indices as a dielectric's.
     ThinDielectric {
         int_ior: f64,

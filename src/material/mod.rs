@@ -118,6 +118,18 @@ pub enum Material {
     /// Mitsuba's `null`: no surface for light, which passes straight through (a delta
     /// transmission of weight 1 that still counts as a scattering event, as in Mitsuba).
     Null,
+    /// Mitsuba's `mask`: with probability 1 − opacity light passes straight through, else the
+    /// nested material scatters it (see [`Mask`]).
+    Mask(Box<Mask>),
+}
+
+/// A partly transparent surface (Mitsuba's `mask`): f = α·f_inner for the opacity α at the hit,
+/// plus a straight-through delta lobe of weight 1 − α. The nested material is never a mask.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Mask {
+    /// Opacity α in [0, 1]: a number or a grey image, the same at every wavelength.
+    pub opacity: crate::texture::Texture,
+    pub inner: Material,
 }
 
 impl Material {
@@ -129,11 +141,20 @@ impl Material {
         let albedo = match self {
             Material::Diffuse(m) => m.reflectance.sample(uv, w),
             Material::Plastic(m) => m.diffuse.sample(uv, w),
+            Material::Mask(m) => {
+                let inner = m.inner.at(uv, w);
+                return Bsdf {
+                    material: self,
+                    albedo: inner.albedo,
+                    opacity: m.opacity.sample(uv, w)[0].clamp(0.0, 1.0),
+                };
+            }
             _ => SampledSpectrum::zero(),
         };
         Bsdf {
             material: self,
             albedo,
+            opacity: 1.0,
         }
     }
 
@@ -190,13 +211,16 @@ impl Material {
     /// light sampling (next-event estimation) is pointless.
     #[inline]
     pub fn is_specular(&self) -> bool {
-        matches!(
-            self,
-            Material::Dielectric(_)
-                | Material::Conductor(_)
-                | Material::Null
-                | Material::ThinDielectric { .. }
-        )
+        match self {
+            Material::Mask(m) => m.inner.is_specular(),
+            _ => matches!(
+                self,
+                Material::Dielectric(_)
+                    | Material::Conductor(_)
+                    | Material::Null
+                    | Material::ThinDielectric { .. }
+            ),
+        }
     }
 
     /// Whether transmission through this material depends on wavelength in direction, so that
@@ -207,6 +231,7 @@ impl Material {
         match self {
             Material::Dielectric(m) => m.int_ior.is_dispersive(),
             Material::RoughDielectric(m) => m.int_ior.is_dispersive(),
+            Material::Mask(m) => m.inner.is_dispersive(),
             _ => false,
         }
     }
@@ -220,6 +245,8 @@ pub struct Bsdf<'a, const N: usize> {
     /// The textured reflectance at the point (Lambert's ρ, a plastic's diffuse base),
     /// dimensionless; zero for materials without one.
     pub albedo: SampledSpectrum<N>,
+    /// A mask's opacity at the point, in [0, 1]; 1 for every other material.
+    pub opacity: f32,
 }
 
 impl<const N: usize> Bsdf<'_, N> {
@@ -242,6 +269,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::RoughDielectric(m) => m.eval(wo, wi, w, mode),
             Material::RoughConductor(m) => m.eval(wo, wi, w),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).0,
+            Material::Mask(m) => self.masked(m).eval(wo, wi, w, mode) * self.opacity,
         }
     }
 
@@ -259,6 +287,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::RoughDielectric(m) => m.pdf(wo, wi, w),
             Material::RoughConductor(m) => m.pdf(wo, wi),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).1,
+            Material::Mask(m) => self.masked(m).pdf(wo, wi, w, _mode) * self.opacity,
         }
     }
 
@@ -283,6 +312,10 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::RoughDielectric(m) => m.eval_pdf(wo, wi, w, mode),
             Material::RoughConductor(m) => m.eval_pdf(wo, wi, w),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo),
+            Material::Mask(m) => {
+                let (f, pdf) = self.masked(m).eval_pdf(wo, wi, w, mode);
+                (f * self.opacity, pdf * self.opacity)
+            }
         }
     }
 
@@ -327,6 +360,26 @@ impl<const N: usize> Bsdf<'_, N> {
                     eta: 1.0,
                 })
             }
+            // straight through with probability 1 − α, else the nested material with α·f and
+            // α·pdf (the same weight): Mitsuba's `mask`
+            Material::Mask(m) => {
+                let a = self.opacity;
+                if uc >= a {
+                    return (wo.z != 0.0).then(|| BsdfSample {
+                        f: SampledSpectrum::splat((1.0 - a) / wo.z.abs()),
+                        wi: -wo,
+                        pdf: 1.0 - a,
+                        specular: true,
+                        transmission: true,
+                        dispersive: false,
+                        eta: 1.0,
+                    });
+                }
+                let mut bs = self.masked(m).sample(wo, w, uc / a, u, mode)?;
+                bs.f *= a;
+                bs.pdf *= a;
+                Some(bs)
+            }
             // straight through: f·|cos θᵢ|/pdf = 1
             Material::Null => (wo.z != 0.0).then(|| BsdfSample {
                 f: SampledSpectrum::splat(1.0 / wo.z.abs()),
@@ -345,6 +398,16 @@ impl<const N: usize> Bsdf<'_, N> {
     #[inline]
     pub fn is_specular(&self) -> bool {
         self.material.is_specular()
+    }
+
+    /// The nested material of a mask, with this hit's albedo.
+    #[inline]
+    fn masked<'b>(&self, m: &'b Mask) -> Bsdf<'b, N> {
+        Bsdf {
+            material: &m.inner,
+            albedo: self.albedo,
+            opacity: 1.0,
+        }
     }
 
     /// Whether transmission through this material depends on wavelength in direction, so that

@@ -176,6 +176,11 @@ impl Bitmap {
         }
     }
 
+    /// Whether the image is grey (one value per texel, the same at every wavelength).
+    pub fn is_grey(&self) -> bool {
+        matches!(self.texels, Texels::Grey(_))
+    }
+
     /// The mean over texels of `spectral`, a mean over wavelengths of a texel's value.
     pub fn mean(&self, spectral: impl Fn(&dyn Fn(f32) -> f32) -> f32) -> f32 {
         let n = (self.width * self.height) as f64;

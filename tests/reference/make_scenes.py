@@ -1033,11 +1033,80 @@ by to_world.""",
     write("orthographic", s + FOOTER)
 
 
+
+def mask():
+    d = os.path.join(HERE, "mask")
+    # 8 × 2 grey PNG of opacities: 0, 32, 64, ..., 224 across, the same on both rows
+    write_png(os.path.join(d, "opacity.png"), 8, 2, [[32 * i for i in range(8)]] * 2, channels=1)
+    s = header(
+        """Mitsuba's `mask`: a rectangle whose opacity is an 8 × 2 grey PNG (sRGB bytes 0 to 224 in
+eight columns, bilinear), holding a twosided diffuse (ColorChecker red), in front of a
+checkerboard wall; a sphere masked by a constant opacity 0.3 (a diffuse blue inside); a D65
+area light and a dim constant environment.
+Exercises: the opacity lobe (straight through with probability 1 − α, counting a bounce),
+α·f for light sampling, grey textures as opacities, twosided inside a mask.""",
+        "0, 1.0, 3.4",
+        "0, 0.8, 0",
+        45,
+        64,
+        6,
+    )
+    s += f"""
+    <shape type="rectangle">
+        <transform name="to_world">
+            <scale x="1.2" y="0.5"/>
+            <translate x="0" y="1.1" z="0.4"/>
+        </transform>
+        <bsdf type="mask">
+            <texture type="bitmap" name="opacity">
+                <string name="filename" value="opacity.png"/>
+            </texture>
+            <bsdf type="twosided">
+                <bsdf type="diffuse">
+                    <spectrum name="reflectance" value="{colorchecker("red")}"/>
+                </bsdf>
+            </bsdf>
+        </bsdf>
+    </shape>
+
+    <shape type="sphere">
+        <point name="center" x="0.5" y="0.35" z="0.6"/>
+        <float name="radius" value="0.35"/>
+        <bsdf type="mask">
+            <float name="opacity" value="0.3"/>
+            <bsdf type="diffuse">
+                <spectrum name="reflectance" value="{colorchecker("blue")}"/>
+            </bsdf>
+        </bsdf>
+    </shape>
+
+    <shape type="rectangle">
+        <transform name="to_world">
+            <scale value="2"/>
+            <translate x="0" y="1" z="-0.8"/>
+        </transform>
+        <bsdf type="diffuse">
+            <texture type="checkerboard" name="reflectance">
+                <spectrum name="color0" value="0.75"/>
+                <spectrum name="color1" value="0.15"/>
+                <transform name="to_uv"><scale x="4" y="4"/></transform>
+            </texture>
+        </bsdf>
+    </shape>
+{floor_rect(3, colorchecker("neutral-8"))}
+{area_rect(0.4, "0.6, 2.6, 1.6", illuminant('d65', 30.0))}
+    <emitter type="constant">
+        <spectrum name="radiance" value="{illuminant('d65', 0.2)}"/>
+    </emitter>
+"""
+    write("mask", s + FOOTER)
+
+
 SCENES = {
     f.__name__: f
     for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
               dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional,
-              spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics, serialized, direct, orthographic)
+              spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics, serialized, direct, orthographic, mask)
 }
 
 if __name__ == "__main__":

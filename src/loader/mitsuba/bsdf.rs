@@ -118,6 +118,34 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
         }
         // light passes straight through; each crossing still counts toward max_depth
         "null" => MaterialKind::Null,
+        // Mitsuba's opacity mask around one nested BSDF (whose twosided flag it keeps)
+        "mask" => {
+            let inner = b
+                .children
+                .iter()
+                .find(|c| c.tag == "bsdf" || c.tag == "ref")
+                .ok_or_else(|| cx.err(b, "a mask needs a nested <bsdf>"))?;
+            let (m, two) = bsdf(cx, inner, name)?;
+            if let Some(o) = cx.child(b, "opacity")
+                && cx.resolve(o)?.attr("type") == Some("checkerboard")
+            {
+                return Err(cx.err(
+                    o,
+                    "a checkerboard opacity is not supported (Mitsuba 3.9.1 swaps its colours for opacities); use a number or a grey image",
+                ));
+            }
+            return Ok((
+                MaterialDesc {
+                    name: name.to_string(),
+                    kind: MaterialKind::Mask {
+                        opacity: cx.texture_prop(b, "opacity", 0.5)?,
+                        inner: Box::new(m.kind),
+                    },
+                    loc: cx.loc(b),
+                },
+                two,
+            ));
+        }
         "thindielectric" => {
             for k in ["specular_reflectance", "specular_transmittance"] {
                 if let Some(c) = cx.child(b, k) {

@@ -57,6 +57,7 @@ const PLUGINS: &[(&str, &[&str])] = &[
             "roughplastic",
             "null",
             "thindielectric",
+            "mask",
         ],
     ),
     (

@@ -14,7 +14,7 @@ use crate::geometry::transform::Transform;
 use crate::loader::desc::{CameraKind, FovAxis, MaterialKind, Projection, SceneDesc};
 use crate::loader::{LoadError, Loc};
 use crate::material::{
-    Conductor, Dielectric, Lambert, Material, Phong, Plastic, RoughConductor, RoughDielectric,
+    Conductor, Dielectric, Lambert, Mask, Material, Phong, Plastic, RoughConductor, RoughDielectric,
 };
 use crate::spectrum::WavelengthRange;
 use crate::units::plain;
@@ -153,6 +153,17 @@ fn material(k: &MaterialKind) -> Result<Material, String> {
                 .with_distribution(*distribution),
         ),
         MaterialKind::Null => Material::Null,
+        MaterialKind::Mask { opacity, inner } => {
+            let opacity = textures::texture(opacity)?;
+            if !textures::is_grey(&opacity) {
+                return Err("a mask's opacity must be a number or a grey image, the same at every wavelength".into());
+            }
+            let inner = material(inner)?;
+            if matches!(inner, Material::Mask(_)) {
+                return Err("a mask cannot hold another mask".into());
+            }
+            Material::Mask(Box::new(Mask { opacity, inner }))
+        }
         MaterialKind::ThinDielectric {
             int_ior,
             exterior_ior,

@@ -71,3 +71,15 @@ pub(super) fn texture(t: &TextureDesc) -> Result<Texture, String> {
         }
     })
 }
+
+/// Whether the texture is the same at every wavelength: a constant, a checkerboard of two
+/// constants, or a grey image.
+pub(super) fn is_grey(t: &Texture) -> bool {
+    let constant =
+        |s: &crate::spectrum::Spectrum| matches!(s, crate::spectrum::Spectrum::Constant(_));
+    match t {
+        Texture::Uniform(s) => constant(s),
+        Texture::Checkerboard(c) => constant(&c.a) && constant(&c.b),
+        Texture::Bitmap(b) => b.is_grey(),
+    }
+}
