@@ -64,3 +64,72 @@ fn cornell_box_is_in_millimetres() {
         scene.light_power[light]
     );
 }
+
+/// The TOML forms of Mitsuba's `direct` and `moment` integrators and its `null` and
+/// `thindielectric` materials arrive in the description as their Mitsuba forms do.
+#[test]
+fn direct_moment_null_and_thin_dielectric_in_toml() {
+    use spectrace::loader::desc::{IntegratorKind, MaterialKind};
+    let text = r#"
+[camera]
+eye = [0, 1, 4]
+target = [0, 1, 0]
+fov = "40 deg"
+
+[film]
+width = 8
+height = 8
+
+[integrator]
+type = "direct"
+emitter_samples = 2
+bsdf_samples = 3
+second_moment = true
+
+[materials.pane]
+type = "thin_dielectric"
+ior = 1.5
+
+[materials.nothing]
+type = "null"
+
+[[shapes]]
+type = "rectangle"
+material = "pane"
+
+[[shapes]]
+type = "sphere"
+radius = 0.5
+material = "nothing"
+
+[[lights]]
+type = "environment"
+radiance = "1 W/m^2/sr"
+"#;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/inline.toml");
+    let d = spectrace::loader::load_str(text, &path).unwrap();
+    assert_eq!(
+        d.integrator.kind,
+        IntegratorKind::Direct {
+            emitter_samples: 2,
+            bsdf_samples: 3
+        }
+    );
+    assert!(d.integrator.moment);
+    let kinds: Vec<&MaterialKind> = d.materials.iter().map(|m| &m.kind).collect();
+    assert!(kinds.iter().any(|k| matches!(
+        k,
+        MaterialKind::ThinDielectric { int_ior, exterior_ior } if *int_ior == 1.5 && *exterior_ior == 1.0
+    )));
+    assert!(kinds.iter().any(|k| matches!(k, MaterialKind::Null)));
+    spectrace::scene::build(&d).unwrap();
+    // samples for another integrator are a located error
+    let bad = text.replace("type = \"direct\"", "type = \"path\"");
+    let e = spectrace::loader::load_str(&bad, &path)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("integrator.emitter_samples") && e.contains("direct"),
+        "{e}"
+    );
+}

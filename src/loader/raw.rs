@@ -68,6 +68,11 @@ pub struct RawIntegrator {
     pub max_depth: Option<S<Value>>,
     pub rr_depth: Option<S<Value>>,
     pub light_selection: Option<S<String>>,
+    /// `direct`: light and BSDF samples per camera hit.
+    pub emitter_samples: Option<S<Value>>,
+    pub bsdf_samples: Option<S<Value>>,
+    /// Also write second moments (`m2.X`, `m2.Y`, `m2.Z`), as Mitsuba's `moment`.
+    pub second_moment: Option<S<bool>>,
 }
 
 #[derive(Deserialize, Debug)]

@@ -168,7 +168,7 @@ pub(super) fn material(
         &m.kind,
         &sp,
         &format!("{f}.type"),
-        "diffuse, phong, dielectric, conductor or plastic",
+        "diffuse, phong, dielectric, conductor, plastic, thin_dielectric or null",
     )?;
     let roughness = |cx: &Cx<'_>| -> R<Option<f64>> {
         match &m.roughness {
@@ -280,6 +280,31 @@ pub(super) fn material(
                 distribution: Distribution::Ggx,
             }
         }
+        "null" => {
+            cx.only("a null material", &f, &all, &["kind"])?;
+            MaterialKind::Null
+        }
+        "thin_dielectric" => {
+            cx.only(
+                "a thin dielectric material",
+                &f,
+                &all,
+                &["kind", "ior", "exterior_ior"],
+            )?;
+            let i = cx.required(&m.ior, &sp, &format!("{f}.ior"), "the sheet's index")?;
+            let n = cx.number(i, &format!("{f}.ior"))?;
+            if !(n > 0.0 && n.is_finite()) {
+                return Err(cx.err(
+                    &i.span(),
+                    format!("{f}.ior"),
+                    format!("expected a positive index, found {n}"),
+                ));
+            }
+            MaterialKind::ThinDielectric {
+                int_ior: n,
+                exterior_ior: exterior(cx)?,
+            }
+        }
         "plastic" => {
             cx.only(
                 "a plastic material",
@@ -350,7 +375,7 @@ pub(super) fn material(
             }
         }
         o => {
-            return Err(cx.err(&ty.span(), format!("{f}.type"), format!("unknown material type \"{o}\"; expected diffuse, phong, dielectric, conductor or plastic")));
+            return Err(cx.err(&ty.span(), format!("{f}.type"), format!("unknown material type \"{o}\"; expected diffuse, phong, dielectric, conductor, plastic, thin_dielectric or null")));
         }
     };
     Ok(MaterialDesc {
