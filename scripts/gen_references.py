@@ -77,6 +77,7 @@ SPP = {
     "direct": 4096,
     "orthographic": 4096,
     "mask": 4096,
+    "cylinders": 4096,
 }
 DEFAULT_SPP = 1024
 

@@ -6,7 +6,7 @@ mod geo;
 mod support;
 
 use glam::{Vec2, Vec3};
-use spectrace::geometry::{Accel, Disk, Mesh, Ray, Shape, Sphere, Transform, spawn_ray};
+use spectrace::geometry::{Accel, Cylinder, Disk, Mesh, Ray, Shape, Sphere, Transform, spawn_ray};
 use support::Rng;
 
 fn rand_vec(rng: &mut Rng, lo: f32, hi: f32) -> Vec3 {
@@ -66,6 +66,14 @@ fn mixed_scene(rng: &mut Rng) -> Vec<Shape> {
     }
     let soup = Mesh::new(positions, None, None, indices, &Transform::identity()).unwrap();
     shapes.push(Shape::Mesh(soup));
+    // open cylinders of random axes (after every index the tests name)
+    for i in 0..4 {
+        let (p0, p1) = (rand_vec(rng, -8.0, 8.0), rand_vec(rng, -8.0, 8.0));
+        let r = 0.2 + 1.2 * rng.uniform();
+        shapes.push(Shape::Cylinder(
+            Cylinder::new(p0, p1, r, i % 2 == 1).unwrap(),
+        ));
+    }
     shapes
 }
 
@@ -215,7 +223,7 @@ fn normals_are_outward_and_hit_points_on_the_surface() {
                 assert!((it.n_geom - d.normal()).length() < 1e-6);
                 assert!((it.p - d.center()).dot(d.normal()).abs() < 1e-5);
             }
-            Shape::Mesh(_) => {}
+            Shape::Mesh(_) | Shape::Cylinder(_) => {}
         }
     }
     // Box normals point outward even for the mirrored box (shape index 18).

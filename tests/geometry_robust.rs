@@ -372,3 +372,60 @@ fn shadow_rays_inside_a_box_are_never_blocked() {
         blocked.first()
     );
 }
+
+/// Open cylinders at every scale and far from the origin: a ray spawned from a point sampled on
+/// the outside of the tube and leaving it (any elevation, grazing included) never hits the tube
+/// again — it leaves a convex surface — while a ray spawned inward from the same point reaches
+/// the opposite wall whenever the exact (f64) far root lies clearly between the open ends.
+#[test]
+fn spawned_rays_do_not_rehit_cylinders_at_any_scale() {
+    use spectrace::geometry::Cylinder;
+    let mut rng = Rng::new(7);
+    for base in [Vec3::ZERO, Vec3::new(2.0e3, -1.0e3, 5.0e2)] {
+        for r in [1.0e-2, 1.0, 1.0e2] {
+            let axis = Vec3::new(0.3, 1.0, -0.2).normalize() * (10.0 * r);
+            let shapes = vec![Shape::Cylinder(
+                Cylinder::new(base, base + axis, r, false).unwrap(),
+            )];
+            let accel = Accel::build(&shapes);
+            let (mut rehits, mut misses) = (0, 0);
+            for _ in 0..2000 {
+                // a point away from the open ends, so inward rays cannot escape through them
+                let s = shapes[0].sample_area(Vec2::new(rng.uniform(), 0.3 + 0.4 * rng.uniform()));
+                let elev = (1.57 * rng.uniform().powi(3)).max(1e-4);
+                let az = rng.uniform() * std::f32::consts::TAU;
+                let out = geo::direction_at_elevation(s.n, elev, az);
+                if accel
+                    .intersect(&shapes, &spawn_ray(s.p, s.p_error, s.n, out))
+                    .is_some()
+                {
+                    rehits += 1;
+                }
+                let inward = geo::direction_at_elevation(s.n, -0.3 - rng.uniform(), az);
+                // exact far wall: in the tube's frame the point is at distance r from the axis
+                // and the ray crosses the circle again after t = −2 (p⊥·d⊥)/|d⊥|²
+                let (a, d) = (axis.as_dvec3().normalize(), inward.as_dvec3());
+                let p = s.p.as_dvec3() - base.as_dvec3();
+                let (pp, dp) = (p - a * p.dot(a), d - a * d.dot(a));
+                let t = -2.0 * pp.dot(dp) / dp.length_squared();
+                let h = (p + d * t).dot(a) / axis.as_dvec3().length();
+                let clearly_inside = h > 0.01 && h < 0.99;
+                if clearly_inside
+                    && accel
+                        .intersect(&shapes, &spawn_ray(s.p, s.p_error, s.n, inward))
+                        .is_none()
+                {
+                    misses += 1;
+                }
+            }
+            assert_eq!(
+                rehits, 0,
+                "r = {r} at {base}: rays leaving the tube hit it again"
+            );
+            assert_eq!(
+                misses, 0,
+                "r = {r} at {base}: inward rays missed the far wall"
+            );
+        }
+    }
+}

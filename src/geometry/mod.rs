@@ -24,5 +24,5 @@ pub use camera::{Camera, FovAxis};
 pub use error::GeometryError;
 pub use frame::Frame;
 pub use ray::{Ray, offset_ray_origin, spawn_ray, spawn_ray_to};
-pub use shape::{Disk, Intersection, Mesh, PrimHit, Shape, Sphere, SurfaceSample};
+pub use shape::{Cylinder, Disk, Intersection, Mesh, PrimHit, Shape, Sphere, SurfaceSample};
 pub use transform::Transform;

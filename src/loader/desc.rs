@@ -272,6 +272,14 @@ pub enum ShapeKind {
     Box,
     /// The unit disk in the object's z = 0 plane, normal +z, scaled by the length unit.
     Disk,
+    /// The open tube of `radius` around the segment `p0`–`p1` (Mitsuba's `cylinder`), normals
+    /// away from the axis unless `flipped`.
+    Cylinder {
+        p0: Point,
+        p1: Point,
+        radius: Length,
+        flipped: bool,
+    },
     /// A Wavefront OBJ mesh; coordinates in the scene's length unit.
     Obj {
         path: PathBuf,

@@ -1102,11 +1102,59 @@ Exercises: the opacity lobe (straight through with probability 1 − α, countin
     write("mask", s + FOOTER)
 
 
+
+def cylinders():
+    s = header(
+        """Mitsuba's `cylinder`: an open diffuse tube (ColorChecker green, p0–p1 tilted, radius 0.3)
+whose inside shows through its ends, a second tube placed by `to_world` (rotate and translate)
+with `flip_normals`, and a thin emitting tube (radiance D65/100 × 25) as the light, sampled by
+area; a diffuse floor and a dim constant environment.
+Exercises: cylinder intersection from outside and inside, normals and flip_normals, area
+sampling of a cylinder emitter.""",
+        "0, 1.4, 3.6",
+        "0, 0.5, 0",
+        45,
+        64,
+        5,
+    )
+    s += f"""
+    <shape type="cylinder">
+        <point name="p0" x="-0.9" y="0.3" z="0"/>
+        <point name="p1" x="-0.1" y="0.9" z="-0.4"/>
+        <float name="radius" value="0.3"/>
+{diffuse(colorchecker("green"), indent="        ")}    </shape>
+
+    <shape type="cylinder">
+        <float name="radius" value="0.25"/>
+        <boolean name="flip_normals" value="true"/>
+        <transform name="to_world">
+            <scale value="0.8"/>
+            <rotate x="1" angle="-90"/>
+            <translate x="0.7" y="0.01" z="0.3"/>
+        </transform>
+{diffuse(colorchecker("orange"), twosided=True, indent="        ")}    </shape>
+
+    <shape type="cylinder">
+        <point name="p0" x="-1" y="2.2" z="0.5"/>
+        <point name="p1" x="1" y="2.2" z="0.5"/>
+        <float name="radius" value="0.05"/>
+        <emitter type="area">
+            <spectrum name="radiance" value="{illuminant('d65', 25.0)}"/>
+        </emitter>
+    </shape>
+{floor_rect(3, colorchecker("neutral-8"))}
+    <emitter type="constant">
+        <spectrum name="radiance" value="{illuminant('d65', 0.15)}"/>
+    </emitter>
+"""
+    write("cylinders", s + FOOTER)
+
+
 SCENES = {
     f.__name__: f
     for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
               dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional,
-              spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics, serialized, direct, orthographic, mask)
+              spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics, serialized, direct, orthographic, mask, cylinders)
 }
 
 if __name__ == "__main__":

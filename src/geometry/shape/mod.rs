@@ -9,6 +9,7 @@
 //! Conventions: metres, radians; normals are unit; the geometric normal is the shape's outward or
 //! front-face normal and is *not* flipped toward the ray. All intersection tests are two-sided.
 
+mod cylinder;
 mod disk;
 mod mesh;
 mod obj;
@@ -17,6 +18,7 @@ mod serialized;
 mod sphere;
 mod triangle;
 
+pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use mesh::Mesh;
 pub use sphere::Sphere;
@@ -30,6 +32,7 @@ use glam::{Vec2, Vec3};
 pub enum Shape {
     Sphere(Sphere),
     Disk(Disk),
+    Cylinder(Cylinder),
     Mesh(Mesh),
 }
 
@@ -50,6 +53,7 @@ pub struct SurfaceSample {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PrimHit {
     Sphere,
+    Cylinder,
     /// Local disk coordinates: the hit is `centre + a·u + b·v` with a² + b² ≤ 1.
     Disk {
         a: f32,
@@ -89,6 +93,7 @@ impl Shape {
         match self {
             Shape::Sphere(s) => s.area(),
             Shape::Disk(d) => d.area(),
+            Shape::Cylinder(c) => c.area(),
             Shape::Mesh(m) => m.area(),
         }
     }
@@ -100,6 +105,7 @@ impl Shape {
         match self {
             Shape::Sphere(s) => s.sample_area(u),
             Shape::Disk(d) => d.sample_area(u),
+            Shape::Cylinder(c) => c.sample_area(u),
             Shape::Mesh(m) => m.sample_area(u),
         }
     }
@@ -107,7 +113,7 @@ impl Shape {
     /// Number of primitives the BVH indexes: 1 for spheres and disks, triangles for meshes.
     pub fn primitive_count(&self) -> usize {
         match self {
-            Shape::Sphere(_) | Shape::Disk(_) => 1,
+            Shape::Sphere(_) | Shape::Disk(_) | Shape::Cylinder(_) => 1,
             Shape::Mesh(m) => m.triangle_count(),
         }
     }
@@ -118,6 +124,7 @@ impl Shape {
         match self {
             Shape::Sphere(s) if i == 0 => s.aabb(),
             Shape::Disk(d) if i == 0 => d.aabb(),
+            Shape::Cylinder(c) if i == 0 => c.aabb(),
             Shape::Mesh(m) if i < m.triangle_count() => m.triangle_aabb(i),
             _ => (Vec3::INFINITY, Vec3::NEG_INFINITY),
         }
@@ -132,6 +139,7 @@ impl Shape {
         match self {
             Shape::Sphere(s) if i == 0 => s.intersect(ray).map(|t| (t, PrimHit::Sphere)),
             Shape::Disk(d) if i == 0 => d.intersect(ray),
+            Shape::Cylinder(c) if i == 0 => c.intersect(ray).map(|t| (t, PrimHit::Cylinder)),
             Shape::Mesh(m) if i < m.triangle_count() => m.intersect_triangle(i, ray),
             _ => None,
         }
@@ -155,6 +163,7 @@ impl Shape {
                 let (a, b) = d.local_coords(ray.at(t));
                 d.interaction(a, b)
             }
+            (Shape::Cylinder(c), _) => c.interaction(ray.at(t)),
             (Shape::Mesh(m), PrimHit::Triangle { b }) => m.interaction(prim, *b),
             (Shape::Mesh(m), _) => m.interaction(prim, [1.0 / 3.0; 3]),
         };

@@ -42,6 +42,7 @@ const PLUGINS: &[(&str, &[&str])] = &[
             "cube",
             "sphere",
             "disk",
+            "cylinder",
         ],
     ),
     (

@@ -32,6 +32,26 @@ pub(super) fn shape(
             }
         }
         "rectangle" => ShapeKind::Rectangle,
+        "cylinder" => {
+            let l = |x: f64| Length::new::<length::meter>(x);
+            let point = |key: &str, default: [f64; 3]| -> R<[f64; 3]> {
+                match cx.child(s, key) {
+                    Some(c) => cx.vec3(c),
+                    None => Ok(default),
+                }
+            };
+            let (p0, p1) = (point("p0", [0.0; 3])?, point("p1", [0.0, 0.0, 1.0])?);
+            let r = cx.opt_float(s, "radius")?.unwrap_or(1.0);
+            if r <= 0.0 || p0 == p1 {
+                return Err(cx.err(s, "a cylinder needs a positive radius and p0 ≠ p1"));
+            }
+            ShapeKind::Cylinder {
+                p0: p0.map(l),
+                p1: p1.map(l),
+                radius: l(r),
+                flipped: cx.child(s, "flip_normals").and_then(|f| f.attr("value")) == Some("true"),
+            }
+        }
         "cube" => ShapeKind::Box,
         "disk" => ShapeKind::Disk,
         "sphere" => {
@@ -77,7 +97,9 @@ pub(super) fn shape(
         }
         other => return Err(cx.unsupported(s, "shape", other)),
     };
-    if cx.child(s, "flip_normals").and_then(|f| f.attr("value")) == Some("true") {
+    if cx.child(s, "flip_normals").and_then(|f| f.attr("value")) == Some("true")
+        && !matches!(kind, ShapeKind::Cylinder { .. })
+    {
         // a mirror through the object's z = 0 plane reverses the winding and the normal
         transform.insert(0, TransformStep::Scale([1.0, 1.0, -1.0]));
     }

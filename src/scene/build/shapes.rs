@@ -3,7 +3,7 @@
 use glam::{Mat4, Vec3};
 
 use super::v3;
-use crate::geometry::shape::{Disk, Mesh, Shape, Sphere};
+use crate::geometry::shape::{Cylinder, Disk, Mesh, Shape, Sphere};
 use crate::geometry::transform::Transform;
 use crate::loader::desc::{MeshNormals, ShapeDesc, ShapeKind, TransformStep};
 use crate::units::plain;
@@ -79,6 +79,29 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
         }
         ShapeKind::Rectangle => Shape::Mesh(Mesh::rectangle(&transform(s, true)?)),
         ShapeKind::Box => Shape::Mesh(Mesh::cuboid(&transform(s, true)?)),
+        ShapeKind::Cylinder {
+            p0,
+            p1,
+            radius,
+            flipped,
+        } => {
+            let t = transform(s, false)?;
+            let axes = [Vec3::X, Vec3::Y, Vec3::Z].map(|a| t.vector(a).length());
+            if (axes[0] - axes[1]).abs() > 1e-5 * axes[0]
+                || (axes[0] - axes[2]).abs() > 1e-5 * axes[0]
+            {
+                return Err("a cylinder's transform must scale uniformly (non-uniform scale would make an elliptic tube)".into());
+            }
+            Shape::Cylinder(
+                Cylinder::new(
+                    t.point(v3(p0)),
+                    t.point(v3(p1)),
+                    plain::metres(*radius) * axes[0],
+                    *flipped,
+                )
+                .map_err(|e| e.to_string())?,
+            )
+        }
         ShapeKind::Disk => {
             Shape::Disk(Disk::new(&transform(s, true)?, 1.0).map_err(|e| e.to_string())?)
         }
