@@ -65,10 +65,10 @@ fn cornell_box_is_in_millimetres() {
     );
 }
 
-/// The TOML forms of Mitsuba's `direct` and `moment` integrators and its `null` and
-/// `thindielectric` materials arrive in the description as their Mitsuba forms do.
+/// The TOML forms of Mitsuba's `direct` and `moment` integrators and its `null`,
+/// `thindielectric` and `mask` materials arrive in the description as their Mitsuba forms do.
 #[test]
-fn direct_moment_null_and_thin_dielectric_in_toml() {
+fn direct_moment_null_thin_dielectric_and_mask_in_toml() {
     use spectrace::loader::desc::{IntegratorKind, MaterialKind};
     let text = r#"
 [camera]
@@ -92,6 +92,15 @@ ior = 1.5
 
 [materials.nothing]
 type = "null"
+
+[materials.leaf]
+type = "diffuse"
+reflectance = 0.4
+
+[materials.leaf_cutout]
+type = "mask"
+opacity = 0.25
+material = "leaf"
 
 [[shapes]]
 type = "rectangle"
@@ -122,7 +131,25 @@ radiance = "1 W/m^2/sr"
         MaterialKind::ThinDielectric { int_ior, exterior_ior } if *int_ior == 1.5 && *exterior_ior == 1.0
     )));
     assert!(kinds.iter().any(|k| matches!(k, MaterialKind::Null)));
+    assert!(kinds.iter().any(|k| matches!(
+        k,
+        MaterialKind::Mask { inner, .. } if matches!(**inner, MaterialKind::Diffuse { .. })
+    )));
     spectrace::scene::build(&d).unwrap();
+    // a mask of a material that does not exist, or of another mask, is a located error
+    let bad = text.replace("material = \"leaf\"", "material = \"lead\"");
+    let e = spectrace::loader::load_str(&bad, &path)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("materials.leaf_cutout.material") && e.contains("\"lead\""),
+        "{e}"
+    );
+    let bad = text.replace("material = \"leaf\"", "material = \"leaf_cutout\"");
+    let e = spectrace::loader::load_str(&bad, &path)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("cannot hold another mask"), "{e}");
     // samples for another integrator are a located error
     let bad = text.replace("type = \"direct\"", "type = \"path\"");
     let e = spectrace::loader::load_str(&bad, &path)

@@ -92,6 +92,9 @@ pub struct RawMaterial {
     pub roughness: Option<S<Value>>,
     /// A plastic's internal scattering model (Mitsuba's `nonlinear`).
     pub nonlinear: Option<S<bool>>,
+    /// A mask's opacity and the name of the material it masks.
+    pub opacity: Option<S<Value>>,
+    pub material: Option<S<String>>,
 }
 
 #[derive(Deserialize, Debug)]

@@ -159,16 +159,17 @@ pub(super) fn material(
     name: &S<String>,
     m: &S<RawMaterial>,
     range: &[Length; 2],
+    all_raw: &std::collections::BTreeMap<S<String>, S<RawMaterial>>,
 ) -> R<MaterialDesc> {
     let sp = m.span();
     let f = format!("materials.{}", name.get_ref());
     let m = m.get_ref();
-    let all = present!(m; kind, reflectance, kd, ks, exponent, ior, exterior_ior, metal, eta, k, roughness, nonlinear);
+    let all = present!(m; kind, reflectance, kd, ks, exponent, ior, exterior_ior, metal, eta, k, roughness, nonlinear, opacity, material);
     let ty = cx.required(
         &m.kind,
         &sp,
         &format!("{f}.type"),
-        "diffuse, phong, dielectric, conductor, plastic, thin_dielectric or null",
+        "diffuse, phong, dielectric, conductor, plastic, thin_dielectric, null or mask",
     )?;
     let roughness = |cx: &Cx<'_>| -> R<Option<f64>> {
         match &m.roughness {
@@ -284,6 +285,54 @@ pub(super) fn material(
             cx.only("a null material", &f, &all, &["kind"])?;
             MaterialKind::Null
         }
+        // Mitsuba's `mask`: `opacity` (a number or a grey texture in [0, 1]) of the material
+        // named by `material`, the rest straight through
+        "mask" => {
+            cx.only(
+                "a mask material",
+                &f,
+                &all,
+                &["kind", "opacity", "material"],
+            )?;
+            let inner_name = cx.required(
+                &m.material,
+                &sp,
+                &format!("{f}.material"),
+                "the name of the masked material",
+            )?;
+            let Some((key, inner_raw)) = all_raw
+                .iter()
+                .find(|(k, _)| k.get_ref() == inner_name.get_ref())
+            else {
+                return Err(cx.err(
+                    &inner_name.span(),
+                    format!("{f}.material"),
+                    format!("no material named \"{}\"", inner_name.get_ref()),
+                ));
+            };
+            if inner_raw
+                .get_ref()
+                .kind
+                .as_ref()
+                .map(|k| k.get_ref().as_str())
+                == Some("mask")
+            {
+                return Err(cx.err(
+                    &inner_name.span(),
+                    format!("{f}.material"),
+                    "a mask cannot hold another mask",
+                ));
+            }
+            let inner = material(cx, key, inner_raw, range, all_raw)?;
+            let opacity = match &m.opacity {
+                Some(o) => reflectance_texture(cx, o, &format!("{f}.opacity"), range)?,
+                None => Spectrum::Constant(0.5).into(),
+            };
+            MaterialKind::Mask {
+                opacity,
+                inner: Box::new(inner.kind),
+            }
+        }
         "thin_dielectric" => {
             cx.only(
                 "a thin dielectric material",
@@ -375,7 +424,7 @@ pub(super) fn material(
             }
         }
         o => {
-            return Err(cx.err(&ty.span(), format!("{f}.type"), format!("unknown material type \"{o}\"; expected diffuse, phong, dielectric, conductor, plastic, thin_dielectric or null")));
+            return Err(cx.err(&ty.span(), format!("{f}.type"), format!("unknown material type \"{o}\"; expected diffuse, phong, dielectric, conductor, plastic, thin_dielectric, null or mask")));
         }
     };
     Ok(MaterialDesc {

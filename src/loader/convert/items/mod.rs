@@ -83,7 +83,7 @@ pub(super) fn scene(cx: &mut Cx<'_>, raw: RawScene) -> R<SceneDesc> {
     let integrator = integrator(cx, raw.integrator.as_ref())?;
     let mut materials = Vec::new();
     for (name, m) in &raw.materials {
-        materials.push(material(cx, name, m, &range)?);
+        materials.push(material(cx, name, m, &range, &raw.materials)?);
     }
     let shapes = raw
         .shapes
