@@ -163,16 +163,30 @@ impl Tile {
         let Some(s) = SampleSums::new(w, l, bins) else {
             return false;
         };
-        let nb = self.nbins;
-        let i = ((y - self.y0) * self.width + (x - self.x0)) as usize;
-        let spectral = &mut self.spectral[i * nb..(i + 1) * nb];
-        let p = &mut self.pixels[i];
-        p.add_weighted(spectral, s.xyz, s.band, s.bins(), 1.0);
+        let p = self.accumulate(x, y, &s, 1.0);
         for k in 0..3 {
             p.xyz_sq[k] += s.xyz[k] * s.xyz[k];
         }
         p.count += 1;
         true
+    }
+
+    /// Adds the sums `s` times `wgt` to pixel (x, y) (image coordinates inside the tile), without
+    /// counting a sample; returns the pixel's sums.
+    #[inline]
+    fn accumulate<const N: usize>(
+        &mut self,
+        x: u32,
+        y: u32,
+        s: &SampleSums<N>,
+        wgt: f64,
+    ) -> &mut PixelSums {
+        let nb = self.nbins;
+        let i = ((y - self.y0) * self.width + (x - self.x0)) as usize;
+        let spectral = &mut self.spectral[i * nb..(i + 1) * nb];
+        let p = &mut self.pixels[i];
+        p.add_weighted(spectral, s.xyz, s.band, s.bins(), wgt);
+        p
     }
 
     /// Adds a light-tracing splat to pixel (x, y) without counting a sample; the film divides
@@ -209,11 +223,8 @@ impl Splat for Tile {
         let Some(s) = SampleSums::new(w, l, bins) else {
             return false;
         };
-        let nb = self.nbins;
         for (x, y, wgt) in pixels {
-            let i = ((y - self.y0) * self.width + (x - self.x0)) as usize;
-            let spectral = &mut self.spectral[i * nb..(i + 1) * nb];
-            self.pixels[i].add_weighted(spectral, s.xyz, s.band, s.bins(), wgt as f64);
+            self.accumulate(x, y, &s, wgt as f64);
         }
         true
     }

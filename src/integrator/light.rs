@@ -118,19 +118,11 @@ pub fn trace<const N: usize>(
         }
         // lights at infinity: a direction, then a point on the disk of the scene's bounding
         // sphere perpendicular to it (`sample_le`)
-        Light::Directional(l) => {
+        Light::Directional(_) | Light::Environment(_) | Light::EnvMap(_) => {
             let (c, r) = scene.bounding_sphere();
-            let e = l.sample_le(c, r, w, u1, u2);
-            (e.o, Vec3::ZERO, Vec3::ZERO, e.d, e.weight() * (1.0 / p_sel))
-        }
-        Light::Environment(l) => {
-            let (c, r) = scene.bounding_sphere();
-            let e = l.sample_le(c, r, w, u1, u2);
-            (e.o, Vec3::ZERO, Vec3::ZERO, e.d, e.weight() * (1.0 / p_sel))
-        }
-        Light::EnvMap(l) => {
-            let (c, r) = scene.bounding_sphere();
-            let e = l.sample_le(c, r, w, u1, u2);
+            let Some(e) = scene.lights[li].sample_le_at_infinity(c, r, w, u1, u2) else {
+                return;
+            };
             (e.o, Vec3::ZERO, Vec3::ZERO, e.d, e.weight() * (1.0 / p_sel))
         }
     };

@@ -206,6 +206,25 @@ impl Light {
         }
     }
 
+    /// A particle from a light at infinity (directional, environment, environment map) for
+    /// light tracing, from the disk of the scene's bounding sphere (`center`, `radius`) facing
+    /// its direction (see [`EmissionSample::from_infinity`]); None for other lights.
+    pub fn sample_le_at_infinity<const N: usize>(
+        &self,
+        center: Vec3,
+        radius: f32,
+        w: &SampledWavelengths<N>,
+        u_pos: Vec2,
+        u_dir: Vec2,
+    ) -> Option<EmissionSample<N>> {
+        match self {
+            Light::Directional(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
+            Light::Environment(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
+            Light::EnvMap(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
+            Light::Point(_) | Light::Spot(_) | Light::Area(_) | Light::Beam(_) => None,
+        }
+    }
+
     /// Whether the light is at infinity: the only kind [`Light::escaped`] can be non-zero for.
     pub fn is_at_infinity(&self) -> bool {
         match self {
