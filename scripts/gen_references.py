@@ -78,6 +78,7 @@ SPP = {
     "orthographic": 4096,
     "mask": 4096,
     "cylinders": 4096,
+    "anisotropic": 4096,
 }
 DEFAULT_SPP = 1024
 

@@ -154,6 +154,38 @@ fn cases() -> Vec<Case> {
             }
         }
     }
+    // anisotropic lobes (α_u ≠ α_v), seen from an azimuth between the two axes
+    for dist in [Distribution::Ggx, Distribution::Beckmann] {
+        for &t in &angles {
+            v.push(Case {
+                name: format!("RoughConductor {dist:?} Au α=(0.08, 0.4) θo={t}"),
+                material: Material::RoughConductor(
+                    RoughConductor::new(gold(), 1.0, 0.1)
+                        .with_distribution(dist)
+                        .with_anisotropy(0.08, 0.4),
+                ),
+                wo: dir(t, phi, false),
+                w: wavelengths(heroes[h % 3]),
+                grid: FINE,
+            });
+            h += 1;
+            v.push(Case {
+                name: format!("RoughDielectric {dist:?} BK7 α=(0.5, 0.12) θo={t}"),
+                material: Material::RoughDielectric(
+                    RoughDielectric::new(bk7(), 1.0, 0.1)
+                        .with_distribution(dist)
+                        .with_anisotropy(0.5, 0.12),
+                ),
+                wo: dir(t, phi, h % 2 == 0),
+                w: wavelengths(heroes[h % 3]),
+                grid: Grid {
+                    both_hemispheres: true,
+                    ..FINE
+                },
+            });
+            h += 1;
+        }
+    }
     // Mitsuba's `mask` (opacity 0.6) around a rough conductor: the straight-through lobe counts
     // as rejected, as many as the nested density (times 0.6) falls short of 1
     for &t in &angles {

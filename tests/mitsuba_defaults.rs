@@ -380,7 +380,7 @@ fn bsdf_scene(bsdf: &str) -> String {
     )
 }
 
-fn conductor(desc: &SceneDesc) -> (f32, f32, f64, Option<f64>) {
+fn conductor(desc: &SceneDesc) -> (f32, f32, f64, Option<[f64; 2]>) {
     match &desc.materials[0].kind {
         spectrace::loader::desc::MaterialKind::Conductor {
             ior,
@@ -443,7 +443,8 @@ fn conductor_defaults_match_mitsuba() {
 }
 
 /// Mitsuba's rough BSDFs default to Beckmann (and take "beckmann" or "ggx"); `alpha` defaults
-/// to 0.1; `alpha_u` = `alpha_v` is the isotropic α, anisotropy is refused rather than ignored.
+/// to 0.1; `alpha_u` and `alpha_v` are the roughness along ∂p/∂u and across it; one alone is
+/// an error.
 #[test]
 fn rough_bsdf_defaults_match_mitsuba() {
     use spectrace::loader::desc::{Distribution, MaterialKind};
@@ -469,19 +470,35 @@ fn rough_bsdf_defaults_match_mitsuba() {
             r#"<bsdf type="{t}" id="m"><string name="distribution" value="phong"/></bsdf>"#
         )));
         assert!(e.contains("t.xml:4:") && e.contains("\"phong\""), "{e}");
-        let e = err(&bsdf_scene(&format!(
+        let d = load(&bsdf_scene(&format!(
             r#"<bsdf type="{t}" id="m"><string name="distribution" value="ggx"/>
   <float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.3"/></bsdf>"#
         )));
-        assert!(e.contains("t.xml:4:") && e.contains("anisotropic"), "{e}");
+        let r = match &d.materials[0].kind {
+            MaterialKind::Conductor { roughness, .. }
+            | MaterialKind::Dielectric { roughness, .. } => *roughness,
+            other => panic!("{other:?}"),
+        };
+        assert_eq!(r, Some([0.1, 0.3]), "{t}: alpha_u, alpha_v");
+        let e = err(&bsdf_scene(&format!(
+            r#"<bsdf type="{t}" id="m"><float name="alpha_v" value="0.3"/></bsdf>"#
+        )));
+        assert!(
+            e.contains("t.xml:4:") && e.contains("both alpha_u and alpha_v"),
+            "{e}"
+        );
     }
     let desc = load(&bsdf_scene(
         r#"<bsdf type="roughconductor" id="m"><string name="distribution" value="ggx"/>
   <float name="alpha_u" value="0.3"/><float name="alpha_v" value="0.3"/></bsdf>"#,
     ));
-    assert_eq!(conductor(&desc).3, Some(0.3));
+    assert_eq!(conductor(&desc).3, Some([0.3, 0.3]));
     let desc = load(&bsdf_scene(
         r#"<bsdf type="roughconductor" id="m"><string name="distribution" value="ggx"/></bsdf>"#,
     ));
-    assert_eq!(conductor(&desc).3, Some(0.1), "Mitsuba's default alpha");
+    assert_eq!(
+        conductor(&desc).3,
+        Some([0.1, 0.1]),
+        "Mitsuba's default alpha"
+    );
 }

@@ -160,3 +160,81 @@ radiance = "1 W/m^2/sr"
         "{e}"
     );
 }
+
+/// TOML `roughness = [α_u, α_v]` gives an anisotropic lobe (α_u along ∂p/∂u); a list of
+/// another length, or a list for a plastic (isotropic, as Mitsuba's), is a located error.
+#[test]
+fn anisotropic_roughness_in_toml() {
+    use spectrace::loader::desc::MaterialKind;
+    let text = r#"
+[camera]
+eye = [0, 1, 4]
+target = [0, 1, 0]
+fov = "40 deg"
+
+[film]
+width = 8
+height = 8
+
+[materials.brushed]
+type = "conductor"
+metal = "Al"
+roughness = [0.05, 0.3]
+
+[materials.frosted]
+type = "dielectric"
+ior = 1.5
+roughness = 0.2
+
+[[shapes]]
+type = "sphere"
+radius = 0.5
+material = "brushed"
+
+[[shapes]]
+type = "rectangle"
+material = "frosted"
+
+[[lights]]
+type = "environment"
+radiance = "1 W/m^2/sr"
+"#;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/inline.toml");
+    let d = spectrace::loader::load_str(text, &path).unwrap();
+    let rough: Vec<Option<[f64; 2]>> = d
+        .materials
+        .iter()
+        .filter_map(|m| match &m.kind {
+            MaterialKind::Conductor { roughness, .. }
+            | MaterialKind::Dielectric { roughness, .. } => Some(*roughness),
+            _ => None,
+        })
+        .collect();
+    assert!(rough.contains(&Some([0.05, 0.3])), "{rough:?}");
+    assert!(rough.contains(&Some([0.2, 0.2])), "{rough:?}");
+    spectrace::scene::build(&d).unwrap();
+    for (bad, want) in [
+        ("roughness = [0.05, 0.3]", "roughness = [0.05]"),
+        ("roughness = [0.05, 0.3]", "roughness = [0.05, 1.5]"),
+        (
+            "type = \"dielectric\"\nior = 1.5",
+            "type = \"plastic\"\nior = 1.5",
+        ),
+    ] {
+        let mut t = text.replace(bad, want);
+        if want.contains("plastic") {
+            t = t.replace(
+                "roughness = 0.2",
+                "roughness = [0.1, 0.2]\nreflectance = 0.5",
+            );
+        }
+        let e = spectrace::loader::load_str(&t, &path)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("inline.toml:") && e.contains(".roughness"),
+            "{e}"
+        );
+        println!("{want}: {e}");
+    }
+}

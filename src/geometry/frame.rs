@@ -23,16 +23,23 @@ impl Frame {
         Self { s, t, n }
     }
 
-    /// A frame with normal `n` and first tangent along `s` projected perpendicular to `n`.
+    /// A frame with normal `n` and first tangent along `s` projected perpendicular to `n` (Gram–
+    /// Schmidt, as Mitsuba 3 builds its shading frame from ∂p/∂u), t = n × s. Falls back to
+    /// [`Frame::from_normal`] when `s` is zero, not finite, or within about 0.06° of `n`, where
+    /// the projection would lose its orthogonality to rounding.
+    #[inline]
     pub fn from_normal_tangent(n: Vec3, s: Vec3) -> Self {
-        let s = (s - n * n.dot(s)).try_normalize();
-        match s {
-            Some(s) => Self {
+        let perp = s - n * n.dot(s);
+        let l2 = perp.length_squared();
+        if l2 > 1e-6 * s.length_squared() && l2.is_finite() && l2 > 0.0 {
+            let s = perp / l2.sqrt();
+            Self {
                 s,
                 t: n.cross(s),
                 n,
-            },
-            None => Self::from_normal(n),
+            }
+        } else {
+            Self::from_normal(n)
         }
     }
 

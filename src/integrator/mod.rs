@@ -232,7 +232,7 @@ impl Integrator<'_> {
         }
         Some(Shading {
             bsdf: material.at(hit.uv, w),
-            frame: Frame::from_normal(ns),
+            frame: Frame::from_normal_tangent(ns, hit.dpdu),
             n_geom: ng,
         })
     }

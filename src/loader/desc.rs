@@ -165,17 +165,19 @@ pub enum MaterialKind {
         ks: Spectrum,
         exponent: f64,
     },
-    /// Smooth when `roughness` is None, else microfacets of `distribution` with α = roughness.
+    /// Smooth when `roughness` is None, else microfacets of `distribution` with roughness
+    /// [α_u, α_v]: α_u along the surface's ∂p/∂u, α_v across it (equal when isotropic).
     Dielectric {
         ior: Ior,
         exterior_ior: f64,
-        roughness: Option<f64>,
+        roughness: Option<[f64; 2]>,
         distribution: Distribution,
     },
+    /// As a dielectric's: smooth, or roughness [α_u, α_v].
     Conductor {
         ior: ComplexIor,
         exterior_ior: f64,
-        roughness: Option<f64>,
+        roughness: Option<[f64; 2]>,
         distribution: Distribution,
     },
     /// No surface: light passes straight through (Mitsuba's `null`).

@@ -77,8 +77,10 @@ impl Conductor {
 pub struct RoughConductor {
     pub ior: ComplexIor,
     pub ext_ior: f32,
-    /// Roughness α.
-    pub alpha: f32,
+    /// Roughness α along the shading frame's first tangent (Mitsuba's ∂p/∂u) and the second;
+    /// equal for an isotropic surface.
+    pub alpha_u: f32,
+    pub alpha_v: f32,
     pub distribution: Distribution,
 }
 
@@ -88,8 +90,19 @@ impl RoughConductor {
         Self {
             ior,
             ext_ior,
-            alpha,
+            alpha_u: alpha,
+            alpha_v: alpha,
             distribution: Distribution::Ggx,
+        }
+    }
+
+    /// The same surface with roughness `alpha_u` along the first tangent, `alpha_v` along the
+    /// second.
+    pub fn with_anisotropy(self, alpha_u: f32, alpha_v: f32) -> Self {
+        Self {
+            alpha_u,
+            alpha_v,
+            ..self
         }
     }
 
@@ -103,7 +116,7 @@ impl RoughConductor {
 
     #[inline]
     fn microfacet(&self) -> Microfacet {
-        Microfacet::new(self.alpha, self.distribution)
+        Microfacet::anisotropic(self.alpha_u, self.alpha_v, self.distribution)
     }
 
     /// The half vector, or `None` if the pair cannot reflect.

@@ -1,4 +1,4 @@
-//! The isotropic GGX (Trowbridge–Reitz) and Beckmann microfacet distributions ([`Microfacet`]);
+//! The GGX (Trowbridge–Reitz) and Beckmann microfacet distributions ([`Microfacet`]);
 //! GGX with the Smith shadowing model
 //! (Walter et al. 2007, "Microfacet Models for Refraction through Rough Surfaces") and sampling
 //! of the distribution of visible normals (Heitz 2018, "Sampling the GGX Distribution of Visible
@@ -11,45 +11,50 @@
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
-/// GGX with roughness `alpha` (the slope-space width; α = 0 would be a perfect mirror).
+/// GGX with roughness `alpha_u` along the shading frame's first tangent (x) and `alpha_v` along
+/// the second (y): slope-space widths; α = 0 would be a perfect mirror.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Ggx {
-    pub alpha: f32,
+    pub alpha_u: f32,
+    pub alpha_v: f32,
 }
 
 /// Smallest roughness used in the formulas: below it D overflows in `f32`.
 pub const MIN_ALPHA: f32 = 1e-3;
 
 impl Ggx {
-    /// A distribution of roughness `alpha`, clamped to at least [`MIN_ALPHA`].
+    /// An isotropic distribution of roughness `alpha`, clamped to at least [`MIN_ALPHA`].
     pub fn new(alpha: f32) -> Self {
         Self {
-            alpha: alpha.max(MIN_ALPHA),
+            alpha_u: alpha.max(MIN_ALPHA),
+            alpha_v: alpha.max(MIN_ALPHA),
         }
     }
 
     /// Normal distribution D(wm) in sr⁻¹ (normalised so that ∫ D(wm) cos θₘ dωₘ = 1 over the
-    /// upper hemisphere); `wm` unit length. Written as α² / (π (sin²θₘ + α² cos²θₘ)²), which is
-    /// the usual 1/(π α² cos⁴θₘ (1 + tan²θₘ/α²)²) without the cancellation near the pole.
+    /// upper hemisphere); `wm` unit length. Written as 1 / (π α_u α_v (x²/α_u² + y²/α_v² + z²)²),
+    /// the usual 1/(π α_u α_v cos⁴θₘ (1 + tan²θₘ (cos²φ/α_u² + sin²φ/α_v²))²) without the
+    /// cancellation near the pole.
     #[inline]
     pub fn d(&self, wm: Vec3) -> f32 {
         if wm.z <= 0.0 {
             return 0.0;
         }
-        let a2 = self.alpha * self.alpha;
-        let t = wm.x * wm.x + wm.y * wm.y + a2 * wm.z * wm.z;
-        a2 / (PI * t * t)
+        let (x, y) = (wm.x / self.alpha_u, wm.y / self.alpha_v);
+        let t = x * x + y * y + wm.z * wm.z;
+        1.0 / (PI * self.alpha_u * self.alpha_v * t * t)
     }
 
-    /// Smith's auxiliary function Λ(w) = (√(1 + α² tan²θ) − 1)/2 (infinite at the horizon).
+    /// Smith's auxiliary function Λ(w) = (√(1 + α(φ)² tan²θ) − 1)/2 with α(φ)² tan²θ =
+    /// (α_u² x² + α_v² y²)/z² (infinite at the horizon).
     #[inline]
     pub fn lambda(&self, w: Vec3) -> f32 {
         let cos2 = w.z * w.z;
         if cos2 == 0.0 {
             return f32::INFINITY;
         }
-        let tan2 = (w.x * w.x + w.y * w.y) / cos2;
-        0.5 * ((1.0 + self.alpha * self.alpha * tan2).sqrt() - 1.0)
+        let (x, y) = (self.alpha_u * w.x, self.alpha_v * w.y);
+        0.5 * ((1.0 + (x * x + y * y) / cos2).sqrt() - 1.0)
     }
 
     /// Smith masking G1(w) = 1/(1 + Λ(w)).
@@ -86,8 +91,8 @@ impl Ggx {
     /// into the α = 1 configuration, sample the projected hemisphere there, unstretch.
     #[inline]
     pub fn sample_visible_normal(&self, w: Vec3, u: Vec2) -> Vec3 {
-        let a = self.alpha;
-        let mut vh = Vec3::new(a * w.x, a * w.y, w.z).normalize();
+        let (au, av) = (self.alpha_u, self.alpha_v);
+        let mut vh = Vec3::new(au * w.x, av * w.y, w.z).normalize();
         if vh.z < 0.0 {
             vh = -vh;
         }
@@ -111,7 +116,7 @@ impl Ggx {
         let pz = (1.0 - p1 * p1 - p2 * p2).max(0.0).sqrt();
         let nh = p1 * t1 + p2 * t2 + pz * vh;
         // Unstretch.
-        Vec3::new(a * nh.x, a * nh.y, nh.z.max(1e-6)).normalize()
+        Vec3::new(au * nh.x, av * nh.y, nh.z.max(1e-6)).normalize()
     }
 }
 
@@ -137,57 +142,75 @@ fn erfc_parts(x: f64) -> (f64, f64) {
     (poly, (-x * x).exp())
 }
 
-/// A microfacet distribution of roughness `alpha` (clamped to at least [`MIN_ALPHA`]), with
-/// the height-correlated Smith G of its own Λ. Directions in the local shading frame, normals
-/// `wm` on the +z side (see the module docs).
+/// A microfacet distribution of roughness `alpha_u` along the shading frame's first tangent
+/// (x, Mitsuba's ∂p/∂u direction) and `alpha_v` along the second (y), each clamped to at least
+/// [`MIN_ALPHA`], with the height-correlated Smith G of its own Λ. Directions in the local
+/// shading frame, normals `wm` on the +z side (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Microfacet {
-    pub alpha: f32,
+    pub alpha_u: f32,
+    pub alpha_v: f32,
     pub kind: Distribution,
 }
 
 impl Microfacet {
+    /// An isotropic distribution.
     pub fn new(alpha: f32, kind: Distribution) -> Self {
+        Self::anisotropic(alpha, alpha, kind)
+    }
+
+    /// Roughness `alpha_u` along x and `alpha_v` along y.
+    pub fn anisotropic(alpha_u: f32, alpha_v: f32, kind: Distribution) -> Self {
         Self {
-            alpha: alpha.max(MIN_ALPHA),
+            alpha_u: alpha_u.max(MIN_ALPHA),
+            alpha_v: alpha_v.max(MIN_ALPHA),
             kind,
         }
     }
 
+    #[inline]
+    fn ggx(&self) -> Ggx {
+        Ggx {
+            alpha_u: self.alpha_u,
+            alpha_v: self.alpha_v,
+        }
+    }
+
     /// Normal distribution D(wm) in sr⁻¹, ∫ D cos θₘ dωₘ = 1 over the upper hemisphere.
-    /// Beckmann: exp(−tan²θₘ/α²) / (π α² cos⁴θₘ).
+    /// Beckmann: exp(−(x²/α_u² + y²/α_v²)/z²) / (π α_u α_v z⁴) for wm = (x, y, z).
     #[inline]
     pub fn d(&self, wm: Vec3) -> f32 {
         match self.kind {
-            Distribution::Ggx => Ggx { alpha: self.alpha }.d(wm),
+            Distribution::Ggx => self.ggx().d(wm),
             Distribution::Beckmann => {
                 if wm.z <= 0.0 {
                     return 0.0;
                 }
                 let cos2 = wm.z * wm.z;
-                let tan2 = (wm.x * wm.x + wm.y * wm.y) / cos2;
-                let a2 = self.alpha * self.alpha;
-                (-tan2 / a2).exp() / (PI * a2 * cos2 * cos2)
+                let (x, y) = (wm.x / self.alpha_u, wm.y / self.alpha_v);
+                (-(x * x + y * y) / cos2).exp() / (PI * self.alpha_u * self.alpha_v * cos2 * cos2)
             }
         }
     }
 
     /// Smith's Λ(w). Beckmann (Walter et al. 2007, eq. 27 before its rational fit), with
-    /// a = 1/(α tan θ): Λ = (erf(a) − 1)/2 + e^{−a²}/(2a√π); 0 at the pole, ∞ at the horizon.
+    /// a = 1/(α(φ) tan θ), α(φ) tan θ = √(α_u² x² + α_v² y²)/|z|:
+    /// Λ = (erf(a) − 1)/2 + e^{−a²}/(2a√π); 0 at the pole, ∞ at the horizon.
     #[inline]
     pub fn lambda(&self, w: Vec3) -> f32 {
         match self.kind {
-            Distribution::Ggx => Ggx { alpha: self.alpha }.lambda(w),
+            Distribution::Ggx => self.ggx().lambda(w),
             Distribution::Beckmann => {
                 let cos2 = (w.z * w.z) as f64;
                 if cos2 == 0.0 {
                     return f32::INFINITY;
                 }
-                let tan = (((w.x * w.x + w.y * w.y) as f64) / cos2).sqrt();
-                if tan == 0.0 {
+                let (x, y) = ((self.alpha_u * w.x) as f64, (self.alpha_v * w.y) as f64);
+                let at = ((x * x + y * y) / cos2).sqrt();
+                if at == 0.0 {
                     return 0.0;
                 }
-                let a = 1.0 / (self.alpha as f64 * tan);
+                let a = 1.0 / at;
                 let (p, e) = erfc_parts(a);
                 // (−erfc(a) + e^{−a²}/(a√π)) / 2
                 (0.5 * e * (1.0 / (a * std::f64::consts::PI.sqrt()) - p)).max(0.0) as f32
@@ -202,19 +225,19 @@ impl Microfacet {
     }
 
     /// Samples a microfacet normal on the +z side for a view `w` (either side). GGX: visible
-    /// normals ([`Ggx::sample_visible_normal`]); Beckmann: D(wm)·cos θₘ, tan²θₘ = −α² ln(1 − u₁),
-    /// φ = 2π u₂ (Walter et al. 2007, eqs. 28–29), which may face away from `w` (the caller
-    /// rejects those).
+    /// normals ([`Ggx::sample_visible_normal`]); Beckmann: D(wm)·cos θₘ, which in slope space
+    /// is a Gaussian of standard deviations α_u/√2, α_v/√2: slopes r·(α_u cos φ, α_v sin φ) with
+    /// r = √(−ln(1 − u₁)), φ = 2π u₂ (Box–Muller; isotropically Walter et al. 2007, eqs. 28–29),
+    /// which may face away from `w` (the caller rejects those).
     #[inline]
     pub fn sample_normal(&self, w: Vec3, u: Vec2) -> Vec3 {
         match self.kind {
-            Distribution::Ggx => Ggx { alpha: self.alpha }.sample_visible_normal(w, u),
+            Distribution::Ggx => self.ggx().sample_visible_normal(w, u),
             Distribution::Beckmann => {
-                let tan2 = -self.alpha * self.alpha * (1.0 - u.x).max(f32::MIN_POSITIVE).ln();
-                let cos = 1.0 / (1.0 + tan2).sqrt();
-                let sin = (1.0 - cos * cos).max(0.0).sqrt();
-                let phi = 2.0 * PI * u.y;
-                Vec3::new(sin * phi.cos(), sin * phi.sin(), cos)
+                let r = (-(1.0 - u.x).max(f32::MIN_POSITIVE).ln()).sqrt();
+                let (s, c) = (2.0 * PI * u.y).sin_cos();
+                let (sx, sy) = (r * self.alpha_u * c, r * self.alpha_v * s);
+                Vec3::new(sx, sy, 1.0).normalize()
             }
         }
     }
@@ -224,7 +247,7 @@ impl Microfacet {
     #[inline]
     pub fn normal_pdf(&self, w: Vec3, wm: Vec3) -> f32 {
         match self.kind {
-            Distribution::Ggx => Ggx { alpha: self.alpha }.visible_normal_pdf(w, wm),
+            Distribution::Ggx => self.ggx().visible_normal_pdf(w, wm),
             Distribution::Beckmann => self.d(wm) * wm.z.max(0.0),
         }
     }
@@ -239,35 +262,52 @@ mod tests {
     /// eq. 7 with G1 = 1/(1 + Λ)), which checks Λ independently of its formula.
     #[test]
     fn beckmann_is_normalised_and_lambda_matches_projected_area() {
-        for alpha in [0.05f32, 0.3, 1.0] {
-            let m = Microfacet::new(alpha, Distribution::Beckmann);
-            for theta in [0.0f64, 45.0, 80.0] {
-                let t = theta.to_radians();
-                let w = Vec3::new(t.sin() as f32, 0.0, t.cos() as f32);
-                let (nc, np) = (4000, 64);
-                let (mut sd, mut sp, mut proj) = (0.0f64, 0.0f64, 0.0f64);
-                for i in 0..nc {
-                    let s = (i as f64 + 0.5) / nc as f64;
-                    let c = 1.0 - s * s;
-                    let jac = 2.0 * s / nc as f64;
-                    let st = (1.0 - c * c).max(0.0).sqrt();
-                    for j in 0..np {
-                        let p = 2.0 * std::f64::consts::PI * (j as f64 + 0.5) / np as f64;
-                        let wm = Vec3::new((st * p.cos()) as f32, (st * p.sin()) as f32, c as f32);
-                        let dw = jac * 2.0 * std::f64::consts::PI / np as f64;
-                        sd += m.d(wm) as f64 * c * dw;
-                        sp += m.normal_pdf(w, wm) as f64 * dw;
-                        proj += m.d(wm) as f64 * (w.dot(wm) as f64).max(0.0) * dw;
-                    }
-                }
-                let want = (1.0 + m.lambda(w) as f64) * w.z as f64;
-                assert!((sd - 1.0).abs() < 2e-3, "alpha {alpha}: ∫D cos = {sd}");
-                assert!((sp - 1.0).abs() < 2e-3, "alpha {alpha}: ∫pdf = {sp}");
-                assert!(
-                    (proj / want - 1.0).abs() < 3e-3,
-                    "alpha {alpha} θ {theta}: ∫D⟨w,wm⟩ = {proj}, (1 + Λ) cos θ = {want}"
-                );
+        let cases = [
+            (0.05f32, 0.05f32),
+            (0.3, 0.3),
+            (1.0, 1.0),
+            (0.1, 0.4),
+            (0.6, 0.15),
+        ];
+        for kind in [Distribution::Beckmann, Distribution::Ggx] {
+            for (au, av) in cases {
+                projected_area_identity(Microfacet::anisotropic(au, av, kind));
             }
+        }
+    }
+
+    fn projected_area_identity(m: Microfacet) {
+        let alpha = (m.alpha_u, m.alpha_v, m.kind);
+        for (theta, phi_o) in [(0.0f64, 0.0f64), (45.0, 0.0), (80.0, 0.0), (60.0, 50.0)] {
+            let (t, po) = (theta.to_radians(), phi_o.to_radians());
+            let w = Vec3::new(
+                (t.sin() * po.cos()) as f32,
+                (t.sin() * po.sin()) as f32,
+                t.cos() as f32,
+            );
+            let (nc, np) = (4000, 64);
+            let (mut sd, mut sp, mut proj) = (0.0f64, 0.0f64, 0.0f64);
+            for i in 0..nc {
+                let s = (i as f64 + 0.5) / nc as f64;
+                let c = 1.0 - s * s;
+                let jac = 2.0 * s / nc as f64;
+                let st = (1.0 - c * c).max(0.0).sqrt();
+                for j in 0..np {
+                    let p = 2.0 * std::f64::consts::PI * (j as f64 + 0.5) / np as f64;
+                    let wm = Vec3::new((st * p.cos()) as f32, (st * p.sin()) as f32, c as f32);
+                    let dw = jac * 2.0 * std::f64::consts::PI / np as f64;
+                    sd += m.d(wm) as f64 * c * dw;
+                    sp += m.normal_pdf(w, wm) as f64 * dw;
+                    proj += m.d(wm) as f64 * (w.dot(wm) as f64).max(0.0) * dw;
+                }
+            }
+            let want = (1.0 + m.lambda(w) as f64) * w.z as f64;
+            assert!((sd - 1.0).abs() < 2e-3, "{alpha:?}: ∫D cos = {sd}");
+            assert!((sp - 1.0).abs() < 2e-3, "{alpha:?} θ {theta}: ∫pdf = {sp}");
+            assert!(
+                (proj / want - 1.0).abs() < 3e-3,
+                "{alpha:?} θ {theta} φ {phi_o}: ∫D⟨w,wm⟩ = {proj}, (1 + Λ) cos θ = {want}"
+            );
         }
     }
 

@@ -35,8 +35,10 @@ use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 pub struct RoughDielectric {
     pub int_ior: Ior,
     pub ext_ior: f32,
-    /// Roughness α.
-    pub alpha: f32,
+    /// Roughness α along the shading frame's first tangent (Mitsuba's ∂p/∂u) and the second;
+    /// equal for an isotropic surface.
+    pub alpha_u: f32,
+    pub alpha_v: f32,
     pub distribution: Distribution,
 }
 
@@ -53,8 +55,19 @@ impl RoughDielectric {
         Self {
             int_ior,
             ext_ior,
-            alpha,
+            alpha_u: alpha,
+            alpha_v: alpha,
             distribution: Distribution::Ggx,
+        }
+    }
+
+    /// The same interface with roughness `alpha_u` along the first tangent, `alpha_v` along the
+    /// second.
+    pub fn with_anisotropy(self, alpha_u: f32, alpha_v: f32) -> Self {
+        Self {
+            alpha_u,
+            alpha_v,
+            ..self
         }
     }
 
@@ -68,7 +81,7 @@ impl RoughDielectric {
 
     #[inline]
     fn microfacet(&self) -> Microfacet {
-        Microfacet::new(self.alpha, self.distribution)
+        Microfacet::anisotropic(self.alpha_u, self.alpha_v, self.distribution)
     }
 
     #[inline]

@@ -1150,11 +1150,72 @@ sampling of a cylinder emitter.""",
     write("cylinders", s + FOOTER)
 
 
+def anisotropic():
+    s = header(
+        """Anisotropic microfacets (`alpha_u` ≠ `alpha_v`): a GGX aluminium sphere with alpha_u 0.05
+along ∂p/∂u (around the polar axis) and alpha_v 0.4, a Beckmann gold sphere the other way round
+(0.35, 0.04), a GGX glass sphere (int_ior 1.5, 0.3 / 0.05), and an anisotropic GGX aluminium
+floor (a rectangle, ∂p/∂u along its x axis: 0.03 / 0.3), under a small D65 area light
+(/100 × 40) and a dim constant environment.
+Exercises: the shading frame's tangent taken from ∂p/∂u as Mitsuba builds it, on spheres and
+on a rectangle; anisotropic D, Λ and sampling for GGX and Beckmann, in reflection and
+transmission.""",
+        "0, 1.6, -3.6",
+        "0, 0.4, 0",
+        40,
+        64,
+        8,
+    )
+    eta, k = metal("al")
+    eta_au, k_au = metal("au")
+
+    def rough(t, dist, au, av, inner):
+        return f"""        <bsdf type="{t}">
+            <string name="distribution" value="{dist}"/>
+            <float name="alpha_u" value="{au}"/>
+            <float name="alpha_v" value="{av}"/>
+{inner}        </bsdf>
+"""
+    al = f"""            <spectrum name="eta" value="{eta}"/>
+            <spectrum name="k" value="{k}"/>
+"""
+    au = f"""            <spectrum name="eta" value="{eta_au}"/>
+            <spectrum name="k" value="{k_au}"/>
+"""
+    glass = """            <float name="int_ior" value="1.5"/>
+            <float name="ext_ior" value="1.0"/>
+"""
+    s += f"""
+    <!-- floor: anisotropic aluminium, rectangle rotated so its normal (+z) points up (+y) -->
+    <shape type="rectangle">
+        <transform name="to_world">
+            <scale value="2.5"/>
+            <rotate x="1" angle="-90"/>
+            <rotate y="1" angle="30"/>
+        </transform>
+{rough("roughconductor", "ggx", 0.03, 0.3, al)}    </shape>
+"""
+    s += area_rect(0.3, "0.6, 2.4, 0.2", illuminant("d65", 40.0))
+    s += sphere((0.85, 0.4, 0), 0.4, rough("roughconductor", "ggx", 0.05, 0.4, al),
+                "GGX aluminium, alpha_u 0.05 (around the axis), alpha_v 0.4")
+    s += sphere((0, 0.4, 0.3), 0.4, rough("roughdielectric", "ggx", 0.3, 0.05, glass),
+                "GGX glass, alpha_u 0.3, alpha_v 0.05")
+    s += sphere((-0.85, 0.4, 0), 0.4, rough("roughconductor", "beckmann", 0.35, 0.04, au),
+                "Beckmann gold, alpha_u 0.35, alpha_v 0.04")
+    s += f"""
+    <emitter type="constant">
+        <spectrum name="radiance" value="{illuminant('d65', 0.3)}"/>
+    </emitter>
+"""
+    write("anisotropic", s + FOOTER)
+
+
 SCENES = {
     f.__name__: f
     for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
               dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional,
-              spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics, serialized, direct, orthographic, mask, cylinders)
+              spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics, serialized, direct, orthographic, mask, cylinders,
+              anisotropic)
 }
 
 if __name__ == "__main__":

@@ -135,6 +135,8 @@ impl Cylinder {
             n_geom: n,
             n_shading: n,
             uv: Vec2::new(phi / (2.0 * PI), h / self.length),
+            // ∂p/∂u = 2π·r·(−sin φ, cos φ, 0) in the cylinder's frame
+            dpdu: self.frame * Vec3::new(-phi.sin(), phi.cos(), 0.0) * (2.0 * PI * self.radius),
             shape: 0,
             prim: 0,
         }

@@ -144,6 +144,8 @@ impl Disk {
             n_geom: self.n,
             n_shading: self.n,
             uv: Vec2::new((a * a + b * b).sqrt(), phi / (2.0 * PI)),
+            // ∂p/∂ρ: radial, as Mitsuba's disk (zero at the centre)
+            dpdu: (self.u * a + self.v * b).normalize_or_zero(),
             shape: 0,
             prim: 0,
         }

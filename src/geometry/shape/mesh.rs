@@ -259,14 +259,22 @@ impl Mesh {
     }
 
     pub(crate) fn interaction(&self, i: usize, b: [f32; 3]) -> Intersection {
-        let (p, p_error) = barycentric_point(self.vertices(i), b);
+        let pv = self.vertices(i);
+        let (p, p_error) = barycentric_point(pv, b);
         let (n_geom, n_shading) = self.normals_at(i, b);
-        let uv = match &self.uvs {
+        let (e1, e2) = (pv[1] - pv[0], pv[2] - pv[0]);
+        let (uv, dpdu) = match &self.uvs {
             Some(uvs) => {
                 let [t0, t1, t2] = self.indices[i].map(|v| uvs[v as usize]);
-                t0 * b[0] + t1 * b[1] + t2 * b[2]
+                // ∂p/∂u from the uv differences (pbrt-v4 §6.5.3); e1 where uv is degenerate
+                let (d1, d2) = (t1 - t0, t2 - t0);
+                let det = d1.x * d2.y - d1.y * d2.x;
+                let dpdu = (e1 * d2.y - e2 * d1.y) / det;
+                let dpdu = if dpdu.is_finite() { dpdu } else { e1 };
+                (t0 * b[0] + t1 * b[1] + t2 * b[2], dpdu)
             }
-            None => Vec2::new(b[1] + b[2], b[2]),
+            // u = b₁ + b₂, v = b₂: ∂p/∂u = p₁ − p₀, Mitsuba's direction for meshes without uvs
+            None => (Vec2::new(b[1] + b[2], b[2]), e1),
         };
         Intersection {
             t: 0.0,
@@ -275,6 +283,7 @@ impl Mesh {
             n_geom,
             n_shading,
             uv,
+            dpdu,
             shape: 0,
             prim: i as u32,
         }

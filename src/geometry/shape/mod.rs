@@ -81,6 +81,11 @@ pub struct Intersection {
     pub n_shading: Vec3,
     /// Surface parameterisation, see each shape.
     pub uv: Vec2,
+    /// ∂p/∂u, m per unit u (world space; not normalised, possibly zero where the
+    /// parameterisation degenerates). Its part perpendicular to the shading normal is the
+    /// shading frame's first tangent, as Mitsuba 3 builds `sh_frame`, so anisotropic lobes and
+    /// tangent-space normal maps are oriented as there.
+    pub dpdu: Vec3,
     /// Index of the shape in the slice given to the BVH.
     pub shape: u32,
     /// Primitive within the shape (triangle index for meshes, 0 otherwise).

@@ -156,6 +156,8 @@ impl Sphere {
             n_geom: n,
             n_shading: n,
             uv: Vec2::new(phi / (2.0 * PI), theta / PI),
+            // ∂p/∂u = 2π·(−y, x, 0) in the object frame, scaled by the radius
+            dpdu: self.frame * Vec3::new(-local.y, local.x, 0.0) * (2.0 * PI * self.radius),
             shape: 0,
             prim: 0,
         }

@@ -58,8 +58,7 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
     let b = cx.resolve(b)?;
     let t = b.attr("type").unwrap_or("");
     // Mitsuba's rough BSDFs: `distribution` beckmann (its default) or ggx; `alpha` (default
-    // 0.1), or `alpha_u` and `alpha_v` for an anisotropic lobe. spectrace's microfacets are
-    // isotropic: anisotropy is refused rather than read as a different surface.
+    // 0.1), or `alpha_u` (along ∂p/∂u) and `alpha_v` for an anisotropic lobe.
     let distribution = || -> R<Distribution> {
         match cx.child(b, "distribution") {
             None => Ok(Distribution::Beckmann),
@@ -73,25 +72,19 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
             },
         }
     };
-    let alpha = |cx: &Cx<'_>| -> R<Option<f64>> {
+    let alpha = |cx: &Cx<'_>| -> R<Option<[f64; 2]>> {
         let iso = cx.opt_float(b, "alpha")?;
         let (u, v) = (cx.opt_float(b, "alpha_u")?, cx.opt_float(b, "alpha_v")?);
         let a = match (iso, u, v) {
-            (Some(a), None, None) => a,
-            (None, None, None) => 0.1,
-            (None, Some(u), Some(v)) if u == v => u,
-            (None, Some(_), Some(_)) => {
-                return Err(cx.err(
-                    b,
-                    "alpha_u ≠ alpha_v (an anisotropic lobe) is not supported; spectrace's GGX is isotropic",
-                ));
-            }
+            (Some(a), None, None) => [a, a],
+            (None, None, None) => [0.1, 0.1],
+            (None, Some(u), Some(v)) => [u, v],
             (None, _, _) => return Err(cx.err(b, "give both alpha_u and alpha_v")),
             (Some(_), _, _) => {
                 return Err(cx.err(b, "give either alpha or alpha_u and alpha_v, not both"));
             }
         };
-        if a <= 0.0 {
+        if let Some(a) = a.iter().find(|a| !(**a > 0.0)) {
             return Err(cx.err(b, format!("alpha must be positive, not {a}")));
         }
         Ok(Some(a))
@@ -279,7 +272,7 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
                 exterior_ior: ior_of(cx, "ext_ior", 1.000277)?,
                 nonlinear,
                 roughness: if t == "roughplastic" {
-                    alpha(cx)?
+                    alpha(cx)?.map(|a| a[0])
                 } else {
                     None
                 },

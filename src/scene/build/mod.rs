@@ -131,7 +131,8 @@ fn material(k: &MaterialKind) -> Result<Material, String> {
             roughness: Some(a),
             distribution,
         } => Material::RoughDielectric(
-            RoughDielectric::new(ior.clone(), *exterior_ior as f32, *a as f32)
+            RoughDielectric::new(ior.clone(), *exterior_ior as f32, a[0] as f32)
+                .with_anisotropy(a[0] as f32, a[1] as f32)
                 .with_distribution(*distribution),
         ),
         MaterialKind::Conductor {
@@ -149,7 +150,8 @@ fn material(k: &MaterialKind) -> Result<Material, String> {
             roughness: Some(a),
             distribution,
         } => Material::RoughConductor(
-            RoughConductor::new(ior.clone(), *exterior_ior as f32, *a as f32)
+            RoughConductor::new(ior.clone(), *exterior_ior as f32, a[0] as f32)
+                .with_anisotropy(a[0] as f32, a[1] as f32)
                 .with_distribution(*distribution),
         ),
         MaterialKind::Null => Material::Null,

@@ -171,22 +171,52 @@ pub(super) fn material(
         &format!("{f}.type"),
         "diffuse, phong, dielectric, conductor, plastic, thin_dielectric, null or mask",
     )?;
-    let roughness = |cx: &Cx<'_>| -> R<Option<f64>> {
-        match &m.roughness {
-            None => Ok(None),
-            Some(r) => {
-                let a = cx.number(r, &format!("{f}.roughness"))?;
-                if !(0.0..=1.0).contains(&a) {
-                    return Err(cx.err(
-                        &r.span(),
-                        format!("{f}.roughness"),
-                        format!("expected a GGX α in [0, 1], found {a}"),
-                    ));
-                }
-                Ok((a > 0.0).then_some(a))
+    // `roughness`: a GGX α in [0, 1] (0: smooth), or [α_u, α_v] for an anisotropic lobe
+    // (α_u along the surface's ∂p/∂u), where `anisotropic` allows it
+    let roughness2 = |cx: &Cx<'_>, anisotropic: bool| -> R<Option<[f64; 2]>> {
+        let Some(r) = &m.roughness else {
+            return Ok(None);
+        };
+        let field = format!("{f}.roughness");
+        let check = |a: f64| -> R<f64> {
+            if (0.0..=1.0).contains(&a) {
+                Ok(a)
+            } else {
+                Err(cx.err(
+                    &r.span(),
+                    &field,
+                    format!("expected a GGX α in [0, 1], found {a}"),
+                ))
             }
-        }
+        };
+        let a = match r.get_ref() {
+            Value::Array(v) if anisotropic => {
+                let num = |x: &Value| match x {
+                    Value::Integer(i) => Some(*i as f64),
+                    Value::Float(f) => Some(*f),
+                    _ => None,
+                };
+                match v.as_slice() {
+                    [u, w] if num(u).is_some() && num(w).is_some() => {
+                        [check(num(u).unwrap())?, check(num(w).unwrap())?]
+                    }
+                    _ => {
+                        return Err(cx.err(
+                            &r.span(),
+                            &field,
+                            "expected a number α or two numbers [α_u, α_v]",
+                        ));
+                    }
+                }
+            }
+            _ => {
+                let a = check(cx.number(r, &field)?)?;
+                [a, a]
+            }
+        };
+        Ok((a[0] > 0.0 || a[1] > 0.0).then_some(a))
     };
+    let roughness = |cx: &Cx<'_>| roughness2(cx, true);
     let exterior = |cx: &Cx<'_>| -> R<f64> {
         match &m.exterior_ior {
             None => Ok(1.0),
@@ -394,7 +424,7 @@ pub(super) fn material(
                 int_ior,
                 exterior_ior: exterior(cx)?,
                 nonlinear: m.nonlinear.as_ref().is_some_and(|b| *b.get_ref()),
-                roughness: roughness(cx)?,
+                roughness: roughness2(cx, false)?.map(|a| a[0]),
                 distribution: Distribution::Ggx,
             }
         }
