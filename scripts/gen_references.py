@@ -79,6 +79,7 @@ SPP = {
     "mask": 4096,
     "cylinders": 4096,
     "anisotropic": 4096,
+    "blend": 4096,
 }
 DEFAULT_SPP = 1024
 

@@ -200,6 +200,35 @@ fn cases() -> Vec<Case> {
             grid: COARSE,
         });
     }
+    // Mitsuba's `blendbsdf`: a diffuse and a rough conductor (both with densities), and a
+    // smooth dielectric with a diffuse one (the dielectric's delta lobes count as rejected)
+    for &t in &angles {
+        v.push(Case {
+            name: format!("Blend 0.3 of Lambert and RoughConductor θo={t}"),
+            material: Material::Blend(Box::new(spectrace::material::Blend {
+                weight: Spectrum::Constant(0.3).into(),
+                a: Material::Diffuse(Lambert::new(Spectrum::Constant(0.8))),
+                b: Material::RoughConductor(RoughConductor::new(gold(), 1.0, 0.15)),
+            })),
+            wo: dir(t, phi, false),
+            w: wavelengths(550.0),
+            grid: FINE,
+        });
+        v.push(Case {
+            name: format!("Blend 0.6 of Dielectric and Lambert θo={t}"),
+            material: Material::Blend(Box::new(spectrace::material::Blend {
+                weight: Spectrum::Constant(0.6).into(),
+                a: Material::Dielectric(spectrace::material::Dielectric {
+                    int_ior: bk7(),
+                    ext_ior: 1.0,
+                }),
+                b: Material::Diffuse(Lambert::new(Spectrum::Constant(0.5))),
+            })),
+            wo: dir(t, phi, false),
+            w: wavelengths(550.0),
+            grid: COARSE,
+        });
+    }
     // Plastics (Mitsuba's `plastic` and `roughplastic`): the smooth coating's delta reflection
     // is not a direction with a density, so its samples count as rejected, as many as the
     // diffuse part's density falls short of 1

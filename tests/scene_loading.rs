@@ -149,7 +149,7 @@ radiance = "1 W/m^2/sr"
     let e = spectrace::loader::load_str(&bad, &path)
         .unwrap_err()
         .to_string();
-    assert!(e.contains("cannot hold another mask"), "{e}");
+    assert!(e.contains("cannot hold another mask or blend"), "{e}");
     // samples for another integrator are a located error
     let bad = text.replace("type = \"direct\"", "type = \"path\"");
     let e = spectrace::loader::load_str(&bad, &path)
@@ -236,5 +236,76 @@ radiance = "1 W/m^2/sr"
             "{e}"
         );
         println!("{want}: {e}");
+    }
+}
+
+/// TOML `type = "blend"`: two named materials and a weight; errors for a list of another
+/// length, an unknown name, a blend of a blend, and a weight outside [0, 1], each located.
+#[test]
+fn blend_in_toml() {
+    use spectrace::loader::desc::MaterialKind;
+    let text = r#"
+[camera]
+eye = [0, 1, 4]
+target = [0, 1, 0]
+fov = "40 deg"
+
+[film]
+width = 8
+height = 8
+
+[materials.paint]
+type = "diffuse"
+reflectance = 0.4
+
+[materials.gold]
+type = "conductor"
+metal = "Au"
+roughness = 0.2
+
+[materials.worn]
+type = "blend"
+weight = 0.3
+materials = ["paint", "gold"]
+
+[[shapes]]
+type = "sphere"
+radius = 0.5
+material = "worn"
+
+[[lights]]
+type = "environment"
+radiance = "1 W/m^2/sr"
+"#;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/inline.toml");
+    let d = spectrace::loader::load_str(text, &path).unwrap();
+    assert!(d.materials.iter().any(|m| matches!(
+        &m.kind,
+        MaterialKind::Blend { a, b, .. }
+            if matches!(**a, MaterialKind::Diffuse { .. }) && matches!(**b, MaterialKind::Conductor { .. })
+    )));
+    spectrace::scene::build(&d).unwrap();
+    for (from, to, want) in [
+        (r#"["paint", "gold"]"#, r#"["paint"]"#, "two materials"),
+        (
+            r#"["paint", "gold"]"#,
+            r#"["paint", "silver"]"#,
+            "\"silver\"",
+        ),
+        (
+            r#"["paint", "gold"]"#,
+            r#"["paint", "worn"]"#,
+            "cannot hold another mask or blend",
+        ),
+        ("weight = 0.3", "weight = 1.3", "weight is 1.3"),
+    ] {
+        let e = spectrace::loader::load_str(&text.replace(from, to), &path)
+            .unwrap_err()
+            .to_string();
+        println!("{to}: {e}");
+        assert!(
+            e.contains("inline.toml:") && e.contains("materials.worn") && e.contains(want),
+            "{to}: {e}"
+        );
     }
 }

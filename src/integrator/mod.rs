@@ -17,7 +17,7 @@ use crate::geometry::{Frame, Intersection, Ray, spawn_ray, spawn_ray_to};
 use crate::light::LightSample;
 use crate::loader::desc::IntegratorKind;
 use crate::loader::desc::LightSelection;
-use crate::material::{Bsdf, BsdfSample, Material, TransportMode};
+use crate::material::{Bsdf, BsdfSample, TransportMode};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
@@ -219,14 +219,7 @@ impl Integrator<'_> {
         let surf = &self.scene.surfaces[hit.shape as usize];
         let material = &self.scene.materials[surf.material? as usize];
         let (mut ng, mut ns) = (hit.n_geom, hit.n_shading);
-        let transmissive = matches!(
-            material,
-            Material::Dielectric(_)
-                | Material::RoughDielectric(_)
-                | Material::Null
-                | Material::ThinDielectric { .. }
-        );
-        if surf.two_sided && !transmissive && ng.dot(-dir) < 0.0 {
+        if surf.two_sided && !material.is_transmissive() && ng.dot(-dir) < 0.0 {
             ng = -ng;
             ns = -ns;
         }

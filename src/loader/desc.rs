@@ -188,6 +188,13 @@ pub enum MaterialKind {
         opacity: TextureDesc,
         inner: Box<MaterialKind>,
     },
+    /// A blend (Mitsuba's `blendbsdf`): (1 − weight)·f_a + weight·f_b, weight a number or a
+    /// grey image in [0, 1].
+    Blend {
+        weight: TextureDesc,
+        a: Box<MaterialKind>,
+        b: Box<MaterialKind>,
+    },
     /// A sheet of negligible thickness (Mitsuba's `thindielectric`), indices as a dielectric's.
     ThinDielectric {
         int_ior: f64,

@@ -95,6 +95,9 @@ pub struct RawMaterial {
     /// A mask's opacity and the name of the material it masks.
     pub opacity: Option<S<Value>>,
     pub material: Option<S<String>>,
+    /// A blend's weight (0: the first material, 1: the second) and the names of the two.
+    pub weight: Option<S<Value>>,
+    pub materials: Option<S<Vec<S<String>>>>,
 }
 
 #[derive(Deserialize, Debug)]

@@ -32,18 +32,22 @@
 //! All variants are plain data (`Spectrum`, `Ior`, `ComplexIor`, `f32`) in a closed enum; no call
 //! allocates.
 
+mod blend;
 mod conductor;
 mod dielectric;
 pub mod fresnel;
 mod lambert;
+mod mask;
 pub mod microfacet;
 mod phong;
 mod plastic;
 mod rough_dielectric;
 
+pub use blend::Blend;
 pub use conductor::{Conductor, RoughConductor};
 pub use dielectric::Dielectric;
 pub use lambert::Lambert;
+pub use mask::Mask;
 pub use phong::Phong;
 pub use plastic::{Plastic, RoughCoating, fresnel_diffuse_reflectance};
 pub use rough_dielectric::RoughDielectric;
@@ -121,15 +125,8 @@ pub enum Material {
     /// Mitsuba's `mask`: with probability 1 − opacity light passes straight through, else the
     /// nested material scatters it (see [`Mask`]).
     Mask(Box<Mask>),
-}
-
-/// A partly transparent surface (Mitsuba's `mask`): f = α·f_inner for the opacity α at the hit,
-/// plus a straight-through delta lobe of weight 1 − α. The nested material is never a mask.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Mask {
-    /// Opacity α in [0, 1]: a number or a grey image, the same at every wavelength.
-    pub opacity: crate::texture::Texture,
-    pub inner: Material,
+    /// Mitsuba's `blendbsdf`: (1 − w)·f_a + w·f_b for a weight w at the hit (see [`Blend`]).
+    Blend(Box<Blend>),
 }
 
 impl Material {
@@ -142,11 +139,17 @@ impl Material {
             Material::Diffuse(m) => m.reflectance.sample(uv, w),
             Material::Plastic(m) => m.diffuse.sample(uv, w),
             Material::Mask(m) => {
-                let inner = m.inner.at(uv, w);
+                return Bsdf {
+                    weight: m.opacity.sample(uv, w)[0].clamp(0.0, 1.0),
+                    ..m.inner.at(uv, w).with_material(self)
+                };
+            }
+            Material::Blend(m) => {
                 return Bsdf {
                     material: self,
-                    albedo: inner.albedo,
-                    opacity: m.opacity.sample(uv, w)[0].clamp(0.0, 1.0),
+                    albedo: m.a.at(uv, w).albedo,
+                    albedo_b: m.b.at(uv, w).albedo,
+                    weight: m.weight.sample(uv, w)[0].clamp(0.0, 1.0),
                 };
             }
             _ => SampledSpectrum::zero(),
@@ -154,7 +157,8 @@ impl Material {
         Bsdf {
             material: self,
             albedo,
-            opacity: 1.0,
+            albedo_b: SampledSpectrum::zero(),
+            weight: 1.0,
         }
     }
 
@@ -213,6 +217,7 @@ impl Material {
     pub fn is_specular(&self) -> bool {
         match self {
             Material::Mask(m) => m.inner.is_specular(),
+            Material::Blend(m) => m.a.is_specular() && m.b.is_specular(),
             _ => matches!(
                 self,
                 Material::Dielectric(_)
@@ -232,7 +237,25 @@ impl Material {
             Material::Dielectric(m) => m.int_ior.is_dispersive(),
             Material::RoughDielectric(m) => m.int_ior.is_dispersive(),
             Material::Mask(m) => m.inner.is_dispersive(),
+            Material::Blend(m) => m.a.is_dispersive() || m.b.is_dispersive(),
             _ => false,
+        }
+    }
+
+    /// Whether light can cross the surface through a lobe that distinguishes its sides
+    /// (dielectrics, `null`, `thindielectric`, a blend holding one): such a material is never
+    /// flipped to face the ray on a two-sided surface.
+    #[inline]
+    pub fn is_transmissive(&self) -> bool {
+        match self {
+            Material::Blend(m) => m.a.is_transmissive() || m.b.is_transmissive(),
+            _ => matches!(
+                self,
+                Material::Dielectric(_)
+                    | Material::RoughDielectric(_)
+                    | Material::Null
+                    | Material::ThinDielectric { .. }
+            ),
         }
     }
 }
@@ -242,11 +265,13 @@ impl Material {
 #[derive(Clone, Copy, Debug)]
 pub struct Bsdf<'a, const N: usize> {
     pub material: &'a Material,
-    /// The textured reflectance at the point (Lambert's ρ, a plastic's diffuse base),
-    /// dimensionless; zero for materials without one.
+    /// The textured reflectance at the point (Lambert's ρ, a plastic's diffuse base; a blend's
+    /// first component's), dimensionless; zero for materials without one.
     pub albedo: SampledSpectrum<N>,
-    /// A mask's opacity at the point, in [0, 1]; 1 for every other material.
-    pub opacity: f32,
+    /// A blend's second component's textured reflectance; zero otherwise.
+    pub albedo_b: SampledSpectrum<N>,
+    /// A mask's opacity or a blend's weight at the point, in [0, 1]; 1 for every other material.
+    pub weight: f32,
 }
 
 impl<const N: usize> Bsdf<'_, N> {
@@ -269,7 +294,8 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::RoughDielectric(m) => m.eval(wo, wi, w, mode),
             Material::RoughConductor(m) => m.eval(wo, wi, w),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).0,
-            Material::Mask(m) => self.masked(m).eval(wo, wi, w, mode) * self.opacity,
+            Material::Mask(m) => self.masked(m).eval(wo, wi, w, mode) * self.weight,
+            Material::Blend(m) => self.blend_eval_pdf(m, wo, wi, w, mode).0,
         }
     }
 
@@ -287,7 +313,8 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::RoughDielectric(m) => m.pdf(wo, wi, w),
             Material::RoughConductor(m) => m.pdf(wo, wi),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).1,
-            Material::Mask(m) => self.masked(m).pdf(wo, wi, w, _mode) * self.opacity,
+            Material::Mask(m) => self.masked(m).pdf(wo, wi, w, _mode) * self.weight,
+            Material::Blend(m) => self.blend_eval_pdf(m, wo, wi, w, _mode).1,
         }
     }
 
@@ -314,8 +341,9 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo),
             Material::Mask(m) => {
                 let (f, pdf) = self.masked(m).eval_pdf(wo, wi, w, mode);
-                (f * self.opacity, pdf * self.opacity)
+                (f * self.weight, pdf * self.weight)
             }
+            Material::Blend(m) => self.blend_eval_pdf(m, wo, wi, w, mode),
         }
     }
 
@@ -360,26 +388,8 @@ impl<const N: usize> Bsdf<'_, N> {
                     eta: 1.0,
                 })
             }
-            // straight through with probability 1 − α, else the nested material with α·f and
-            // α·pdf (the same weight): Mitsuba's `mask`
-            Material::Mask(m) => {
-                let a = self.opacity;
-                if uc >= a {
-                    return (wo.z != 0.0).then(|| BsdfSample {
-                        f: SampledSpectrum::splat((1.0 - a) / wo.z.abs()),
-                        wi: -wo,
-                        pdf: 1.0 - a,
-                        specular: true,
-                        transmission: true,
-                        dispersive: false,
-                        eta: 1.0,
-                    });
-                }
-                let mut bs = self.masked(m).sample(wo, w, uc / a, u, mode)?;
-                bs.f *= a;
-                bs.pdf *= a;
-                Some(bs)
-            }
+            Material::Mask(m) => self.mask_sample(m, wo, w, uc, u, mode),
+            Material::Blend(m) => self.blend_sample(m, wo, w, uc, u, mode),
             // straight through: f·|cos θᵢ|/pdf = 1
             Material::Null => (wo.z != 0.0).then(|| BsdfSample {
                 f: SampledSpectrum::splat(1.0 / wo.z.abs()),
@@ -400,13 +410,14 @@ impl<const N: usize> Bsdf<'_, N> {
         self.material.is_specular()
     }
 
-    /// The nested material of a mask, with this hit's albedo.
+    /// The same looked-up values for another material (a wrapper's nested one).
     #[inline]
-    fn masked<'b>(&self, m: &'b Mask) -> Bsdf<'b, N> {
+    fn with_material<'b>(&self, material: &'b Material) -> Bsdf<'b, N> {
         Bsdf {
-            material: &m.inner,
+            material,
             albedo: self.albedo,
-            opacity: 1.0,
+            albedo_b: self.albedo_b,
+            weight: self.weight,
         }
     }
 

@@ -111,6 +111,60 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
         }
         // light passes straight through; each crossing still counts toward max_depth
         "null" => MaterialKind::Null,
+        // Mitsuba's blend of two nested BSDFs by `weight` (0.5; 0 is the first, 1 the second)
+        "blendbsdf" => {
+            let mut nested = Vec::new();
+            for c in &b.children {
+                if c.tag == "bsdf" || (c.tag == "ref" && cx.resolve(c)?.tag == "bsdf") {
+                    nested.push(c);
+                }
+            }
+            let [first, second] = nested[..] else {
+                return Err(cx.err(
+                    b,
+                    format!(
+                        "a blendbsdf needs exactly two nested BSDFs, found {}",
+                        nested.len()
+                    ),
+                ));
+            };
+            let (m0, two0) = bsdf(cx, first, name)?;
+            let (m1, two1) = bsdf(cx, second, name)?;
+            if two0 != two1 {
+                return Err(cx.err(
+                    b,
+                    "a blendbsdf of a twosided and a one-sided BSDF is not supported; wrap the blendbsdf in twosided instead",
+                ));
+            }
+            for m in [&m0.kind, &m1.kind] {
+                if matches!(m, MaterialKind::Mask { .. } | MaterialKind::Blend { .. }) {
+                    return Err(cx.err(
+                        b,
+                        "a blendbsdf holding a mask or another blendbsdf is not supported",
+                    ));
+                }
+            }
+            if let Some(o) = cx.child(b, "weight")
+                && cx.resolve(o)?.attr("type") == Some("checkerboard")
+            {
+                return Err(cx.err(
+                    o,
+                    "a checkerboard weight is not supported; use a number or a grey image",
+                ));
+            }
+            return Ok((
+                MaterialDesc {
+                    name: name.to_string(),
+                    kind: MaterialKind::Blend {
+                        weight: cx.texture_prop(b, "weight", 0.5)?,
+                        a: Box::new(m0.kind),
+                        b: Box::new(m1.kind),
+                    },
+                    loc: cx.loc(b),
+                },
+                two0,
+            ));
+        }
         // Mitsuba's opacity mask around one nested BSDF (whose twosided flag it keeps)
         "mask" => {
             let inner = b

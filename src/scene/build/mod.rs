@@ -14,7 +14,8 @@ use crate::geometry::transform::Transform;
 use crate::loader::desc::{CameraKind, FovAxis, MaterialKind, Projection, SceneDesc};
 use crate::loader::{LoadError, Loc};
 use crate::material::{
-    Conductor, Dielectric, Lambert, Mask, Material, Phong, Plastic, RoughConductor, RoughDielectric,
+    Blend, Conductor, Dielectric, Lambert, Mask, Material, Phong, Plastic, RoughConductor,
+    RoughDielectric,
 };
 use crate::spectrum::WavelengthRange;
 use crate::units::plain;
@@ -161,10 +162,24 @@ fn material(k: &MaterialKind) -> Result<Material, String> {
                 return Err("a mask's opacity must be a number or a grey image, the same at every wavelength".into());
             }
             let inner = material(inner)?;
-            if matches!(inner, Material::Mask(_)) {
-                return Err("a mask cannot hold another mask".into());
+            if matches!(inner, Material::Mask(_) | Material::Blend(_)) {
+                return Err("a mask cannot hold another mask or a blend".into());
             }
             Material::Mask(Box::new(Mask { opacity, inner }))
+        }
+        MaterialKind::Blend { weight, a, b } => {
+            let weight = textures::texture(weight)?;
+            if !textures::is_grey(&weight) {
+                return Err("a blend's weight must be a number or a grey image, the same at every wavelength".into());
+            }
+            let (a, b) = (material(a)?, material(b)?);
+            if [&a, &b]
+                .iter()
+                .any(|m| matches!(m, Material::Mask(_) | Material::Blend(_)))
+            {
+                return Err("a blend cannot hold a mask or another blend".into());
+            }
+            Material::Blend(Box::new(Blend { weight, a, b }))
         }
         MaterialKind::ThinDielectric {
             int_ior,

@@ -18,7 +18,12 @@ pub(super) fn check_reflectance(
             return Err(cx.err(
                 span,
                 field,
-                format!("reflectance is {v} at {l} nm; it must lie in [0, 1], or the surface would create energy"),
+                match field.rsplit('.').next() {
+                    Some(what @ ("opacity" | "weight")) => {
+                        format!("{what} is {v} at {l} nm; it must lie in [0, 1]")
+                    }
+                    _ => format!("reflectance is {v} at {l} nm; it must lie in [0, 1], or the surface would create energy"),
+                },
             ));
         }
     }
@@ -164,12 +169,12 @@ pub(super) fn material(
     let sp = m.span();
     let f = format!("materials.{}", name.get_ref());
     let m = m.get_ref();
-    let all = present!(m; kind, reflectance, kd, ks, exponent, ior, exterior_ior, metal, eta, k, roughness, nonlinear, opacity, material);
+    let all = present!(m; kind, reflectance, kd, ks, exponent, ior, exterior_ior, metal, eta, k, roughness, nonlinear, opacity, material, weight, materials);
     let ty = cx.required(
         &m.kind,
         &sp,
         &format!("{f}.type"),
-        "diffuse, phong, dielectric, conductor, plastic, thin_dielectric, null or mask",
+        "diffuse, phong, dielectric, conductor, plastic, thin_dielectric, null, mask or blend",
     )?;
     // `roughness`: a GGX α in [0, 1] (0: smooth), or [α_u, α_v] for an anisotropic lobe
     // (α_u along the surface's ∂p/∂u), where `anisotropic` allows it
@@ -330,30 +335,14 @@ pub(super) fn material(
                 &format!("{f}.material"),
                 "the name of the masked material",
             )?;
-            let Some((key, inner_raw)) = all_raw
-                .iter()
-                .find(|(k, _)| k.get_ref() == inner_name.get_ref())
-            else {
-                return Err(cx.err(
-                    &inner_name.span(),
-                    format!("{f}.material"),
-                    format!("no material named \"{}\"", inner_name.get_ref()),
-                ));
-            };
-            if inner_raw
-                .get_ref()
-                .kind
-                .as_ref()
-                .map(|k| k.get_ref().as_str())
-                == Some("mask")
-            {
-                return Err(cx.err(
-                    &inner_name.span(),
-                    format!("{f}.material"),
-                    "a mask cannot hold another mask",
-                ));
-            }
-            let inner = material(cx, key, inner_raw, range, all_raw)?;
+            let inner = named(
+                cx,
+                inner_name,
+                &format!("{f}.material"),
+                "a mask",
+                range,
+                all_raw,
+            )?;
             let opacity = match &m.opacity {
                 Some(o) => reflectance_texture(cx, o, &format!("{f}.opacity"), range)?,
                 None => Spectrum::Constant(0.5).into(),
@@ -361,6 +350,43 @@ pub(super) fn material(
             MaterialKind::Mask {
                 opacity,
                 inner: Box::new(inner.kind),
+            }
+        }
+        // Mitsuba's `blendbsdf`: (1 − weight)·the first of `materials` + weight·the second
+        "blend" => {
+            cx.only(
+                "a blend material",
+                &f,
+                &all,
+                &["kind", "weight", "materials"],
+            )?;
+            let names = cx.required(
+                &m.materials,
+                &sp,
+                &format!("{f}.materials"),
+                "the names of the two blended materials, [\"a\", \"b\"]",
+            )?;
+            let [a, b] = &names.get_ref()[..] else {
+                return Err(cx.err(
+                    &names.span(),
+                    format!("{f}.materials"),
+                    format!(
+                        "expected the names of two materials, found {}",
+                        names.get_ref().len()
+                    ),
+                ));
+            };
+            let field = format!("{f}.materials");
+            let a = named(cx, a, &field, "a blend", range, all_raw)?;
+            let b = named(cx, b, &field, "a blend", range, all_raw)?;
+            let weight = match &m.weight {
+                Some(o) => reflectance_texture(cx, o, &format!("{f}.weight"), range)?,
+                None => Spectrum::Constant(0.5).into(),
+            };
+            MaterialKind::Blend {
+                weight,
+                a: Box::new(a.kind),
+                b: Box::new(b.kind),
             }
         }
         "thin_dielectric" => {
@@ -454,7 +480,7 @@ pub(super) fn material(
             }
         }
         o => {
-            return Err(cx.err(&ty.span(), format!("{f}.type"), format!("unknown material type \"{o}\"; expected diffuse, phong, dielectric, conductor, plastic, thin_dielectric, null or mask")));
+            return Err(cx.err(&ty.span(), format!("{f}.type"), format!("unknown material type \"{o}\"; expected diffuse, phong, dielectric, conductor, plastic, thin_dielectric, null, mask or blend")));
         }
     };
     Ok(MaterialDesc {
@@ -476,4 +502,32 @@ impl SumCheck<'_> {
             Err(_) => Spectrum::Constant(f32::NAN),
         }
     }
+}
+
+/// The material called `name` (a mask's `material`, a blend's `materials`), which may not be a
+/// mask or a blend itself; errors are located at the name.
+fn named(
+    cx: &Cx<'_>,
+    name: &S<String>,
+    field: &str,
+    holder: &str,
+    range: &[Length; 2],
+    all_raw: &std::collections::BTreeMap<S<String>, S<RawMaterial>>,
+) -> R<MaterialDesc> {
+    let Some((key, raw)) = all_raw.iter().find(|(k, _)| k.get_ref() == name.get_ref()) else {
+        return Err(cx.err(
+            &name.span(),
+            field,
+            format!("no material named \"{}\"", name.get_ref()),
+        ));
+    };
+    let kind = raw.get_ref().kind.as_ref().map(|k| k.get_ref().as_str());
+    if matches!(kind, Some("mask" | "blend")) {
+        return Err(cx.err(
+            &name.span(),
+            field,
+            format!("{holder} cannot hold another mask or blend"),
+        ));
+    }
+    material(cx, key, raw, range, all_raw)
 }
