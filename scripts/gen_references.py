@@ -80,6 +80,7 @@ SPP = {
     "cylinders": 4096,
     "anisotropic": 4096,
     "blend": 4096,
+    "bumps": 4096,
 }
 DEFAULT_SPP = 1024
 

@@ -17,7 +17,7 @@ use crate::geometry::{Frame, Intersection, Ray, spawn_ray, spawn_ray_to};
 use crate::light::LightSample;
 use crate::loader::desc::IntegratorKind;
 use crate::loader::desc::LightSelection;
-use crate::material::{Bsdf, BsdfSample, TransportMode};
+use crate::material::{Bsdf, BsdfSample, LocalSurface, TransportMode};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
@@ -218,14 +218,28 @@ impl Integrator<'_> {
     ) -> Option<Shading<'_, N>> {
         let surf = &self.scene.surfaces[hit.shape as usize];
         let material = &self.scene.materials[surf.material? as usize];
-        let (mut ng, mut ns) = (hit.n_geom, hit.n_shading);
+        let mut ng = hit.n_geom;
+        let mut frame = Frame::from_normal_tangent(hit.n_shading, hit.dpdu);
+        // a two-sided surface seen from behind: the normal flips and the tangents stay, a
+        // mirror image of the front frame as Mitsuba's `twosided` sees the back (so a normal
+        // map's tangent-space normal reads the same on both sides)
         if surf.two_sided && !material.is_transmissive() && ng.dot(-dir) < 0.0 {
             ng = -ng;
-            ns = -ns;
+            frame.n = -frame.n;
         }
+        let local = if material.is_perturbed() {
+            LocalSurface {
+                uv: hit.uv,
+                dpdu: frame.to_local(hit.dpdu),
+                dpdv: frame.to_local(hit.dpdv),
+                n_geom: frame.to_local(ng),
+            }
+        } else {
+            LocalSurface::flat(hit.uv)
+        };
         Some(Shading {
-            bsdf: material.at(hit.uv, w),
-            frame: Frame::from_normal_tangent(ns, hit.dpdu),
+            bsdf: material.at_surface(&local, w),
+            frame,
             n_geom: ng,
         })
     }

@@ -195,6 +195,19 @@ pub enum MaterialKind {
         a: Box<MaterialKind>,
         b: Box<MaterialKind>,
     },
+    /// Mitsuba's `normalmap`: `map` an image of raw triples, each a local normal encoded as
+    /// (n + 1)/2, around the nested material.
+    NormalMap {
+        map: TextureDesc,
+        inner: Box<MaterialKind>,
+    },
+    /// Mitsuba's `bumpmap`: a grey `height` image times `scale` displacing the shading normal
+    /// of the nested material.
+    BumpMap {
+        height: TextureDesc,
+        scale: f64,
+        inner: Box<MaterialKind>,
+    },
     /// A sheet of negligible thickness (Mitsuba's `thindielectric`), indices as a dielectric's.
     ThinDielectric {
         int_ior: f64,

@@ -98,6 +98,10 @@ pub struct RawMaterial {
     /// A blend's weight (0: the first material, 1: the second) and the names of the two.
     pub weight: Option<S<Value>>,
     pub materials: Option<S<Vec<S<String>>>>,
+    /// A normal map's image, a bump map's height image and its scale.
+    pub map: Option<S<Value>>,
+    pub height: Option<S<Value>>,
+    pub scale: Option<S<Value>>,
 }
 
 #[derive(Deserialize, Debug)]

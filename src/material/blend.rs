@@ -31,6 +31,7 @@ impl<const N: usize> Bsdf<'_, N> {
             albedo: self.albedo,
             albedo_b: SampledSpectrum::zero(),
             weight: 1.0,
+            perturb: self.perturb,
         };
         let b = Bsdf {
             material: &m.b,

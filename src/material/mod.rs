@@ -39,6 +39,7 @@ pub mod fresnel;
 mod lambert;
 mod mask;
 pub mod microfacet;
+mod perturb;
 mod phong;
 mod plastic;
 mod rough_dielectric;
@@ -48,6 +49,7 @@ pub use conductor::{Conductor, RoughConductor};
 pub use dielectric::Dielectric;
 pub use lambert::Lambert;
 pub use mask::Mask;
+pub use perturb::{BumpMap, LocalSurface, NormalMap};
 pub use phong::Phong;
 pub use plastic::{Plastic, RoughCoating, fresnel_diffuse_reflectance};
 pub use rough_dielectric::RoughDielectric;
@@ -127,6 +129,10 @@ pub enum Material {
     Mask(Box<Mask>),
     /// Mitsuba's `blendbsdf`: (1 − w)·f_a + w·f_b for a weight w at the hit (see [`Blend`]).
     Blend(Box<Blend>),
+    /// Mitsuba's `normalmap`: the nested material in a frame whose normal an image gives.
+    NormalMap(Box<NormalMap>),
+    /// Mitsuba's `bumpmap`: the nested material in a frame tilted by a height's gradient.
+    BumpMap(Box<BumpMap>),
 }
 
 impl Material {
@@ -135,13 +141,25 @@ impl Material {
     /// [`Bsdf`] is what integrators evaluate and sample.
     #[inline]
     pub fn at<const N: usize>(&self, uv: Vec2, w: &SampledWavelengths<N>) -> Bsdf<'_, N> {
+        self.at_surface(&LocalSurface::flat(uv), w)
+    }
+
+    /// [`Material::at`] with the hit's surface derivatives in its local shading frame, which
+    /// normal and bump maps need for their perturbed frames.
+    #[inline]
+    pub fn at_surface<const N: usize>(
+        &self,
+        s: &LocalSurface,
+        w: &SampledWavelengths<N>,
+    ) -> Bsdf<'_, N> {
+        let uv = s.uv;
         let albedo = match self {
             Material::Diffuse(m) => m.reflectance.sample(uv, w),
             Material::Plastic(m) => m.diffuse.sample(uv, w),
             Material::Mask(m) => {
                 return Bsdf {
                     weight: m.opacity.sample(uv, w)[0].clamp(0.0, 1.0),
-                    ..m.inner.at(uv, w).with_material(self)
+                    ..m.inner.at_surface(s, w).with_material(self)
                 };
             }
             Material::Blend(m) => {
@@ -150,6 +168,19 @@ impl Material {
                     albedo: m.a.at(uv, w).albedo,
                     albedo_b: m.b.at(uv, w).albedo,
                     weight: m.weight.sample(uv, w)[0].clamp(0.0, 1.0),
+                    perturb: UNPERTURBED,
+                };
+            }
+            Material::NormalMap(m) => {
+                return Bsdf {
+                    perturb: m.frame(s),
+                    ..m.inner.at_surface(s, w).with_material(self)
+                };
+            }
+            Material::BumpMap(m) => {
+                return Bsdf {
+                    perturb: m.frame(s),
+                    ..m.inner.at_surface(s, w).with_material(self)
                 };
             }
             _ => SampledSpectrum::zero(),
@@ -159,6 +190,7 @@ impl Material {
             albedo,
             albedo_b: SampledSpectrum::zero(),
             weight: 1.0,
+            perturb: UNPERTURBED,
         }
     }
 
@@ -217,6 +249,8 @@ impl Material {
     pub fn is_specular(&self) -> bool {
         match self {
             Material::Mask(m) => m.inner.is_specular(),
+            Material::NormalMap(m) => m.inner.is_specular(),
+            Material::BumpMap(m) => m.inner.is_specular(),
             Material::Blend(m) => m.a.is_specular() && m.b.is_specular(),
             _ => matches!(
                 self,
@@ -237,7 +271,20 @@ impl Material {
             Material::Dielectric(m) => m.int_ior.is_dispersive(),
             Material::RoughDielectric(m) => m.int_ior.is_dispersive(),
             Material::Mask(m) => m.inner.is_dispersive(),
+            Material::NormalMap(m) => m.inner.is_dispersive(),
+            Material::BumpMap(m) => m.inner.is_dispersive(),
             Material::Blend(m) => m.a.is_dispersive() || m.b.is_dispersive(),
+            _ => false,
+        }
+    }
+
+    /// Whether the material evaluates its nested one in a perturbed frame (a normal or bump
+    /// map, possibly inside a mask), which needs the hit's derivatives ([`LocalSurface`]).
+    #[inline]
+    pub fn is_perturbed(&self) -> bool {
+        match self {
+            Material::NormalMap(_) | Material::BumpMap(_) => true,
+            Material::Mask(m) => m.inner.is_perturbed(),
             _ => false,
         }
     }
@@ -249,6 +296,8 @@ impl Material {
     pub fn is_transmissive(&self) -> bool {
         match self {
             Material::Blend(m) => m.a.is_transmissive() || m.b.is_transmissive(),
+            Material::NormalMap(m) => m.inner.is_transmissive(),
+            Material::BumpMap(m) => m.inner.is_transmissive(),
             _ => matches!(
                 self,
                 Material::Dielectric(_)
@@ -272,7 +321,17 @@ pub struct Bsdf<'a, const N: usize> {
     pub albedo_b: SampledSpectrum<N>,
     /// A mask's opacity or a blend's weight at the point, in [0, 1]; 1 for every other material.
     pub weight: f32,
+    /// A normal or bump map's perturbed frame at the point, in the local shading frame; the
+    /// identity for every other material.
+    pub perturb: crate::geometry::Frame,
 }
+
+/// The identity frame of [`Bsdf::perturb`].
+const UNPERTURBED: crate::geometry::Frame = crate::geometry::Frame {
+    s: Vec3::X,
+    t: Vec3::Y,
+    n: Vec3::Z,
+};
 
 impl<const N: usize> Bsdf<'_, N> {
     /// f(wo, wi) per wavelength in sr⁻¹, without the cosine. 0 for delta lobes.
@@ -296,6 +355,9 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).0,
             Material::Mask(m) => self.masked(m).eval(wo, wi, w, mode) * self.weight,
             Material::Blend(m) => self.blend_eval_pdf(m, wo, wi, w, mode).0,
+            Material::NormalMap(_) | Material::BumpMap(_) => {
+                self.perturbed_eval_pdf(wo, wi, w, mode).0
+            }
         }
     }
 
@@ -315,6 +377,9 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).1,
             Material::Mask(m) => self.masked(m).pdf(wo, wi, w, _mode) * self.weight,
             Material::Blend(m) => self.blend_eval_pdf(m, wo, wi, w, _mode).1,
+            Material::NormalMap(_) | Material::BumpMap(_) => {
+                self.perturbed_eval_pdf(wo, wi, w, _mode).1
+            }
         }
     }
 
@@ -344,6 +409,9 @@ impl<const N: usize> Bsdf<'_, N> {
                 (f * self.weight, pdf * self.weight)
             }
             Material::Blend(m) => self.blend_eval_pdf(m, wo, wi, w, mode),
+            Material::NormalMap(_) | Material::BumpMap(_) => {
+                self.perturbed_eval_pdf(wo, wi, w, mode)
+            }
         }
     }
 
@@ -390,6 +458,9 @@ impl<const N: usize> Bsdf<'_, N> {
             }
             Material::Mask(m) => self.mask_sample(m, wo, w, uc, u, mode),
             Material::Blend(m) => self.blend_sample(m, wo, w, uc, u, mode),
+            Material::NormalMap(_) | Material::BumpMap(_) => {
+                self.perturbed_sample(wo, w, uc, u, mode)
+            }
             // straight through: f·|cos θᵢ|/pdf = 1
             Material::Null => (wo.z != 0.0).then(|| BsdfSample {
                 f: SampledSpectrum::splat(1.0 / wo.z.abs()),
@@ -418,6 +489,7 @@ impl<const N: usize> Bsdf<'_, N> {
             albedo: self.albedo,
             albedo_b: self.albedo_b,
             weight: self.weight,
+            perturb: self.perturb,
         }
     }
 

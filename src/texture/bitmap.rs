@@ -11,7 +11,7 @@
 //!   sigmoid coefficients once; a lookup blends the *spectra* of its texels, never their RGB.
 //!   Grey images keep one value per texel, the same at every wavelength.
 
-use glam::Vec2;
+use glam::{Vec2, Vec3};
 
 use super::UvTransform;
 use crate::spectrum::rgb2spec::{SigmoidPolynomial, srgb_table};
@@ -45,6 +45,8 @@ enum Texels {
     Grey(Vec<f32>),
     /// Sigmoid coefficients per texel (bounded reflectance spectra).
     Colour(Vec<SigmoidPolynomial>),
+    /// Three raw values per texel (a normal map's encoded directions), never spectra.
+    Vector(Vec<[f32; 3]>),
 }
 
 #[derive(Clone, Debug, PartialEq)]
@@ -103,6 +105,27 @@ impl Bitmap {
         })
     }
 
+    /// A texture of raw triples (row-major, top row first) used unchanged: a normal map, read
+    /// through [`Bitmap::vector`] only.
+    pub fn from_vectors(
+        width: usize,
+        height: usize,
+        v: Vec<[f32; 3]>,
+        filter: TexFilter,
+        wrap: Wrap,
+        to_uv: UvTransform,
+    ) -> Result<Self, BitmapError> {
+        Self::check(width, height, v.len())?;
+        Ok(Self {
+            width,
+            height,
+            texels: Texels::Vector(v),
+            filter,
+            wrap,
+            to_uv,
+        })
+    }
+
     fn check(w: usize, h: usize, n: usize) -> Result<(), BitmapError> {
         if w == 0 || h == 0 {
             return Err(BitmapError::Empty(w, h));
@@ -127,11 +150,46 @@ impl Bitmap {
     }
 
     #[inline]
-    fn texel<const N: usize>(&self, i: usize, j: usize, w: &SampledWavelengths<N>) -> [f32; N] {
-        let k = j * self.width + i;
+    fn texel<const N: usize>(&self, k: usize, w: &SampledWavelengths<N>) -> [f32; N] {
         match &self.texels {
             Texels::Grey(v) => [v[k]; N],
             Texels::Colour(c) => w.lambda.map(|l| c[k].eval(l)),
+            // a normal map read as a spectrum (a caller bug): its mean component
+            Texels::Vector(v) => [(v[k][0] + v[k][1] + v[k][2]) / 3.0; N],
+        }
+    }
+
+    /// The texels a lookup at `uv` (before `to_uv`) blends, as row-major indices
+    /// [(i0, j0), (i1, j0), (i0, j1), (i1, j1)], and the fractions (fx, fy) between them
+    /// (nearest: one texel four times, fractions 0).
+    #[inline]
+    fn footprint(&self, uv: Vec2) -> ([usize; 4], Vec2) {
+        let p = self.to_uv.apply(uv);
+        // a non-finite uv (a mesh file's NaN texture coordinate, an overflowing to_uv) reads
+        // what uv (0, 0) reads rather than blending NaNs
+        let p = if p.is_finite() { p } else { Vec2::ZERO };
+        let (wf, hf) = (self.width as f32, self.height as f32);
+        match self.filter {
+            TexFilter::Nearest => {
+                let i = self.wrap_index((p.x * wf).floor() as i64, self.width);
+                let j = self.wrap_index((p.y * hf).floor() as i64, self.height);
+                ([j * self.width + i; 4], Vec2::ZERO)
+            }
+            TexFilter::Bilinear => {
+                let (x, y) = (p.x * wf - 0.5, p.y * hf - 0.5);
+                let (x0, y0) = (x.floor(), y.floor());
+                let f = Vec2::new(x - x0, y - y0);
+                let (x0, y0) = (x0 as i64, y0 as i64);
+                let (i0, i1) = (
+                    self.wrap_index(x0, self.width),
+                    self.wrap_index(x0 + 1, self.width),
+                );
+                let (j0, j1) = (
+                    self.wrap_index(y0, self.height) * self.width,
+                    self.wrap_index(y0 + 1, self.height) * self.width,
+                );
+                ([j0 + i0, j0 + i1, j1 + i0, j1 + i1], f)
+            }
         }
     }
 
@@ -142,38 +200,50 @@ impl Bitmap {
         uv: Vec2,
         w: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
-        let p = self.to_uv.apply(uv);
-        // a non-finite uv (a mesh file's NaN texture coordinate, an overflowing to_uv) reads
-        // what uv (0, 0) reads rather than blending NaNs
-        let p = if p.is_finite() { p } else { Vec2::ZERO };
-        let (wf, hf) = (self.width as f32, self.height as f32);
-        match self.filter {
-            TexFilter::Nearest => {
-                let i = self.wrap_index((p.x * wf).floor() as i64, self.width);
-                let j = self.wrap_index((p.y * hf).floor() as i64, self.height);
-                SampledSpectrum(self.texel(i, j, w))
-            }
-            TexFilter::Bilinear => {
-                let (x, y) = (p.x * wf - 0.5, p.y * hf - 0.5);
-                let (x0, y0) = (x.floor(), y.floor());
-                let (fx, fy) = (x - x0, y - y0);
-                let (x0, y0) = (x0 as i64, y0 as i64);
-                let (i0, i1) = (
-                    self.wrap_index(x0, self.width),
-                    self.wrap_index(x0 + 1, self.width),
-                );
-                let (j0, j1) = (
-                    self.wrap_index(y0, self.height),
-                    self.wrap_index(y0 + 1, self.height),
-                );
-                let (a, b) = (self.texel(i0, j0, w), self.texel(i1, j0, w));
-                let (c, d) = (self.texel(i0, j1, w), self.texel(i1, j1, w));
-                SampledSpectrum(std::array::from_fn(|k| {
-                    (1.0 - fy) * ((1.0 - fx) * a[k] + fx * b[k])
-                        + fy * ((1.0 - fx) * c[k] + fx * d[k])
-                }))
-            }
+        let ([ka, kb, kc, kd], f) = self.footprint(uv);
+        let (a, b) = (self.texel(ka, w), self.texel(kb, w));
+        let (c, d) = (self.texel(kc, w), self.texel(kd, w));
+        SampledSpectrum(std::array::from_fn(|k| {
+            (1.0 - f.y) * ((1.0 - f.x) * a[k] + f.x * b[k])
+                + f.y * ((1.0 - f.x) * c[k] + f.x * d[k])
+        }))
+    }
+
+    /// The raw triple at `uv` (before `to_uv`), filtered as [`Bitmap::sample`] filters: a
+    /// normal map's encoded direction. Grey texels give (g, g, g); colour ones (a caller bug)
+    /// give (0, 0, 1).
+    #[inline]
+    pub fn vector(&self, uv: Vec2) -> Vec3 {
+        let ([ka, kb, kc, kd], f) = self.footprint(uv);
+        let at = |k: usize| match &self.texels {
+            Texels::Vector(v) => Vec3::from(v[k]),
+            Texels::Grey(v) => Vec3::splat(v[k]),
+            Texels::Colour(_) => Vec3::Z,
+        };
+        (1.0 - f.y) * ((1.0 - f.x) * at(ka) + f.x * at(kb))
+            + f.y * ((1.0 - f.x) * at(kc) + f.x * at(kd))
+    }
+
+    /// The gradient (∂/∂u, ∂/∂v) at `uv` of a grey texture's filtered value, per unit of the
+    /// uv before `to_uv` (the chain rule through its linear part), as Mitsuba's `eval_1_grad`:
+    /// the derivative of the bilinear blend (zero for nearest filtering, and for other texels).
+    #[inline]
+    pub fn gradient(&self, uv: Vec2) -> Vec2 {
+        let Texels::Grey(v) = &self.texels else {
+            return Vec2::ZERO;
+        };
+        if self.filter == TexFilter::Nearest {
+            return Vec2::ZERO;
         }
+        let ([ka, kb, kc, kd], f) = self.footprint(uv);
+        let (a, b, c, d) = (v[ka], v[kb], v[kc], v[kd]);
+        // d/dx, d/dy in texel units, then per unit of the transformed uv
+        let g = Vec2::new(
+            ((b - a) * (1.0 - f.y) + (d - c) * f.y) * self.width as f32,
+            ((c - a) * (1.0 - f.x) + (d - b) * f.x) * self.height as f32,
+        );
+        let [r0, r1] = self.to_uv.rows;
+        Vec2::new(r0[0] * g.x + r1[0] * g.y, r0[1] * g.x + r1[1] * g.y)
     }
 
     /// Whether the image is grey (one value per texel, the same at every wavelength).
@@ -187,6 +257,7 @@ impl Bitmap {
         let sum: f64 = match &self.texels {
             Texels::Grey(v) => v.iter().map(|&x| x as f64).sum(),
             Texels::Colour(c) => c.iter().map(|p| spectral(&|l| p.eval(l)) as f64).sum(),
+            Texels::Vector(v) => v.iter().map(|p| (p[0] + p[1] + p[2]) as f64 / 3.0).sum(),
         };
         (sum / n) as f32
     }
@@ -227,6 +298,41 @@ mod tests {
         assert_eq!(at(&r, -0.1, 0.5), 2.0);
         let c = grey(3, 1, TexFilter::Nearest, Wrap::Clamp);
         assert_eq!(at(&c, 7.0, 0.5), 2.0);
+    }
+
+    /// The gradient Mitsuba 3.9.1's `eval_1_grad` returns for a raw 3 × 2 grey image
+    /// [[0, 1, 4], [2, 3, 7]] (values measured in Mitsuba), with and without `to_uv`.
+    #[test]
+    fn gradient_matches_mitsuba() {
+        let v = vec![0.0, 1.0, 4.0, 2.0, 3.0, 7.0];
+        let b = Bitmap::from_grey(
+            3,
+            2,
+            v.clone(),
+            TexFilter::Bilinear,
+            Wrap::Repeat,
+            UvTransform::IDENTITY,
+        )
+        .unwrap();
+        for (uv, want) in [
+            ((0.5, 0.25), (9.0, 4.0)),
+            ((0.4, 0.3), (3.0, 4.0)),
+            ((0.7, 0.6), (11.1, 5.2)),
+            ((0.1, 0.9), (-14.1, -4.4)),
+            ((0.5, 0.5), (10.5, 4.0)),
+        ] {
+            let g = b.gradient(Vec2::new(uv.0, uv.1));
+            assert!(
+                (g - Vec2::new(want.0, want.1)).length() < 1e-4,
+                "{uv:?}: {g}"
+            );
+        }
+        let scaled = UvTransform {
+            rows: [[2.0, 0.0, 0.0], [0.0, 3.0, 0.0]],
+        };
+        let b = Bitmap::from_grey(3, 2, v, TexFilter::Bilinear, Wrap::Repeat, scaled).unwrap();
+        let g = b.gradient(Vec2::new(0.2, 0.1));
+        assert!((g - Vec2::new(6.0, 12.0)).length() < 1e-4, "to_uv: {g}");
     }
 
     #[test]

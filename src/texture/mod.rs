@@ -81,6 +81,26 @@ impl Texture {
         }
     }
 
+    /// A normal map's raw triple at `uv` (see [`Bitmap::vector`]); (0, 0, 1) for textures
+    /// that hold no image.
+    #[inline]
+    pub fn vector(&self, uv: Vec2) -> glam::Vec3 {
+        match self {
+            Texture::Bitmap(b) => b.vector(uv),
+            _ => glam::Vec3::Z,
+        }
+    }
+
+    /// A height's gradient (∂/∂u, ∂/∂v) at `uv` (see [`Bitmap::gradient`]); zero for uniform
+    /// textures and checkerboards (piecewise constant).
+    #[inline]
+    pub fn gradient(&self, uv: Vec2) -> Vec2 {
+        match self {
+            Texture::Bitmap(b) => b.gradient(uv),
+            _ => Vec2::ZERO,
+        }
+    }
+
     /// The mean value over the surface and over 16 wavelengths from 360 to 830 nm (as Mitsuba's
     /// `mean()` of its textures), for sampling weights.
     pub fn mean(&self) -> f32 {

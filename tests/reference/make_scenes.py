@@ -1296,12 +1296,96 @@ checks that case against its closed form in tests/render_physics.rs.""",
     write("blend", s + FOOTER)
 
 
+def bumps():
+    import math
+    d = os.path.join(HERE, "bumps")
+    n = 32
+    # normal map: ridges along v, the normal tilting by up to ±35° in u, encoded (n + 1)/2
+    rows = []
+    for j in range(n):
+        row = []
+        for i in range(n):
+            tilt = math.radians(35) * math.sin(2 * math.pi * 3 * (i + 0.5) / n)
+            nx, ny, nz = math.sin(tilt), 0.2 * math.sin(2 * math.pi * 2 * (j + 0.5) / n), math.cos(tilt)
+            l = math.sqrt(nx * nx + ny * ny + nz * nz)
+            row.append([round(255 * (c / l + 1) / 2) for c in (nx, ny, nz)])
+        rows.append(row)
+    write_png(os.path.join(d, "normals.png"), n, n, rows, channels=3)
+    # height map: bumps 0..255, products of sines
+    rows = [[round(127.5 + 127.5 * math.sin(2 * math.pi * 4 * (i + 0.5) / n)
+                   * math.sin(2 * math.pi * 3 * (j + 0.5) / n)) for i in range(n)] for j in range(n)]
+    write_png(os.path.join(d, "height.png"), n, n, rows, channels=1)
+    s = header(
+        """Mitsuba's `normalmap` and `bumpmap`: a floor whose diffuse grey is bump-mapped by a 32 × 32
+grey PNG of sine bumps (raw, scale 0.15), a diffuse red sphere and a rough GGX aluminium sphere
+(alpha 0.15) normal-mapped by a 32 × 32 RGB PNG of ridges (raw); a D65 area light and a dim
+constant environment.
+Exercises: the perturbed shading frame of each (normal 2·rgb − 1; ∂p/∂u, ∂p/∂v moved by the
+height's bilinear gradient), ∂p/∂u and ∂p/∂v of rectangles and spheres, Mitsuba's side test
+(a direction counts where it is on the same side of the perturbed and the unperturbed
+surface), the cosine taken in the perturbed frame, the bump-terminator shadowing Mitsuba
+applies to light directions, and its mirrored normal for views below the perturbed surface.""",
+        "0, 1.4, 3.4",
+        "0, 0.4, 0",
+        40,
+        64,
+        6,
+    )
+    eta, k = metal("al")
+
+    def normalmap(inner):
+        return f"""        <bsdf type="normalmap">
+            <texture name="normalmap" type="bitmap">
+                <boolean name="raw" value="true"/>
+                <string name="filename" value="normals.png"/>
+            </texture>
+{inner}        </bsdf>
+"""
+    red = f"""            <bsdf type="diffuse">
+                <spectrum name="reflectance" value="{colorchecker("red")}"/>
+            </bsdf>
+"""
+    alu = f"""            <bsdf type="roughconductor">
+                <string name="distribution" value="ggx"/>
+                <float name="alpha" value="0.15"/>
+                <spectrum name="eta" value="{eta}"/>
+                <spectrum name="k" value="{k}"/>
+            </bsdf>
+"""
+    s += f"""
+    <shape type="rectangle">
+        <transform name="to_world">
+            <scale value="2.5"/>
+            <rotate x="1" angle="-90"/>
+        </transform>
+        <bsdf type="bumpmap">
+            <texture name="height" type="bitmap">
+                <boolean name="raw" value="true"/>
+                <string name="filename" value="height.png"/>
+            </texture>
+            <float name="scale" value="0.15"/>
+            <bsdf type="diffuse">
+                <spectrum name="reflectance" value="{colorchecker("neutral-8")}"/>
+            </bsdf>
+        </bsdf>
+    </shape>
+"""
+    s += sphere((-0.6, 0.45, 0), 0.45, normalmap(red), "normal-mapped diffuse red")
+    s += sphere((0.6, 0.45, 0.1), 0.45, normalmap(alu), "normal-mapped rough aluminium")
+    s += f"""{area_rect(0.4, "0.5, 2.4, 1.2", illuminant('d65', 30.0))}
+    <emitter type="constant">
+        <spectrum name="radiance" value="{illuminant('d65', 0.2)}"/>
+    </emitter>
+"""
+    write("bumps", s + FOOTER)
+
+
 SCENES = {
     f.__name__: f
     for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
               dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional,
               spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics, serialized, direct, orthographic, mask, cylinders,
-              anisotropic, blend)
+              anisotropic, blend, bumps)
 }
 
 if __name__ == "__main__":

@@ -137,6 +137,8 @@ impl Cylinder {
             uv: Vec2::new(phi / (2.0 * PI), h / self.length),
             // ∂p/∂u = 2π·r·(−sin φ, cos φ, 0) in the cylinder's frame
             dpdu: self.frame * Vec3::new(-phi.sin(), phi.cos(), 0.0) * (2.0 * PI * self.radius),
+            // ∂p/∂v = length·axis
+            dpdv: self.frame.z_axis * self.length,
             shape: 0,
             prim: 0,
         }

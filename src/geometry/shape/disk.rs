@@ -146,6 +146,8 @@ impl Disk {
             uv: Vec2::new((a * a + b * b).sqrt(), phi / (2.0 * PI)),
             // ∂p/∂ρ: radial, as Mitsuba's disk (zero at the centre)
             dpdu: (self.u * a + self.v * b).normalize_or_zero(),
+            // ∂p/∂v = 2π·(−b, a) in the disk's axes
+            dpdv: (self.v * a - self.u * b) * (2.0 * PI),
             shape: 0,
             prim: 0,
         }

@@ -263,18 +263,25 @@ impl Mesh {
         let (p, p_error) = barycentric_point(pv, b);
         let (n_geom, n_shading) = self.normals_at(i, b);
         let (e1, e2) = (pv[1] - pv[0], pv[2] - pv[0]);
-        let (uv, dpdu) = match &self.uvs {
+        let (uv, dpdu, dpdv) = match &self.uvs {
             Some(uvs) => {
                 let [t0, t1, t2] = self.indices[i].map(|v| uvs[v as usize]);
-                // ∂p/∂u from the uv differences (pbrt-v4 §6.5.3); e1 where uv is degenerate
+                // ∂p/∂u, ∂p/∂v from the uv differences (pbrt-v4 §6.5.3): [d1; d2]·[∂p/∂u;
+                // ∂p/∂v] = [e1; e2]; where uv is degenerate, e1 and e2 − e1
                 let (d1, d2) = (t1 - t0, t2 - t0);
                 let det = d1.x * d2.y - d1.y * d2.x;
                 let dpdu = (e1 * d2.y - e2 * d1.y) / det;
-                let dpdu = if dpdu.is_finite() { dpdu } else { e1 };
-                (t0 * b[0] + t1 * b[1] + t2 * b[2], dpdu)
+                let dpdv = (e2 * d1.x - e1 * d2.x) / det;
+                let (dpdu, dpdv) = if dpdu.is_finite() && dpdv.is_finite() {
+                    (dpdu, dpdv)
+                } else {
+                    (e1, e2 - e1)
+                };
+                (t0 * b[0] + t1 * b[1] + t2 * b[2], dpdu, dpdv)
             }
-            // u = b₁ + b₂, v = b₂: ∂p/∂u = p₁ − p₀, Mitsuba's direction for meshes without uvs
-            None => (Vec2::new(b[1] + b[2], b[2]), e1),
+            // u = b₁ + b₂, v = b₂: ∂p/∂u = p₁ − p₀ (Mitsuba's direction for meshes without uvs),
+            // ∂p/∂v = p₂ − p₁
+            None => (Vec2::new(b[1] + b[2], b[2]), e1, e2 - e1),
         };
         Intersection {
             t: 0.0,
@@ -284,6 +291,7 @@ impl Mesh {
             n_shading,
             uv,
             dpdu,
+            dpdv,
             shape: 0,
             prim: i as u32,
         }

@@ -86,6 +86,8 @@ pub struct Intersection {
     /// shading frame's first tangent, as Mitsuba 3 builds `sh_frame`, so anisotropic lobes and
     /// tangent-space normal maps are oriented as there.
     pub dpdu: Vec3,
+    /// ∂p/∂v, m per unit v (world space, as `dpdu`), for bump maps.
+    pub dpdv: Vec3,
     /// Index of the shape in the slice given to the BVH.
     pub shape: u32,
     /// Primitive within the shape (triangle index for meshes, 0 otherwise).

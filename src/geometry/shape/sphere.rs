@@ -158,6 +158,10 @@ impl Sphere {
             uv: Vec2::new(phi / (2.0 * PI), theta / PI),
             // ∂p/∂u = 2π·(−y, x, 0) in the object frame, scaled by the radius
             dpdu: self.frame * Vec3::new(-local.y, local.x, 0.0) * (2.0 * PI * self.radius),
+            // ∂p/∂v = π·r·(cos θ cos φ, cos θ sin φ, −sin θ) in the object frame
+            dpdv: self.frame
+                * Vec3::new(local.z * phi.cos(), local.z * phi.sin(), -theta.sin())
+                * (PI * self.radius),
             shape: 0,
             prim: 0,
         }

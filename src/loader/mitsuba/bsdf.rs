@@ -165,6 +165,84 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
                 two0,
             ));
         }
+        // Mitsuba's normal and bump maps around one nested BSDF (whose twosided flag they
+        // keep): `normalmap` reads the texture named "normalmap", `bumpmap` its one nested
+        // texture, whatever its name, times `scale` (1)
+        "normalmap" | "bumpmap" => {
+            let mut nested = Vec::new();
+            let mut tex = Vec::new();
+            for c in &b.children {
+                match (c.tag.as_str(), cx.resolve(c)?.tag.as_str()) {
+                    ("bsdf", _) | ("ref", "bsdf") => nested.push(c),
+                    ("texture", _) | ("ref", "texture") => tex.push(c),
+                    _ => {}
+                }
+            }
+            let [inner] = nested[..] else {
+                return Err(cx.err(
+                    b,
+                    format!(
+                        "a {t} needs exactly one nested BSDF, found {}",
+                        nested.len()
+                    ),
+                ));
+            };
+            let (m, two) = bsdf(cx, inner, name)?;
+            if matches!(
+                m.kind,
+                MaterialKind::NormalMap { .. } | MaterialKind::BumpMap { .. }
+            ) {
+                return Err(cx.err(
+                    inner,
+                    format!("a {t} holding another normal or bump map is not supported"),
+                ));
+            }
+            let map = if t == "normalmap" {
+                tex.retain(|c| c.attr("name") == Some("normalmap"));
+                tex.first().copied().ok_or_else(|| {
+                    cx.err(
+                        b,
+                        "a normalmap needs a <texture name=\"normalmap\" type=\"bitmap\">",
+                    )
+                })?
+            } else {
+                let [h] = tex[..] else {
+                    return Err(cx.err(
+                        b,
+                        format!(
+                            "a bumpmap needs exactly one nested texture, found {}",
+                            tex.len()
+                        ),
+                    ));
+                };
+                h
+            };
+            if cx.resolve(map)?.attr("type") != Some("bitmap") {
+                return Err(cx.err(map, format!("a {t}'s texture must be a bitmap here")));
+            }
+            let texture = cx.texture_of(map)?;
+            let inner = Box::new(m.kind);
+            let kind = if t == "normalmap" {
+                MaterialKind::NormalMap {
+                    map: texture,
+                    inner,
+                }
+            } else {
+                MaterialKind::BumpMap {
+                    height: texture,
+                    scale: cx.opt_float(b, "scale")?.unwrap_or(1.0),
+                    inner,
+                }
+            };
+            return Ok((
+                MaterialDesc {
+                    name: name.to_string(),
+                    kind,
+                    loc: cx.loc(b),
+                },
+                two,
+            ));
+        }
         // Mitsuba's opacity mask around one nested BSDF (whose twosided flag it keeps)
         "mask" => {
             let inner = b

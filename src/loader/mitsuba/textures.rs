@@ -14,6 +14,11 @@ impl Cx<'_> {
         let Some(c) = self.child(e, name) else {
             return Ok(Spectrum::Constant(default).into());
         };
+        self.texture_of(c)
+    }
+
+    /// The texture (or spectrum) a property element `c` gives.
+    pub(super) fn texture_of(&self, c: &Element) -> R<TextureDesc> {
         let t = self.resolve(c)?;
         if t.tag != "texture" {
             return Ok(self.spectrum(c, false)?.into());

@@ -14,8 +14,8 @@ use crate::geometry::transform::Transform;
 use crate::loader::desc::{CameraKind, FovAxis, MaterialKind, Projection, SceneDesc};
 use crate::loader::{LoadError, Loc};
 use crate::material::{
-    Blend, Conductor, Dielectric, Lambert, Mask, Material, Phong, Plastic, RoughConductor,
-    RoughDielectric,
+    Blend, BumpMap, Conductor, Dielectric, Lambert, Mask, Material, NormalMap, Phong, Plastic,
+    RoughConductor, RoughDielectric,
 };
 use crate::spectrum::WavelengthRange;
 use crate::units::plain;
@@ -173,13 +173,49 @@ fn material(k: &MaterialKind) -> Result<Material, String> {
                 return Err("a blend's weight must be a number or a grey image, the same at every wavelength".into());
             }
             let (a, b) = (material(a)?, material(b)?);
-            if [&a, &b]
-                .iter()
-                .any(|m| matches!(m, Material::Mask(_) | Material::Blend(_)))
-            {
-                return Err("a blend cannot hold a mask or another blend".into());
+            if [&a, &b].iter().any(|m| {
+                matches!(
+                    m,
+                    Material::Mask(_)
+                        | Material::Blend(_)
+                        | Material::NormalMap(_)
+                        | Material::BumpMap(_)
+                )
+            }) {
+                return Err(
+                    "a blend cannot hold a mask, another blend, a normal map or a bump map".into(),
+                );
             }
             Material::Blend(Box::new(Blend { weight, a, b }))
+        }
+        MaterialKind::NormalMap { map, inner } => {
+            let inner = material(inner)?;
+            if matches!(inner, Material::NormalMap(_) | Material::BumpMap(_)) {
+                return Err("a normal map cannot hold another normal or bump map".into());
+            }
+            Material::NormalMap(Box::new(NormalMap {
+                map: textures::vector_texture(map)?,
+                inner,
+            }))
+        }
+        MaterialKind::BumpMap {
+            height,
+            scale,
+            inner,
+        } => {
+            let inner = material(inner)?;
+            if matches!(inner, Material::NormalMap(_) | Material::BumpMap(_)) {
+                return Err("a bump map cannot hold another normal or bump map".into());
+            }
+            let height = textures::texture(height)?;
+            if !textures::is_grey(&height) {
+                return Err("a bump map's height must be a grey image".into());
+            }
+            Material::BumpMap(Box::new(BumpMap {
+                height,
+                scale: *scale as f32,
+                inner,
+            }))
         }
         MaterialKind::ThinDielectric {
             int_ior,

@@ -72,6 +72,37 @@ pub(super) fn texture(t: &TextureDesc) -> Result<Texture, String> {
     })
 }
 
+/// A normal map: an image of triples used as numbers (decoded from sRGB only when the file is
+/// sRGB-encoded and `raw` is false, as Mitsuba reads it), never spectra.
+pub(super) fn vector_texture(t: &TextureDesc) -> Result<Texture, String> {
+    let TextureDesc::Bitmap {
+        path,
+        filter,
+        wrap,
+        raw,
+        to_uv,
+        ..
+    } = t
+    else {
+        return Err("a normal map must be an image".into());
+    };
+    let img = read_rgb(path).map_err(|e| e.to_string())?;
+    let decode = img.encoding == Encoding::Srgb && !raw;
+    let lin = |v: f32| if decode { srgb_to_linear(v) } else { v };
+    let v = img.rgb.iter().map(|p| p.map(lin)).collect();
+    let b = Bitmap::from_vectors(
+        img.width,
+        img.height,
+        v,
+        *filter,
+        *wrap,
+        uv_transform(to_uv)?,
+    );
+    Ok(Texture::Bitmap(Arc::new(
+        b.map_err(|e| format!("{}: {e}", path.display()))?,
+    )))
+}
+
 /// Whether the texture is the same at every wavelength: a constant, a checkerboard of two
 /// constants, or a grey image.
 pub(super) fn is_grey(t: &Texture) -> bool {

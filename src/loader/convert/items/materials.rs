@@ -169,12 +169,12 @@ pub(super) fn material(
     let sp = m.span();
     let f = format!("materials.{}", name.get_ref());
     let m = m.get_ref();
-    let all = present!(m; kind, reflectance, kd, ks, exponent, ior, exterior_ior, metal, eta, k, roughness, nonlinear, opacity, material, weight, materials);
+    let all = present!(m; kind, reflectance, kd, ks, exponent, ior, exterior_ior, metal, eta, k, roughness, nonlinear, opacity, material, weight, materials, map, height, scale);
     let ty = cx.required(
         &m.kind,
         &sp,
         &format!("{f}.type"),
-        "diffuse, phong, dielectric, conductor, plastic, thin_dielectric, null, mask or blend",
+        "diffuse, phong, dielectric, conductor, plastic, thin_dielectric, null, mask, blend, normal_map or bump_map",
     )?;
     // `roughness`: a GGX α in [0, 1] (0: smooth), or [α_u, α_v] for an anisotropic lobe
     // (α_u along the surface's ∂p/∂u), where `anisotropic` allows it
@@ -319,6 +319,92 @@ pub(super) fn material(
         "null" => {
             cx.only("a null material", &f, &all, &["kind"])?;
             MaterialKind::Null
+        }
+        // Mitsuba's `normalmap` and `bumpmap` around the material named by `material`: `map`
+        // an image of normals encoded (n + 1)/2, or `height` a grey image times `scale`; both
+        // images read as stored numbers (Mitsuba's raw = true), not decoded from sRGB
+        "normal_map" | "bump_map" => {
+            let normal = ty.get_ref() == "normal_map";
+            let (key, what): (&str, &str) = if normal {
+                ("map", "a normal map material")
+            } else {
+                ("height", "a bump map material")
+            };
+            let allowed: &[&str] = if normal {
+                &["kind", "map", "material"]
+            } else {
+                &["kind", "height", "scale", "material"]
+            };
+            cx.only(what, &f, &all, allowed)?;
+            let raw_tex = if normal { &m.map } else { &m.height };
+            let t = cx.required(
+                raw_tex,
+                &sp,
+                &format!("{f}.{key}"),
+                "an image: { image = \"file.png\" } with optional filter, wrap and scale",
+            )?;
+            let tex = match reflectance_texture(cx, t, &format!("{f}.{key}"), range)? {
+                TextureDesc::Bitmap {
+                    path,
+                    filter,
+                    wrap,
+                    to_uv,
+                    loc,
+                    ..
+                } => TextureDesc::Bitmap {
+                    path,
+                    filter,
+                    wrap,
+                    raw: true,
+                    to_uv,
+                    loc,
+                },
+                _ => {
+                    return Err(cx.err(
+                        &t.span(),
+                        format!("{f}.{key}"),
+                        "expected an image: { image = \"file.png\" }",
+                    ));
+                }
+            };
+            let inner_name = cx.required(
+                &m.material,
+                &sp,
+                &format!("{f}.material"),
+                "the name of the material the map perturbs",
+            )?;
+            let inner = named(
+                cx,
+                inner_name,
+                &format!("{f}.material"),
+                what,
+                range,
+                all_raw,
+            )?;
+            if matches!(
+                inner.kind,
+                MaterialKind::NormalMap { .. } | MaterialKind::BumpMap { .. }
+            ) {
+                return Err(cx.err(
+                    &inner_name.span(),
+                    format!("{f}.material"),
+                    format!("{what} cannot hold another normal or bump map"),
+                ));
+            }
+            let inner = Box::new(inner.kind);
+            if normal {
+                MaterialKind::NormalMap { map: tex, inner }
+            } else {
+                let scale = match &m.scale {
+                    Some(v) => cx.number(v, &format!("{f}.scale"))?,
+                    None => 1.0,
+                };
+                MaterialKind::BumpMap {
+                    height: tex,
+                    scale,
+                    inner,
+                }
+            }
         }
         // Mitsuba's `mask`: `opacity` (a number or a grey texture in [0, 1]) of the material
         // named by `material`, the rest straight through
@@ -480,7 +566,7 @@ pub(super) fn material(
             }
         }
         o => {
-            return Err(cx.err(&ty.span(), format!("{f}.type"), format!("unknown material type \"{o}\"; expected diffuse, phong, dielectric, conductor, plastic, thin_dielectric, null, mask or blend")));
+            return Err(cx.err(&ty.span(), format!("{f}.type"), format!("unknown material type \"{o}\"; expected diffuse, phong, dielectric, conductor, plastic, thin_dielectric, null, mask, blend, normal_map or bump_map")));
         }
     };
     Ok(MaterialDesc {
