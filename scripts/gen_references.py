@@ -81,6 +81,7 @@ SPP = {
     "anisotropic": 4096,
     "blend": 4096,
     "bumps": 4096,
+    "instances": 4096,
 }
 DEFAULT_SPP = 1024
 

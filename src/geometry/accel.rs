@@ -6,12 +6,17 @@
 //! triangles share one tree. The BVH does not own the shapes: the same slice must be passed to
 //! [`Accel::build`] and to the queries.
 //!
+//! Instances ([`Instance`]: a group of shapes with its own `Accel`, placed by a transform) are
+//! primitives of this tree too, by their world boxes; their leaf test carries the ray into the
+//! group's object space and asks the group's BVH (see `instance.rs`).
+//!
 //! Robustness. obvhs's own `Ray::new` clamps tiny direction components to 1/ε before inverting,
 //! which can cull boxes for rays almost parallel to an axis; rays here are built with exact
 //! reciprocals instead (±f32::MAX for zero components, so no 0·∞ NaN). Each primitive box is
 //! padded by 2⁻²⁰ of its largest coordinate so that rounding in the slab test cannot cull a
 //! primitive whose own (watertight, conservative) test would report a hit.
 
+use super::instance::Instance;
 use super::ray::Ray;
 use super::shape::{Intersection, PrimHit, Shape, WatertightRay, intersect_triangle_with};
 use super::wide::{BinaryNode, WideBvh};
@@ -24,11 +29,29 @@ use std::time::Duration;
 /// Relative padding of primitive boxes.
 const BOX_PAD: f32 = 1.0 / (1 << 20) as f32;
 
-/// A (shape, primitive) pair, in BVH order.
+/// A (shape, primitive) pair, in BVH order; `shape` with [`INSTANCE`] set is instance
+/// `shape & !INSTANCE`.
 #[derive(Clone, Copy, Debug)]
 struct PrimRef {
     shape: u32,
     prim: u32,
+}
+
+/// The flag of [`PrimRef::shape`] that marks an instance.
+const INSTANCE: u32 = 1 << 31;
+
+/// The closest hit found so far: a primitive of this tree, or one inside instance `i` found
+/// along the object-space ray of scale `k`.
+enum Closest {
+    Direct(PrimRef, f32, PrimHit),
+    Instanced {
+        i: u32,
+        pr: PrimRef,
+        t_obj: f32,
+        hit: PrimHit,
+        ray: Ray,
+        k: f32,
+    },
 }
 
 /// The BVH over a slice of shapes.
@@ -47,6 +70,8 @@ pub struct Accel {
     /// one contiguous record instead of shape → index → position, and not `prims` at all; NaN
     /// for other primitives (mesh vertices are finite, so NaN marks "not a triangle").
     tris: Vec<[Vec3; 3]>,
+    /// The instances whose boxes are primitives here.
+    instances: Vec<Instance>,
 }
 
 impl std::fmt::Debug for Accel {
@@ -66,12 +91,27 @@ impl Accel {
         Self::build_with(shapes, PART, 8)
     }
 
+    /// [`Accel::build`] over `shapes` and the `instances`' world boxes: the scene's top level.
+    pub fn build_with_instances(shapes: &[Shape], instances: Vec<Instance>) -> Accel {
+        Self::build_all(shapes, instances, PART, 8)
+    }
+
     /// [`Accel::build`] with parts of `part` primitives when there are more than 2·`part` (see
     /// [`build_binary`]) and nodes at most `max_width` wide (8 where the CPU has AVX, else 4);
     /// exposed so that tests can exercise the parts and both widths on small scenes.
     #[doc(hidden)]
     pub fn build_with(shapes: &[Shape], part: usize, max_width: usize) -> Accel {
-        let total: usize = shapes.iter().map(|s| s.primitive_count()).sum();
+        Self::build_all(shapes, Vec::new(), part, max_width)
+    }
+
+    fn build_all(
+        shapes: &[Shape],
+        instances: Vec<Instance>,
+        part: usize,
+        max_width: usize,
+    ) -> Accel {
+        let total: usize =
+            shapes.iter().map(|s| s.primitive_count()).sum::<usize>() + instances.len();
         let mut refs = Vec::with_capacity(total);
         let mut boxes = Vec::with_capacity(total);
         for (s, shape) in shapes.iter().enumerate() {
@@ -88,12 +128,25 @@ impl Accel {
                 });
             }
         }
+        for (k, inst) in instances.iter().enumerate() {
+            if let Some((lo, hi)) = inst.bounds()
+                && lo.is_finite()
+                && hi.is_finite()
+            {
+                boxes.push(Aabb::new(lo.into(), hi.into()));
+                refs.push(PrimRef {
+                    shape: INSTANCE | k as u32,
+                    prim: 0,
+                });
+            }
+        }
         if refs.is_empty() {
             return Accel {
                 root_bounds: None,
                 wide: WideBvh::default(),
                 prims: Vec::new(),
                 tris: Vec::new(),
+                instances,
             };
         }
         let (binary, order) = build_binary(&boxes, part.max(1));
@@ -102,8 +155,8 @@ impl Accel {
         drop((refs, order));
         let tris = prims
             .iter()
-            .map(|pr| match &shapes[pr.shape as usize] {
-                Shape::Mesh(m) => m.vertices(pr.prim as usize),
+            .map(|pr| match shapes.get(pr.shape as usize) {
+                Some(Shape::Mesh(m)) => m.vertices(pr.prim as usize),
                 _ => [Vec3::NAN; 3],
             })
             .collect();
@@ -113,6 +166,7 @@ impl Accel {
             root_bounds,
             prims,
             tris,
+            instances,
         }
     }
 
@@ -130,7 +184,63 @@ impl Accel {
     pub fn intersect(&self, shapes: &[Shape], ray: &Ray) -> Option<Intersection> {
         let inv_d = inv_direction(ray)?;
         let wt = WatertightRay::new(ray);
-        let mut best: Option<(PrimRef, f32, PrimHit)> = None;
+        let mut best: Option<Closest> = None;
+        self.wide
+            .traverse(ray.o, inv_d, ray.t_max, false, |id, t_max| {
+                if let Some((t, h)) = self.intersect_prim(shapes, id, ray, &wt, t_max) {
+                    best = Some(Closest::Direct(self.prims[id], t, h));
+                    return t;
+                }
+                let pr = self.prims[id];
+                if pr.shape & INSTANCE == 0 {
+                    return f32::INFINITY;
+                }
+                let i = pr.shape & !INSTANCE;
+                let inst = &self.instances[i as usize];
+                let Some((oray, k)) = inst.to_object(&Ray { t_max, ..*ray }) else {
+                    return f32::INFINITY;
+                };
+                match inst.group.accel.closest(&inst.group.shapes, &oray) {
+                    Some((gpr, t_obj, hit)) => {
+                        best = Some(Closest::Instanced {
+                            i,
+                            pr: gpr,
+                            t_obj,
+                            hit,
+                            ray: oray,
+                            k,
+                        });
+                        t_obj / k
+                    }
+                    None => f32::INFINITY,
+                }
+            });
+        match best? {
+            Closest::Direct(pr, t, h) => {
+                let shape = shapes.get(pr.shape as usize)?;
+                Some(shape.interaction(pr.shape, pr.prim as usize, ray, t, &h))
+            }
+            Closest::Instanced {
+                i,
+                pr,
+                t_obj,
+                hit,
+                ray: oray,
+                k,
+            } => {
+                let inst = &self.instances[i as usize];
+                let shape = inst.group.shapes.get(pr.shape as usize)?;
+                let it = shape.interaction(pr.shape, pr.prim as usize, &oray, t_obj, &hit);
+                Some(inst.to_world(it, k))
+            }
+        }
+    }
+
+    /// The closest hit among this tree's own primitives (not instances): (primitive, t, hit).
+    fn closest(&self, shapes: &[Shape], ray: &Ray) -> Option<(PrimRef, f32, PrimHit)> {
+        let inv_d = inv_direction(ray)?;
+        let wt = WatertightRay::new(ray);
+        let mut best = None;
         self.wide
             .traverse(ray.o, inv_d, ray.t_max, false, |id, t_max| {
                 match self.intersect_prim(shapes, id, ray, &wt, t_max) {
@@ -141,9 +251,7 @@ impl Accel {
                     None => f32::INFINITY,
                 }
             });
-        let (pr, t, h) = best?;
-        let shape = shapes.get(pr.shape as usize)?;
-        Some(shape.interaction(pr.shape, pr.prim as usize, ray, t, &h))
+        best
     }
 
     /// Whether anything is hit with `t` in (0, `ray.t_max`) (shadow rays). Stops at the first
@@ -156,8 +264,21 @@ impl Accel {
         let t = self
             .wide
             .traverse(ray.o, inv_d, ray.t_max, true, |id, t_max| {
-                self.intersect_prim(shapes, id, ray, &wt, t_max)
-                    .map_or(f32::INFINITY, |(t, _)| t)
+                if let Some((t, _)) = self.intersect_prim(shapes, id, ray, &wt, t_max) {
+                    return t;
+                }
+                let pr = self.prims[id];
+                if pr.shape & INSTANCE == 0 {
+                    return f32::INFINITY;
+                }
+                let inst = &self.instances[(pr.shape & !INSTANCE) as usize];
+                match inst.to_object(&Ray { t_max, ..*ray }) {
+                    Some((oray, _)) if inst.group.accel.occluded(&inst.group.shapes, &oray) => {
+                        // any hit will do: report one inside the interval
+                        0.5 * t_max.min(f32::MAX)
+                    }
+                    _ => f32::INFINITY,
+                }
             });
         t < ray.t_max
     }

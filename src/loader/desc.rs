@@ -28,6 +28,10 @@ pub struct SceneDesc {
     pub integrator: IntegratorDesc,
     pub materials: Vec<MaterialDesc>,
     pub shapes: Vec<ShapeDesc>,
+    /// Groups of shapes that are drawn only through `instances` (Mitsuba's `shapegroup`).
+    pub groups: Vec<GroupDesc>,
+    /// Placements of groups (Mitsuba's `instance`).
+    pub instances: Vec<InstanceDesc>,
     pub lights: Vec<LightDesc>,
     /// What the loader wants the user to know without refusing the file ("file:line: message"),
     /// e.g. a Mitsuba sampler replaced by spectrace's own. Printed once by the CLI.
@@ -387,6 +391,25 @@ pub struct ShapeDesc {
     pub emission: Option<EmissionDesc>,
     /// Metres per scene length unit (for OBJ coordinates and unit shapes).
     pub unit_m: f64,
+    pub loc: Loc,
+}
+
+/// Shapes in their own object space, drawn once per instance: one BVH per group, so that a
+/// thousand instances cost one group's memory (Mitsuba's `shapegroup`). No emitters.
+#[derive(Clone, Debug)]
+pub struct GroupDesc {
+    pub id: String,
+    pub shapes: Vec<ShapeDesc>,
+    pub loc: Loc,
+}
+
+/// A group placed by a transform (Mitsuba's `instance`).
+#[derive(Clone, Debug)]
+pub struct InstanceDesc {
+    /// Index into `SceneDesc::groups`.
+    pub group: usize,
+    /// Applied in order, first to last (metres).
+    pub transform: Vec<TransformStep>,
     pub loc: Loc,
 }
 

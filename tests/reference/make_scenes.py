@@ -1380,12 +1380,102 @@ applies to light directions, and its mirrored normal for views below the perturb
     write("bumps", s + FOOTER)
 
 
+def instances():
+    d = os.path.join(HERE, "instances")
+    os.makedirs(d, exist_ok=True)
+    heightfield_obj(os.path.join(d, "bump.obj"), n=12, size=0.5, amp=0.12)
+    s = header(
+        """Mitsuba's `shapegroup` and `instance`: a group of a diffuse sphere (ColorChecker orange,
+off the group's origin), a rough GGX gold cube and a small height-field OBJ (diffuse
+blue-sky), placed four times by instances: as declared, rotated and moved, scaled by 0.6 and
+moved, and mirrored in x and moved; a floor, a D65 area light and a dim constant environment.
+Exercises: the two-level BVH (a group's own BVH under the scene's), rays and hits carried
+through instance transforms (points, normals by the inverse transpose, ∂p/∂u), error bounds of
+instanced hits (shadow rays from instanced surfaces).""",
+        "0, 1.6, 4.2",
+        "0, 0.5, 0",
+        42,
+        64,
+        6,
+    )
+    eta, k = metal("au")
+    s += f"""
+    <shape type="shapegroup" id="thing">
+        <shape type="sphere">
+            <point name="center" x="0.25" y="0.3" z="0"/>
+            <float name="radius" value="0.3"/>
+            <bsdf type="diffuse">
+                <spectrum name="reflectance" value="{colorchecker("orange")}"/>
+            </bsdf>
+        </shape>
+        <shape type="cube">
+            <transform name="to_world">
+                <scale value="0.15"/>
+                <rotate y="1" angle="25"/>
+                <translate x="-0.25" y="0.15" z="0.1"/>
+            </transform>
+            <bsdf type="roughconductor">
+                <string name="distribution" value="ggx"/>
+                <float name="alpha" value="0.2"/>
+                <spectrum name="eta" value="{eta}"/>
+                <spectrum name="k" value="{k}"/>
+            </bsdf>
+        </shape>
+        <shape type="obj">
+            <string name="filename" value="bump.obj"/>
+            <transform name="to_world">
+                <translate x="0" y="0.01" z="0.45"/>
+            </transform>
+            <bsdf type="twosided">
+                <bsdf type="diffuse">
+                    <spectrum name="reflectance" value="{colorchecker("blue-sky")}"/>
+                </bsdf>
+            </bsdf>
+        </shape>
+    </shape>
+
+    <shape type="instance">
+        <ref id="thing"/>
+        <transform name="to_world">
+            <translate x="-0.9" z="-0.3"/>
+        </transform>
+    </shape>
+    <shape type="instance">
+        <ref id="thing"/>
+        <transform name="to_world">
+            <rotate y="1" angle="60"/>
+            <translate x="0.8" z="-0.4"/>
+        </transform>
+    </shape>
+    <shape type="instance">
+        <ref id="thing"/>
+        <transform name="to_world">
+            <scale value="0.6"/>
+            <translate x="-0.2" z="0.9"/>
+        </transform>
+    </shape>
+    <shape type="instance">
+        <ref id="thing"/>
+        <transform name="to_world">
+            <scale x="-1" y="1" z="1"/>
+            <translate x="0.7" z="0.8"/>
+        </transform>
+    </shape>
+{floor_rect(3, colorchecker("neutral-8"))}
+{area_rect(0.4, "0.5, 2.6, 1.0", illuminant('d65', 30.0))}
+    <emitter type="constant">
+        <spectrum name="radiance" value="{illuminant('d65', 0.2)}"/>
+    </emitter>
+"""
+    write("instances", s + FOOTER)
+
+
 SCENES = {
     f.__name__: f
     for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
               dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional,
               spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics, serialized, direct, orthographic, mask, cylinders,
-              anisotropic, blend, bumps)
+              anisotropic, blend, bumps, instances)
 }
 
 if __name__ == "__main__":

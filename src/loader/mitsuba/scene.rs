@@ -8,7 +8,7 @@ use super::bsdf::bsdf;
 use super::cx::{Cx, R};
 use super::emitters::emitter;
 use super::sensor::sensor;
-use super::shapes::shape;
+use super::shapes::{instance, shape, shapegroup};
 use super::xml::Element;
 use crate::loader::desc::*;
 use crate::units::{Length, length};
@@ -137,6 +137,8 @@ pub(super) fn scene(
     let mut materials: Vec<MaterialDesc> = Vec::new();
     let mut material_ids: HashMap<String, (usize, bool)> = HashMap::new();
     let mut shapes = Vec::new();
+    let mut groups: Vec<GroupDesc> = Vec::new();
+    let mut instances = Vec::new();
     let mut lights = Vec::new();
 
     for c in &root.children {
@@ -150,6 +152,13 @@ pub(super) fn scene(
                     material_ids.insert(id.to_string(), (materials.len(), two));
                     materials.push(m);
                 }
+            }
+            // a group of shapes drawn only through instances; an instance places one
+            "shape" if c.attr("type") == Some("shapegroup") => {
+                groups.push(shapegroup(&cx, c, &mut materials, &material_ids)?);
+            }
+            "shape" if c.attr("type") == Some("instance") => {
+                instances.push(instance(&cx, c, &groups)?);
             }
             "shape" => shapes.push(shape(&cx, c, &mut materials, &material_ids)?),
             "medium" => return Err(cx.err(c, "participating media (`medium`, e.g. homogeneous) are not supported yet; remove the medium (volpath renders a scene without media as path does)")),
@@ -183,6 +192,8 @@ pub(super) fn scene(
         integrator,
         materials,
         shapes,
+        groups,
+        instances,
         lights,
         notes: cx.notes.into_inner().into_iter().map(|(_, l)| l).collect(),
     })

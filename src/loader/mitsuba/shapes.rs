@@ -188,3 +188,83 @@ fn area_emitter(cx: &Cx<'_>, c: &Element) -> R<EmissionDesc> {
         loc: cx.loc(c),
     })
 }
+
+/// Mitsuba's `shapegroup` (declared at the top level with an `id`): its nested shapes, in their
+/// own object space. Emitters, nested groups and instances inside are refused.
+pub(super) fn shapegroup(
+    cx: &Cx<'_>,
+    g: &Element,
+    materials: &mut Vec<MaterialDesc>,
+    ids: &HashMap<String, (usize, bool)>,
+) -> R<GroupDesc> {
+    let id = g
+        .attr("id")
+        .ok_or_else(|| cx.err(g, "a shapegroup needs an id for its instances to refer to"))?;
+    let mut shapes = Vec::new();
+    for c in &g.children {
+        match c.tag.as_str() {
+            "shape" if matches!(c.attr("type"), Some("shapegroup" | "instance")) => {
+                return Err(cx.err(
+                    c,
+                    "a shapegroup cannot hold another shapegroup or an instance",
+                ));
+            }
+            "shape" => {
+                let s = shape(cx, c, materials, ids)?;
+                if s.emission.is_some() {
+                    return Err(cx.err(
+                        c,
+                        "a shape inside a shapegroup cannot emit (Mitsuba refuses it too); place the emitter outside the group",
+                    ));
+                }
+                shapes.push(s);
+            }
+            other => {
+                return Err(cx.err(
+                    c,
+                    format!("<{other}> is not allowed in a shapegroup, only <shape>"),
+                ));
+            }
+        }
+    }
+    if shapes.is_empty() {
+        return Err(cx.err(g, "a shapegroup needs at least one shape"));
+    }
+    Ok(GroupDesc {
+        id: id.to_string(),
+        shapes,
+        loc: cx.loc(g),
+    })
+}
+
+/// Mitsuba's `instance`: a `<ref>` to a shapegroup declared before it, and `to_world`.
+pub(super) fn instance(cx: &Cx<'_>, s: &Element, groups: &[GroupDesc]) -> R<InstanceDesc> {
+    let r = s
+        .children
+        .iter()
+        .find(|c| c.tag == "ref")
+        .ok_or_else(|| cx.err(s, "an instance needs a <ref id=\"…\"/> to a shapegroup"))?;
+    let id = r.attr("id").unwrap_or("");
+    let group = groups.iter().position(|g| g.id == id).ok_or_else(|| {
+        cx.err(
+            r,
+            format!("refers to \"{id}\", which is not a shapegroup declared before it"),
+        )
+    })?;
+    let transform = match s.children.iter().find(|c| c.tag == "transform") {
+        Some(tr) => cx.transform(tr)?,
+        None => Vec::new(),
+    };
+    if let Some(c) = s
+        .children
+        .iter()
+        .find(|c| matches!(c.tag.as_str(), "bsdf" | "emitter"))
+    {
+        return Err(cx.err(c, "an instance takes its shapes' materials from the group; a <bsdf> or <emitter> here has no effect in Mitsuba and is refused"));
+    }
+    Ok(InstanceDesc {
+        group,
+        transform,
+        loc: cx.loc(s),
+    })
+}

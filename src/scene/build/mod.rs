@@ -8,8 +8,11 @@ mod textures;
 use glam::Vec3;
 
 use super::{FilmSettings, IntegratorSettings, Scene, Surface};
+use std::sync::Arc;
+
 use crate::geometry::accel::Accel;
 use crate::geometry::camera::{Camera, FovAxis as CamAxis};
+use crate::geometry::instance::{Group, Instance};
 use crate::geometry::transform::Transform;
 use crate::loader::desc::{CameraKind, FovAxis, MaterialKind, Projection, SceneDesc};
 use crate::loader::{LoadError, Loc};
@@ -47,8 +50,25 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         shape_list.push(shapes::shape(s).map_err(|e| err(s.loc, format!("shapes[{i}]"), e))?);
     }
 
-    let (lights, light_sampling_weights, surfaces) = lights::lights(desc, &shape_list, range)?;
-    let accel = Accel::build(&shape_list);
+    let (lights, light_sampling_weights, mut surfaces) = lights::lights(desc, &shape_list, range)?;
+    // shape groups in their own object space, their surfaces after the scene's own
+    let mut groups = Vec::with_capacity(desc.groups.len());
+    for g in &desc.groups {
+        let base = surfaces.len() as u32;
+        let mut list = Vec::with_capacity(g.shapes.len());
+        for (i, s) in g.shapes.iter().enumerate() {
+            let field = || format!("shapegroup \"{}\".shapes[{i}]", g.id);
+            list.push(shapes::shape(s).map_err(|e| err(s.loc, field(), e))?);
+            surfaces.push(surface(s.material, s.two_sided, None));
+        }
+        groups.push(Arc::new(Group::new(list, base)));
+    }
+    let mut instances = Vec::with_capacity(desc.instances.len());
+    for (i, d) in desc.instances.iter().enumerate() {
+        let t = shapes::steps(&d.transform, 1.0, false)
+            .map_err(|e| err(d.loc, format!("instances[{i}].to_world"), e))?;
+        instances.push(Instance::new(groups[d.group].clone(), t));
+    }
     let mut bounds = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
     for s in &shape_list {
         for p in 0..s.primitive_count() {
@@ -56,6 +76,10 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
             bounds = (bounds.0.min(lo), bounds.1.max(hi));
         }
     }
+    for (lo, hi) in instances.iter().filter_map(|i| i.bounds()) {
+        bounds = (bounds.0.min(lo), bounds.1.max(hi));
+    }
+    let accel = Accel::build_with_instances(&shape_list, instances);
     let radius = if bounds.0.x <= bounds.1.x {
         ((bounds.1 - bounds.0) * 0.5).length().max(1e-3)
     } else {

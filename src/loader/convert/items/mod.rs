@@ -134,6 +134,8 @@ pub(super) fn scene(cx: &mut Cx<'_>, raw: RawScene) -> R<SceneDesc> {
         integrator,
         materials,
         shapes,
+        groups: Vec::new(),
+        instances: Vec::new(),
         lights,
         notes: Vec::new(),
     })
