@@ -82,6 +82,7 @@ SPP = {
     "blend": 4096,
     "bumps": 4096,
     "instances": 4096,
+    "textured_lobes": 4096,
 }
 DEFAULT_SPP = 1024
 

@@ -212,6 +212,15 @@ pub enum MaterialKind {
         scale: f64,
         inner: Box<MaterialKind>,
     },
+    /// A conductor or dielectric (`inner`) with textured parameters: roughness [α_u, α_v] as
+    /// grey textures (rough materials), and factors on the reflected and transmitted lobes
+    /// (Mitsuba's `specular_reflectance`, `specular_transmittance`).
+    Textured {
+        alpha: Option<Box<[TextureDesc; 2]>>,
+        reflectance: TextureDesc,
+        transmittance: TextureDesc,
+        inner: Box<MaterialKind>,
+    },
     /// A sheet of negligible thickness (Mitsuba's `thindielectric`), indices as a dielectric's.
     ThinDielectric {
         int_ior: f64,

@@ -32,6 +32,9 @@ impl<const N: usize> Bsdf<'_, N> {
             albedo_b: SampledSpectrum::zero(),
             weight: 1.0,
             perturb: self.perturb,
+            alpha: self.alpha,
+            spec_r: self.spec_r,
+            spec_t: self.spec_t,
         };
         let b = Bsdf {
             material: &m.b,

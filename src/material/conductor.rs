@@ -115,7 +115,7 @@ impl RoughConductor {
     }
 
     #[inline]
-    fn microfacet(&self) -> Microfacet {
+    pub fn microfacet(&self) -> Microfacet {
         Microfacet::anisotropic(self.alpha_u, self.alpha_v, self.distribution)
     }
 
@@ -136,22 +136,19 @@ impl RoughConductor {
         wi: Vec3,
         w: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
-        let Some(wm) = Self::half(wo, wi) else {
-            return SampledSpectrum::zero();
-        };
-        self.eval_half(wo, wi, wm, w)
+        self.eval_pdf_with(&self.microfacet(), wo, wi, w).0
     }
 
     /// [`RoughConductor::eval`] for the half vector `wm` of (wo, wi).
     #[inline]
     fn eval_half<const N: usize>(
         &self,
+        mf: &Microfacet,
         wo: Vec3,
         wi: Vec3,
         wm: Vec3,
         w: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
-        let mf = self.microfacet();
         let k = mf.d(wm) * mf.g(wo, wi) / (4.0 * wo.z * wi.z);
         // wo·wm = wi·wm; their mean keeps the rounding symmetric (exact reciprocity).
         let cos = 0.5 * (wo.dot(wm) + wi.dot(wm));
@@ -163,14 +160,14 @@ impl RoughConductor {
         let Some(wm) = Self::half(wo, wi) else {
             return 0.0;
         };
-        self.pdf_half(wo, wm)
+        self.pdf_half(&self.microfacet(), wo, wm)
     }
 
     /// [`RoughConductor::pdf`] for the half vector `wm` of (wo, wi): the density of sampling wm
     /// times the reflection Jacobian 1/(4 wo·wm), sr⁻¹.
     #[inline]
-    fn pdf_half(&self, wo: Vec3, wm: Vec3) -> f32 {
-        self.microfacet().normal_pdf(wo, wm) / (4.0 * wo.dot(wm))
+    fn pdf_half(&self, mf: &Microfacet, wo: Vec3, wm: Vec3) -> f32 {
+        mf.normal_pdf(wo, wm) / (4.0 * wo.dot(wm))
     }
 
     /// [`RoughConductor::eval`] and [`RoughConductor::pdf`] together, the half vector found
@@ -182,10 +179,23 @@ impl RoughConductor {
         wi: Vec3,
         w: &SampledWavelengths<N>,
     ) -> (SampledSpectrum<N>, f32) {
+        self.eval_pdf_with(&self.microfacet(), wo, wi, w)
+    }
+
+    /// [`RoughConductor::eval_pdf`] with the microfacet distribution `mf` in place of the
+    /// material's own roughness (a textured α looked up at the hit).
+    #[inline]
+    pub fn eval_pdf_with<const N: usize>(
+        &self,
+        mf: &Microfacet,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> (SampledSpectrum<N>, f32) {
         let Some(wm) = Self::half(wo, wi) else {
             return (SampledSpectrum::zero(), 0.0);
         };
-        (self.eval_half(wo, wi, wm, w), self.pdf_half(wo, wm))
+        (self.eval_half(mf, wo, wi, wm, w), self.pdf_half(mf, wo, wm))
     }
 
     #[inline]
@@ -195,10 +205,23 @@ impl RoughConductor {
         w: &SampledWavelengths<N>,
         u: Vec2,
     ) -> Option<BsdfSample<N>> {
+        self.sample_with(&self.microfacet(), wo, w, u)
+    }
+
+    /// [`RoughConductor::sample`] with the distribution `mf` (see
+    /// [`RoughConductor::eval_pdf_with`]).
+    #[inline]
+    pub fn sample_with<const N: usize>(
+        &self,
+        mf: &Microfacet,
+        wo: Vec3,
+        w: &SampledWavelengths<N>,
+        u: Vec2,
+    ) -> Option<BsdfSample<N>> {
         if wo.z <= 0.0 {
             return None;
         }
-        let wm = self.microfacet().sample_normal(wo, u);
+        let wm = mf.sample_normal(wo, u);
         if wo.dot(wm) <= 0.0 {
             return None; // a back-facing normal (Beckmann samples D·cos, not visible normals)
         }
@@ -206,7 +229,7 @@ impl RoughConductor {
         if wi.z <= 0.0 {
             return None;
         }
-        let (f, pdf) = self.eval_pdf(wo, wi, w);
+        let (f, pdf) = self.eval_pdf_with(mf, wo, wi, w);
         if !(pdf > 0.0 && pdf.is_finite()) {
             return None;
         }

@@ -43,6 +43,7 @@ mod perturb;
 mod phong;
 mod plastic;
 mod rough_dielectric;
+mod textured;
 
 pub use blend::Blend;
 pub use conductor::{Conductor, RoughConductor};
@@ -53,6 +54,7 @@ pub use perturb::{BumpMap, LocalSurface, NormalMap};
 pub use phong::Phong;
 pub use plastic::{Plastic, RoughCoating, fresnel_diffuse_reflectance};
 pub use rough_dielectric::RoughDielectric;
+pub use textured::TexturedLobes;
 
 use glam::{Vec2, Vec3};
 
@@ -133,6 +135,9 @@ pub enum Material {
     NormalMap(Box<NormalMap>),
     /// Mitsuba's `bumpmap`: the nested material in a frame tilted by a height's gradient.
     BumpMap(Box<BumpMap>),
+    /// A conductor or dielectric with textured roughness or specular factors (see
+    /// [`TexturedLobes`]).
+    Textured(Box<TexturedLobes>),
 }
 
 impl Material {
@@ -169,6 +174,9 @@ impl Material {
                     albedo_b: m.b.at(uv, w).albedo,
                     weight: m.weight.sample(uv, w)[0].clamp(0.0, 1.0),
                     perturb: UNPERTURBED,
+                    alpha: [0.0; 2],
+                    spec_r: SampledSpectrum::splat(1.0),
+                    spec_t: SampledSpectrum::splat(1.0),
                 };
             }
             Material::NormalMap(m) => {
@@ -183,6 +191,14 @@ impl Material {
                     ..m.inner.at_surface(s, w).with_material(self)
                 };
             }
+            Material::Textured(m) => {
+                return Bsdf {
+                    alpha: m.alpha_at(uv, w),
+                    spec_r: m.reflectance.sample(uv, w),
+                    spec_t: m.transmittance.sample(uv, w),
+                    ..m.inner.at_surface(s, w).with_material(self)
+                };
+            }
             _ => SampledSpectrum::zero(),
         };
         Bsdf {
@@ -191,6 +207,9 @@ impl Material {
             albedo_b: SampledSpectrum::zero(),
             weight: 1.0,
             perturb: UNPERTURBED,
+            alpha: [0.0; 2],
+            spec_r: SampledSpectrum::splat(1.0),
+            spec_t: SampledSpectrum::splat(1.0),
         }
     }
 
@@ -251,6 +270,7 @@ impl Material {
             Material::Mask(m) => m.inner.is_specular(),
             Material::NormalMap(m) => m.inner.is_specular(),
             Material::BumpMap(m) => m.inner.is_specular(),
+            Material::Textured(m) => m.inner.is_specular(),
             Material::Blend(m) => m.a.is_specular() && m.b.is_specular(),
             _ => matches!(
                 self,
@@ -273,6 +293,7 @@ impl Material {
             Material::Mask(m) => m.inner.is_dispersive(),
             Material::NormalMap(m) => m.inner.is_dispersive(),
             Material::BumpMap(m) => m.inner.is_dispersive(),
+            Material::Textured(m) => m.inner.is_dispersive(),
             Material::Blend(m) => m.a.is_dispersive() || m.b.is_dispersive(),
             _ => false,
         }
@@ -298,6 +319,7 @@ impl Material {
             Material::Blend(m) => m.a.is_transmissive() || m.b.is_transmissive(),
             Material::NormalMap(m) => m.inner.is_transmissive(),
             Material::BumpMap(m) => m.inner.is_transmissive(),
+            Material::Textured(m) => m.inner.is_transmissive(),
             _ => matches!(
                 self,
                 Material::Dielectric(_)
@@ -324,6 +346,11 @@ pub struct Bsdf<'a, const N: usize> {
     /// A normal or bump map's perturbed frame at the point, in the local shading frame; the
     /// identity for every other material.
     pub perturb: crate::geometry::Frame,
+    /// A [`TexturedLobes`]' roughness (α_u, α_v) at the point; unused otherwise.
+    pub alpha: [f32; 2],
+    /// A [`TexturedLobes`]' factors on the reflected and transmitted lobes; 1 otherwise.
+    pub spec_r: SampledSpectrum<N>,
+    pub spec_t: SampledSpectrum<N>,
 }
 
 /// The identity frame of [`Bsdf::perturb`].
@@ -358,6 +385,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::NormalMap(_) | Material::BumpMap(_) => {
                 self.perturbed_eval_pdf(wo, wi, w, mode).0
             }
+            Material::Textured(m) => self.textured_eval_pdf(m, wo, wi, w, mode).0,
         }
     }
 
@@ -380,6 +408,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::NormalMap(_) | Material::BumpMap(_) => {
                 self.perturbed_eval_pdf(wo, wi, w, _mode).1
             }
+            Material::Textured(m) => self.textured_eval_pdf(m, wo, wi, w, _mode).1,
         }
     }
 
@@ -412,6 +441,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::NormalMap(_) | Material::BumpMap(_) => {
                 self.perturbed_eval_pdf(wo, wi, w, mode)
             }
+            Material::Textured(m) => self.textured_eval_pdf(m, wo, wi, w, mode),
         }
     }
 
@@ -461,6 +491,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::NormalMap(_) | Material::BumpMap(_) => {
                 self.perturbed_sample(wo, w, uc, u, mode)
             }
+            Material::Textured(m) => self.textured_sample(m, wo, w, uc, u, mode),
             // straight through: f·|cos θᵢ|/pdf = 1
             Material::Null => (wo.z != 0.0).then(|| BsdfSample {
                 f: SampledSpectrum::splat(1.0 / wo.z.abs()),
@@ -490,6 +521,9 @@ impl<const N: usize> Bsdf<'_, N> {
             albedo_b: self.albedo_b,
             weight: self.weight,
             perturb: self.perturb,
+            alpha: self.alpha,
+            spec_r: self.spec_r,
+            spec_t: self.spec_t,
         }
     }
 

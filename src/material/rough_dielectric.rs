@@ -47,6 +47,8 @@ struct Half {
     wm: Vec3,
     etap: f32,
     reflection: bool,
+    /// The hero wavelength's relative index η the pair was found with.
+    eta: f32,
 }
 
 impl RoughDielectric {
@@ -80,7 +82,7 @@ impl RoughDielectric {
     }
 
     #[inline]
-    fn microfacet(&self) -> Microfacet {
+    pub fn microfacet(&self) -> Microfacet {
         Microfacet::anisotropic(self.alpha_u, self.alpha_v, self.distribution)
     }
 
@@ -116,6 +118,7 @@ impl RoughDielectric {
             wm,
             etap,
             reflection,
+            eta,
         })
     }
 
@@ -127,25 +130,21 @@ impl RoughDielectric {
         w: &SampledWavelengths<N>,
         mode: TransportMode,
     ) -> SampledSpectrum<N> {
-        let eta_hero = self.eta(w.lambda[0]);
-        let Some(h) = Self::half(wo, wi, eta_hero) else {
-            return SampledSpectrum::zero();
-        };
-        self.eval_half(wo, wi, w, mode, eta_hero, &h)
+        self.eval_pdf_with(&self.microfacet(), wo, wi, w, mode).0
     }
 
-    /// [`RoughDielectric::eval`] for the half vector `h` of (wo, wi) at the hero's `eta_hero`.
+    /// [`RoughDielectric::eval`] for the half vector `h` of (wo, wi) at the hero's η (`h.eta`).
     #[inline]
     fn eval_half<const N: usize>(
         &self,
+        mf: &Microfacet,
         wo: Vec3,
         wi: Vec3,
         w: &SampledWavelengths<N>,
         mode: TransportMode,
-        eta_hero: f32,
         h: &Half,
     ) -> SampledSpectrum<N> {
-        let mf = self.microfacet();
+        let eta_hero = h.eta;
         let dg = mf.d(h.wm) * mf.g(wo, wi);
         let (cos_om, cos_im) = (wo.dot(h.wm), wi.dot(h.wm));
         let cos2 = (wo.z * wi.z).abs();
@@ -182,7 +181,7 @@ impl RoughDielectric {
         let Some(h) = Self::half(wo, wi, eta) else {
             return 0.0;
         };
-        self.pdf_half(wo, wi, eta, &h)
+        self.pdf_half(&self.microfacet(), wo, wi, eta, &h)
     }
 
     /// [`RoughDielectric::eval`] and [`RoughDielectric::pdf`] together, the index and half
@@ -195,21 +194,35 @@ impl RoughDielectric {
         w: &SampledWavelengths<N>,
         mode: TransportMode,
     ) -> (SampledSpectrum<N>, f32) {
+        self.eval_pdf_with(&self.microfacet(), wo, wi, w, mode)
+    }
+
+    /// [`RoughDielectric::eval_pdf`] with the microfacet distribution `mf` in place of the
+    /// material's own roughness (a textured α looked up at the hit).
+    #[inline]
+    pub fn eval_pdf_with<const N: usize>(
+        &self,
+        mf: &Microfacet,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+        mode: TransportMode,
+    ) -> (SampledSpectrum<N>, f32) {
         let eta = self.eta(w.lambda[0]);
         let Some(h) = Self::half(wo, wi, eta) else {
             return (SampledSpectrum::zero(), 0.0);
         };
         (
-            self.eval_half(wo, wi, w, mode, eta, &h),
-            self.pdf_half(wo, wi, eta, &h),
+            self.eval_half(mf, wo, wi, w, mode, &h),
+            self.pdf_half(mf, wo, wi, eta, &h),
         )
     }
 
     /// [`RoughDielectric::pdf`] for the half vector `h` of (wo, wi) at the hero's `eta`.
     #[inline]
-    fn pdf_half(&self, wo: Vec3, wi: Vec3, eta: f32, h: &Half) -> f32 {
+    fn pdf_half(&self, mf: &Microfacet, wo: Vec3, wi: Vec3, eta: f32, h: &Half) -> f32 {
         let (cos_om, cos_im) = (wo.dot(h.wm), wi.dot(h.wm));
-        let pdf_wm = self.microfacet().normal_pdf(wo, h.wm);
+        let pdf_wm = mf.normal_pdf(wo, h.wm);
         let r = fresnel_dielectric(cos_om, eta);
         if h.reflection {
             pdf_wm / (4.0 * cos_om.abs()) * r
@@ -228,11 +241,26 @@ impl RoughDielectric {
         u: Vec2,
         mode: TransportMode,
     ) -> Option<BsdfSample<N>> {
+        self.sample_with(&self.microfacet(), wo, w, uc, u, mode)
+    }
+
+    /// [`RoughDielectric::sample`] with the distribution `mf` (see
+    /// [`RoughDielectric::eval_pdf_with`]).
+    #[inline]
+    pub fn sample_with<const N: usize>(
+        &self,
+        mf: &Microfacet,
+        wo: Vec3,
+        w: &SampledWavelengths<N>,
+        uc: f32,
+        u: Vec2,
+        mode: TransportMode,
+    ) -> Option<BsdfSample<N>> {
         if wo.z == 0.0 {
             return None;
         }
         let eta = self.eta(w.lambda[0]);
-        let wm = self.microfacet().sample_normal(wo, u);
+        let wm = mf.sample_normal(wo, u);
         if wo.dot(wm) * wo.z <= 0.0 {
             return None; // a back-facing normal (Beckmann samples D·cos, not visible normals)
         }
@@ -247,7 +275,7 @@ impl RoughDielectric {
         if wi.z == 0.0 || (wi.z * wo.z < 0.0) != transmission {
             return None;
         }
-        let (f, pdf) = self.eval_pdf(wo, wi, w, mode);
+        let (f, pdf) = self.eval_pdf_with(mf, wo, wi, w, mode);
         if !(pdf > 0.0 && pdf.is_finite() && f.is_finite()) {
             return None;
         }

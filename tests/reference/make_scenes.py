@@ -1470,12 +1470,83 @@ instanced hits (shadow rays from instanced surfaces).""",
     write("instances", s + FOOTER)
 
 
+def textured_lobes():
+    d = os.path.join(HERE, "textured_lobes")
+    # 8 × 1 grey PNG of roughnesses: sRGB bytes 8 .. 232 across (raw: α = byte/255)
+    write_png(os.path.join(d, "alpha.png"), 8, 1, [[8 + 32 * i for i in range(8)]], channels=1)
+    eta, k = metal("al")
+    s = header(
+        """Textured lobe parameters on conductors and dielectrics: a rough GGX aluminium sphere whose
+alpha is an 8 × 1 grey PNG (raw: 0.03 to 0.91 in bands of u); a smooth aluminium sphere with a
+checkerboard specular_reflectance (0.9 / 0.3); a smooth glass sphere (int_ior 1.5) with
+specular_reflectance 0.5 and an rgb specular_transmittance (0.9, 0.6, 0.3); a rough Beckmann
+glass slab (alpha_u a number, alpha_v the PNG); a floor, a D65 area light and a dim constant
+environment.
+Exercises: roughness looked up at the hit (isotropic and per axis), specular factors that scale
+a lobe without changing its sampling, for delta and microfacet lobes.""",
+        "0, 1.3, 3.6",
+        "0, 0.45, 0",
+        40,
+        64,
+        8,
+    )
+    metal_xml = f"""                <spectrum name="eta" value="{eta}"/>
+                <spectrum name="k" value="{k}"/>
+"""
+    s += sphere((-0.95, 0.4, 0), 0.4, f"""        <bsdf type="roughconductor">
+            <string name="distribution" value="ggx"/>
+            <texture type="bitmap" name="alpha">
+                <string name="filename" value="alpha.png"/>
+                <boolean name="raw" value="true"/>
+            </texture>
+{metal_xml}        </bsdf>
+""", "aluminium with a textured alpha")
+    s += sphere((0, 0.4, 0.1), 0.4, f"""        <bsdf type="conductor">
+            <texture type="checkerboard" name="specular_reflectance">
+                <float name="color0" value="0.9"/>
+                <float name="color1" value="0.3"/>
+                <transform name="to_uv"><scale x="4" y="4"/></transform>
+            </texture>
+{metal_xml}        </bsdf>
+""", "aluminium with a checkerboard specular_reflectance")
+    s += sphere((0.95, 0.4, 0), 0.4, """        <bsdf type="dielectric">
+            <float name="int_ior" value="1.5"/>
+            <float name="ext_ior" value="1.0"/>
+            <float name="specular_reflectance" value="0.5"/>
+            <rgb name="specular_transmittance" value="0.9, 0.6, 0.3"/>
+        </bsdf>
+""", "glass with specular factors")
+    s += f"""
+    <shape type="cube">
+        <transform name="to_world">
+            <scale x="0.5" y="0.06" z="0.25"/>
+            <translate x="0.3" y="0.1" z="0.9"/>
+        </transform>
+        <bsdf type="roughdielectric">
+            <string name="distribution" value="beckmann"/>
+            <float name="int_ior" value="1.5"/>
+            <float name="alpha_u" value="0.05"/>
+            <texture type="bitmap" name="alpha_v">
+                <string name="filename" value="alpha.png"/>
+                <boolean name="raw" value="true"/>
+            </texture>
+        </bsdf>
+    </shape>
+{floor_rect(3, colorchecker("neutral-6-5"))}
+{area_rect(0.4, "0.5, 2.4, 1.2", illuminant('d65', 30.0))}
+    <emitter type="constant">
+        <spectrum name="radiance" value="{illuminant('d65', 0.3)}"/>
+    </emitter>
+"""
+    write("textured_lobes", s + FOOTER)
+
+
 SCENES = {
     f.__name__: f
     for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
               dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional,
               spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics, serialized, direct, orthographic, mask, cylinders,
-              anisotropic, blend, bumps, instances)
+              anisotropic, blend, bumps, instances, textured_lobes)
 }
 
 if __name__ == "__main__":

@@ -110,26 +110,37 @@ impl Mesh {
         )
     }
 
-    /// The object-space cube [−1, 1]³ with outward faces, as 12 triangles (4 vertices per face,
-    /// uv = the face's two other coordinates mapped to [0, 1]), transformed.
+    /// The object-space cube [−1, 1]³ with outward faces, as 12 triangles (4 vertices per
+    /// face), transformed. Each face's uv is Mitsuba 3's `cube`: u = (p·U + 1)/2, v = (p·V + 1)/2
+    /// for the face's axes (U, V) below (measured in Mitsuba 3.9.1: its ∂p/∂u is 2U, ∂p/∂v 2V),
+    /// so textures and anisotropic lobes on a cube read as there.
     pub fn cuboid(transform: &Transform) -> Mesh {
+        // (outward normal, U, V) per face
+        const FACES: [([f32; 3], [f32; 3], [f32; 3]); 6] = [
+            ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, -1.0]),
+            ([-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]),
+            ([0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, -1.0]),
+            ([0.0, -1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]),
+            ([0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]),
+            ([0.0, 0.0, -1.0], [0.0, -1.0, 0.0], [1.0, 0.0, 0.0]),
+        ];
         let mut positions = Vec::with_capacity(24);
         let mut uvs = Vec::with_capacity(24);
         let mut indices = Vec::with_capacity(12);
-        for axis in 0..3 {
-            let (t1, t2) = (Vec3::AXES[(axis + 1) % 3], Vec3::AXES[(axis + 2) % 3]);
-            for sign in [1.0f32, -1.0] {
-                let n = Vec3::AXES[axis] * sign;
-                // Counter-clockwise seen from outside: t1 × t2 = axis, so swap them on the
-                // negative face.
-                let (a, b) = if sign > 0.0 { (t1, t2) } else { (t2, t1) };
-                let base = positions.len() as u32;
-                for (s, t) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
-                    positions.push(n + a * s + b * t);
-                    uvs.push(Vec2::new((s + 1.0) / 2.0, (t + 1.0) / 2.0));
-                }
+        for (n, u, v) in FACES {
+            let (n, a, b) = (Vec3::from(n), Vec3::from(u), Vec3::from(v));
+            let base = positions.len() as u32;
+            for (s, t) in [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)] {
+                positions.push(n + a * s + b * t);
+                uvs.push(Vec2::new((s + 1.0) / 2.0, (t + 1.0) / 2.0));
+            }
+            // counter-clockwise seen from outside: the corners run along a × b
+            if a.cross(b).dot(n) > 0.0 {
                 indices.push([base, base + 1, base + 2]);
                 indices.push([base, base + 2, base + 3]);
+            } else {
+                indices.push([base, base + 2, base + 1]);
+                indices.push([base, base + 3, base + 2]);
             }
         }
         Mesh::assemble(positions, None, Some(uvs), indices, transform)

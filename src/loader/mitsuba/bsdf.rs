@@ -73,6 +73,10 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
         }
     };
     let alpha = |cx: &Cx<'_>| -> R<Option<[f64; 2]>> {
+        if alpha_textures(cx, b)?.is_some() {
+            // the textures, looked up at each hit, replace this (see `textured`)
+            return Ok(Some([0.1, 0.1]));
+        }
         let iso = cx.opt_float(b, "alpha")?;
         let (u, v) = (cx.opt_float(b, "alpha_u")?, cx.opt_float(b, "alpha_v")?);
         let a = match (iso, u, v) {
@@ -413,6 +417,14 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
         }
         other => return Err(cx.unsupported(b, "bsdf", other)),
     };
+    let kind = if matches!(
+        t,
+        "conductor" | "roughconductor" | "dielectric" | "roughdielectric"
+    ) {
+        textured(cx, b, t, kind)?
+    } else {
+        kind
+    };
     Ok((
         MaterialDesc {
             name: name.to_string(),
@@ -421,4 +433,57 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
         },
         false,
     ))
+}
+
+/// Whether a property is given as a texture (a `<texture>` or a reference to one).
+fn is_texture(cx: &Cx<'_>, b: &Element, name: &str) -> R<bool> {
+    match cx.child(b, name) {
+        Some(c) => Ok(cx.resolve(c)?.tag == "texture"),
+        None => Ok(false),
+    }
+}
+
+/// A rough BSDF's α as textures ([α_u, α_v]) when `alpha`, `alpha_u` or `alpha_v` is one; a
+/// number beside a texture becomes a uniform texture.
+fn alpha_textures(cx: &Cx<'_>, b: &Element) -> R<Option<[TextureDesc; 2]>> {
+    if is_texture(cx, b, "alpha")? {
+        let a = cx.texture_prop(b, "alpha", 0.1)?;
+        return Ok(Some([a.clone(), a]));
+    }
+    if is_texture(cx, b, "alpha_u")? || is_texture(cx, b, "alpha_v")? {
+        if cx.child(b, "alpha_u").is_none() || cx.child(b, "alpha_v").is_none() {
+            return Err(cx.err(b, "give both alpha_u and alpha_v"));
+        }
+        return Ok(Some([
+            cx.texture_prop(b, "alpha_u", 0.1)?,
+            cx.texture_prop(b, "alpha_v", 0.1)?,
+        ]));
+    }
+    Ok(None)
+}
+
+/// Wraps a conductor or dielectric in [`MaterialKind::Textured`] when Mitsuba's scene gives it a
+/// textured α or a `specular_reflectance` / `specular_transmittance` (1 by default).
+fn textured(cx: &Cx<'_>, b: &Element, t: &str, kind: MaterialKind) -> R<MaterialKind> {
+    let alpha = if t.starts_with("rough") {
+        alpha_textures(cx, b)?
+    } else {
+        None
+    };
+    let refl = cx.child(b, "specular_reflectance").is_some();
+    let dielectric = t.ends_with("dielectric");
+    let trans = cx.child(b, "specular_transmittance").is_some();
+    if trans && !dielectric {
+        let c = cx.child(b, "specular_transmittance").unwrap_or(b);
+        return Err(cx.err(c, "a conductor has no specular_transmittance"));
+    }
+    if alpha.is_none() && !refl && !trans {
+        return Ok(kind);
+    }
+    Ok(MaterialKind::Textured {
+        alpha: alpha.map(Box::new),
+        reflectance: cx.texture_prop(b, "specular_reflectance", 1.0)?,
+        transmittance: cx.texture_prop(b, "specular_transmittance", 1.0)?,
+        inner: Box::new(kind),
+    })
 }

@@ -18,7 +18,7 @@ use crate::loader::desc::{CameraKind, FovAxis, MaterialKind, Projection, SceneDe
 use crate::loader::{LoadError, Loc};
 use crate::material::{
     Blend, BumpMap, Conductor, Dielectric, Lambert, Mask, Material, NormalMap, Phong, Plastic,
-    RoughConductor, RoughDielectric,
+    RoughConductor, RoughDielectric, TexturedLobes,
 };
 use crate::spectrum::WavelengthRange;
 use crate::units::plain;
@@ -204,13 +204,47 @@ fn material(k: &MaterialKind) -> Result<Material, String> {
                         | Material::Blend(_)
                         | Material::NormalMap(_)
                         | Material::BumpMap(_)
+                        | Material::Textured(_)
                 )
             }) {
                 return Err(
-                    "a blend cannot hold a mask, another blend, a normal map or a bump map".into(),
+                    "a blend cannot hold a mask, another blend, a normal or bump map, or textured roughness or specular factors".into(),
                 );
             }
             Material::Blend(Box::new(Blend { weight, a, b }))
+        }
+        MaterialKind::Textured {
+            alpha,
+            reflectance,
+            transmittance,
+            inner,
+        } => {
+            let inner = material(inner)?;
+            if !matches!(
+                inner,
+                Material::Conductor(_)
+                    | Material::RoughConductor(_)
+                    | Material::Dielectric(_)
+                    | Material::RoughDielectric(_)
+            ) {
+                return Err("textured roughness and specular factors apply to conductors and dielectrics only".into());
+            }
+            let alpha = match alpha.as_deref() {
+                Some([u, v]) => {
+                    let (u, v) = (textures::texture(u)?, textures::texture(v)?);
+                    if !(textures::is_grey(&u) && textures::is_grey(&v)) {
+                        return Err("a textured alpha must be a grey image or a number".into());
+                    }
+                    Some([u, v])
+                }
+                None => None,
+            };
+            Material::Textured(Box::new(TexturedLobes {
+                alpha,
+                reflectance: textures::texture(reflectance)?,
+                transmittance: textures::texture(transmittance)?,
+                inner,
+            }))
         }
         MaterialKind::NormalMap { map, inner } => {
             let inner = material(inner)?;
