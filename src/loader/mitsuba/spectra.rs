@@ -126,7 +126,7 @@ impl Cx<'_> {
             }
             "texture" => Err(self.err(
                 e,
-                "a texture is not supported here: spectrace reads textures for a diffuse reflectance and a plastic's diffuse_reflectance; give a <spectrum>, <rgb> or <float>",
+                "a texture is not supported here: spectrace reads textures for reflectances, a mask's opacity, a blend's weight, roughness (alpha), specular factors and normal and bump maps, not yet for an emitter's radiance; give a <spectrum>, <rgb> or <float>",
             )),
             other => Err(self.err(
                 e,
