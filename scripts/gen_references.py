@@ -83,6 +83,7 @@ SPP = {
     "bumps": 4096,
     "instances": 4096,
     "textured_lobes": 4096,
+    "emissive_textures": 4096,
 }
 DEFAULT_SPP = 1024
 

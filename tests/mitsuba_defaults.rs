@@ -502,3 +502,28 @@ fn rough_bsdf_defaults_match_mitsuba() {
         "Mitsuba's default alpha"
     );
 }
+
+/// A shape without a `<bsdf>` is diffuse with reflectance 0.5 in Mitsuba 3.9.1, except an
+/// emitting one, which gets reflectance 0 (measured: `shape.bsdf()` of an area-emitting
+/// rectangle is SmoothDiffuse[reflectance = 0]); spectrace reads the emitter as a pure emitter
+/// with no material, the plain shape as the 0.5 diffuse.
+#[test]
+fn emitting_shape_without_bsdf_is_black_as_in_mitsuba() {
+    let d = load(
+        r#"<scene version="3.0.0">
+  <sensor type="perspective"><float name="fov" value="40"/></sensor>
+  <shape type="rectangle"><emitter type="area"/></shape>
+  <shape type="sphere"/>
+</scene>"#,
+    );
+    assert_eq!(d.shapes[0].material, None, "the emitter reflects nothing");
+    let m = d.shapes[1].material.expect("the plain sphere has Mitsuba's default BSDF");
+    match &d.materials[m].kind {
+        spectrace::loader::desc::MaterialKind::Diffuse { reflectance } => {
+            assert!(
+                matches!(reflectance, spectrace::loader::desc::TextureDesc::Uniform(s) if s.eval(550.0) == 0.5)
+            );
+        }
+        other => panic!("{other:?}"),
+    }
+}

@@ -48,7 +48,7 @@ pub(super) fn radiance<const N: usize>(
         return l;
     };
     if let Some(li) = scene.surfaces[hit.shape as usize].light {
-        l += scene.lights[li as usize].emitted(hit.n_geom, -ray.d, w);
+        l += scene.lights[li as usize].emitted(hit.n_geom, -ray.d, hit.uv, w);
     }
     let Some(sh) = it.shading(&hit, ray.d, w) else {
         return l;
@@ -98,7 +98,7 @@ pub(super) fn radiance<const N: usize>(
         match scene.accel.intersect(&scene.shapes, &next) {
             Some(h2) => {
                 if let Some(li) = scene.surfaces[h2.shape as usize].light {
-                    let le = scene.lights[li as usize].emitted(h2.n_geom, -next.d, w);
+                    let le = scene.lights[li as usize].emitted(h2.n_geom, -next.d, h2.uv, w);
                     if !le.is_zero() {
                         let wgt = if bs.specular {
                             1.0

@@ -61,7 +61,7 @@ pub(super) fn radiance<const N: usize>(
         // Emission at the hit, MIS-weighted against light sampling from the previous vertex.
         if let Some(li) = surf.light {
             let light = &scene.lights[li as usize];
-            let le = light.emitted(hit.n_geom, -ray.d, w);
+            let le = light.emitted(hit.n_geom, -ray.d, hit.uv, w);
             if !le.is_zero() {
                 let wgt = if specular_bounce {
                     1.0

@@ -34,7 +34,7 @@ pub(super) fn radiance<const N: usize>(
     };
     let surf = scene.surfaces[hit.shape as usize];
     let mut l = match surf.light {
-        Some(li) => scene.lights[li as usize].emitted(hit.n_geom, -ray.d, w),
+        Some(li) => scene.lights[li as usize].emitted(hit.n_geom, -ray.d, hit.uv, w),
         None => SampledSpectrum::zero(),
     };
     let Some(sh) = it.shading(&hit, ray.d, w) else {

@@ -4,29 +4,32 @@ use glam::{Vec2, Vec3};
 
 use super::LightSample;
 use crate::geometry::shape::Shape;
-use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
+use crate::spectrum::{SampledSpectrum, SampledWavelengths};
+use crate::texture::Texture;
 
-/// A Lambertian emitter of uniform spectral radiance on shape `shape`. One-sided emitters emit
-/// on the side of the shape's geometric normal; power Φ = π·L·A (two-sided: 2π·L·A) per nm.
+/// A Lambertian emitter on shape `shape`, of a spectral radiance that may vary over the surface
+/// (a texture looked up at the point's uv). One-sided emitters emit on the side of the shape's
+/// geometric normal; power Φ = π·L·A (two-sided: 2π·L·A) per nm for a uniform L.
 #[derive(Clone, Debug)]
 pub struct AreaLight {
     /// Index of the shape in `Scene::shapes`.
     pub shape: u32,
-    /// Spectral radiance, W·m⁻²·sr⁻¹·nm⁻¹.
-    pub radiance: Spectrum,
+    /// Spectral radiance, W·m⁻²·sr⁻¹·nm⁻¹, at each point's uv.
+    pub radiance: Texture,
     pub two_sided: bool,
 }
 
 impl AreaLight {
-    /// Radiance leaving the surface (normal `n`) toward `w_out`.
+    /// Radiance leaving the surface (normal `n`, surface coordinates `uv`) toward `w_out`.
     pub fn emitted<const N: usize>(
         &self,
         n: Vec3,
         w_out: Vec3,
+        uv: Vec2,
         w: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
         if self.two_sided || n.dot(w_out) > 0.0 {
-            self.radiance.sample(w)
+            self.radiance.sample(uv, w)
         } else {
             SampledSpectrum::zero()
         }
@@ -59,7 +62,7 @@ impl AreaLight {
         }
         Some(LightSample {
             wi,
-            li: self.radiance.sample(w),
+            li: self.radiance.sample(s.uv, w),
             pdf,
             delta: false,
             p: s.p,

@@ -177,16 +177,18 @@ impl Light {
         }
     }
 
-    /// Radiance leaving an area light's surface with geometric normal `n` toward `w_out`
-    /// (unit, pointing away from the surface), W·m⁻²·sr⁻¹·nm⁻¹. Zero for other lights.
+    /// Radiance leaving an area light's surface with geometric normal `n` and surface
+    /// coordinates `uv` toward `w_out` (unit, pointing away from the surface),
+    /// W·m⁻²·sr⁻¹·nm⁻¹. Zero for other lights.
     pub fn emitted<const N: usize>(
         &self,
         n: Vec3,
         w_out: Vec3,
+        uv: glam::Vec2,
         w: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
         match self {
-            Light::Area(l) => l.emitted(n, w_out, w),
+            Light::Area(l) => l.emitted(n, w_out, uv, w),
             _ => SampledSpectrum::zero(),
         }
     }
@@ -252,7 +254,12 @@ impl Light {
             Light::Spot(l) => l.solid_angle_factor() * band(&l.intensity),
             Light::Area(l) => {
                 let sides = if l.two_sided { 2.0 } else { 1.0 };
-                sides * pi * shapes[l.shape as usize].area() as f64 * band(&l.radiance)
+                // a textured radiance: its mean over the surface and 360–830 nm, for selection
+                let radiance = match &l.radiance {
+                    crate::texture::Texture::Uniform(s) => band(s),
+                    t => t.mean() as f64 * (range.max_nm - range.min_nm) as f64,
+                };
+                sides * pi * shapes[l.shape as usize].area() as f64 * radiance
             }
             Light::Directional(l) => pi * (scene_radius as f64).powi(2) * band(&l.irradiance),
             Light::Environment(l) => {

@@ -382,6 +382,9 @@ pub enum EmitAmount {
 #[derive(Clone, Debug)]
 pub struct EmissionDesc {
     pub spectrum: Spectrum,
+    /// A radiance that varies over the surface (Mitsuba's textured `radiance`), in place of
+    /// `spectrum`, read as given (W·m⁻²·sr⁻¹·nm⁻¹ per texel value).
+    pub texture: Option<TextureDesc>,
     pub amount: EmitAmount,
     pub two_sided: bool,
     /// As [`LightDesc::sampling_weight`].

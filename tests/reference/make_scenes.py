@@ -1541,12 +1541,64 @@ a lobe without changing its sampling, for delta and microfacet lobes.""",
     write("textured_lobes", s + FOOTER)
 
 
+def emissive_textures():
+    d = os.path.join(HERE, "emissive_textures")
+    # an 8 × 4 sRGB PNG panel: warm, cool and dark cells
+    cols = [[255, 200, 120], [120, 180, 255], [30, 30, 30], [255, 255, 255]]
+    rows = [[cols[(i + j) % 4] for i in range(8)] for j in range(4)]
+    write_png(os.path.join(d, "panel.png"), 8, 4, rows, channels=3)
+    # a 16 × 8 grey PNG of stripes for a glowing sphere (raw: bytes / 255)
+    write_png(os.path.join(d, "stripes.png"), 16, 8,
+              [[250 if (i // 2) % 2 == 0 else 40 for i in range(16)] for _ in range(8)], channels=1)
+    s = header(
+        """Area emitters whose radiance is a bitmap, read as Mitsuba 3.9.1 reads it (measured: the
+texels as a reflectance image would be, with no D65 shaping): an 8 × 4 sRGB PNG panel above
+and behind the scene, seen directly and lighting a diffuse floor and a white sphere (light
+sampling by area, the radiance looked up at the sampled point), and a sphere glowing in grey
+stripes (a raw 16 × 8 PNG).
+Exercises: textured emission in emission seen directly, next-event estimation and MIS.""",
+        "0, 1.2, 3.6",
+        "0, 0.6, 0",
+        45,
+        64,
+        6,
+    )
+    s += f"""
+    <shape type="rectangle">
+        <transform name="to_world">
+            <scale x="1.2" y="0.6"/>
+            <rotate x="1" angle="30"/>
+            <translate y="1.5" z="-1.2"/>
+        </transform>
+        <emitter type="area">
+            <texture type="bitmap" name="radiance">
+                <string name="filename" value="panel.png"/>
+                <string name="filter_type" value="nearest"/>
+            </texture>
+        </emitter>
+    </shape>
+    <shape type="sphere">
+        <point name="center" x="0.8" y="0.35" z="0.3"/>
+        <float name="radius" value="0.35"/>
+        <emitter type="area">
+            <texture type="bitmap" name="radiance">
+                <string name="filename" value="stripes.png"/>
+                <boolean name="raw" value="true"/>
+            </texture>
+        </emitter>
+    </shape>
+{sphere((-0.5, 0.45, 0.2), 0.45, diffuse(colorchecker("white-9-5"), indent="        "), "white diffuse sphere")}
+{floor_rect(3, colorchecker("neutral-8"))}
+"""
+    write("emissive_textures", s + FOOTER)
+
+
 SCENES = {
     f.__name__: f
     for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
               dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional,
               spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics, serialized, direct, orthographic, mask, cylinders,
-              anisotropic, blend, bumps, instances, textured_lobes)
+              anisotropic, blend, bumps, instances, textured_lobes, emissive_textures)
 }
 
 if __name__ == "__main__":

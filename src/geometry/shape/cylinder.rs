@@ -152,6 +152,7 @@ impl Cylinder {
             p_error,
             n,
             pdf_area: 1.0 / self.area(),
+            uv: u,
         }
     }
 }

@@ -156,11 +156,14 @@ impl Disk {
     pub(crate) fn sample_area(&self, u: Vec2) -> SurfaceSample {
         let d = concentric_disk(u);
         let (p, p_error) = self.surface_point(d.x, d.y);
+        let phi = d.y.atan2(d.x);
+        let phi = if phi < 0.0 { phi + 2.0 * PI } else { phi };
         SurfaceSample {
             p,
             p_error,
             n: self.n,
             pdf_area: 1.0 / self.area,
+            uv: Vec2::new(d.length(), phi / (2.0 * PI)),
         }
     }
 }

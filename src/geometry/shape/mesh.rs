@@ -327,11 +327,19 @@ impl Mesh {
         let (b0, b1) = uniform_triangle(u);
         let b = [b0, b1, (1.0 - b0 - b1).max(0.0)];
         let (p, p_error) = barycentric_point(self.vertices(i), b);
+        let uv = match &self.uvs {
+            Some(uvs) => {
+                let [t0, t1, t2] = self.indices[i].map(|v| uvs[v as usize]);
+                t0 * b[0] + t1 * b[1] + t2 * b[2]
+            }
+            None => Vec2::new(b[1] + b[2], b[2]),
+        };
         SurfaceSample {
             p,
             p_error: p_error + gamma(2) * p.abs(),
             n: self.normals_at(i, b).0,
             pdf_area: 1.0 / self.area,
+            uv,
         }
     }
 }

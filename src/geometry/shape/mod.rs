@@ -47,6 +47,8 @@ pub struct SurfaceSample {
     pub n: Vec3,
     /// Density of the sample with respect to surface area, m⁻².
     pub pdf_area: f32,
+    /// Surface coordinates of the point, as [`Intersection::uv`] (for textured emitters).
+    pub uv: Vec2,
 }
 
 /// What [`Shape::intersect_primitive`] remembers about a hit for [`Shape::interaction`].

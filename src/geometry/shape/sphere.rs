@@ -141,14 +141,20 @@ impl Sphere {
         (p, p_error, dir)
     }
 
-    pub(crate) fn interaction(&self, p_approx: Vec3) -> Intersection {
-        let (p, p_error, n) = self.surface_point(p_approx - self.center);
+    /// uv = (φ/2π, θ/π) of the outward unit normal `n`, and its object-frame image, φ and θ.
+    #[inline]
+    fn angles(&self, n: Vec3) -> (Vec3, f32, f32) {
         let local = self.frame.transpose() * n;
         let mut phi = local.y.atan2(local.x);
         if phi < 0.0 {
             phi += 2.0 * PI;
         }
-        let theta = local.z.clamp(-1.0, 1.0).acos();
+        (local, phi, local.z.clamp(-1.0, 1.0).acos())
+    }
+
+    pub(crate) fn interaction(&self, p_approx: Vec3) -> Intersection {
+        let (p, p_error, n) = self.surface_point(p_approx - self.center);
+        let (local, phi, theta) = self.angles(n);
         Intersection {
             t: 0.0,
             p,
@@ -169,11 +175,13 @@ impl Sphere {
 
     pub(crate) fn sample_area(&self, u: Vec2) -> SurfaceSample {
         let (p, p_error, n) = self.surface_point(uniform_sphere(u));
+        let (_, phi, theta) = self.angles(n);
         SurfaceSample {
             p,
             p_error,
             n,
             pdf_area: 1.0 / self.area(),
+            uv: Vec2::new(phi / (2.0 * PI), theta / PI),
         }
     }
 }

@@ -137,8 +137,10 @@ pub(super) fn shape(
             _ => {}
         }
     }
-    if material.is_none() {
-        // Mitsuba's default BSDF is diffuse with reflectance 0.5
+    if material.is_none() && emission.is_none() {
+        // Mitsuba's default BSDF is diffuse with reflectance 0.5; an emitting shape without a
+        // BSDF gets a black one instead (measured in Mitsuba 3.9.1: `shape.bsdf()` is
+        // SmoothDiffuse with reflectance 0), which is spectrace's pure emitter (no material)
         material = Some(materials.len());
         materials.push(MaterialDesc {
             name: format!("default@{}", cx.loc(s).line),
@@ -180,8 +182,24 @@ fn area_emitter(cx: &Cx<'_>, c: &Element) -> R<EmissionDesc> {
     if c.attr("type") != Some("area") {
         return Err(cx.unsupported(c, "shape emitter", c.attr("type").unwrap_or("")));
     }
+    // a textured radiance (a bitmap) is read as Mitsuba reads it: texel values as radiance,
+    // without its D65 shaping (measured: a grey texel v emits the constant v)
+    let texture = match cx.child(c, "radiance") {
+        Some(r) if cx.resolve(r)?.tag == "texture" => {
+            if cx.resolve(r)?.attr("type") != Some("bitmap") {
+                return Err(cx.err(r, "an emitter's radiance texture must be a bitmap here"));
+            }
+            Some(cx.texture_of(r)?)
+        }
+        _ => None,
+    };
     Ok(EmissionDesc {
-        spectrum: cx.spectrum_prop(c, "radiance", 1.0, true)?,
+        spectrum: if texture.is_some() {
+            Spectrum::Constant(0.0)
+        } else {
+            cx.spectrum_prop(c, "radiance", 1.0, true)?
+        },
+        texture,
         amount: EmitAmount::Scale(1.0),
         two_sided: false,
         sampling_weight: sampling_weight(cx, c)?,

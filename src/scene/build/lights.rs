@@ -314,8 +314,22 @@ pub(super) fn lights(
             let sides = if em.two_sided { 2.0 } else { 1.0 };
             let (per, g) = emit(&em.amount, Some(sides * std::f64::consts::PI * area))
                 .map_err(|m| err(em.loc, field.clone(), m))?;
-            let radiance =
-                scaled(&em.spectrum, per, g, r).map_err(|m| err(em.loc, field.clone(), m))?;
+            let radiance = match &em.texture {
+                None => crate::texture::Texture::Uniform(
+                    scaled(&em.spectrum, per, g, r).map_err(|m| err(em.loc, field.clone(), m))?,
+                ),
+                Some(t) => {
+                    if !matches!(em.amount, EmitAmount::Scale(k) if k == 1.0) {
+                        return Err(err(
+                            em.loc,
+                            field,
+                            "a textured radiance is read as given (Mitsuba's); it takes no power, luminance or scale".into(),
+                        ));
+                    }
+                    super::textures::emission_texture(t)
+                        .map_err(|m| err(em.loc, field.clone(), m))?
+                }
+            };
             light = Some(lights.len());
             lights.push(Light::Area(AreaLight {
                 shape: i as u32,

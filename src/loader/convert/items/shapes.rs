@@ -281,6 +281,7 @@ pub(super) fn emission(cx: &Cx<'_>, e: &S<RawEmission>, f: &str) -> R<EmissionDe
     };
     let amount = emit_amount(cx, &sp, f, &e.radiance, &e.luminance, &e.power, &e.scale)?;
     Ok(EmissionDesc {
+        texture: None,
         spectrum,
         amount,
         two_sided: e.two_sided.as_ref().is_some_and(|b| *b.get_ref()),
