@@ -155,7 +155,7 @@ fn spot_power(falloff: &str, start: &str, amount: &str, lumens: bool, want: f64)
 /// ∫ L(ω) |cos θ| dω over the sphere around normal `n` for an area light at wavelength `l`.
 fn exitance(light: &Light, n: Vec3, l: f32) -> f64 {
     over_sphere(
-        |d| light.emitted(n, d, &at(l))[0] as f64 * (d.dot(n).abs() as f64),
+        |d| light.emitted(n, d, glam::Vec2::ZERO, &at(l))[0] as f64 * (d.dot(n).abs() as f64),
         400,
         16,
     )
@@ -191,13 +191,17 @@ fn area_light_power_radiance_and_luminance() {
             let n = Vec3::Z;
             if per_area {
                 // radiance along the normal, integrated over λ
-                let got = over_lambda(lumens, |l| light.emitted(n, n, &at(l))[0] as f64);
+                let got = over_lambda(lumens, |l| {
+                    light.emitted(n, n, glam::Vec2::ZERO, &at(l))[0] as f64
+                });
                 assert_close(got, want, &format!("{shape}: {emission}"));
             } else {
                 // exitance at 550 nm gives the angular integral; scale by the λ integral
                 let m550 = exitance(light, n, 550.0);
-                let l550 = light.emitted(n, n, &at(550.0))[0] as f64;
-                let band = over_lambda(lumens, |l| light.emitted(n, n, &at(l))[0] as f64);
+                let l550 = light.emitted(n, n, glam::Vec2::ZERO, &at(550.0))[0] as f64;
+                let band = over_lambda(lumens, |l| {
+                    light.emitted(n, n, glam::Vec2::ZERO, &at(l))[0] as f64
+                });
                 assert_close(
                     m550 / l550 * band * area,
                     want,

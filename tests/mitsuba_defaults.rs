@@ -517,7 +517,9 @@ fn emitting_shape_without_bsdf_is_black_as_in_mitsuba() {
 </scene>"#,
     );
     assert_eq!(d.shapes[0].material, None, "the emitter reflects nothing");
-    let m = d.shapes[1].material.expect("the plain sphere has Mitsuba's default BSDF");
+    let m = d.shapes[1]
+        .material
+        .expect("the plain sphere has Mitsuba's default BSDF");
     match &d.materials[m].kind {
         spectrace::loader::desc::MaterialKind::Diffuse { reflectance } => {
             assert!(
