@@ -196,3 +196,88 @@ fn a_forest_stores_its_tree_once() {
     println!("{lit} of 256 pixels see the forest or the sky");
     assert_eq!(lit, 256);
 }
+
+/// TOML `[[groups.NAME.shapes]]` and `[[instances]]` render what the same shapes written out
+/// with each instance's transform appended to theirs render (the same sampler, so the two
+/// images differ only by rounding in the transforms), and a missing group is a located error.
+#[test]
+fn toml_instances_render_as_their_flattened_shapes() {
+    let head = r#"
+[camera]
+eye = [0, 2, 6]
+target = [0, 0.5, 0]
+fov = "40 deg"
+[film]
+width = 32
+height = 24
+spp = 16
+[materials.red]
+type = "diffuse"
+reflectance = "colorchecker:red"
+[materials.gold]
+type = "conductor"
+metal = "Au"
+roughness = 0.3
+[[shapes]]
+type = "rectangle"
+material = "red"
+transform = [{ scale = 4 }, { rotate = { axis = [1, 0, 0], angle = "-90 deg" } }]
+[[lights]]
+type = "environment"
+radiance = "1 W/m^2/sr"
+"#;
+    let parts = [
+        (
+            "type = \"sphere\"\nradius = 0.3\ncenter = [0.4, 0.3, 0]\nmaterial = \"gold\"",
+            "",
+        ),
+        (
+            "type = \"box\"\nmaterial = \"red\"",
+            "{ scale = 0.2 }, { translate = [-0.3, 0.2, 0] }",
+        ),
+    ];
+    let places = [
+        "{ rotate = { axis = [0, 1, 0], angle = \"30 deg\" } }, { translate = [-1, 0, 0] }",
+        "{ scale = 1.5 }, { translate = [1, 0, -0.5] }",
+    ];
+    let mut grouped = String::from(head);
+    for (shape, t) in parts {
+        grouped += &format!("[[groups.thing.shapes]]\n{shape}\ntransform = [{t}]\n");
+    }
+    for p in places {
+        grouped += &format!("[[instances]]\ngroup = \"thing\"\ntransform = [{p}]\n");
+    }
+    let mut flat = String::from(head);
+    for p in places {
+        for (shape, t) in parts {
+            let list = if t.is_empty() {
+                p.to_string()
+            } else {
+                format!("{t}, {p}")
+            };
+            flat += &format!("[[shapes]]\n{shape}\ntransform = [{list}]\n");
+        }
+    }
+    let (a, _) = support::render::render_with(&support::render::scene_from(&grouped), |_| {});
+    let (b, _) = support::render::render_with(&support::render::scene_from(&flat), |_| {});
+    let mean = |v: &[f32]| v.iter().map(|&x| x as f64).sum::<f64>() / v.len() as f64;
+    let diff: Vec<f32> = a
+        .band
+        .iter()
+        .zip(&b.band)
+        .map(|(x, y)| (x - y).abs())
+        .collect();
+    let rel = mean(&diff) / mean(&b.band);
+    println!("mean |instanced − flattened| / mean = {rel:.2e}");
+    assert!(rel < 2e-3, "instanced and flattened images differ by {rel}");
+    // a missing group is named with its place in the file
+    let bad = grouped.replace("group = \"thing\"", "group = \"thong\"");
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/inline.toml");
+    let e = spectrace::loader::load_str(&bad, &path)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("instances[0].group") && e.contains("\"thong\""),
+        "{e}"
+    );
+}

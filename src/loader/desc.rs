@@ -420,8 +420,10 @@ pub struct GroupDesc {
 pub struct InstanceDesc {
     /// Index into `SceneDesc::groups`.
     pub group: usize,
-    /// Applied in order, first to last (metres).
+    /// Applied in order, first to last (metres; a matrix's translation in `unit_m` metres).
     pub transform: Vec<TransformStep>,
+    /// Metres per scene length unit.
+    pub unit_m: f64,
     pub loc: Loc,
 }
 

@@ -22,6 +22,25 @@ pub struct RawScene {
     pub shapes: Vec<S<RawShape>>,
     #[serde(default)]
     pub lights: Vec<S<RawLight>>,
+    /// Groups of shapes drawn only through `instances` (`[[groups.NAME.shapes]]`).
+    #[serde(default)]
+    pub groups: BTreeMap<S<String>, S<RawGroup>>,
+    #[serde(default)]
+    pub instances: Vec<S<RawInstance>>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawGroup {
+    #[serde(default)]
+    pub shapes: Vec<S<RawShape>>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawInstance {
+    pub group: Option<S<String>>,
+    pub transform: Option<S<Vec<S<Value>>>>,
 }
 
 #[derive(Deserialize, Debug)]

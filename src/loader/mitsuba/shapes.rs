@@ -283,6 +283,7 @@ pub(super) fn instance(cx: &Cx<'_>, s: &Element, groups: &[GroupDesc]) -> R<Inst
     Ok(InstanceDesc {
         group,
         transform,
+        unit_m: 1.0,
         loc: cx.loc(s),
     })
 }

@@ -65,7 +65,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
     }
     let mut instances = Vec::with_capacity(desc.instances.len());
     for (i, d) in desc.instances.iter().enumerate() {
-        let t = shapes::steps(&d.transform, 1.0, false)
+        let t = shapes::steps(&d.transform, d.unit_m, false)
             .map_err(|e| err(d.loc, format!("instances[{i}].to_world"), e))?;
         instances.push(Instance::new(groups[d.group].clone(), t));
     }

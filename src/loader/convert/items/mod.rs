@@ -85,22 +85,14 @@ pub(super) fn scene(cx: &mut Cx<'_>, raw: RawScene) -> R<SceneDesc> {
     for (name, m) in &raw.materials {
         materials.push(material(cx, name, m, &range, &raw.materials)?);
     }
+    let material_names: Vec<&str> = raw.materials.keys().map(|k| k.get_ref().as_str()).collect();
     let shapes = raw
         .shapes
         .iter()
         .enumerate()
-        .map(|(i, s)| {
-            shape(
-                cx,
-                i,
-                s,
-                &raw.materials
-                    .keys()
-                    .map(|k| k.get_ref().as_str())
-                    .collect::<Vec<_>>(),
-            )
-        })
+        .map(|(i, s)| shape(cx, format!("shapes[{i}]"), s, &material_names))
         .collect::<R<Vec<_>>>()?;
+    let (groups, instances) = groups_and_instances(cx, &raw, &material_names)?;
     let lights = raw
         .lights
         .iter()
@@ -111,7 +103,7 @@ pub(super) fn scene(cx: &mut Cx<'_>, raw: RawScene) -> R<SceneDesc> {
     let has_env = lights
         .iter()
         .any(|l| matches!(l.kind, LightKind::Environment { .. }));
-    if shapes.is_empty() && !has_env {
+    if shapes.is_empty() && instances.is_empty() && !has_env {
         let span = raw.camera.as_ref().map(|c| c.span()).unwrap_or(WHOLE_FILE);
         return Err(cx.err(
             &span,
@@ -134,8 +126,8 @@ pub(super) fn scene(cx: &mut Cx<'_>, raw: RawScene) -> R<SceneDesc> {
         integrator,
         materials,
         shapes,
-        groups: Vec::new(),
-        instances: Vec::new(),
+        groups,
+        instances,
         lights,
         notes: Vec::new(),
     })
@@ -144,4 +136,74 @@ pub(super) fn scene(cx: &mut Cx<'_>, raw: RawScene) -> R<SceneDesc> {
 /// Rounds away binary noise from unit conversions (29.999999999999996 → 30) for messages.
 fn round9(x: f64) -> f64 {
     (x * 1e9).round() / 1e9
+}
+
+/// `[[groups.NAME.shapes]]` (shapes without emission, in the group's own space) and
+/// `[[instances]]` (`group = "NAME"`, `transform`): Mitsuba's `shapegroup` and `instance`.
+fn groups_and_instances(
+    cx: &Cx<'_>,
+    raw: &RawScene,
+    material_names: &[&str],
+) -> R<(Vec<GroupDesc>, Vec<InstanceDesc>)> {
+    let mut groups = Vec::new();
+    for (name, g) in &raw.groups {
+        let gf = format!("groups.{}", name.get_ref());
+        if g.get_ref().shapes.is_empty() {
+            return Err(cx.err(
+                &g.span(),
+                &gf,
+                "a group needs at least one [[groups.NAME.shapes]]",
+            ));
+        }
+        let mut shapes = Vec::new();
+        for (i, s) in g.get_ref().shapes.iter().enumerate() {
+            let f = format!("{gf}.shapes[{i}]");
+            let d = shape(cx, f.clone(), s, material_names)?;
+            if d.emission.is_some() {
+                return Err(cx.err(
+                    &s.span(),
+                    format!("{f}.emission"),
+                    "a shape in a group cannot emit (each instance would be another lamp); place the emitter outside the group",
+                ));
+            }
+            shapes.push(d);
+        }
+        groups.push(GroupDesc {
+            id: name.get_ref().clone(),
+            shapes,
+            loc: cx.src.span(&g.span()),
+        });
+    }
+    let mut instances = Vec::new();
+    for (i, inst) in raw.instances.iter().enumerate() {
+        let f = format!("instances[{i}]");
+        let r = inst.get_ref();
+        let name = cx.required(
+            &r.group,
+            &inst.span(),
+            &format!("{f}.group"),
+            "the name of a [groups.NAME]",
+        )?;
+        let group = groups
+            .iter()
+            .position(|g| g.id == *name.get_ref())
+            .ok_or_else(|| {
+                cx.err(
+                    &name.span(),
+                    format!("{f}.group"),
+                    format!("no group named \"{}\"", name.get_ref()),
+                )
+            })?;
+        let transform = match &r.transform {
+            Some(t) => shapes::transform(cx, t, &format!("{f}.transform"))?,
+            None => Vec::new(),
+        };
+        instances.push(InstanceDesc {
+            group,
+            transform,
+            unit_m: cx.unit_m,
+            loc: cx.src.span(&inst.span()),
+        });
+    }
+    Ok((groups, instances))
 }

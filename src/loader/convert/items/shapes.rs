@@ -88,14 +88,14 @@ pub(super) fn transform(cx: &Cx<'_>, t: &S<Vec<S<Value>>>, field: &str) -> R<Vec
     Ok(out)
 }
 
+/// The shape `s`, named `f` in messages (`shapes[3]`, `groups.tree.shapes[0]`).
 pub(super) fn shape(
     cx: &Cx<'_>,
-    i: usize,
+    f: String,
     s: &S<RawShape>,
     material_names: &[&str],
 ) -> R<ShapeDesc> {
     let sp = s.span();
-    let f = format!("shapes[{i}]");
     let s = s.get_ref();
     let all = present!(s; kind, material, file, center, radius, transform, two_sided, emission, vertices, faces);
     let ty = cx.required(
