@@ -117,6 +117,10 @@ pub struct RawMaterial {
     /// A blend's weight (0: the first material, 1: the second) and the names of the two.
     pub weight: Option<S<Value>>,
     pub materials: Option<S<Vec<S<String>>>>,
+    /// Factors on a conductor's or dielectric's reflected and transmitted lobes (Mitsuba's
+    /// `specular_reflectance`, `specular_transmittance`): spectra or textures.
+    pub specular_reflectance: Option<S<Value>>,
+    pub specular_transmittance: Option<S<Value>>,
     /// A normal map's image, a bump map's height image and its scale.
     pub map: Option<S<Value>>,
     pub height: Option<S<Value>>,

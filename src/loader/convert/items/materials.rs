@@ -169,7 +169,7 @@ pub(super) fn material(
     let sp = m.span();
     let f = format!("materials.{}", name.get_ref());
     let m = m.get_ref();
-    let all = present!(m; kind, reflectance, kd, ks, exponent, ior, exterior_ior, metal, eta, k, roughness, nonlinear, opacity, material, weight, materials, map, height, scale);
+    let all = present!(m; kind, reflectance, kd, ks, exponent, ior, exterior_ior, metal, eta, k, roughness, nonlinear, opacity, material, weight, materials, map, height, scale, specular_reflectance, specular_transmittance);
     let ty = cx.required(
         &m.kind,
         &sp,
@@ -182,6 +182,10 @@ pub(super) fn material(
         let Some(r) = &m.roughness else {
             return Ok(None);
         };
+        if anisotropic && matches!(r.get_ref(), Value::Table(_)) {
+            // a texture, read by `lobes` below and looked up at each hit
+            return Ok(Some([0.1, 0.1]));
+        }
         let field = format!("{f}.roughness");
         let check = |a: f64| -> R<f64> {
             if (0.0..=1.0).contains(&a) {
@@ -301,7 +305,14 @@ pub(super) fn material(
                 "a dielectric material",
                 &f,
                 &all,
-                &["kind", "ior", "exterior_ior", "roughness"],
+                &[
+                    "kind",
+                    "ior",
+                    "exterior_ior",
+                    "roughness",
+                    "specular_reflectance",
+                    "specular_transmittance",
+                ],
             )?;
             let i = cx.required(
                 &m.ior,
@@ -545,7 +556,15 @@ pub(super) fn material(
                 "a conductor material",
                 &f,
                 &all,
-                &["kind", "metal", "eta", "k", "exterior_ior", "roughness"],
+                &[
+                    "kind",
+                    "metal",
+                    "eta",
+                    "k",
+                    "exterior_ior",
+                    "roughness",
+                    "specular_reflectance",
+                ],
             )?;
             let ior = match (&m.metal, &m.eta, &m.k) {
                 (Some(mm), None, None) => cx.metal(mm, &format!("{f}.metal"))?,
@@ -568,6 +587,11 @@ pub(super) fn material(
         o => {
             return Err(cx.err(&ty.span(), format!("{f}.type"), format!("unknown material type \"{o}\"; expected diffuse, phong, dielectric, conductor, plastic, thin_dielectric, null, mask, blend, normal_map or bump_map")));
         }
+    };
+    let kind = if matches!(ty.get_ref().as_str(), "dielectric" | "conductor") {
+        lobes(cx, m, &f, range, kind)?
+    } else {
+        kind
     };
     Ok(MaterialDesc {
         name: name.get_ref().clone(),
@@ -616,4 +640,56 @@ fn named(
         ));
     }
     material(cx, key, raw, range, all_raw)
+}
+
+/// A conductor or dielectric with a texture for `roughness` (`{ image = … }`, grey, isotropic)
+/// or `specular_reflectance` / `specular_transmittance` (spectra or textures) becomes
+/// [`MaterialKind::Textured`] around it; otherwise `kind` is returned unchanged.
+fn lobes(
+    cx: &Cx<'_>,
+    m: &RawMaterial,
+    f: &str,
+    range: &[Length; 2],
+    kind: MaterialKind,
+) -> R<MaterialKind> {
+    let alpha = match &m.roughness {
+        Some(r) if matches!(r.get_ref(), Value::Table(_)) => {
+            // roughness images are numbers as stored, not sRGB-decoded colours
+            let t = match reflectance_texture(cx, r, &format!("{f}.roughness"), range)? {
+                TextureDesc::Bitmap {
+                    path,
+                    filter,
+                    wrap,
+                    to_uv,
+                    loc,
+                    ..
+                } => TextureDesc::Bitmap {
+                    path,
+                    filter,
+                    wrap,
+                    raw: true,
+                    to_uv,
+                    loc,
+                },
+                other => other,
+            };
+            Some(Box::new([t.clone(), t]))
+        }
+        _ => None,
+    };
+    let factor = |v: &Option<S<Value>>, key: &str| -> R<TextureDesc> {
+        match v {
+            Some(v) => reflectance_texture(cx, v, &format!("{f}.{key}"), range),
+            None => Ok(Spectrum::Constant(1.0).into()),
+        }
+    };
+    if alpha.is_none() && m.specular_reflectance.is_none() && m.specular_transmittance.is_none() {
+        return Ok(kind);
+    }
+    Ok(MaterialKind::Textured {
+        alpha,
+        reflectance: factor(&m.specular_reflectance, "specular_reflectance")?,
+        transmittance: factor(&m.specular_transmittance, "specular_transmittance")?,
+        inner: Box::new(kind),
+    })
 }
