@@ -135,6 +135,11 @@ impl Complex {
 /// clamped to [0, 1]: a conductor is lit from outside only.
 #[inline]
 pub fn fresnel_conductor(cos_theta_i: f32, eta: f32, k: f32) -> f32 {
+    if eta == 0.0 && k == 0.0 {
+        // the limit of n + ik → 0: total reflection at every angle (Mitsuba 3.9.1 returns 1
+        // there too, NaN at exactly normal incidence), where the formula below divides 0 by 0
+        return 1.0;
+    }
     let cos_i = cos_theta_i.clamp(0.0, 1.0);
     let sin2_i = 1.0 - cos_i * cos_i;
     let eta_c = Complex::new(eta, k);

@@ -265,7 +265,7 @@ pub const MITSUBA_VERSION: &str = "3.9.1";
 /// Mitsuba opens `data/ior/NAME.eta.spd`. Mitsuba reads eta = k = 0 outside a file's wavelengths,
 /// which is no metal; a preset whose data does not cover Mitsuba's 360–830 nm is refused.
 /// Errors are a sentence for the user.
-pub fn mitsuba_conductor(name: &str) -> Result<ComplexIor, String> {
+pub fn mitsuba_conductor(name: &str) -> Result<(ComplexIor, Option<String>), String> {
     let known = || {
         let mut v: Vec<&str> = super::data::embedded::MITSUBA_METALS
             .iter()
@@ -277,13 +277,14 @@ pub fn mitsuba_conductor(name: &str) -> Result<ComplexIor, String> {
     match lookup(&format!("mitsuba:{name}")) {
         Ok(Named::Conductor(m)) if m.name == name => {
             let (lo, hi) = (m.ior.n.domain(), m.ior.k.domain());
-            if lo.0 > 360.0 || hi.0 > 360.0 || lo.1 < 830.0 || hi.1 < 830.0 {
-                return Err(format!(
-                    "Mitsuba's data for material \"{name}\" covers only {}–{} nm, and Mitsuba reads eta = k = 0 outside it (inside its 360–830 nm); spectrace does not reproduce that, give eta and k instead",
-                    lo.0, lo.1
-                ));
-            }
-            Ok(m.ior)
+            let note = (lo.0 > 360.0 || hi.0 > 360.0 || lo.1 < 830.0 || hi.1 < 830.0).then(|| {
+                format!(
+                    "Mitsuba's data for material \"{name}\" covers only {}–{} nm; outside it Mitsuba 3.9.1 reads eta = k = 0, a perfect mirror, and so does spectrace (give eta and k for measured values there)",
+                    lo.0.max(hi.0),
+                    lo.1.min(hi.1)
+                )
+            });
+            Ok((m.ior, note))
         }
         Ok(Named::Conductor(m)) => Err(format!(
             "material \"{name}\" is not one of Mitsuba's presets (names are case-sensitive): did you mean \"{}\"?",

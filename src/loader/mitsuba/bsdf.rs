@@ -325,7 +325,13 @@ pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
                 // Mitsuba's default: material "none", eta = 0, k = 1, a perfect mirror
                 (None, None, None) => perfect_mirror(),
                 // Mitsuba's own preset data (spectra/metals/mitsuba/), not spectrace's metal:*
-                (Some(m), _, _) => mitsuba_conductor(&m).map_err(|e| cx.err(b, e))?,
+                (Some(m), _, _) => {
+                    let (ior, note) = mitsuba_conductor(&m).map_err(|e| cx.err(b, e))?;
+                    if let Some(n) = note {
+                        cx.note(b, n);
+                    }
+                    ior
+                }
                 (None, eta, k) => {
                     let table = |s: Spectrum| -> Arc<PiecewiseLinear> {
                         match s {
