@@ -84,6 +84,7 @@ SPP = {
     "instances": 4096,
     "textured_lobes": 4096,
     "emissive_textures": 4096,
+    "projector": 4096,
 }
 DEFAULT_SPP = 1024
 

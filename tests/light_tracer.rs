@@ -10,7 +10,7 @@ mod support;
 use std::f64::consts::PI;
 use std::path::PathBuf;
 
-use support::render::{render_with, scene_from};
+use support::render::{mean, render_with, scene_from};
 
 /// Mean and standard error of the mean.
 fn mean_se(v: &[f64]) -> (f64, f64) {
@@ -430,4 +430,52 @@ fn sky_and_sun_seen_directly() {
         path.band.iter().map(|&v| v as f64).sum::<f64>(),
     );
     eprintln!("worst pixel {worst:.2} σ; image sums light {ml:.1}, path {mp:.1}");
+}
+
+/// Mitsuba's `projector` with a uniform irradiance v lights a plane at distance d facing it
+/// with E = π·scale·v/d² everywhere inside its image (the intensity π·scale·v/cos³θ falls off
+/// exactly as the plane recedes), so a white diffuse plane has L = E/π = scale·v/4 at d = 2:
+/// checked for camera paths (`path`) and for particles from the projector (`light`, its image
+/// sampled uniformly on the plane z = 1).
+#[test]
+fn projector_lights_a_facing_plane_uniformly() {
+    let dir = std::env::temp_dir().join(format!("spectrace-projector-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("projector.xml");
+    std::fs::write(
+        &path,
+        r#"<scene version="3.0.0">
+  <integrator type="path"><integer name="max_depth" value="2"/></integrator>
+  <sensor type="perspective"><float name="fov" value="20"/>
+    <transform name="to_world"><lookat origin="0.2,0,3" target="0,0,0" up="0,1,0"/></transform>
+    <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/><rfilter type="box"/></film>
+  </sensor>
+  <emitter type="projector">
+    <transform name="to_world"><lookat origin="0,0,2" target="0,0,0" up="0,1,0"/></transform>
+    <float name="fov" value="60"/>
+    <float name="scale" value="2"/>
+    <float name="irradiance" value="0.5"/>
+  </emitter>
+  <shape type="rectangle"><transform name="to_world"><scale value="3"/></transform>
+    <bsdf type="diffuse"><float name="reflectance" value="1"/></bsdf></shape>
+</scene>"#,
+    )
+    .unwrap();
+    let desc = spectrace::loader::load_any(&path, &[]).unwrap();
+    let scene = spectrace::scene::build(&desc).unwrap();
+    // `band` integrates the spectral radiance (here constant) over the simulated range
+    let range = (scene.wavelengths.max_nm - scene.wavelengths.min_nm) as f64;
+    let want = 2.0 * 0.5 / 4.0 * range;
+    for (kind, spp) in [
+        (spectrace::loader::desc::IntegratorKind::Path, 64),
+        (spectrace::loader::desc::IntegratorKind::Light, 1024),
+    ] {
+        let (img, _) = render_with(&scene, |o| {
+            o.integrator = kind;
+            o.spp = spp;
+        });
+        let got = mean(img.band.iter().copied());
+        println!("{kind:?}: L = {got}, want {want}");
+        assert!((got / want - 1.0).abs() < 0.01, "{kind:?}: {got} vs {want}");
+    }
 }

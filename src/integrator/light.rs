@@ -116,6 +116,16 @@ pub fn trace<const N: usize>(
             let (o, d, power) = b.sample_emission(u1, w);
             (o, Vec3::ZERO, Vec3::ZERO, d, power * (1.0 / p_sel))
         }
+        Light::Projector(l) => {
+            let (d, weight) = l.sample_emission(u1, w);
+            (
+                l.position,
+                Vec3::ZERO,
+                Vec3::ZERO,
+                d,
+                weight * (1.0 / p_sel),
+            )
+        }
         // lights at infinity: a direction, then a point on the disk of the scene's bounding
         // sphere perpendicular to it (`sample_le`)
         Light::Directional(_) | Light::Environment(_) | Light::EnvMap(_) => {
@@ -196,7 +206,11 @@ pub fn has_visible_infinite_lights(it: &Integrator<'_>) -> bool {
     it.scene.lights.iter().any(|l| match l {
         Light::Environment(_) | Light::EnvMap(_) => true,
         Light::Directional(d) => !d.is_delta(),
-        Light::Area(_) | Light::Point(_) | Light::Spot(_) | Light::Beam(_) => false,
+        Light::Area(_)
+        | Light::Point(_)
+        | Light::Spot(_)
+        | Light::Beam(_)
+        | Light::Projector(_) => false,
     })
 }
 

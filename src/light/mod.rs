@@ -20,6 +20,7 @@ mod distribution2d;
 mod environment;
 mod envmap;
 mod point;
+mod projector;
 mod spot;
 
 pub use area::AreaLight;
@@ -28,6 +29,7 @@ pub use directional::DirectionalLight;
 pub use environment::EnvironmentLight;
 pub use envmap::EnvMapLight;
 pub use point::PointLight;
+pub use projector::ProjectorLight;
 pub use spot::SpotLight;
 
 use glam::{Vec2, Vec3};
@@ -140,6 +142,8 @@ pub enum Light {
     Environment(EnvironmentLight),
     EnvMap(Box<EnvMapLight>),
     Beam(BeamLight),
+    /// Mitsuba's `projector`: an image projected from a point.
+    Projector(Box<ProjectorLight>),
 }
 
 impl Light {
@@ -161,6 +165,7 @@ impl Light {
             Light::Environment(l) => l.sample_li(w, u),
             Light::EnvMap(l) => l.sample_li(w, u),
             Light::Beam(l) => l.sample_li(p, w),
+            Light::Projector(l) => l.sample_li(p, w),
         }
     }
 
@@ -173,7 +178,7 @@ impl Light {
             Light::Directional(l) => l.pdf_li(wi),
             Light::Environment(_) => crate::sampling::UNIFORM_SPHERE_PDF,
             Light::EnvMap(l) => l.pdf_li(wi),
-            Light::Point(_) | Light::Spot(_) | Light::Beam(_) => 0.0,
+            Light::Point(_) | Light::Spot(_) | Light::Beam(_) | Light::Projector(_) => 0.0,
         }
     }
 
@@ -223,7 +228,11 @@ impl Light {
             Light::Directional(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
             Light::Environment(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
             Light::EnvMap(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
-            Light::Point(_) | Light::Spot(_) | Light::Area(_) | Light::Beam(_) => None,
+            Light::Point(_)
+            | Light::Spot(_)
+            | Light::Area(_)
+            | Light::Beam(_)
+            | Light::Projector(_) => None,
         }
     }
 
@@ -231,14 +240,18 @@ impl Light {
     pub fn is_at_infinity(&self) -> bool {
         match self {
             Light::Environment(_) | Light::EnvMap(_) | Light::Directional(_) => true,
-            Light::Point(_) | Light::Spot(_) | Light::Area(_) | Light::Beam(_) => false,
+            Light::Point(_)
+            | Light::Spot(_)
+            | Light::Area(_)
+            | Light::Beam(_)
+            | Light::Projector(_) => false,
         }
     }
 
     /// Whether the light is a delta distribution in position or direction.
     pub fn is_delta(&self) -> bool {
         match self {
-            Light::Point(_) | Light::Spot(_) | Light::Beam(_) => true,
+            Light::Point(_) | Light::Spot(_) | Light::Beam(_) | Light::Projector(_) => true,
             Light::Directional(l) => l.is_delta(),
             Light::Area(_) | Light::Environment(_) | Light::EnvMap(_) => false,
         }
@@ -267,6 +280,10 @@ impl Light {
             }
             Light::EnvMap(l) => pi * (scene_radius as f64).powi(2) * l.band_radiant_exitance(range),
             Light::Beam(l) => band(&l.power),
+            // through the image on the plane z = 1: π·band(spectrum)·mean(image)·area
+            Light::Projector(l) => {
+                pi * band(&l.spectrum) * l.image.mean() as f64 * l.image_area() as f64
+            }
         }
     }
 }

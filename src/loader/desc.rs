@@ -489,6 +489,15 @@ pub enum LightKind {
         transform: Vec<TransformStep>,
         amount: EnvMapAmount,
     },
+    /// Mitsuba's `projector`: `image` projected from the origin of `transform` (rigid) along
+    /// its +z, with the field of view `fov` across the image's x (`fov_axis_y`: across y), the
+    /// light's `spectrum` multiplying the image (see `crate::light::ProjectorLight`).
+    Projector {
+        transform: Vec<TransformStep>,
+        fov: Angle,
+        fov_axis_y: bool,
+        image: TextureDesc,
+    },
     /// A collimated beam leaving a disk of `radius` at `position` toward `target`; `amount` is
     /// its total power (W or lm) or a scale of a spectrum already in W·nm⁻¹.
     Beam {

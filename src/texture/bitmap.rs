@@ -246,6 +246,11 @@ impl Bitmap {
         Vec2::new(r0[0] * g.x + r1[0] * g.y, r0[1] * g.x + r1[1] * g.y)
     }
 
+    /// (width, height) in texels.
+    pub fn resolution(&self) -> (usize, usize) {
+        (self.width, self.height)
+    }
+
     /// Whether the image is grey (one value per texel, the same at every wavelength).
     pub fn is_grey(&self) -> bool {
         matches!(self.texels, Texels::Grey(_))

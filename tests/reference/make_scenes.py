@@ -1593,12 +1593,60 @@ Exercises: textured emission in emission seen directly, next-event estimation an
     write("emissive_textures", s + FOOTER)
 
 
+def projector():
+    d = os.path.join(HERE, "projector")
+    # an 8 × 6 sRGB PNG slide: coloured cells, one dark cell, a white border row
+    cols = [[240, 90, 60], [80, 200, 90], [70, 110, 230], [250, 230, 120]]
+    rows = [[[255, 255, 255]] * 8] + [[cols[(i + 2 * j) % 4] if (i, j) != (3, 2) else [10, 10, 10]
+                                       for i in range(8)] for j in range(5)]
+    write_png(os.path.join(d, "slide.png"), 8, 6, rows, channels=3)
+    s = header(
+        """Mitsuba's `projector`: an 8 × 6 sRGB PNG slide (nearest) projected with fov 40° (across
+x) from a lookat above and in front onto a diffuse back wall, floor and sphere, scale 3; a dim
+constant environment.
+Exercises: the projector's pinhole mapping (u toward the projector's −x, v toward −y, the
+slide's aspect setting the field across y), its intensity π·scale·image/cos³θ with an
+equal-energy spectrum (measured: not D65-shaped), shadows of a delta-position light.""",
+        "0, 1.1, 3.4",
+        "0, 0.6, 0",
+        45,
+        64,
+        5,
+    )
+    s += f"""
+    <emitter type="projector">
+        <transform name="to_world">
+            <lookat origin="0.3, 1.6, 2.2" target="0, 0.7, -0.6" up="0, 1, 0"/>
+        </transform>
+        <float name="fov" value="40"/>
+        <float name="scale" value="3"/>
+        <texture type="bitmap" name="irradiance">
+            <string name="filename" value="slide.png"/>
+            <string name="filter_type" value="nearest"/>
+        </texture>
+    </emitter>
+    <shape type="rectangle">
+        <transform name="to_world">
+            <scale value="2"/>
+            <translate y="1" z="-0.8"/>
+        </transform>
+{diffuse(colorchecker("white-9-5"), indent="        ")}    </shape>
+{sphere((0.4, 0.35, 0.1), 0.35, diffuse(colorchecker("neutral-8"), indent="        "), "grey sphere")}
+{floor_rect(3, colorchecker("neutral-8"))}
+    <emitter type="constant">
+        <spectrum name="radiance" value="{illuminant('d65', 0.05)}"/>
+    </emitter>
+"""
+    write("projector", s + FOOTER)
+
+
 SCENES = {
     f.__name__: f
     for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
               dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional,
               spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics, serialized, direct, orthographic, mask, cylinders,
-              anisotropic, blend, bumps, instances, textured_lobes, emissive_textures)
+              anisotropic, blend, bumps, instances, textured_lobes, emissive_textures,
+              projector)
 }
 
 if __name__ == "__main__":

@@ -36,7 +36,7 @@ use crate::geometry::Frame;
 use crate::geometry::shape::Shape;
 use crate::light::{
     AreaLight, BeamLight, DirectionalLight, EnvMapLight, EnvironmentLight, Light, PointLight,
-    SpotLight,
+    ProjectorLight, SpotLight,
 };
 use crate::loader::desc::{
     DirectionalAmount, EmitAmount, EnvMapAmount, LightKind, PointAmount, SceneDesc,
@@ -284,6 +284,45 @@ pub(super) fn lights(
                     radius: plain::metres(*radius),
                     power: scaled(&l.spectrum, per, 1.0, r).map_err(e)?,
                 })
+            }
+            LightKind::Projector {
+                transform,
+                fov,
+                fov_axis_y,
+                image,
+            } => {
+                let t = super::shapes::steps(transform, 1.0, false).map_err(e)?;
+                let m = glam::Mat3::from_mat4(t.matrix());
+                let rigid = (m.transpose() * m - glam::Mat3::IDENTITY)
+                    .to_cols_array()
+                    .iter()
+                    .all(|x| x.abs() < 1e-4);
+                if !rigid {
+                    return Err(e(
+                        "a projector's to_world must be a rotation and a translation (no scale)"
+                            .into(),
+                    ));
+                }
+                let image = super::textures::texture(image).map_err(e)?;
+                let (w, h) = match &image {
+                    crate::texture::Texture::Bitmap(b) => b.resolution(),
+                    _ => (1, 1),
+                };
+                let aspect = w as f32 / h as f32;
+                let tan = (plain::radians(*fov) / 2.0).tan();
+                let (tan_x, tan_y) = if *fov_axis_y {
+                    (tan * aspect, tan)
+                } else {
+                    (tan, tan / aspect)
+                };
+                Light::Projector(Box::new(ProjectorLight {
+                    position: t.point(Vec3::ZERO),
+                    frame: m,
+                    tan_x,
+                    tan_y,
+                    image,
+                    spectrum: l.spectrum.clone(),
+                }))
             }
             LightKind::Environment { amount } => {
                 let (per, g) = emit(amount, None).map_err(e)?;

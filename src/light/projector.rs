@@ -1,0 +1,132 @@
+//! Mitsuba 3's `projector`: a pinhole that projects an image, the reciprocal of a perspective
+//! camera (src/emitters/projector.cpp, whose definition this follows).
+
+use glam::{Mat3, Vec2, Vec3};
+
+use super::LightSample;
+use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
+use crate::texture::Texture;
+
+/// A projector at `position` looking along its local +z (`frame`'s third column), its image
+/// spanning 2·`tan_x` by 2·`tan_y` on the plane z = 1. A point at local (x, y, z), z > 0,
+/// takes the image at uv = (½(1 − x/(z·tan_x)), ½(1 − y/(z·tan_y))) (Mitsuba's perspective
+/// mapping: u grows toward local −x, v toward −y), and receives the intensity
+///
+/// I(ω) = π · spectrum(λ) · image(uv, λ) / cos³θ   (W·sr⁻¹·nm⁻¹),
+///
+/// θ from the axis, so that the plane z = 1 is lit with irradiance π · spectrum · image. For a
+/// Mitsuba scene the spectrum is the constant `scale` (measured: Mitsuba 3.9.1 projects a grey
+/// image with X = Y = Z, not D65-shaped), the image a texture.
+#[derive(Clone, Debug)]
+pub struct ProjectorLight {
+    pub position: Vec3,
+    /// Columns: the projector's local x, y, z (the axis) in world space, orthonormal.
+    pub frame: Mat3,
+    pub tan_x: f32,
+    pub tan_y: f32,
+    pub image: Texture,
+    /// W·sr⁻¹·nm⁻¹ per unit image value before the factor π.
+    pub spectrum: Spectrum,
+}
+
+impl ProjectorLight {
+    /// The image coordinates of the local direction `d` (z > 0), or None outside the image.
+    #[inline]
+    fn uv(&self, d: Vec3) -> Option<Vec2> {
+        if !(d.z > 0.0) {
+            return None;
+        }
+        let uv = Vec2::new(
+            0.5 * (1.0 - d.x / (d.z * self.tan_x)),
+            0.5 * (1.0 - d.y / (d.z * self.tan_y)),
+        );
+        (uv.cmpge(Vec2::ZERO).all() && uv.cmple(Vec2::ONE).all()).then_some(uv)
+    }
+
+    /// Intensity toward the world direction `dir` (unit, from the projector), W·sr⁻¹·nm⁻¹.
+    #[inline]
+    pub fn intensity<const N: usize>(
+        &self,
+        dir: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> Option<SampledSpectrum<N>> {
+        let d = self.frame.transpose() * dir;
+        let uv = self.uv(d)?;
+        let cos3 = d.z * d.z * d.z;
+        Some(self.image.sample(uv, w) * self.spectrum.sample(w) * (std::f32::consts::PI / cos3))
+    }
+
+    /// li = I(ω)/r² toward `p`; None outside the image.
+    pub fn sample_li<const N: usize>(
+        &self,
+        p: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> Option<LightSample<N>> {
+        super::point_like_sample(self.position, p, |wi| self.intensity(-wi, w))
+    }
+
+    /// Area of the image on the plane z = 1, m² per m² of distance.
+    pub fn image_area(&self) -> f32 {
+        4.0 * self.tan_x * self.tan_y
+    }
+
+    /// A particle for light tracing: a point uniform on the image plane z = 1 (u in [0, 1)²),
+    /// returned as the world direction and the weight I(ω)/p(ω) = π·spectrum·image(uv)·area,
+    /// p(ω) = 1/(area·cos³θ) per sr.
+    pub fn sample_emission<const N: usize>(
+        &self,
+        u: Vec2,
+        w: &SampledWavelengths<N>,
+    ) -> (Vec3, SampledSpectrum<N>) {
+        let d = Vec3::new(
+            (1.0 - 2.0 * u.x) * self.tan_x,
+            (1.0 - 2.0 * u.y) * self.tan_y,
+            1.0,
+        )
+        .normalize();
+        let weight = self.image.sample(u, w)
+            * self.spectrum.sample(w)
+            * (std::f32::consts::PI * self.image_area());
+        (self.frame * d, weight)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A uniform image lights the plane z = 1 with irradiance π·spectrum everywhere inside the
+    /// image: E = I cos θ / r² with r = 1/cos θ, I = π/cos³θ.
+    #[test]
+    fn uniform_image_lights_its_plane_uniformly() {
+        let l = ProjectorLight {
+            position: Vec3::ZERO,
+            frame: Mat3::IDENTITY,
+            tan_x: 0.5,
+            tan_y: 0.25,
+            image: Spectrum::Constant(2.0).into(),
+            spectrum: Spectrum::Constant(1.0),
+        };
+        let w = SampledWavelengths::<4> {
+            lambda: [550.0; 4],
+            pdf: [1.0; 4],
+        };
+        for (x, y) in [(0.0, 0.0), (0.4, 0.2), (-0.49, -0.24)] {
+            let p = Vec3::new(x, y, 1.0);
+            let s = l.sample_li(p + Vec3::ZERO, &w).expect("inside the image");
+            let e = s.li.0[0] * (-s.wi).z;
+            assert!(
+                (e - 2.0 * std::f32::consts::PI).abs() < 1e-4,
+                "({x}, {y}): E = {e}"
+            );
+        }
+        assert!(
+            l.sample_li(Vec3::new(0.6, 0.0, 1.0), &w).is_none(),
+            "outside"
+        );
+        assert!(
+            l.sample_li(Vec3::new(0.0, 0.0, -1.0), &w).is_none(),
+            "behind"
+        );
+    }
+}
