@@ -85,6 +85,7 @@ SPP = {
     "textured_lobes": 4096,
     "emissive_textures": 4096,
     "projector": 4096,
+    "spot_texture": 4096,
 }
 DEFAULT_SPP = 1024
 

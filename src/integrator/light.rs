@@ -109,7 +109,7 @@ pub fn trace<const N: usize>(
                 Vec3::ZERO,
                 Vec3::ZERO,
                 d,
-                l.intensity.sample(w) * (f / (p_sel * uniform_cone_pdf(omc))),
+                l.intensity.sample(w) * l.image(d, w) * (f / (p_sel * uniform_cone_pdf(omc))),
             )
         }
         Light::Beam(b) => {

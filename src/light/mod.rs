@@ -30,7 +30,7 @@ pub use environment::EnvironmentLight;
 pub use envmap::EnvMapLight;
 pub use point::PointLight;
 pub use projector::ProjectorLight;
-pub use spot::SpotLight;
+pub use spot::{SpotLight, SpotTexture};
 
 use glam::{Vec2, Vec3};
 

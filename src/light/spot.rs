@@ -26,6 +26,19 @@ pub struct SpotLight {
     pub falloff_start: f32,
     pub total: f32,
     pub falloff_kind: SpotFalloff,
+    /// Mitsuba's spot `texture`, if any: an image across the cone (see [`SpotTexture`]).
+    pub texture: Option<Box<SpotTexture>>,
+}
+
+/// An image across a spot's cone (Mitsuba 3's spot `texture`): the direction with local
+/// coordinates (x, y, z) in `frame` (columns: the spot's x, y and axis) takes the image at
+/// uv = (½ + ½·x/(z·tan γ), ½ + ½·y/(z·tan γ)), γ the cone's half-angle, and the intensity is
+/// multiplied by it.
+#[derive(Clone, Debug)]
+pub struct SpotTexture {
+    pub image: crate::texture::Texture,
+    pub frame: glam::Mat3,
+    pub tan_total: f32,
 }
 
 fn smoothstep(x: f32, a: f32, b: f32) -> f32 {
@@ -56,6 +69,25 @@ impl SpotLight {
             falloff_start,
             total,
             falloff_kind,
+            texture: None,
+        }
+    }
+
+    /// The image factor toward `dir` (unit, from the spot): 1 without a texture.
+    #[inline]
+    pub fn image<const N: usize>(
+        &self,
+        dir: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> crate::spectrum::SampledSpectrum<N> {
+        match &self.texture {
+            None => crate::spectrum::SampledSpectrum::splat(1.0),
+            Some(t) => {
+                let d = t.frame.transpose() * dir;
+                let k = 0.5 / (d.z * t.tan_total);
+                t.image
+                    .sample(glam::Vec2::new(0.5 + d.x * k, 0.5 + d.y * k), w)
+            }
         }
     }
 
@@ -112,7 +144,7 @@ impl SpotLight {
     ) -> Option<LightSample<N>> {
         super::point_like_sample(self.position, p, |wi| {
             let f = self.falloff(-wi);
-            (f > 0.0).then(|| self.intensity.sample(w) * f)
+            (f > 0.0).then(|| self.intensity.sample(w) * self.image(-wi, w) * f)
         })
     }
 }

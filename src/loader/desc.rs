@@ -471,6 +471,9 @@ pub enum LightKind {
         falloff_start: Angle,
         falloff: SpotFalloff,
         amount: PointAmount,
+        /// Mitsuba's spot `texture`: an image across the cone, in the frame of `transform`
+        /// (whose +z is the axis); see `crate::light::SpotLight`.
+        texture: Option<Box<(TextureDesc, Vec<TransformStep>)>>,
     },
     /// Light travelling along `direction` (dimensionless); a disk of `angular_diameter` if > 0.
     Directional {

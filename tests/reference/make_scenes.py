@@ -1640,13 +1640,58 @@ equal-energy spectrum (measured: not D65-shaped), shadows of a delta-position li
     write("projector", s + FOOTER)
 
 
+def spot_texture():
+    d = os.path.join(HERE, "spot_texture")
+    cols = [[240, 90, 60], [80, 200, 90], [70, 110, 230], [250, 230, 120]]
+    rows = [[cols[(i // 2 + j // 2) % 4] for i in range(8)] for j in range(8)]
+    write_png(os.path.join(d, "gobo.png"), 8, 8, rows, channels=3)
+    s = header(
+        """Mitsuba's `spot` with a `texture`: an 8 × 8 sRGB PNG (nearest, coloured 2 × 2 cells) across
+the cone (cutoff 30°, beam width 20°), the spot placed by a lookat from above and in front,
+onto a diffuse wall, floor and sphere; a dim constant environment.
+Exercises: the texture's mapping across the cone (uv = ½ + ½·x/(z·tan cutoff) in the spot's
+frame), its product with the D65-shaped intensity and the falloff.""",
+        "0, 1.1, 3.4",
+        "0, 0.6, 0",
+        45,
+        64,
+        5,
+    )
+    s += f"""
+    <emitter type="spot">
+        <transform name="to_world">
+            <lookat origin="-0.3, 1.8, 2.0" target="0, 0.6, -0.7" up="0, 1, 0"/>
+        </transform>
+        <float name="cutoff_angle" value="30"/>
+        <float name="beam_width" value="20"/>
+        <spectrum name="intensity" value="{illuminant('d65', 8.0)}"/>
+        <texture type="bitmap" name="texture">
+            <string name="filename" value="gobo.png"/>
+            <string name="filter_type" value="nearest"/>
+        </texture>
+    </emitter>
+    <shape type="rectangle">
+        <transform name="to_world">
+            <scale value="2"/>
+            <translate y="1" z="-0.8"/>
+        </transform>
+{diffuse(colorchecker("white-9-5"), indent="        ")}    </shape>
+{sphere((0.4, 0.35, 0.1), 0.35, diffuse(colorchecker("neutral-8"), indent="        "), "grey sphere")}
+{floor_rect(3, colorchecker("neutral-8"))}
+    <emitter type="constant">
+        <spectrum name="radiance" value="{illuminant('d65', 0.05)}"/>
+    </emitter>
+"""
+    write("spot_texture", s + FOOTER)
+
+
 SCENES = {
     f.__name__: f
     for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
               dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional,
               spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics, serialized, direct, orthographic, mask, cylinders,
               anisotropic, blend, bumps, instances, textured_lobes, emissive_textures,
-              projector)
+              projector, spot_texture)
 }
 
 if __name__ == "__main__":

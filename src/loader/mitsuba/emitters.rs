@@ -71,12 +71,15 @@ pub(super) fn emitter(cx: &Cx<'_>, e: &Element) -> R<LightDesc> {
                 Some(tr) => cx.transform(tr)?,
                 None => return Err(cx.err(e, "a spot needs a to_world with lookat")),
             };
-            if let Some(t) = cx.child(e, "texture") {
-                return Err(cx.err(
-                    t,
-                    "a spot's projected texture is not supported (spectrace has no textures yet); remove it",
-                ));
-            }
+            let texture = match cx.child(e, "texture") {
+                Some(t) if cx.resolve(t)?.attr("type") == Some("bitmap") => {
+                    Some(Box::new((cx.texture_of(t)?, steps.clone())))
+                }
+                Some(t) => {
+                    return Err(cx.err(t, "a spot's texture must be a bitmap here"));
+                }
+                None => None,
+            };
             let (eye, target, _) = camera_frame(cx, e, &steps)?;
             (
                 LightKind::Spot {
@@ -88,6 +91,7 @@ pub(super) fn emitter(cx: &Cx<'_>, e: &Element) -> R<LightDesc> {
                     falloff_start: Angle::new::<angle::degree>(width.min(cutoff)),
                     falloff: SpotFalloff::LinearAngle,
                     amount: PointAmount::Scale(1.0),
+                    texture,
                 },
                 cx.spectrum_prop(e, "intensity", 1.0, true)?,
             )

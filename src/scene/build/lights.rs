@@ -36,7 +36,7 @@ use crate::geometry::Frame;
 use crate::geometry::shape::Shape;
 use crate::light::{
     AreaLight, BeamLight, DirectionalLight, EnvMapLight, EnvironmentLight, Light, PointLight,
-    ProjectorLight, SpotLight,
+    ProjectorLight, SpotLight, SpotTexture,
 };
 use crate::loader::desc::{
     DirectionalAmount, EmitAmount, EnvMapAmount, LightKind, PointAmount, SceneDesc,
@@ -231,6 +231,7 @@ pub(super) fn lights(
                 falloff_start,
                 falloff,
                 amount,
+                texture,
             } => {
                 let p = v3(position);
                 let axis = (v3(target) - p).normalize();
@@ -243,6 +244,22 @@ pub(super) fn lights(
                 );
                 let (per, g) = point_amount(amount, spot.solid_angle_factor());
                 spot.intensity = scaled(&l.spectrum, per, g, r).map_err(e)?;
+                if let Some(t) = texture {
+                    let (image, steps) = t.as_ref();
+                    let m = glam::Mat3::from_mat4(
+                        super::shapes::steps(steps, 1.0, false).map_err(e)?.matrix(),
+                    );
+                    let frame = glam::Mat3::from_cols(
+                        m.x_axis.normalize(),
+                        m.y_axis.normalize(),
+                        m.z_axis.normalize(),
+                    );
+                    spot.texture = Some(Box::new(SpotTexture {
+                        image: super::textures::texture(image).map_err(e)?,
+                        frame,
+                        tan_total: plain::radians(*cone_angle).tan(),
+                    }));
+                }
                 Light::Spot(spot)
             }
             LightKind::Directional {

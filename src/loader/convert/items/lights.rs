@@ -196,6 +196,7 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
                 falloff_start,
                 falloff,
                 amount: point_amount(cx)?,
+                texture: None,
             }
         }
         "directional" | "sun" => {
