@@ -112,9 +112,9 @@ fn import_errors_are_located_and_suggest_alternatives() {
         "<include filename=\"missing.xml\"/><integrator type=\"path\">",
     ));
     assert!(e.contains("missing.xml"), "{e}");
-    let e = err(&PLANE.replace("<emitter type=\"point\">", "<emitter type=\"projector\">"));
+    let e = err(&PLANE.replace("<emitter type=\"point\">", "<emitter type=\"sunsky\">"));
     assert!(
-        e.contains("projector") && e.contains("nearest supported"),
+        e.contains("sunsky") && e.contains("nearest supported"),
         "{e}"
     );
     let e = err(&PLANE.replace(
@@ -129,7 +129,8 @@ fn import_errors_are_located_and_suggest_alternatives() {
 }
 
 /// Spot, filter and mesh settings are read as Mitsuba 3 reads them (src/emitters/spot.cpp,
-/// src/rfilters/gaussian.cpp, src/render/mesh.cpp); a spot texture is refused with its line.
+/// src/rfilters/gaussian.cpp, src/render/mesh.cpp); a spot texture's missing image is named
+/// with its line.
 #[test]
 fn spot_filter_and_mesh_normals_follow_mitsuba() {
     use spectrace::loader::desc::{FilterDesc, LightKind, MeshNormals, ShapeKind, SpotFalloff};
@@ -162,7 +163,7 @@ fn spot_filter_and_mesh_normals_follow_mitsuba() {
     <texture type="bitmap" name="texture"><string name="filename" value="a.png"/></texture>"#,
     ));
     assert!(
-        e.contains("t.xml:22:") && e.contains("texture") && e.contains("not supported"),
+        e.contains("t.xml:22:") && e.contains("a.png") && e.contains("does not exist"),
         "{e}"
     );
 
