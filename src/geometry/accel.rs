@@ -40,18 +40,14 @@ struct PrimRef {
 /// The flag of [`PrimRef::shape`] that marks an instance.
 const INSTANCE: u32 = 1 << 31;
 
-/// The closest hit found so far: a primitive of this tree, or one inside instance `i` found
-/// along the object-space ray of scale `k`.
-enum Closest {
-    Direct(PrimRef, f32, PrimHit),
-    Instanced {
-        i: u32,
-        pr: PrimRef,
-        t_obj: f32,
-        hit: PrimHit,
-        ray: Ray,
-        k: f32,
-    },
+/// A hit inside instance `i`, found along the object-space ray of scale `k`.
+struct Closest {
+    i: u32,
+    pr: PrimRef,
+    t_obj: f32,
+    hit: PrimHit,
+    ray: Ray,
+    k: f32,
 }
 
 /// The BVH over a slice of shapes.
@@ -184,55 +180,81 @@ impl Accel {
     pub fn intersect(&self, shapes: &[Shape], ray: &Ray) -> Option<Intersection> {
         let inv_d = inv_direction(ray)?;
         let wt = WatertightRay::new(ray);
-        let mut best: Option<Closest> = None;
+        // the closest hit so far: one of this tree's primitives, or (when `in_instance`) the
+        // one recorded in `inst`; only closer hits are reported, so the last one wins
+        let mut best: Option<(PrimRef, f32, PrimHit)> = None;
+        let mut inst: Option<Closest> = None;
+        let mut in_instance = false;
         self.wide
             .traverse(ray.o, inv_d, ray.t_max, false, |id, t_max| {
                 if let Some((t, h)) = self.intersect_prim(shapes, id, ray, &wt, t_max) {
-                    best = Some(Closest::Direct(self.prims[id], t, h));
+                    best = Some((self.prims[id], t, h));
+                    in_instance = false;
                     return t;
+                }
+                // a missed triangle (its corners are not NaN) is not an instance: no further load
+                if !self.tris[id][0].x.is_nan() {
+                    return f32::INFINITY;
                 }
                 let pr = self.prims[id];
                 if pr.shape & INSTANCE == 0 {
                     return f32::INFINITY;
                 }
-                let i = pr.shape & !INSTANCE;
-                let inst = &self.instances[i as usize];
-                let Some((oray, k)) = inst.to_object(&Ray { t_max, ..*ray }) else {
-                    return f32::INFINITY;
-                };
-                match inst.group.accel.closest(&inst.group.shapes, &oray) {
-                    Some((gpr, t_obj, hit)) => {
-                        best = Some(Closest::Instanced {
-                            i,
-                            pr: gpr,
-                            t_obj,
-                            hit,
-                            ray: oray,
-                            k,
-                        });
-                        t_obj / k
+                match self.closest_in_instance(pr.shape & !INSTANCE, ray, t_max) {
+                    Some((t, c)) => {
+                        inst = Some(c);
+                        in_instance = true;
+                        t
                     }
                     None => f32::INFINITY,
                 }
             });
-        match best? {
-            Closest::Direct(pr, t, h) => {
-                let shape = shapes.get(pr.shape as usize)?;
-                Some(shape.interaction(pr.shape, pr.prim as usize, ray, t, &h))
-            }
-            Closest::Instanced {
+        if in_instance {
+            let Closest {
                 i,
                 pr,
                 t_obj,
                 hit,
                 ray: oray,
                 k,
-            } => {
-                let inst = &self.instances[i as usize];
-                let shape = inst.group.shapes.get(pr.shape as usize)?;
-                let it = shape.interaction(pr.shape, pr.prim as usize, &oray, t_obj, &hit);
-                Some(inst.to_world(it, k))
-            }
+            } = inst?;
+            let inst = &self.instances[i as usize];
+            let shape = inst.group.shapes.get(pr.shape as usize)?;
+            let it = shape.interaction(pr.shape, pr.prim as usize, &oray, t_obj, &hit);
+            return Some(inst.to_world(it, k));
+        }
+        let (pr, t, h) = best?;
+        let shape = shapes.get(pr.shape as usize)?;
+        Some(shape.interaction(pr.shape, pr.prim as usize, ray, t, &h))
+    }
+
+    /// The closest hit inside instance `i` along `ray` cut at `t_max`: its world distance and
+    /// the record. Kept out of line so that the traversal's leaf closure stays small.
+    #[inline(never)]
+    fn closest_in_instance(&self, i: u32, ray: &Ray, t_max: f32) -> Option<(f32, Closest)> {
+        let inst = &self.instances[i as usize];
+        let (oray, k) = inst.to_object(&Ray { t_max, ..*ray })?;
+        let (pr, t_obj, hit) = inst.group.accel.closest(&inst.group.shapes, &oray)?;
+        Some((
+            t_obj / k,
+            Closest {
+                i,
+                pr,
+                t_obj,
+                hit,
+                ray: oray,
+                k,
+            },
+        ))
+    }
+
+    /// Whether instance `i` blocks `ray` before `t_max` (out of line, as above).
+    #[inline(never)]
+    fn instance_occludes(&self, i: u32, ray: &Ray, t_max: f32) -> bool {
+        let inst = &self.instances[i as usize];
+        match inst.to_object(&Ray { t_max, ..*ray }) {
+            Some((oray, _)) => inst.group.accel.occluded(&inst.group.shapes, &oray),
+            None => false,
         }
     }
 
@@ -264,23 +286,36 @@ impl Accel {
         let t = self
             .wide
             .traverse(ray.o, inv_d, ray.t_max, true, |id, t_max| {
-                if let Some((t, _)) = self.intersect_prim(shapes, id, ray, &wt, t_max) {
-                    return t;
-                }
-                let pr = self.prims[id];
-                if pr.shape & INSTANCE == 0 {
-                    return f32::INFINITY;
-                }
-                let inst = &self.instances[(pr.shape & !INSTANCE) as usize];
-                match inst.to_object(&Ray { t_max, ..*ray }) {
-                    Some((oray, _)) if inst.group.accel.occluded(&inst.group.shapes, &oray) => {
-                        // any hit will do: report one inside the interval
-                        0.5 * t_max.min(f32::MAX)
-                    }
-                    _ => f32::INFINITY,
-                }
+                self.occluded_leaf(shapes, id, ray, &wt, t_max)
             });
         t < ray.t_max
+    }
+
+    /// The any-hit leaf test of BVH primitive `id`: a distance inside the interval for a hit,
+    /// else ∞ (instances through their group's tree).
+    #[inline(always)]
+    fn occluded_leaf(
+        &self,
+        shapes: &[Shape],
+        id: usize,
+        ray: &Ray,
+        wt: &WatertightRay,
+        t_max: f32,
+    ) -> f32 {
+        if let Some((t, _)) = self.intersect_prim(shapes, id, ray, wt, t_max) {
+            return t;
+        }
+        // a missed triangle (its corners are not NaN) is not an instance: no further load
+        if !self.tris[id][0].x.is_nan() {
+            return f32::INFINITY;
+        }
+        let pr = self.prims[id];
+        if pr.shape & INSTANCE != 0 && self.instance_occludes(pr.shape & !INSTANCE, ray, t_max) {
+            // any hit will do: report one inside the interval
+            0.5 * t_max.min(f32::MAX)
+        } else {
+            f32::INFINITY
+        }
     }
 
     /// The leaf test of BVH primitive `id`: triangles from their copied corners with the ray's

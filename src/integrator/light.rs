@@ -52,7 +52,7 @@ pub fn trace<const N: usize>(
             if ps.pdf_area <= 0.0 {
                 return;
             }
-            let le = a.radiance.sample(ps.uv, w);
+            let le = a.radiance_at(ps.uv, w);
             // t = 1: the emitter seen directly by the camera
             if let Some(c) = camera.connect(ps.p, margin) {
                 let cos = ps.n.dot(c.wi);

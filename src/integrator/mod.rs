@@ -219,7 +219,11 @@ impl Integrator<'_> {
         let surf = &self.scene.surfaces[hit.shape as usize];
         let material = &self.scene.materials[surf.material? as usize];
         let mut ng = hit.n_geom;
-        let mut frame = Frame::from_normal_tangent(hit.n_shading, hit.dpdu);
+        let mut frame = if material.needs_tangent() {
+            Frame::from_normal_tangent(hit.n_shading, hit.dpdu)
+        } else {
+            Frame::from_normal(hit.n_shading)
+        };
         // a two-sided surface seen from behind: the normal flips and the tangents stay, a
         // mirror image of the front frame as Mitsuba's `twosided` sees the back (so a normal
         // map's tangent-space normal reads the same on both sides)

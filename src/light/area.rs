@@ -14,7 +14,8 @@ use crate::texture::Texture;
 pub struct AreaLight {
     /// Index of the shape in `Scene::shapes`.
     pub shape: u32,
-    /// Spectral radiance, W·m⁻²·sr⁻¹·nm⁻¹, at each point's uv.
+    /// Spectral radiance, W·m⁻²·sr⁻¹·nm⁻¹, at each point's uv (a uniform spectrum for most
+    /// emitters, looked up without the texture's dispatch).
     pub radiance: Texture,
     pub two_sided: bool,
 }
@@ -29,9 +30,22 @@ impl AreaLight {
         w: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
         if self.two_sided || n.dot(w_out) > 0.0 {
-            self.radiance.sample(uv, w)
+            self.radiance_at(uv, w)
         } else {
             SampledSpectrum::zero()
+        }
+    }
+
+    /// The radiance at surface coordinates `uv`.
+    #[inline(always)]
+    pub fn radiance_at<const N: usize>(
+        &self,
+        uv: Vec2,
+        w: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
+        match &self.radiance {
+            Texture::Uniform(s) => s.sample(w),
+            t => t.sample(uv, w),
         }
     }
 
@@ -62,7 +76,7 @@ impl AreaLight {
         }
         Some(LightSample {
             wi,
-            li: self.radiance.sample(s.uv, w),
+            li: self.radiance_at(s.uv, w),
             pdf,
             delta: false,
             p: s.p,

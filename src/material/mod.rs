@@ -299,6 +299,21 @@ impl Material {
         }
     }
 
+    /// Whether the material's value depends on the shading frame's tangent (anisotropic or
+    /// textured roughness, normal and bump maps), so that the frame must follow ∂p/∂u; for
+    /// every other material any tangent gives the same values, and the cheaper frame is used.
+    #[inline]
+    pub fn needs_tangent(&self) -> bool {
+        match self {
+            Material::RoughConductor(m) => m.alpha_u != m.alpha_v,
+            Material::RoughDielectric(m) => m.alpha_u != m.alpha_v,
+            Material::NormalMap(_) | Material::BumpMap(_) | Material::Textured(_) => true,
+            Material::Mask(m) => m.inner.needs_tangent(),
+            Material::Blend(m) => m.a.needs_tangent() || m.b.needs_tangent(),
+            _ => false,
+        }
+    }
+
     /// Whether the material evaluates its nested one in a perturbed frame (a normal or bump
     /// map, possibly inside a mask), which needs the hit's derivatives ([`LocalSurface`]).
     #[inline]
