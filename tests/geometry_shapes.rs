@@ -386,3 +386,43 @@ fn cube_uv_matches_mitsuba() {
         assert!(h.n_geom.dot(-Vec3::from(d)) > 0.99, "outward normal");
     }
 }
+
+/// A mesh without uvs is parameterised by its barycentrics, uv = (b₁, b₂), as Mitsuba 3.9.1
+/// does (measured: the triangle (0,0,0), (2,0,0), (0,3,0) hit at (0.5, 0.5) has uv
+/// (0.25, 0.1667), ∂p/∂u (2, 0, 0), ∂p/∂v (0, 3, 0)).
+#[test]
+fn mesh_without_uvs_uses_mitsuba_barycentric_uv() {
+    use spectrace::geometry::{Accel, Ray};
+    let mesh = Mesh::new(
+        vec![
+            Vec3::ZERO,
+            Vec3::new(2.0, 0.0, 0.0),
+            Vec3::new(0.0, 3.0, 0.0),
+        ],
+        None,
+        None,
+        vec![[0, 1, 2]],
+        &Transform::identity(),
+    )
+    .unwrap();
+    let shapes = vec![Shape::Mesh(mesh)];
+    let accel = Accel::build(&shapes);
+    let h = accel
+        .intersect(&shapes, &Ray::new(Vec3::new(0.5, 0.5, 1.0), -Vec3::Z))
+        .expect("hits the triangle");
+    assert!(
+        (h.uv - glam::Vec2::new(0.25, 1.0 / 6.0)).length() < 1e-5,
+        "uv {}",
+        h.uv
+    );
+    assert!(
+        (h.dpdu - Vec3::new(2.0, 0.0, 0.0)).length() < 1e-5,
+        "{}",
+        h.dpdu
+    );
+    assert!(
+        (h.dpdv - Vec3::new(0.0, 3.0, 0.0)).length() < 1e-5,
+        "{}",
+        h.dpdv
+    );
+}

@@ -17,7 +17,8 @@ use glam::{Vec2, Vec3};
 /// are more reliable than winding in exported files), so `n_geom` and `n_shading` always agree.
 /// A mirroring transform reverses the stored winding so that front faces stay front faces.
 ///
-/// uv: interpolated from the vertex uvs if present, else (0,0), (1,0), (1,1) at vertices 0, 1, 2.
+/// uv: interpolated from the vertex uvs if present, else the barycentrics (b₁, b₂), i.e. (0, 0),
+/// (1, 0), (0, 1) at vertices 0, 1, 2, as Mitsuba 3 parameterises a mesh without uvs.
 /// A zero vertex normal means "none here": where the interpolated normal is zero the shading
 /// normal falls back to the geometric one.
 #[derive(Clone, Debug, PartialEq)]
@@ -290,9 +291,8 @@ impl Mesh {
                 };
                 (t0 * b[0] + t1 * b[1] + t2 * b[2], dpdu, dpdv)
             }
-            // u = b₁ + b₂, v = b₂: ∂p/∂u = p₁ − p₀ (Mitsuba's direction for meshes without uvs),
-            // ∂p/∂v = p₂ − p₁
-            None => (Vec2::new(b[1] + b[2], b[2]), e1, e2 - e1),
+            // Mitsuba's (b₁, b₂): ∂p/∂u = p₁ − p₀, ∂p/∂v = p₂ − p₀ (measured in Mitsuba 3.9.1)
+            None => (Vec2::new(b[1], b[2]), e1, e2),
         };
         Intersection {
             t: 0.0,
@@ -332,7 +332,7 @@ impl Mesh {
                 let [t0, t1, t2] = self.indices[i].map(|v| uvs[v as usize]);
                 t0 * b[0] + t1 * b[1] + t2 * b[2]
             }
-            None => Vec2::new(b[1] + b[2], b[2]),
+            None => Vec2::new(b[1], b[2]),
         };
         SurfaceSample {
             p,
