@@ -1,0 +1,212 @@
+//! [`Bsdf`]: a material at one surface point, its textured values looked up, which integrators
+//! evaluate and sample (the conventions are the module's, `super`).
+
+use glam::{Vec2, Vec3};
+
+use super::{BsdfSample, Material, TransportMode, fresnel};
+use crate::spectrum::{SampledSpectrum, SampledWavelengths};
+
+/// A material at one surface point, for one set of wavelengths: its textured values looked up
+/// (see [`Material::at`]). Evaluating and sampling follow the conventions of this module.
+#[derive(Clone, Copy, Debug)]
+pub struct Bsdf<'a, const N: usize> {
+    pub material: &'a Material,
+    /// The textured reflectance at the point (Lambert's ρ, a plastic's diffuse base; a blend's
+    /// first component's), dimensionless; zero for materials without one.
+    pub albedo: SampledSpectrum<N>,
+    /// A blend's second component's textured reflectance; zero otherwise.
+    pub albedo_b: SampledSpectrum<N>,
+    /// A mask's opacity or a blend's weight at the point, in [0, 1]; 1 for every other material.
+    pub weight: f32,
+    /// A normal or bump map's perturbed frame at the point, in the local shading frame; the
+    /// identity for every other material.
+    pub perturb: crate::geometry::Frame,
+    /// A [`TexturedLobes`]' roughness (α_u, α_v) at the point; unused otherwise.
+    pub alpha: [f32; 2],
+    /// A [`TexturedLobes`]' factors on the reflected and transmitted lobes; 1 otherwise.
+    pub spec_r: SampledSpectrum<N>,
+    pub spec_t: SampledSpectrum<N>,
+}
+
+/// The identity frame of [`Bsdf::perturb`].
+pub(super) const UNPERTURBED: crate::geometry::Frame = crate::geometry::Frame {
+    s: Vec3::X,
+    t: Vec3::Y,
+    n: Vec3::Z,
+};
+
+impl<const N: usize> Bsdf<'_, N> {
+    /// f(wo, wi) per wavelength in sr⁻¹, without the cosine. 0 for delta lobes.
+    #[inline]
+    pub fn eval(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+        mode: TransportMode,
+    ) -> SampledSpectrum<N> {
+        match self.material {
+            Material::Diffuse(m) => m.eval(wo, wi, self.albedo),
+            Material::Phong(m) => m.eval(wo, wi, w),
+            Material::Dielectric(_)
+            | Material::Conductor(_)
+            | Material::Null
+            | Material::ThinDielectric { .. } => SampledSpectrum::zero(),
+            Material::RoughDielectric(m) => m.eval(wo, wi, w, mode),
+            Material::RoughConductor(m) => m.eval(wo, wi, w),
+            Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).0,
+            Material::Mask(m) => self.masked(m).eval(wo, wi, w, mode) * self.weight,
+            Material::Blend(m) => self.blend_eval_pdf(m, wo, wi, w, mode).0,
+            Material::NormalMap(_) | Material::BumpMap(_) => {
+                self.perturbed_eval_pdf(wo, wi, w, mode).0
+            }
+            Material::Textured(m) => self.textured_eval_pdf(m, wo, wi, w, mode).0,
+        }
+    }
+
+    /// Density (sr⁻¹) with which [`Material::sample`] returns `wi` given `wo`, for the hero
+    /// wavelength. 0 for delta lobes.
+    #[inline]
+    pub fn pdf(&self, wo: Vec3, wi: Vec3, w: &SampledWavelengths<N>, _mode: TransportMode) -> f32 {
+        match self.material {
+            Material::Diffuse(m) => m.pdf(wo, wi),
+            Material::Phong(m) => m.pdf(wo, wi, w),
+            Material::Dielectric(_)
+            | Material::Conductor(_)
+            | Material::Null
+            | Material::ThinDielectric { .. } => 0.0,
+            Material::RoughDielectric(m) => m.pdf(wo, wi, w),
+            Material::RoughConductor(m) => m.pdf(wo, wi),
+            Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).1,
+            Material::Mask(m) => self.masked(m).pdf(wo, wi, w, _mode) * self.weight,
+            Material::Blend(m) => self.blend_eval_pdf(m, wo, wi, w, _mode).1,
+            Material::NormalMap(_) | Material::BumpMap(_) => {
+                self.perturbed_eval_pdf(wo, wi, w, _mode).1
+            }
+            Material::Textured(m) => self.textured_eval_pdf(m, wo, wi, w, _mode).1,
+        }
+    }
+
+    /// [`Material::eval`] and [`Material::pdf`] together, for next-event estimation, which
+    /// needs both: the work they share (half vectors, indices, lobe values) is done once. The
+    /// same values as the two calls.
+    #[inline]
+    pub fn eval_pdf(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+        mode: TransportMode,
+    ) -> (SampledSpectrum<N>, f32) {
+        match self.material {
+            Material::Diffuse(m) => (m.eval(wo, wi, self.albedo), m.pdf(wo, wi)),
+            Material::Phong(m) => m.eval_pdf(wo, wi, w),
+            Material::Dielectric(_)
+            | Material::Conductor(_)
+            | Material::Null
+            | Material::ThinDielectric { .. } => (SampledSpectrum::zero(), 0.0),
+            Material::RoughDielectric(m) => m.eval_pdf(wo, wi, w, mode),
+            Material::RoughConductor(m) => m.eval_pdf(wo, wi, w),
+            Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo),
+            Material::Mask(m) => {
+                let (f, pdf) = self.masked(m).eval_pdf(wo, wi, w, mode);
+                (f * self.weight, pdf * self.weight)
+            }
+            Material::Blend(m) => self.blend_eval_pdf(m, wo, wi, w, mode),
+            Material::NormalMap(_) | Material::BumpMap(_) => {
+                self.perturbed_eval_pdf(wo, wi, w, mode)
+            }
+            Material::Textured(m) => self.textured_eval_pdf(m, wo, wi, w, mode),
+        }
+    }
+
+    /// Samples `wi` given `wo`: `uc` chooses a lobe, `u` the direction within it. `None` when
+    /// the sample carries no contribution (wrong side, below the horizon, degenerate `wo`).
+    #[inline]
+    pub fn sample(
+        &self,
+        wo: Vec3,
+        w: &SampledWavelengths<N>,
+        uc: f32,
+        u: Vec2,
+        mode: TransportMode,
+    ) -> Option<BsdfSample<N>> {
+        match self.material {
+            Material::Diffuse(m) => m.sample(wo, self.albedo, u),
+            Material::Phong(m) => m.sample(wo, w, uc, u),
+            Material::Dielectric(m) => m.sample(wo, w, uc, mode),
+            Material::RoughDielectric(m) => m.sample(wo, w, uc, u, mode),
+            Material::Conductor(m) => m.sample(wo, w),
+            Material::RoughConductor(m) => m.sample(wo, w, u),
+            Material::Plastic(m) => m.sample(wo, self.albedo, uc, u),
+            Material::ThinDielectric { eta } => {
+                let c = wo.z.abs();
+                if c == 0.0 {
+                    return None;
+                }
+                let f = fresnel::fresnel_dielectric(c, *eta);
+                let r = 2.0 * f / (1.0 + f);
+                let (wi, p, transmission) = if uc < r {
+                    (Vec3::new(-wo.x, -wo.y, wo.z), r, false)
+                } else {
+                    (-wo, 1.0 - r, true)
+                };
+                Some(BsdfSample {
+                    f: SampledSpectrum::splat(p / c),
+                    wi,
+                    pdf: p,
+                    specular: true,
+                    transmission,
+                    dispersive: false,
+                    eta: 1.0,
+                })
+            }
+            Material::Mask(m) => self.mask_sample(m, wo, w, uc, u, mode),
+            Material::Blend(m) => self.blend_sample(m, wo, w, uc, u, mode),
+            Material::NormalMap(_) | Material::BumpMap(_) => {
+                self.perturbed_sample(wo, w, uc, u, mode)
+            }
+            Material::Textured(m) => self.textured_sample(m, wo, w, uc, u, mode),
+            // straight through: f·|cos θᵢ|/pdf = 1
+            Material::Null => (wo.z != 0.0).then(|| BsdfSample {
+                f: SampledSpectrum::splat(1.0 / wo.z.abs()),
+                wi: -wo,
+                pdf: 1.0,
+                specular: true,
+                transmission: true,
+                dispersive: false,
+                eta: 1.0,
+            }),
+        }
+    }
+
+    /// Whether the material has only delta lobes (smooth dielectric, smooth conductor), so that
+    /// light sampling (next-event estimation) is pointless.
+    #[inline]
+    pub fn is_specular(&self) -> bool {
+        self.material.is_specular()
+    }
+
+    /// The same looked-up values for another material (a wrapper's nested one).
+    #[inline]
+    pub(super) fn with_material<'b>(&self, material: &'b Material) -> Bsdf<'b, N> {
+        Bsdf {
+            material,
+            albedo: self.albedo,
+            albedo_b: self.albedo_b,
+            weight: self.weight,
+            perturb: self.perturb,
+            alpha: self.alpha,
+            spec_r: self.spec_r,
+            spec_t: self.spec_t,
+        }
+    }
+
+    /// Whether transmission through this material depends on wavelength in direction, so that
+    /// a transmission event (sampled, or evaluated for light sampling) must terminate the
+    /// secondary wavelengths.
+    #[inline]
+    pub fn is_dispersive(&self) -> bool {
+        self.material.is_dispersive()
+    }
+}
