@@ -192,15 +192,10 @@ impl Accel {
                     in_instance = false;
                     return t;
                 }
-                // a missed triangle (its corners are not NaN) is not an instance: no further load
-                if !self.tris[id][0].x.is_nan() {
+                let Some(i) = self.instance_at(id) else {
                     return f32::INFINITY;
-                }
-                let pr = self.prims[id];
-                if pr.shape & INSTANCE == 0 {
-                    return f32::INFINITY;
-                }
-                match self.closest_in_instance(pr.shape & !INSTANCE, ray, t_max) {
+                };
+                match self.closest_in_instance(i, ray, t_max) {
                     Some((t, c)) => {
                         inst = Some(c);
                         in_instance = true;
@@ -291,6 +286,17 @@ impl Accel {
         t < ray.t_max
     }
 
+    /// The instance BVH primitive `id` stands for, if any. A triangle's corners are not NaN,
+    /// so a missed triangle is answered from the record already loaded, without `prims`.
+    #[inline(always)]
+    fn instance_at(&self, id: usize) -> Option<u32> {
+        if !self.tris[id][0].x.is_nan() {
+            return None;
+        }
+        let shape = self.prims[id].shape;
+        (shape & INSTANCE != 0).then_some(shape & !INSTANCE)
+    }
+
     /// The any-hit leaf test of BVH primitive `id`: a distance inside the interval for a hit,
     /// else ∞ (instances through their group's tree).
     #[inline(always)]
@@ -305,12 +311,10 @@ impl Accel {
         if let Some((t, _)) = self.intersect_prim(shapes, id, ray, wt, t_max) {
             return t;
         }
-        // a missed triangle (its corners are not NaN) is not an instance: no further load
-        if !self.tris[id][0].x.is_nan() {
-            return f32::INFINITY;
-        }
-        let pr = self.prims[id];
-        if pr.shape & INSTANCE != 0 && self.instance_occludes(pr.shape & !INSTANCE, ray, t_max) {
+        if self
+            .instance_at(id)
+            .is_some_and(|i| self.instance_occludes(i, ray, t_max))
+        {
             // any hit will do: report one inside the interval
             0.5 * t_max.min(f32::MAX)
         } else {

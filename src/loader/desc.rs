@@ -265,6 +265,31 @@ pub enum TextureDesc {
     },
 }
 
+impl TextureDesc {
+    /// The same texture with an image's values read as stored (`raw`), for images of numbers
+    /// (normals, heights, roughness) rather than colours; other textures unchanged.
+    pub fn raw(self) -> TextureDesc {
+        match self {
+            TextureDesc::Bitmap {
+                path,
+                filter,
+                wrap,
+                to_uv,
+                loc,
+                ..
+            } => TextureDesc::Bitmap {
+                path,
+                filter,
+                wrap,
+                raw: true,
+                to_uv,
+                loc,
+            },
+            other => other,
+        }
+    }
+}
+
 impl From<Spectrum> for TextureDesc {
     fn from(s: Spectrum) -> Self {
         TextureDesc::Uniform(s)

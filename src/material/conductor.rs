@@ -136,7 +136,10 @@ impl RoughConductor {
         wi: Vec3,
         w: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
-        self.eval_pdf_with(&self.microfacet(), wo, wi, w).0
+        let Some(wm) = Self::half(wo, wi) else {
+            return SampledSpectrum::zero();
+        };
+        self.eval_half(&self.microfacet(), wo, wi, wm, w)
     }
 
     /// [`RoughConductor::eval`] for the half vector `wm` of (wo, wi).

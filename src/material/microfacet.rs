@@ -257,6 +257,23 @@ impl Microfacet {
 mod tests {
     use super::*;
 
+    /// Midpoint quadrature over the upper hemisphere in (cos θ, φ): calls `f(wm, dω)` for
+    /// 4000 × 64 cells, with cos θ = 1 − s² to resolve the peak at the pole.
+    fn hemisphere(mut f: impl FnMut(Vec3, f64)) {
+        let (nc, np) = (4000, 64);
+        for i in 0..nc {
+            let s = (i as f64 + 0.5) / nc as f64;
+            let c = 1.0 - s * s;
+            let jac = 2.0 * s / nc as f64;
+            let st = (1.0 - c * c).max(0.0).sqrt();
+            for j in 0..np {
+                let p = 2.0 * std::f64::consts::PI * (j as f64 + 0.5) / np as f64;
+                let wm = Vec3::new((st * p.cos()) as f32, (st * p.sin()) as f32, c as f32);
+                f(wm, jac * 2.0 * std::f64::consts::PI / np as f64);
+            }
+        }
+    }
+
     /// Beckmann: ∫ D cos θₘ dωₘ = 1, the sampler's density integrates to 1, and the Smith Λ
     /// satisfies the projected-area identity ∫ D(wm) ⟨w, wm⟩₊ dωₘ = (1 + Λ(w)) cos θ (Heitz 2014,
     /// eq. 7 with G1 = 1/(1 + Λ)), which checks Λ independently of its formula.
@@ -285,22 +302,12 @@ mod tests {
                 (t.sin() * po.sin()) as f32,
                 t.cos() as f32,
             );
-            let (nc, np) = (4000, 64);
             let (mut sd, mut sp, mut proj) = (0.0f64, 0.0f64, 0.0f64);
-            for i in 0..nc {
-                let s = (i as f64 + 0.5) / nc as f64;
-                let c = 1.0 - s * s;
-                let jac = 2.0 * s / nc as f64;
-                let st = (1.0 - c * c).max(0.0).sqrt();
-                for j in 0..np {
-                    let p = 2.0 * std::f64::consts::PI * (j as f64 + 0.5) / np as f64;
-                    let wm = Vec3::new((st * p.cos()) as f32, (st * p.sin()) as f32, c as f32);
-                    let dw = jac * 2.0 * std::f64::consts::PI / np as f64;
-                    sd += m.d(wm) as f64 * c * dw;
-                    sp += m.normal_pdf(w, wm) as f64 * dw;
-                    proj += m.d(wm) as f64 * (w.dot(wm) as f64).max(0.0) * dw;
-                }
-            }
+            hemisphere(|wm, dw| {
+                sd += m.d(wm) as f64 * wm.z as f64 * dw;
+                sp += m.normal_pdf(w, wm) as f64 * dw;
+                proj += m.d(wm) as f64 * (w.dot(wm) as f64).max(0.0) * dw;
+            });
             let want = (1.0 + m.lambda(w) as f64) * w.z as f64;
             assert!((sd - 1.0).abs() < 2e-3, "{alpha:?}: ∫D cos = {sd}");
             assert!((sp - 1.0).abs() < 2e-3, "{alpha:?} θ {theta}: ∫pdf = {sp}");
@@ -317,22 +324,11 @@ mod tests {
         for alpha in [0.05f32, 0.3, 1.0] {
             let g = Ggx::new(alpha);
             let w = Vec3::new(0.6, 0.0, 0.8);
-            let (nc, np) = (4000, 64);
             let (mut sd, mut sv) = (0.0f64, 0.0f64);
-            for i in 0..nc {
-                // substitute cos θ = 1 − s² to resolve the peak at the pole
-                let s = (i as f64 + 0.5) / nc as f64;
-                let c = 1.0 - s * s;
-                let jac = 2.0 * s / nc as f64;
-                let st = (1.0 - c * c).max(0.0).sqrt();
-                for j in 0..np {
-                    let p = 2.0 * std::f64::consts::PI * (j as f64 + 0.5) / np as f64;
-                    let wm = Vec3::new((st * p.cos()) as f32, (st * p.sin()) as f32, c as f32);
-                    let dw = jac * 2.0 * std::f64::consts::PI / np as f64;
-                    sd += g.d(wm) as f64 * c * dw;
-                    sv += g.visible_normal_pdf(w, wm) as f64 * dw;
-                }
-            }
+            hemisphere(|wm, dw| {
+                sd += g.d(wm) as f64 * wm.z as f64 * dw;
+                sv += g.visible_normal_pdf(w, wm) as f64 * dw;
+            });
             assert!((sd - 1.0).abs() < 2e-3, "alpha {alpha}: ∫D cos = {sd}");
             assert!((sv - 1.0).abs() < 2e-3, "alpha {alpha}: ∫D_w = {sv}");
         }

@@ -130,7 +130,10 @@ impl RoughDielectric {
         w: &SampledWavelengths<N>,
         mode: TransportMode,
     ) -> SampledSpectrum<N> {
-        self.eval_pdf_with(&self.microfacet(), wo, wi, w, mode).0
+        let Some(h) = Self::half(wo, wi, self.eta(w.lambda[0])) else {
+            return SampledSpectrum::zero();
+        };
+        self.eval_half(&self.microfacet(), wo, wi, w, mode, &h)
     }
 
     /// [`RoughDielectric::eval`] for the half vector `h` of (wo, wi) at the hero's η (`h.eta`).

@@ -270,6 +270,12 @@ impl Mesh {
         (ng, ns)
     }
 
+    /// The uv of barycentrics `b` between the corners' uvs `t`.
+    #[inline]
+    fn blend_uv(t: [Vec2; 3], b: [f32; 3]) -> Vec2 {
+        t[0] * b[0] + t[1] * b[1] + t[2] * b[2]
+    }
+
     pub(crate) fn interaction(&self, i: usize, b: [f32; 3]) -> Intersection {
         let pv = self.vertices(i);
         let (p, p_error) = barycentric_point(pv, b);
@@ -289,7 +295,7 @@ impl Mesh {
                 } else {
                     (e1, e2 - e1)
                 };
-                (t0 * b[0] + t1 * b[1] + t2 * b[2], dpdu, dpdv)
+                (Self::blend_uv([t0, t1, t2], b), dpdu, dpdv)
             }
             // Mitsuba's (b₁, b₂): ∂p/∂u = p₁ − p₀, ∂p/∂v = p₂ − p₀ (measured in Mitsuba 3.9.1)
             None => (Vec2::new(b[1], b[2]), e1, e2),
@@ -328,10 +334,7 @@ impl Mesh {
         let b = [b0, b1, (1.0 - b0 - b1).max(0.0)];
         let (p, p_error) = barycentric_point(self.vertices(i), b);
         let uv = match &self.uvs {
-            Some(uvs) => {
-                let [t0, t1, t2] = self.indices[i].map(|v| uvs[v as usize]);
-                t0 * b[0] + t1 * b[1] + t2 * b[2]
-            }
+            Some(uvs) => Self::blend_uv(self.indices[i].map(|v| uvs[v as usize]), b),
             None => Vec2::new(b[1], b[2]),
         };
         SurfaceSample {

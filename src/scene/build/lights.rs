@@ -382,8 +382,10 @@ pub(super) fn lights(
                             "a textured radiance is read as given (Mitsuba's); it takes no power, luminance or scale".into(),
                         ));
                     }
-                    super::textures::emission_texture(t)
-                        .map_err(|m| err(em.loc, field.clone(), m))?
+                    // read as Mitsuba 3.9.1 reads a bitmap radiance (measured): as a
+                    // reflectance image is read, without an illuminant shape (grey texels kept,
+                    // colour texels clamped to [0, 1]), in W·m⁻²·sr⁻¹·nm⁻¹
+                    super::textures::texture(t).map_err(|m| err(em.loc, field.clone(), m))?
                 }
             };
             light = Some(lights.len());

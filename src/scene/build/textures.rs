@@ -72,15 +72,6 @@ pub(super) fn texture(t: &TextureDesc) -> Result<Texture, String> {
     })
 }
 
-/// An emitter's radiance image, read as Mitsuba 3.9.1 reads a bitmap given as an area
-/// emitter's radiance (measured): as a reflectance image is read, without an illuminant shape:
-/// a grey texel v is the constant spectrum v (values above 1 kept), a colour texel the bounded
-/// sigmoid spectrum of its RGB clamped to [0, 1] (Mitsuba clamps them too, with a warning),
-/// in W·m⁻²·sr⁻¹·nm⁻¹.
-pub(super) fn emission_texture(t: &TextureDesc) -> Result<Texture, String> {
-    texture(t)
-}
-
 /// A normal map: an image of triples used as numbers (decoded from sRGB only when the file is
 /// sRGB-encoded and `raw` is false, as Mitsuba reads it), never spectra.
 pub(super) fn vector_texture(t: &TextureDesc) -> Result<Texture, String> {

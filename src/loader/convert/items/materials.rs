@@ -205,10 +205,8 @@ pub(super) fn material(
                     Value::Float(f) => Some(*f),
                     _ => None,
                 };
-                match v.as_slice() {
-                    [u, w] if num(u).is_some() && num(w).is_some() => {
-                        [check(num(u).unwrap())?, check(num(w).unwrap())?]
-                    }
+                match v.as_slice().iter().map(num).collect::<Vec<_>>()[..] {
+                    [Some(u), Some(w)] => [check(u)?, check(w)?],
                     _ => {
                         return Err(cx.err(
                             &r.span(),
@@ -354,22 +352,8 @@ pub(super) fn material(
                 &format!("{f}.{key}"),
                 "an image: { image = \"file.png\" } with optional filter, wrap and scale",
             )?;
-            let tex = match reflectance_texture(cx, t, &format!("{f}.{key}"), range)? {
-                TextureDesc::Bitmap {
-                    path,
-                    filter,
-                    wrap,
-                    to_uv,
-                    loc,
-                    ..
-                } => TextureDesc::Bitmap {
-                    path,
-                    filter,
-                    wrap,
-                    raw: true,
-                    to_uv,
-                    loc,
-                },
+            let tex = match reflectance_texture(cx, t, &format!("{f}.{key}"), range)?.raw() {
+                t @ TextureDesc::Bitmap { .. } => t,
                 _ => {
                     return Err(cx.err(
                         &t.span(),
@@ -655,24 +639,7 @@ fn lobes(
     let alpha = match &m.roughness {
         Some(r) if matches!(r.get_ref(), Value::Table(_)) => {
             // roughness images are numbers as stored, not sRGB-decoded colours
-            let t = match reflectance_texture(cx, r, &format!("{f}.roughness"), range)? {
-                TextureDesc::Bitmap {
-                    path,
-                    filter,
-                    wrap,
-                    to_uv,
-                    loc,
-                    ..
-                } => TextureDesc::Bitmap {
-                    path,
-                    filter,
-                    wrap,
-                    raw: true,
-                    to_uv,
-                    loc,
-                },
-                other => other,
-            };
+            let t = reflectance_texture(cx, r, &format!("{f}.roughness"), range)?.raw();
             Some(Box::new([t.clone(), t]))
         }
         _ => None,
