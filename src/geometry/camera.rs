@@ -77,6 +77,14 @@ impl Film {
         Ok(self)
     }
 
+    /// Raster position (pixels) of the camera-plane point (x, y): the inverse of
+    /// [`Film::plane`].
+    #[inline]
+    fn raster(&self, xy: Vec2) -> Vec2 {
+        let ndc = -xy / self.half;
+        (ndc + Vec2::ONE) * 0.5 * Vec2::new(self.width as f32, self.height as f32)
+    }
+
     /// Camera-plane (x, y) of a raster position.
     #[inline]
     fn plane(&self, raster: Vec2) -> Vec2 {
@@ -85,19 +93,25 @@ impl Film {
     }
 }
 
-/// How a world point connects to a pinhole camera, for light tracing.
+/// How a world point connects to a perspective camera (pinhole or thin lens), for light tracing
+/// and the t = 1 strategies of `bdpt`: the camera's importance sampled from the point
+/// (pbrt-v4 §5.4, `SampleWi`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CameraConnection {
     /// Raster position where the point appears, pixels.
     pub raster: Vec2,
-    /// Unit direction from the point toward the pinhole (world).
+    /// The point on the lens the connection reaches (the pinhole itself for a pinhole), m.
+    pub p_lens: Vec3,
+    /// Unit direction from the point toward `p_lens` (world).
     pub wi: Vec3,
-    /// Distance to the pinhole, m.
+    /// Distance to `p_lens`, m.
     pub distance: f32,
-    /// Pixel measurement weight: N_pixels / (A · cos³θ · d²), with A the image area on the
-    /// plane z = 1 and θ the angle to the view axis. A particle of spectral power β arriving
-    /// with BSDF value f and cosine |cos θ_x| adds β·f·|cos θ_x|·weight / N_paths to the pixel's
-    /// radiance (pbrt-v4 §5.1.4, W_e = 1/(A cos⁴θ) with the solid-angle pdf d²/cos θ).
+    /// Pixel measurement weight W_e·cos θ_lens / (p_lens(x)·d²) times the pixel count:
+    /// N_pixels / (A · cos³θ · d²), with A the image area on the plane z = 1, θ the angle of
+    /// the connection to the view axis and d its length. A particle of spectral power β arriving
+    /// with BSDF value f and cosine |cos θ_x| adds β·f·|cos θ_x|·weight / N_paths to the
+    /// pixel's radiance (pbrt-v4 §5.1.4 and §5.2.3: W_e = 1/(A·A_lens·cos⁴θ), the lens point
+    /// uniform with density 1/A_lens, A_lens = 1 for a pinhole).
     pub weight: f32,
 }
 
@@ -238,24 +252,37 @@ impl Camera {
         }
     }
 
-    /// Where the world point `p` appears on a pinhole perspective camera, or None if it is
-    /// behind the camera, more than `margin` pixels outside the image (a reconstruction filter
-    /// of that radius still carries such a point into the image), or the camera is not a
-    /// pinhole.
-    pub fn connect(&self, p: Vec3, margin: f32) -> Option<CameraConnection> {
-        let Camera::Perspective(c) = self else {
-            return None;
+    /// Where the world point `p` appears on a perspective camera, seen through the lens point
+    /// chosen by `u_lens` ∈ [0, 1)² (uniform on a thin lens; ignored by a pinhole), or None if
+    /// it is behind the lens, more than `margin` pixels outside the image (a reconstruction
+    /// filter of that radius still carries such a point into the image), or the camera is
+    /// orthographic (a delta in direction, which no point can connect to).
+    pub fn connect(&self, p: Vec3, u_lens: Vec2, margin: f32) -> Option<CameraConnection> {
+        let (to_world, film, lens) = match self {
+            Camera::Perspective(c) => (&c.to_world, &c.film, None),
+            Camera::ThinLens(c) => (
+                &c.to_world,
+                &c.film,
+                Some((concentric_disk(u_lens) * c.lens_radius, c.focus_distance)),
+            ),
+            Camera::Orthographic(_) => return None,
         };
-        let pc = c.to_world.inverse().point(p);
-        if !(pc.z > 0.0) {
+        let pc = to_world.inverse().point(p);
+        let pl = lens.map_or(Vec2::ZERO, |(l, _)| l).extend(0.0);
+        let v = pc - pl;
+        if !(v.z > 0.0) {
             return None;
         }
-        let d = pc.length();
-        let cos = pc.z / d;
-        let xy = pc.truncate() / pc.z;
-        let ndc = -xy / c.film.half;
-        let size = Vec2::new(c.film.width as f32, c.film.height as f32);
-        let raster = (ndc + Vec2::ONE) * 0.5 * size;
+        let d = v.length();
+        let cos = v.z / d;
+        // the image point: where the ray from the lens point through p meets the plane of focus,
+        // projected through the lens centre onto z = 1 (a pinhole: v itself)
+        let xy = match lens {
+            None => v.truncate() / v.z,
+            Some((_, focus)) => (pl.truncate() + v.truncate() * (focus / v.z)) / focus,
+        };
+        let raster = film.raster(xy);
+        let size = Vec2::new(film.width as f32, film.height as f32);
         if !(raster.x >= -margin
             && raster.y >= -margin
             && raster.x < size.x + margin
@@ -263,15 +290,45 @@ impl Camera {
         {
             return None;
         }
-        let area = 4.0 * c.film.half.x * c.film.half.y;
+        let area = 4.0 * film.half.x * film.half.y;
         let weight = size.x * size.y / (area * cos * cos * cos * d * d);
-        let eye = c.to_world.point(Vec3::ZERO);
+        let p_lens = to_world.point(pl);
         Some(CameraConnection {
             raster,
-            wi: (eye - p) / d,
+            p_lens,
+            wi: (p_lens - p) / d,
             distance: d,
             weight,
         })
+    }
+
+    /// Density per unit solid angle, sr⁻¹, with which [`Camera::generate_ray`] from the lens
+    /// point `o` (world) produces the direction `dir` (unit, world) for a raster position
+    /// uniform over the image: 1/(A·cos³θ) inside the image, 0 outside it or behind the camera
+    /// (pbrt-v4's `PDF_We`). 0 for the orthographic camera (a delta in direction).
+    pub fn pdf_we(&self, o: Vec3, dir: Vec3) -> f32 {
+        let (to_world, film, focus) = match self {
+            Camera::Perspective(c) => (&c.to_world, &c.film, None),
+            Camera::ThinLens(c) => (&c.to_world, &c.film, Some(c.focus_distance)),
+            Camera::Orthographic(_) => return 0.0,
+        };
+        let inv = to_world.inverse();
+        let v = inv.vector(dir);
+        let v = v / v.length();
+        if !(v.z > 0.0) {
+            return 0.0;
+        }
+        let xy = match focus {
+            None => v.truncate() / v.z,
+            Some(f) => (inv.point(o).truncate() + v.truncate() * (f / v.z)) / f,
+        };
+        let raster = film.raster(xy);
+        let size = Vec2::new(film.width as f32, film.height as f32);
+        if !(raster.x >= 0.0 && raster.y >= 0.0 && raster.x < size.x && raster.y < size.y) {
+            return 0.0;
+        }
+        let area = 4.0 * film.half.x * film.half.y;
+        1.0 / (area * v.z * v.z * v.z)
     }
 
     fn parts(&self) -> (&Transform, &Film) {

@@ -1,5 +1,6 @@
 //! Light tracing (particle tracing): paths start at the lights, bounce through specular and
-//! glossy interactions, and every diffuse or glossy vertex is connected to a pinhole camera
+//! glossy interactions, and every diffuse or glossy vertex is connected to the camera (pinhole or
+//! thin lens, through a lens point it samples: `Camera::connect`)
 //! (Veach 1997 §10.2, the t = 1 strategies of bidirectional path tracing; pbrt-v4's
 //! LightPathIntegrator). It renders
 //! caustics that `path` cannot, such as a collimated beam refracted by a prism onto a screen.
@@ -7,22 +8,21 @@
 //! Every emitter is traced: area, point, spot and beam lights from their surfaces or positions;
 //! lights at infinity (environment, directional with or without an angular diameter) from a
 //! disk of the scene's bounding sphere (`sample_le`). A light at infinity seen directly by the
-//! camera (the sky, a sun disk) cannot reach a pinhole from a particle; [`escaped`] adds it
-//! along camera rays instead (see `render::render_light`). The camera must be a pinhole.
+//! camera (the sky, a sun disk) cannot reach the lens from a particle; [`escaped`] adds it
+//! along camera rays instead (see `render::render_light`). The camera must be perspective
+//! (an orthographic camera is a delta in direction, which no particle can connect to).
+//! Emission is each light's own `Light::sample_le`.
 //!
 //! Paths that reach the camera through a specular last bounce (an emitter seen in a mirror or
-//! through glass) are not sampled by light tracing with a pinhole, for any light; use `path`.
+//! through glass) are not sampled by light tracing, for any light; use `path` or `bdpt`.
 
 use glam::{Vec2, Vec3};
 
 use super::Integrator;
-use crate::geometry::{Frame, Ray, spawn_ray, spawn_ray_to};
+use crate::geometry::{Ray, spawn_ray, spawn_ray_to};
 use crate::light::Light;
 use crate::material::TransportMode;
 use crate::sampler::Sampler;
-use crate::sampling::{
-    UNIFORM_SPHERE_PDF, cosine_hemisphere, uniform_cone, uniform_cone_pdf, uniform_sphere,
-};
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
 /// Traces one light path and calls `splat` for every camera connection, with the raster
@@ -44,98 +44,25 @@ pub fn trace<const N: usize>(
     };
     let u1 = Vec2::new(u1x, u1.y);
     let camera = &scene.camera;
-    // emission: origin (with error and normal for offsetting), direction, particle weight
-    let (origin, p_error, n0, dir, mut beta) = match &scene.lights[li] {
-        Light::Area(a) => {
-            let shape = &scene.shapes[a.shape as usize];
-            let ps = shape.sample_area(u1);
-            if ps.pdf_area <= 0.0 {
-                return;
-            }
-            let le = a.radiance_at(ps.uv, w);
-            // t = 1: the emitter seen directly by the camera
-            if let Some(c) = camera.connect(ps.p, margin) {
-                let cos = ps.n.dot(c.wi);
-                if (a.two_sided || cos > 0.0)
-                    && !occluded_to_camera(it, ps.p, ps.p_error, ps.n, camera.position())
-                {
-                    splat(
-                        c.raster,
-                        w,
-                        le * (cos.abs() * c.weight / (p_sel * ps.pdf_area)),
-                    );
-                }
-            }
-            let (n, sides) = if a.two_sided && u2.x < 0.5 {
-                (-ps.n, 2.0)
-            } else if a.two_sided {
-                (ps.n, 2.0)
-            } else {
-                (ps.n, 1.0)
-            };
-            let u2 = Vec2::new(
-                if a.two_sided {
-                    (u2.x * 2.0).fract()
-                } else {
-                    u2.x
-                },
-                u2.y,
-            );
-            let d = Frame::from_normal(n).to_world(cosine_hemisphere(u2));
-            (
-                ps.p,
-                ps.p_error,
-                n,
-                d,
-                le * (std::f32::consts::PI * sides / (p_sel * ps.pdf_area)),
-            )
-        }
-        Light::Point(l) => {
-            let d = uniform_sphere(u1);
-            (
-                l.position,
-                Vec3::ZERO,
-                Vec3::ZERO,
-                d,
-                l.intensity.sample(w) * (1.0 / (p_sel * UNIFORM_SPHERE_PDF)),
-            )
-        }
-        Light::Spot(l) => {
-            let omc = 1.0 - l.cos_total;
-            let d = l.frame.to_world(uniform_cone(u1, omc));
-            let f = l.falloff(d);
-            (
-                l.position,
-                Vec3::ZERO,
-                Vec3::ZERO,
-                d,
-                l.intensity.sample(w) * l.image(d, w) * (f / (p_sel * uniform_cone_pdf(omc))),
-            )
-        }
-        Light::Beam(b) => {
-            let (o, d, power) = b.sample_emission(u1, w);
-            (o, Vec3::ZERO, Vec3::ZERO, d, power * (1.0 / p_sel))
-        }
-        Light::Projector(l) => {
-            let (d, weight) = l.sample_emission(u1, w);
-            (
-                l.position,
-                Vec3::ZERO,
-                Vec3::ZERO,
-                d,
-                weight * (1.0 / p_sel),
-            )
-        }
-        // lights at infinity: a direction, then a point on the disk of the scene's bounding
-        // sphere perpendicular to it (`sample_le`)
-        Light::Directional(_) | Light::Environment(_) | Light::EnvMap(_) => {
-            let (c, r) = scene.bounding_sphere();
-            let Some(e) = scene.lights[li].sample_le_at_infinity(c, r, w, u1, u2) else {
-                return;
-            };
-            (e.o, Vec3::ZERO, Vec3::ZERO, e.d, e.weight() * (1.0 / p_sel))
-        }
+    // emission: the light's own sampling (`Light::sample_le`): u1 the origin, u2 the direction
+    let light = &scene.lights[li];
+    let Some(e) = light.sample_le(&scene.shapes, scene.bounding_sphere(), w, u1, u2) else {
+        return;
     };
+    // t = 1 with s = 1: an area light's point seen directly by the camera, Le·|cos θ| per unit
+    // area probability (the side the particle leaves does not matter here)
+    let u_lens = s.get_2d();
+    if let Light::Area(_) = light
+        && let Some(c) = camera.connect(e.o, u_lens, margin)
+    {
+        let le = light.emitted(e.n, c.wi, e.uv, w);
+        if !le.is_zero() && !occluded_to_camera(it, e.o, e.o_error, e.n, c.p_lens) {
+            let cos = e.n.dot(c.wi).abs();
+            splat(c.raster, w, le * (cos * c.weight / (p_sel * e.pdf_pos)));
+        }
+    }
+    let (origin, p_error, n0, dir) = (e.o, e.o_error, e.n, e.d);
+    let mut beta = e.weight() * (1.0 / p_sel);
     if beta.is_zero() {
         return;
     }
@@ -157,19 +84,14 @@ pub fn trace<const N: usize>(
         if sh.bsdf.is_dispersive() && !sh.bsdf.is_specular() {
             w.terminate_secondary();
         }
+        let u_lens = s.get_2d();
         if !sh.bsdf.is_specular()
-            && let Some(c) = camera.connect(hit.p, margin)
+            && let Some(c) = camera.connect(hit.p, u_lens, margin)
         {
             let wc = sh.frame.to_local(c.wi);
             let f = sh.bsdf.eval(wo, wc, w, TransportMode::Importance);
             if !f.is_zero()
-                && !occluded_to_camera(
-                    it,
-                    hit.p,
-                    hit.p_error,
-                    sh.n_geom_toward(c.wi),
-                    camera.position(),
-                )
+                && !occluded_to_camera(it, hit.p, hit.p_error, sh.n_geom_toward(c.wi), c.p_lens)
             {
                 // β·f·|ns·wc|·(adjoint correction) = β·f·|ns·wo|·|ng·wc|/|ng·wo|:
                 // the geometric cosine at the camera end, shading cosine at the light end
@@ -216,7 +138,7 @@ pub fn has_visible_infinite_lights(it: &Integrator<'_>) -> bool {
 
 /// Radiance seen directly along a camera ray from the lights at infinity, W·m⁻²·sr⁻¹·nm⁻¹:
 /// the sum of their `escaped` radiance if the ray leaves the scene, else 0. This is the path
-/// tracer's zero-bounce term for those lights (the particles of `trace` cannot reach a pinhole
+/// tracer's zero-bounce term for those lights (the particles of `trace` cannot reach the lens
 /// directly from infinity).
 pub fn escaped<const N: usize>(
     it: &Integrator<'_>,

@@ -2,8 +2,10 @@
 
 use glam::{Vec2, Vec3};
 
-use super::LightSample;
+use super::{EmissionPdf, EmissionSample, LightSample};
+use crate::geometry::Frame;
 use crate::geometry::shape::Shape;
+use crate::sampling::cosine_hemisphere;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 use crate::texture::Texture;
 
@@ -95,5 +97,61 @@ impl AreaLight {
             return 0.0;
         }
         r2 / (cos_l * area)
+    }
+
+    /// A particle (light tracing, `bdpt`): a point uniform by area on `shape` (this light's)
+    /// from `u_pos`, a side (two-sided emitters: each with probability ½, from `u_dir.x`) and a
+    /// cosine-distributed direction on it: pdf_pos = 1/A m⁻², pdf_dir = (½)·cos θ/π sr⁻¹.
+    /// None for a degenerate point or a direction along the surface.
+    pub fn sample_le<const N: usize>(
+        &self,
+        shape: &Shape,
+        w: &SampledWavelengths<N>,
+        u_pos: Vec2,
+        u_dir: Vec2,
+    ) -> Option<EmissionSample<N>> {
+        let ps = shape.sample_area(u_pos);
+        if !(ps.pdf_area > 0.0) {
+            return None;
+        }
+        let (n, u_dir, side) = if !self.two_sided {
+            (ps.n, u_dir, 1.0)
+        } else if u_dir.x < 0.5 {
+            (-ps.n, Vec2::new(u_dir.x * 2.0, u_dir.y), 0.5)
+        } else {
+            (ps.n, Vec2::new(u_dir.x * 2.0 - 1.0, u_dir.y), 0.5)
+        };
+        let local = cosine_hemisphere(u_dir);
+        let pdf_dir = side * local.z * std::f32::consts::FRAC_1_PI;
+        if !(pdf_dir > 0.0) {
+            return None;
+        }
+        Some(EmissionSample {
+            o: ps.p,
+            o_error: ps.p_error,
+            n,
+            d: Frame::from_normal(n).to_world(local),
+            le: self.radiance_at(ps.uv, w),
+            uv: ps.uv,
+            pdf_pos: ps.pdf_area,
+            pdf_dir,
+        })
+    }
+
+    /// Densities of [`AreaLight::sample_le`] for a particle leaving along `d` from a point of
+    /// `shape` with geometric normal `n` (either side): 1/A and (½)·|cos θ|/π, the direction's
+    /// 0 behind a one-sided emitter.
+    pub fn pdf_le(&self, shape: &Shape, n: Vec3, d: Vec3) -> EmissionPdf {
+        let cos = n.dot(d);
+        let dir = if self.two_sided {
+            0.5 * cos.abs() * std::f32::consts::FRAC_1_PI
+        } else {
+            cos.max(0.0) * std::f32::consts::FRAC_1_PI
+        };
+        let area = shape.area();
+        EmissionPdf {
+            pos: if area > 0.0 { 1.0 / area } else { 0.0 },
+            dir,
+        }
     }
 }

@@ -2,10 +2,10 @@
 
 use glam::{Vec2, Vec3};
 
-use super::LightSample;
+use super::{EmissionPdf, EmissionSample, LightSample};
 use crate::geometry::Frame;
 use crate::sampling::concentric_disk;
-use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
+use crate::spectrum::{SampledWavelengths, Spectrum};
 
 /// Parallel light leaving a disk of radius `radius` (m) centred at `center`, travelling along
 /// `frame.n`, with total spectral power `power` (W·nm⁻¹) spread uniformly over the disk. Its
@@ -51,15 +51,45 @@ impl BeamLight {
         })
     }
 
-    /// A particle leaving the beam: (origin, direction, spectral power per unit probability of
-    /// this position, W·nm⁻¹).
-    pub fn sample_emission<const N: usize>(
+    /// A particle (light tracing, `bdpt`): a point uniform on the disk from `u`
+    /// (pdf_pos = 1/(π r²) m⁻²), travelling along the beam (a delta direction, pdf_dir = 1),
+    /// `le` the irradiance across the beam, power/(π r²).
+    pub fn sample_le<const N: usize>(
         &self,
-        u: Vec2,
         w: &SampledWavelengths<N>,
-    ) -> (Vec3, Vec3, SampledSpectrum<N>) {
+        u: Vec2,
+    ) -> EmissionSample<N> {
         let d = concentric_disk(u) * self.radius;
-        let o = self.center + self.frame.s * d.x + self.frame.t * d.y;
-        (o, self.frame.n, self.power.sample(w))
+        let inv_area = 1.0 / (std::f32::consts::PI * self.radius * self.radius);
+        EmissionSample {
+            o: self.center + self.frame.s * d.x + self.frame.t * d.y,
+            o_error: Vec3::ZERO,
+            n: Vec3::ZERO,
+            d: self.frame.n,
+            le: self.power.sample(w) * inv_area,
+            uv: Vec2::ZERO,
+            pdf_pos: inv_area,
+            pdf_dir: 1.0,
+        }
+    }
+
+    /// Densities of [`BeamLight::sample_le`] for a particle reaching `p`: 1/(π r²) if `p` lies
+    /// in the beam's cylinder ahead of the disk, else 0; the direction is a delta (0).
+    pub fn pdf_le(&self, p: Vec3) -> EmissionPdf {
+        let inside = self.sample_li::<1>(
+            p,
+            &SampledWavelengths::<1> {
+                lambda: [550.0],
+                pdf: [1.0],
+            },
+        );
+        EmissionPdf {
+            pos: if inside.is_some() {
+                1.0 / (std::f32::consts::PI * self.radius * self.radius)
+            } else {
+                0.0
+            },
+            dir: 0.0,
+        }
     }
 }

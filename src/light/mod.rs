@@ -56,29 +56,46 @@ pub struct LightSample<const N: usize> {
     pub distance: f32,
 }
 
-/// A particle leaving a light at infinity (environment, directional): light tracing's emission
-/// sample (pbrt-v4 §12.5, `SampleLe`; Veach 1997 §8.3.2 for the disk of the scene's bounding
-/// sphere).
+/// A particle leaving a light: the emission sample of light tracing and of bidirectional path
+/// tracing's light subpaths (Veach 1997 §8.3.2 and §10.2; pbrt-v4 §12.5, `SampleLe`). Every
+/// light owns its sampling ([`Light::sample_le`]) and the densities of it ([`Light::pdf_le`]).
 #[derive(Clone, Copy, Debug)]
 pub struct EmissionSample<const N: usize> {
-    /// Ray origin on a disk perpendicular to `d`, outside the scene's bounding sphere, m.
+    /// Ray origin, m: a point on an area light, the position of a point-like light, a point on
+    /// a beam's disk, or, for a light at infinity, a point on a disk perpendicular to `d`
+    /// outside the scene's bounding sphere.
     pub o: Vec3,
+    /// Absolute error bound of `o` per axis, m (zero where `o` is exact or not on a surface).
+    pub o_error: Vec3,
+    /// Unit geometric normal at `o` on the side the particle leaves (area lights); zero for
+    /// lights without a surface.
+    pub n: Vec3,
     /// Unit direction of travel.
     pub d: Vec3,
-    /// Radiance carried along `d`, W·m⁻²·sr⁻¹·nm⁻¹ (a collimated light: its irradiance
-    /// E⊥, W·m⁻²·nm⁻¹, with `pdf_dir` = 1 for the delta direction).
+    /// What the light emits along `d`: radiance for area lights and lights at infinity,
+    /// W·m⁻²·sr⁻¹·nm⁻¹; spectral intensity for point-like lights (point, spot, projector),
+    /// W·sr⁻¹·nm⁻¹; irradiance across the beam for collimated lights (directional without a
+    /// disk, beam), W·m⁻²·nm⁻¹.
     pub le: SampledSpectrum<N>,
-    /// Density of `o` per unit area of the disk, m⁻²: 1/(π r²).
+    /// Surface coordinates of `o` on an area light (textured radiance); zero otherwise.
+    pub uv: Vec2,
+    /// Density of `o`: per m² of the light's surface (area lights) or of the disk perpendicular
+    /// to `d` (lights at infinity, beams); 1 for a delta position (point-like lights).
     pub pdf_pos: f32,
-    /// Density of `d` per unit solid angle, sr⁻¹ (1 for a delta direction).
+    /// Density of `d` per unit solid angle, sr⁻¹; 1 for a delta direction (collimated lights).
     pub pdf_dir: f32,
 }
 
 impl<const N: usize> EmissionSample<N> {
-    /// The particle's spectral power per unit probability, W·nm⁻¹: Le·cos θ / (pdf_pos·pdf_dir)
-    /// with cos θ = 1, the disk being perpendicular to `d`.
+    /// The particle's spectral power per unit probability, W·nm⁻¹:
+    /// Le·|cos θ|/(pdf_pos·pdf_dir), cos θ between `n` and `d` (1 without a surface).
     pub fn weight(&self) -> SampledSpectrum<N> {
-        self.le * (1.0 / (self.pdf_pos * self.pdf_dir))
+        let cos = if self.n == Vec3::ZERO {
+            1.0
+        } else {
+            self.n.dot(self.d).abs()
+        };
+        self.le * (cos / (self.pdf_pos * self.pdf_dir))
     }
 
     /// A particle from a light at infinity travelling along `d` (unit) with radiance `le`
@@ -97,12 +114,41 @@ impl<const N: usize> EmissionSample<N> {
         let p = crate::sampling::concentric_disk(u_pos) * radius;
         Self {
             o: center - d * (2.0 * radius) + f.s * p.x + f.t * p.y,
+            o_error: Vec3::ZERO,
+            n: Vec3::ZERO,
             d,
             le,
+            uv: Vec2::ZERO,
             pdf_pos: 1.0 / (std::f32::consts::PI * radius * radius),
             pdf_dir,
         }
     }
+
+    /// A particle from a point-like light at `o` along `d` with intensity `le` (W·sr⁻¹·nm⁻¹),
+    /// `d` chosen with density `pdf_dir` (sr⁻¹).
+    pub fn from_point(o: Vec3, d: Vec3, le: SampledSpectrum<N>, pdf_dir: f32) -> Self {
+        Self {
+            o,
+            o_error: Vec3::ZERO,
+            n: Vec3::ZERO,
+            d,
+            le,
+            uv: Vec2::ZERO,
+            pdf_pos: 1.0,
+            pdf_dir,
+        }
+    }
+}
+
+/// The densities with which a light's emission sampling produces a given particle (see
+/// [`Light::pdf_le`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EmissionPdf {
+    /// Density of the origin, m⁻² (of the light's surface, or of the disk perpendicular to the
+    /// direction for lights that emit parallel light); 0 for a delta position.
+    pub pos: f32,
+    /// Density of the direction, sr⁻¹; 0 for a delta direction.
+    pub dir: f32,
 }
 
 /// The sample of a point-like light at `position` seen from `p`: `intensity(wi)` gives the
@@ -213,26 +259,80 @@ impl Light {
         }
     }
 
-    /// A particle from a light at infinity (directional, environment, environment map) for
-    /// light tracing, from the disk of the scene's bounding sphere (`center`, `radius`) facing
-    /// its direction (see [`EmissionSample::from_infinity`]); None for other lights.
-    pub fn sample_le_at_infinity<const N: usize>(
+    /// A particle leaving the light (light tracing, light subpaths of `bdpt`): `u_pos` chooses
+    /// the origin, `u_dir` the direction (both uniform in [0, 1)²), `sphere` is the scene's
+    /// bounding sphere (centre, radius in m) for lights at infinity. None when the light emits
+    /// nothing there (a degenerate shape). See [`EmissionSample`] for units and measures.
+    pub fn sample_le<const N: usize>(
         &self,
-        center: Vec3,
-        radius: f32,
+        shapes: &[Shape],
+        sphere: (Vec3, f32),
         w: &SampledWavelengths<N>,
         u_pos: Vec2,
         u_dir: Vec2,
     ) -> Option<EmissionSample<N>> {
+        let (center, radius) = sphere;
         match self {
+            Light::Area(l) => l.sample_le(&shapes[l.shape as usize], w, u_pos, u_dir),
+            Light::Point(l) => Some(l.sample_le(w, u_dir)),
+            Light::Spot(l) => Some(l.sample_le(w, u_dir)),
+            Light::Beam(l) => Some(l.sample_le(w, u_pos)),
+            Light::Projector(l) => Some(l.sample_le(w, u_dir)),
             Light::Directional(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
             Light::Environment(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
             Light::EnvMap(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
-            Light::Point(_)
-            | Light::Spot(_)
-            | Light::Area(_)
-            | Light::Beam(_)
-            | Light::Projector(_) => None,
+        }
+    }
+
+    /// The densities with which [`Light::sample_le`] produces a particle travelling along `d`
+    /// (unit) from `p`, a point on the light with normal `n` (area lights; `n` on the emitting
+    /// side or either side for two-sided ones). For lights that emit parallel light
+    /// ([`Light::emits_parallel`]) `p` is any point the particle reaches and `pos` the density
+    /// of its line on the disk perpendicular to `d`. Zero for particles the light cannot emit.
+    pub fn pdf_le(
+        &self,
+        shapes: &[Shape],
+        sphere: (Vec3, f32),
+        p: Vec3,
+        n: Vec3,
+        d: Vec3,
+    ) -> EmissionPdf {
+        let disk = 1.0 / (std::f32::consts::PI * sphere.1 * sphere.1);
+        match self {
+            Light::Area(l) => l.pdf_le(&shapes[l.shape as usize], n, d),
+            Light::Point(_) => EmissionPdf {
+                pos: 0.0,
+                dir: crate::sampling::UNIFORM_SPHERE_PDF,
+            },
+            Light::Spot(l) => l.pdf_le(d),
+            Light::Projector(l) => l.pdf_le(d),
+            Light::Beam(l) => l.pdf_le(p),
+            Light::Directional(l) => EmissionPdf {
+                pos: disk,
+                dir: l.pdf_li(-d),
+            },
+            Light::Environment(_) => EmissionPdf {
+                pos: disk,
+                dir: crate::sampling::UNIFORM_SPHERE_PDF,
+            },
+            Light::EnvMap(l) => EmissionPdf {
+                pos: disk,
+                dir: l.pdf_li(-d),
+            },
+        }
+    }
+
+    /// Whether the light emits parallel light from a disk (lights at infinity, beams): its
+    /// particles' origins are chosen per unit area across the direction, which is chosen first
+    /// (or fixed), so the density of a particle's first hit is `pdf_le(..).pos`·|cos θ| there
+    /// and the density of the light's own vertex is `pdf_le(..).dir` (Veach 1997 §8.3.2;
+    /// pbrt-v4's `PdfLightOrigin`/`PdfLight` for infinite lights).
+    pub fn emits_parallel(&self) -> bool {
+        match self {
+            Light::Directional(_) | Light::Environment(_) | Light::EnvMap(_) | Light::Beam(_) => {
+                true
+            }
+            Light::Point(_) | Light::Spot(_) | Light::Area(_) | Light::Projector(_) => false,
         }
     }
 

@@ -2,7 +2,7 @@
 
 use glam::Vec3;
 
-use super::LightSample;
+use super::{EmissionSample, LightSample};
 use crate::spectrum::{SampledWavelengths, Spectrum};
 
 /// An isotropic point light of spectral intensity `intensity` (W·sr⁻¹·nm⁻¹); its power is
@@ -23,5 +23,20 @@ impl PointLight {
         w: &SampledWavelengths<N>,
     ) -> Option<LightSample<N>> {
         super::point_like_sample(self.position, p, |_| Some(self.intensity.sample(w)))
+    }
+
+    /// A particle (light tracing, `bdpt`): a direction uniform on the sphere from `u`,
+    /// pdf_dir = 1/(4π) sr⁻¹; `le` is the intensity.
+    pub fn sample_le<const N: usize>(
+        &self,
+        w: &SampledWavelengths<N>,
+        u: glam::Vec2,
+    ) -> EmissionSample<N> {
+        EmissionSample::from_point(
+            self.position,
+            crate::sampling::uniform_sphere(u),
+            self.intensity.sample(w),
+            crate::sampling::UNIFORM_SPHERE_PDF,
+        )
     }
 }

@@ -3,7 +3,7 @@
 
 use glam::{Mat3, Vec2, Vec3};
 
-use super::LightSample;
+use super::{EmissionPdf, EmissionSample, LightSample};
 use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
 use crate::texture::Texture;
 
@@ -70,24 +70,39 @@ impl ProjectorLight {
         4.0 * self.tan_x * self.tan_y
     }
 
-    /// A particle for light tracing: a point uniform on the image plane z = 1 (u in [0, 1)²),
-    /// returned as the world direction and the weight I(ω)/p(ω) = π·spectrum·image(uv)·area,
-    /// p(ω) = 1/(area·cos³θ) per sr.
-    pub fn sample_emission<const N: usize>(
+    /// A particle (light tracing, `bdpt`): a point uniform on the image plane z = 1 (u in
+    /// [0, 1)², which is also its image coordinate) gives the direction, with
+    /// pdf_dir = 1/(area·cos³θ) sr⁻¹; `le` is the intensity there, π·spectrum·image/cos³θ.
+    pub fn sample_le<const N: usize>(
         &self,
-        u: Vec2,
         w: &SampledWavelengths<N>,
-    ) -> (Vec3, SampledSpectrum<N>) {
+        u: Vec2,
+    ) -> EmissionSample<N> {
         let d = Vec3::new(
             (1.0 - 2.0 * u.x) * self.tan_x,
             (1.0 - 2.0 * u.y) * self.tan_y,
             1.0,
         )
         .normalize();
-        let weight = self.image.sample(u, w)
-            * self.spectrum.sample(w)
-            * (std::f32::consts::PI * self.image_area());
-        (self.frame * d, weight)
+        let cos3 = d.z * d.z * d.z;
+        let le = self.image.sample(u, w) * self.spectrum.sample(w) * (std::f32::consts::PI / cos3);
+        EmissionSample::from_point(
+            self.position,
+            self.frame * d,
+            le,
+            1.0 / (self.image_area() * cos3),
+        )
+    }
+
+    /// Densities of [`ProjectorLight::sample_le`] for the world direction `dir` (unit): a delta
+    /// position (0) and 1/(area·cos³θ) inside the image, else 0.
+    pub fn pdf_le(&self, dir: Vec3) -> EmissionPdf {
+        let d = self.frame.transpose() * dir;
+        let dir = match self.uv(d) {
+            Some(_) => 1.0 / (self.image_area() * d.z * d.z * d.z),
+            None => 0.0,
+        };
+        EmissionPdf { pos: 0.0, dir }
     }
 }
 

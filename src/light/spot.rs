@@ -147,6 +147,36 @@ impl SpotLight {
             (f > 0.0).then(|| self.intensity.sample(w) * self.image(-wi, w) * f)
         })
     }
+
+    /// A particle (light tracing, `bdpt`): a direction uniform in the cone from `u`,
+    /// pdf_dir = 1/(2π(1 − cos θ_total)) sr⁻¹; `le` the intensity with falloff and image.
+    pub fn sample_le<const N: usize>(
+        &self,
+        w: &SampledWavelengths<N>,
+        u: glam::Vec2,
+    ) -> super::EmissionSample<N> {
+        let omc = 1.0 - self.cos_total;
+        let d = self.frame.to_world(crate::sampling::uniform_cone(u, omc));
+        let le = self.intensity.sample(w) * self.image(d, w) * self.falloff(d);
+        super::EmissionSample::from_point(
+            self.position,
+            d,
+            le,
+            crate::sampling::uniform_cone_pdf(omc),
+        )
+    }
+
+    /// Densities of [`SpotLight::sample_le`] for the direction `d` (unit): a delta position
+    /// (0) and the cone's uniform density inside it, else 0.
+    pub fn pdf_le(&self, d: Vec3) -> super::EmissionPdf {
+        let omc = 1.0 - self.cos_total;
+        let dir = if 1.0 - self.frame.n.dot(d) <= omc {
+            crate::sampling::uniform_cone_pdf(omc)
+        } else {
+            0.0
+        };
+        super::EmissionPdf { pos: 0.0, dir }
+    }
 }
 
 #[cfg(test)]

@@ -70,8 +70,11 @@ pub struct RenderStats {
 pub enum RenderError {
     #[error("cannot start {threads} render threads: {message}")]
     Threads { threads: usize, message: String },
-    #[error("the `light` integrator connects to a pinhole camera; use a perspective camera")]
-    Camera,
+    #[error(
+        "the `{0}` integrator connects paths to the camera's lens, which an orthographic camera \
+         does not have; use a perspective or thin-lens camera"
+    )]
+    Camera(&'static str),
 }
 
 /// Renders `scene`. `cancel` stops the render between tiles; `progress(done, total)` is called
@@ -124,8 +127,8 @@ pub fn render(
     let mut partial = false;
     if opts.integrator == IntegratorKind::Light {
         let film = film.into_inner().unwrap_or_else(|p| p.into_inner());
-        if !matches!(scene.camera, crate::geometry::Camera::Perspective(_)) {
-            return Err(RenderError::Camera);
+        if matches!(scene.camera, crate::geometry::Camera::Orthographic(_)) {
+            return Err(RenderError::Camera("light"));
         }
         return render_light(
             opts,
