@@ -20,6 +20,8 @@ pub enum IntegratorArg {
     Path,
     /// Light (particle) tracing with camera connections: caustics.
     Light,
+    /// Bidirectional path tracing: caustics and everything else, combined by MIS.
+    Bdpt,
     /// The lecture notes' Phong/Whitted model, per wavelength.
     Whitted,
 }
@@ -128,6 +130,7 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
         opts.integrator = match i {
             IntegratorArg::Path => IntegratorKind::Path,
             IntegratorArg::Light => IntegratorKind::Light,
+            IntegratorArg::Bdpt => IntegratorKind::Bdpt,
             IntegratorArg::Whitted => IntegratorKind::Whitted,
         };
     }
@@ -184,6 +187,7 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
     let integrator = match opts.integrator {
         IntegratorKind::Path => "path",
         IntegratorKind::Light => "light",
+        IntegratorKind::Bdpt => "bdpt",
         IntegratorKind::Whitted => "whitted",
         IntegratorKind::Direct { .. } => "direct",
     };

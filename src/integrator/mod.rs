@@ -6,6 +6,7 @@
 //! wavelengths, W·m⁻²·sr⁻¹·nm⁻¹. It may terminate the secondary wavelengths; the film then
 //! drops them (their pdf is 0).
 
+pub mod bdpt;
 mod direct;
 pub mod light;
 mod path;
@@ -89,6 +90,8 @@ pub struct Integrator<'a> {
     /// Surface hits a camera path keeps before Russian roulette may end it (path tracer): the
     /// scene's `rr_depth`.
     pub rr_depth: u32,
+    /// `bdpt` only: render one connection strategy alone (debugging; None renders them all).
+    pub strategy: Option<bdpt::Strategy>,
 }
 
 impl<'a> Integrator<'a> {
@@ -108,6 +111,7 @@ impl<'a> Integrator<'a> {
             kind,
             max_depth,
             rr_depth: scene.integrator.rr_depth,
+            strategy: None,
         }
     }
 
@@ -120,7 +124,11 @@ impl<'a> Integrator<'a> {
     ) -> SampledSpectrum<N> {
         match self.kind {
             // `light` traces from the lights (see `light::trace`); camera rays use `path`
-            IntegratorKind::Path | IntegratorKind::Light => path::radiance(self, ray, w, s),
+            // `light` and `bdpt` also trace from the lights (see `render`); camera rays alone use
+            // `path`
+            IntegratorKind::Path | IntegratorKind::Light | IntegratorKind::Bdpt => {
+                path::radiance(self, ray, w, s)
+            }
             IntegratorKind::Whitted => whitted::radiance(self, ray, w, s, 0),
             IntegratorKind::Direct {
                 emitter_samples,
@@ -132,6 +140,7 @@ impl<'a> Integrator<'a> {
 
 /// The shading situation at a surface hit, seen from the incoming ray: the material at the hit
 /// (textures looked up) and the shading frame.
+#[derive(Clone, Copy)]
 pub(crate) struct Shading<'a, const N: usize> {
     pub bsdf: Bsdf<'a, N>,
     pub frame: Frame,

@@ -120,6 +120,8 @@ pub struct FilmDesc {
 pub enum IntegratorKind {
     Path,
     Light,
+    /// Bidirectional path tracing (`integrator::bdpt`).
+    Bdpt,
     Whitted,
     /// Mitsuba's `direct`: emission seen directly plus direct lighting at the first hit from
     /// this many light and BSDF samples, combined by MIS.

@@ -20,6 +20,8 @@ use crate::sampler::Sampler;
 use crate::scene::Scene;
 use crate::spectrum::{N_WAVELENGTHS, SampledWavelengths, WavelengthSampler};
 
+mod bdpt;
+
 /// Tile side, pixels.
 const TILE: u32 = 16;
 
@@ -33,6 +35,8 @@ pub struct RenderOptions {
     pub integrator: IntegratorKind,
     pub max_depth: u32,
     pub spectral_bins: u32,
+    /// `bdpt` only: one connection strategy alone (debugging).
+    pub strategy: Option<crate::integrator::bdpt::Strategy>,
 }
 
 impl RenderOptions {
@@ -45,6 +49,7 @@ impl RenderOptions {
             integrator: scene.integrator.kind,
             max_depth: scene.integrator.max_depth,
             spectral_bins: scene.film.spectral_bins,
+            strategy: None,
         }
     }
 }
@@ -96,7 +101,8 @@ pub fn render(
     );
     let (filter, bins) = (film.filter.clone(), film.bins.clone());
     let film = Mutex::new(film);
-    let integrator = Integrator::new(scene, opts.integrator, opts.max_depth);
+    let mut integrator = Integrator::new(scene, opts.integrator, opts.max_depth);
+    integrator.strategy = opts.strategy;
     let lambda = WavelengthSampler::visible(scene.wavelengths);
     let tiles: Vec<(u32, u32, u32, u32)> = (0..h.div_ceil(TILE))
         .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
@@ -125,6 +131,21 @@ pub fn render(
     }
     let mut spp_done = 0;
     let mut partial = false;
+    if opts.integrator == IntegratorKind::Bdpt {
+        let film = film.into_inner().unwrap_or_else(|p| p.into_inner());
+        if matches!(scene.camera, crate::geometry::Camera::Orthographic(_)) {
+            return Err(RenderError::Camera("bdpt"));
+        }
+        let ctx = bdpt::Ctx {
+            opts,
+            integrator: &integrator,
+            lambda: &lambda,
+            pool: &pool,
+            cancel,
+            progress,
+        };
+        return Ok(bdpt::render(&ctx, film, &tiles, &passes, start));
+    }
     if opts.integrator == IntegratorKind::Light {
         let film = film.into_inner().unwrap_or_else(|p| p.into_inner());
         if matches!(scene.camera, crate::geometry::Camera::Orthographic(_)) {

@@ -308,6 +308,7 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
         d.kind = match k.get_ref().as_str() {
             "path" => IntegratorKind::Path,
             "light" => IntegratorKind::Light,
+            "bdpt" => IntegratorKind::Bdpt,
             "whitted" => IntegratorKind::Whitted,
             "direct" => IntegratorKind::Direct {
                 emitter_samples: match &i.emitter_samples {
@@ -323,7 +324,7 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
                 return Err(cx.err(
                     &k.span(),
                     "integrator.type",
-                    format!("\"{o}\": expected path, light, whitted or direct"),
+                    format!("\"{o}\": expected path, bdpt, light, whitted or direct"),
                 ));
             }
         };

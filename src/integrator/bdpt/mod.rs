@@ -1,0 +1,321 @@
+//! Spectral bidirectional path tracing (Veach 1997 ch. 10; Veach & Guibas 1995): a camera
+//! subpath and a light subpath per camera sample, joined by every connection strategy (s light
+//! vertices, t camera vertices) and combined by multiple importance sampling with the power
+//! heuristic, its weights computed by the ratio-of-densities recurrence of Veach 1997 §10.2.1
+//! (pbrt-v4 §13.3.6, `MISWeight`).
+//!
+//! - **Spectral.** Both subpaths carry the camera sample's hero wavelengths. A hit on a
+//!   dispersive material on *either* subpath keeps only the hero (`terminate_secondary`), and
+//!   every strategy is evaluated after both subpaths exist, so a set terminated anywhere is
+//!   terminated for every connection through it: each strategy then estimates the hero's
+//!   contribution alone, as `path` does, and the MIS weights still sum to one.
+//! - **Strategies.** s = 0: a camera subpath that hits an emitter (or leaves the scene toward
+//!   the lights at infinity). s = 1: the light sampled from a camera vertex (`sample_li`, next
+//!   event estimation). t = 1: a light vertex connected to the camera's lens (`Camera::connect`,
+//!   pinhole or thin lens), splatted at its raster position. Otherwise an edge between the two
+//!   subpaths' last vertices. s = t = 1 (an emitter seen directly from a particle) is left to
+//!   s = 0, t = 2, as in pbrt; delta lobes and delta lights take part where they can.
+//! - **Transport.** Camera vertices evaluate f in radiance mode (with η² at refractions), light
+//!   vertices in importance mode with the adjoint shading-normal correction (Veach 1997 §5.3).
+//! - **Debugging.** A [`Strategy`] restricts a render to one (s, t), weighted or not: the
+//!   weighted images of all strategies sum to the full render, and each unweighted one converges
+//!   to the same image where it can sample the paths.
+
+mod vertex;
+mod walk;
+
+use glam::{Vec2, Vec3};
+
+use super::Integrator;
+use crate::geometry::{Ray, spawn_ray, spawn_ray_to};
+use crate::material::TransportMode;
+use crate::sampler::Sampler;
+use crate::spectrum::{SampledSpectrum, SampledWavelengths};
+use vertex::{Kind, Vertex};
+
+/// One connection strategy alone, for debugging and tests: `s` light vertices, `t` camera
+/// vertices, with its MIS weight or without (then it is an unbiased estimator by itself of the
+/// paths it can sample).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Strategy {
+    pub s: u32,
+    pub t: u32,
+    pub weighted: bool,
+}
+
+/// The subpaths of one sample, kept between samples so that no sample allocates.
+pub struct Scratch<'a, const N: usize> {
+    camera: Vec<Vertex<'a, N>>,
+    light: Vec<Vertex<'a, N>>,
+}
+
+impl<const N: usize> Scratch<'_, N> {
+    pub fn new(max_depth: u32) -> Self {
+        let n = (max_depth as usize).saturating_add(2).min(64);
+        Self {
+            camera: Vec::with_capacity(n),
+            light: Vec::with_capacity(n),
+        }
+    }
+}
+
+/// First sampler dimension of the connections' samples (light choice and point for s = 1,
+/// lens point for t = 1), four per subpath vertex after the walks' dimensions.
+const CONNECT_DIMS: u32 = 1 << 16;
+
+/// One BDPT sample: the radiance its camera-side strategies (t ≥ 2) carry along `ray`,
+/// W·m⁻²·sr⁻¹·nm⁻¹ at the wavelengths `w` (which both subpaths may terminate to the hero),
+/// while `splat(raster, w, value)` receives each t = 1 strategy's contribution at its raster
+/// position, `value` in the film's units times the pixel count (the caller divides by it and
+/// spreads it over the filter, as for light tracing). `s` is the camera sample's stream (its
+/// camera dimensions read), `s_light` a stream of the same pixel and index for the light
+/// subpath. `margin` is the filter radius, pixels.
+#[allow(clippy::too_many_arguments)]
+pub fn sample<'a, const N: usize>(
+    it: &'a Integrator<'a>,
+    ray: Ray,
+    w: &mut SampledWavelengths<N>,
+    s: &mut Sampler,
+    s_light: &mut Sampler,
+    margin: f32,
+    scratch: &mut Scratch<'a, N>,
+    splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, SampledSpectrum<N>),
+) -> SampledSpectrum<N> {
+    let max_depth = it.max_depth as usize;
+    let conn = s.clone().at_dimension(CONNECT_DIMS);
+    walk::camera_subpath(it, ray, w, s, max_depth.saturating_add(2), &mut scratch.camera);
+    walk::light_subpath(it, w, s_light, max_depth.saturating_add(1), &mut scratch.light);
+    let (camera, light) = (&scratch.camera, &scratch.light);
+    let w = &*w;
+    let mut l = SampledSpectrum::zero();
+    for t in 1..=camera.len() {
+        for s in 0..=light.len() {
+            // depth = interior vertices of the full path = s + t − 2
+            if (s == 1 && t == 1) || s + t < 2 || s + t - 2 > max_depth {
+                continue;
+            }
+            if let Some(only) = it.strategy
+                && (only.s as usize, only.t as usize) != (s, t)
+            {
+                continue;
+            }
+            let weighted = it.strategy.is_none_or(|o| o.weighted);
+            let Some((c, raster)) = connect(it, light, camera, s, t, w, &conn, margin, weighted)
+            else {
+                continue;
+            };
+            match raster {
+                Some(r) => splat(r, w, c),
+                None => l += c,
+            }
+        }
+    }
+    l
+}
+
+/// The contribution of strategy (s, t), MIS-weighted if `weighted`, and for t = 1 the raster
+/// position where it lands. None when the strategy yields nothing for these subpaths.
+#[allow(clippy::too_many_arguments)]
+fn connect<const N: usize>(
+    it: &Integrator<'_>,
+    light: &[Vertex<'_, N>],
+    camera: &[Vertex<'_, N>],
+    s: usize,
+    t: usize,
+    w: &SampledWavelengths<N>,
+    conn: &Sampler,
+    margin: f32,
+    weighted: bool,
+) -> Option<(SampledSpectrum<N>, Option<Vec2>)> {
+    let scene = it.scene;
+    let mut sampled = None;
+    let mut raster = None;
+    let l = if s == 0 {
+        // the camera subpath's last vertex is on an emitter
+        let pt = &camera[t - 1];
+        pt.beta * pt.le(it, &camera[t - 2], w)
+    } else if t == 1 {
+        // the light subpath's last vertex seen by the camera through a sampled lens point
+        let qs = &light[s - 1];
+        if !qs.connectible(it) {
+            return None;
+        }
+        let u = conn.clone().at_dimension(CONNECT_DIMS + 4 * s as u32 + 2).get_2d();
+        let c = scene.camera.connect(qs.p, u, margin)?;
+        let v = Vertex::new(Kind::Camera, c.p_lens, SampledSpectrum::splat(c.weight), 0.0);
+        let l = qs.beta * qs.f(c.wi, w, TransportMode::Importance) * (qs.cos_shading(c.wi) * c.weight);
+        if l.is_zero() || !visible(it, qs, &v) {
+            return None;
+        }
+        raster = Some(c.raster);
+        sampled = Some(v);
+        l
+    } else if s == 1 {
+        // next-event estimation from the camera subpath's last vertex
+        let pt = &camera[t - 1];
+        if !pt.connectible(it) {
+            return None;
+        }
+        let u = conn.clone().at_dimension(CONNECT_DIMS + 4 * t as u32).get_2d();
+        let (li, p_sel, ux) = it.lights.pick_reuse(u.x)?;
+        let light = &scene.lights[li];
+        let ls = light.sample_li(&scene.shapes, pt.p, w, Vec2::new(ux, u.y))?;
+        if ls.li.is_zero() || !(ls.pdf > 0.0) {
+            return None;
+        }
+        let mut v = Vertex::new(
+            Kind::Light { light: li as u32 },
+            ls.p,
+            ls.li * (1.0 / (p_sel * ls.pdf)),
+            0.0,
+        );
+        v.p_error = ls.p_error;
+        v.ng = if ls.distance.is_finite() { ls.n } else { Vec3::ZERO };
+        v.d = ls.wi;
+        v.pdf_fwd = v.pdf_light_origin(it, pt);
+        let l = pt.beta * pt.f(ls.wi, w, TransportMode::Radiance) * v.beta * pt.cos_shading(ls.wi);
+        if l.is_zero() || !visible(it, pt, &v) {
+            return None;
+        }
+        sampled = Some(v);
+        l
+    } else {
+        // an edge between the two subpaths' last vertices
+        let (qs, pt) = (&light[s - 1], &camera[t - 1]);
+        if !qs.connectible(it) || !pt.connectible(it) {
+            return None;
+        }
+        let d = qs.p - pt.p;
+        let d2 = d.length_squared();
+        if !(d2 > 0.0) {
+            return None;
+        }
+        let wi = d / d2.sqrt();
+        let g = pt.cos_shading(wi) * qs.cos_shading(wi) / d2;
+        let l = qs.beta
+            * qs.f(-wi, w, TransportMode::Importance)
+            * pt.f(wi, w, TransportMode::Radiance)
+            * pt.beta
+            * g;
+        if l.is_zero() || !visible(it, pt, qs) {
+            return None;
+        }
+        l
+    };
+    if l.is_zero() {
+        return None;
+    }
+    let mis = if weighted {
+        mis_weight(it, light, camera, sampled.as_ref(), s, t, w)
+    } else {
+        1.0
+    };
+    Some((l * mis, raster))
+}
+
+/// Whether nothing blocks the segment between `a` and `b` (either may be at infinity, but not
+/// both).
+fn visible<const N: usize>(it: &Integrator<'_>, a: &Vertex<'_, N>, b: &Vertex<'_, N>) -> bool {
+    let scene = it.scene;
+    let ray = if b.at_infinity(it) {
+        spawn_ray(a.p, a.p_error, a.ng, b.d)
+    } else if a.at_infinity(it) {
+        spawn_ray(b.p, b.p_error, b.ng, a.d)
+    } else {
+        spawn_ray_to(a.p, a.p_error, a.ng, b.p, b.p_error, b.ng)
+    };
+    !scene.accel.occluded(&scene.shapes, &ray)
+}
+
+/// The power-heuristic MIS weight of strategy (s, t) for the path it built, by the
+/// ratio-of-densities recurrence (Veach 1997 §10.2.1, eqs. 10.9–10.10; pbrt-v4 §13.3.6): with
+/// pᵢ the density of the same path sampled with i light vertices, pᵢ₊₁/pᵢ and pᵢ₋₁/pᵢ are
+/// products of reverse over forward vertex densities, w = p_s² / Σᵢ pᵢ² = 1 / (1 + Σ (pᵢ/p_s)²)
+/// over the strategies that can sample the path (none ends on a delta vertex or a delta
+/// light). The connection's endpoints and their neighbours get the reverse densities this
+/// connection implies; `sampled` is the vertex an s = 1 or t = 1 strategy sampled in place of
+/// the subpath's own. A zero density (a delta) counts as 1 in the ratios, so that delta
+/// vertices cancel.
+fn mis_weight<const N: usize>(
+    it: &Integrator<'_>,
+    light: &[Vertex<'_, N>],
+    camera: &[Vertex<'_, N>],
+    sampled: Option<&Vertex<'_, N>>,
+    s: usize,
+    t: usize,
+    w: &SampledWavelengths<N>,
+) -> f32 {
+    if s + t == 2 {
+        return 1.0;
+    }
+    let remap = |x: f32| if x != 0.0 { x } else { 1.0 };
+    let pt = match (t, sampled) {
+        (1, Some(v)) => v,
+        _ => &camera[t - 1],
+    };
+    let qs = match (s, sampled) {
+        (0, _) => None,
+        (1, Some(v)) => Some(v),
+        _ => Some(&light[s - 1]),
+    };
+    let pt_minus = (t >= 2).then(|| &camera[t - 2]);
+    let qs_minus = (s >= 2).then(|| &light[s - 2]);
+    // reverse densities implied by the connection
+    let pt_rev = match qs {
+        Some(q) => q.pdf(it, qs_minus, pt, w),
+        None => pt_minus.map_or(0.0, |pm| pt.pdf_light_origin(it, pm)),
+    };
+    let pt_minus_rev = pt_minus.map_or(0.0, |pm| match qs {
+        Some(q) => pt.pdf(it, Some(q), pm, w),
+        None => pt.pdf_light(it, pm),
+    });
+    let qs_rev = qs.map_or(0.0, |q| pt.pdf(it, pt_minus, q, w));
+    let qs_minus_rev = match (qs, qs_minus) {
+        (Some(q), Some(qm)) => q.pdf(it, Some(pt), qm, w),
+        _ => 0.0,
+    };
+    let mut sum = 0.0f32;
+    // hypothetical strategies with fewer camera vertices
+    let mut ri = 1.0f32;
+    for i in (1..t).rev() {
+        let v = &camera[i];
+        let rev = if i == t - 1 {
+            pt_rev
+        } else if i + 2 == t {
+            pt_minus_rev
+        } else {
+            v.pdf_rev
+        };
+        ri *= remap(rev) / remap(v.pdf_fwd);
+        let delta = i != t - 1 && v.delta;
+        if !delta && !camera[i - 1].delta {
+            sum += ri * ri;
+        }
+    }
+    // hypothetical strategies with fewer light vertices
+    let mut ri = 1.0f32;
+    for i in (0..s).rev() {
+        let v = match (i, s, sampled) {
+            (0, 1, Some(sv)) => sv,
+            _ => &light[i],
+        };
+        let rev = if i == s - 1 {
+            qs_rev
+        } else if i + 2 == s {
+            qs_minus_rev
+        } else {
+            v.pdf_rev
+        };
+        ri *= remap(rev) / remap(v.pdf_fwd);
+        let delta = i != s - 1 && v.delta;
+        let delta_before = if i > 0 {
+            light[i - 1].delta
+        } else {
+            v.is_delta_light(it)
+        };
+        if !delta && !delta_before {
+            sum += ri * ri;
+        }
+    }
+    1.0 / (1.0 + sum)
+}

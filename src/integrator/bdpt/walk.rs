@@ -1,0 +1,224 @@
+//! The two subpaths of bidirectional path tracing: a camera subpath from the lens and a light
+//! subpath from a light's own emission sampling (`Light::sample_le`), each a random walk that
+//! records forward and reverse densities at its vertices (Veach 1997 §10.2; pbrt-v4 §13.3.2).
+
+use glam::Vec2;
+
+use super::vertex::{Kind, Vertex};
+use crate::geometry::{Ray, spawn_ray};
+use crate::integrator::Integrator;
+use crate::material::TransportMode;
+use crate::sampler::Sampler;
+use crate::spectrum::{SampledSpectrum, SampledWavelengths};
+
+/// Sampler dimensions each bounce of a walk reads: lobe choice 1D, direction 2D, roulette 1D,
+/// each read taking a pair (a fixed layout keeps each bounce stratified, as in `path`).
+pub(super) const BOUNCE_DIMS: u32 = 8;
+
+/// The camera subpath for `ray` (already sampled by the caller with its lens point): the lens
+/// vertex, then up to `max_vertices − 1` surface hits, ending at an escaped ray (lights at
+/// infinity) if the walk leaves the scene. W_e/p = 1 for a camera ray sampled by importance,
+/// so the throughput starts at 1.
+pub(super) fn camera_subpath<'a, const N: usize>(
+    it: &'a Integrator<'a>,
+    ray: Ray,
+    w: &mut SampledWavelengths<N>,
+    s: &mut Sampler,
+    max_vertices: usize,
+    path: &mut Vec<Vertex<'a, N>>,
+) {
+    path.clear();
+    if max_vertices == 0 {
+        return;
+    }
+    let beta = SampledSpectrum::splat(1.0);
+    path.push(Vertex::new(Kind::Camera, ray.o, beta, 1.0));
+    let pdf_dir = it.scene.camera.pdf_we(ray.o, ray.d);
+    walk(
+        it,
+        ray,
+        w,
+        s,
+        beta,
+        pdf_dir,
+        TransportMode::Radiance,
+        max_vertices,
+        path,
+    );
+}
+
+/// The light subpath: a light chosen by the integrator's selector, a particle from its
+/// `sample_le`, then up to `max_vertices − 1` surface hits. Empty if there is no light or the
+/// particle carries nothing.
+pub(super) fn light_subpath<'a, const N: usize>(
+    it: &'a Integrator<'a>,
+    w: &mut SampledWavelengths<N>,
+    s: &mut Sampler,
+    max_vertices: usize,
+    path: &mut Vec<Vertex<'a, N>>,
+) {
+    path.clear();
+    if max_vertices == 0 {
+        return;
+    }
+    let scene = it.scene;
+    let (u_pos, u_dir) = (s.get_2d(), s.get_2d());
+    let Some((li, p_sel, ux)) = it.lights.pick_reuse(u_pos.x) else {
+        return;
+    };
+    let light = &scene.lights[li];
+    let Some(e) = light.sample_le(
+        &scene.shapes,
+        scene.bounding_sphere(),
+        w,
+        Vec2::new(ux, u_pos.y),
+        u_dir,
+    ) else {
+        return;
+    };
+    let parallel = light.emits_parallel();
+    // the light vertex: chosen with p_sel × (position density, or for parallel light the
+    // direction density), its throughput Le / that
+    let pdf_origin = p_sel * if parallel { e.pdf_dir } else { e.pdf_pos };
+    let mut v = Vertex::new(
+        Kind::Light { light: li as u32 },
+        e.o,
+        e.le * (1.0 / pdf_origin),
+        pdf_origin,
+    );
+    v.p_error = e.o_error;
+    v.ng = if light.is_at_infinity() {
+        glam::Vec3::ZERO
+    } else {
+        e.n
+    };
+    v.d = -e.d;
+    v.uv = e.uv;
+    path.push(v);
+    let beta = e.weight() * (1.0 / p_sel);
+    if beta.is_zero() {
+        return;
+    }
+    let ray = if e.n == glam::Vec3::ZERO {
+        Ray::new(e.o, e.d)
+    } else {
+        spawn_ray(e.o, e.o_error, e.n, e.d)
+    };
+    // the density of the first hit: per area across the direction for parallel light
+    // (converted by |cos θ| at the hit in `walk` through `Vertex::pdf_light`), else the
+    // direction's solid-angle density
+    let pdf_dir = if parallel { e.pdf_pos } else { e.pdf_dir };
+    walk(
+        it,
+        ray,
+        w,
+        s,
+        beta,
+        pdf_dir,
+        TransportMode::Importance,
+        max_vertices,
+        path,
+    );
+}
+
+/// Extends `path` (whose last vertex emitted `ray`) by hits until `max_vertices` vertices, a
+/// miss, an absorbed sample or Russian roulette. `pdf_dir` is the density with which the
+/// last vertex chose `ray`'s direction (sr⁻¹; for a parallel-light vertex, m⁻² across the
+/// beam). Each hit records its forward density, and the vertex before it its reverse density
+/// (pbrt-v4 §13.3.2, `RandomWalk`). A dispersive hit keeps only the hero wavelength.
+#[allow(clippy::too_many_arguments)]
+fn walk<'a, const N: usize>(
+    it: &'a Integrator<'a>,
+    mut ray: Ray,
+    w: &mut SampledWavelengths<N>,
+    s: &mut Sampler,
+    mut beta: SampledSpectrum<N>,
+    mut pdf_dir: f32,
+    mode: TransportMode,
+    max_vertices: usize,
+    path: &mut Vec<Vertex<'a, N>>,
+) {
+    let scene = it.scene;
+    let beta0 = beta.max_component();
+    let mut eta_scale = 1.0f32;
+    let base = s.dimension();
+    let mut bounce = 0u32;
+    while path.len() < max_vertices {
+        let prev = path.len() - 1;
+        let Some(hit) = scene.accel.intersect(&scene.shapes, &ray) else {
+            // a camera ray leaving the scene ends on the lights at infinity
+            if mode == TransportMode::Radiance && !scene.infinite_lights.is_empty() {
+                let mut v = Vertex::new(Kind::Escaped, ray.o, beta, pdf_dir);
+                v.d = ray.d;
+                path.push(v);
+            }
+            return;
+        };
+        let surf = &scene.surfaces[hit.shape as usize];
+        let shading = it.shading(&hit, ray.d, w);
+        let mut v = Vertex::new(Kind::Surface { emitter: surf.light }, hit.p, beta, 0.0);
+        v.p_error = hit.p_error;
+        v.ng = hit.n_geom;
+        v.uv = hit.uv;
+        v.wo = -ray.d;
+        v.shading = shading;
+        v.pdf_fwd = if path[prev].kind_is_parallel_light(it) {
+            pdf_dir * hit.n_geom.dot(ray.d).abs()
+        } else {
+            path[prev].convert(it, pdf_dir, &v)
+        };
+        if let Some(sh) = &v.shading
+            && sh.bsdf.is_dispersive()
+        {
+            w.terminate_secondary();
+        }
+        path.push(v);
+        let Some(sh) = v.shading else {
+            return;
+        };
+        if path.len() == max_vertices {
+            return;
+        }
+        *s = s.clone().at_dimension(base + bounce * BOUNCE_DIMS);
+        bounce += 1;
+        let wo = sh.frame.to_local(-ray.d);
+        let Some((bs, next)) = sh.scatter(&hit, wo, w, s, mode, &mut beta) else {
+            return;
+        };
+        let cur = path.len() - 1;
+        let (fwd, rev) = if bs.specular {
+            path[cur].delta = true;
+            (0.0, 0.0)
+        } else {
+            (
+                bs.pdf,
+                sh.bsdf.pdf(bs.wi, wo, w, TransportMode::Radiance),
+            )
+        };
+        pdf_dir = fwd;
+        let (before, after) = path.split_at_mut(cur);
+        before[cur - 1].pdf_rev = after[0].convert(it, rev, &before[cur - 1]);
+        if bs.transmission {
+            eta_scale *= bs.eta * bs.eta;
+        }
+        ray = next;
+        // Russian roulette past `rr_depth` bounces: on the throughput (η²-corrected as in
+        // `path`) for camera subpaths, relative to the particle's starting weight for light
+        // subpaths (as `light`); its dimension is read at every bounce
+        let u_rr = s.get_1d();
+        let rr = match mode {
+            TransportMode::Radiance => (beta * eta_scale).max_component(),
+            TransportMode::Importance => beta.max_component() / beta0,
+        };
+        if rr < 1.0 && bounce >= it.rr_depth {
+            let q = (1.0 - rr).max(0.0);
+            if u_rr < q {
+                return;
+            }
+            beta /= 1.0 - q;
+        }
+        if beta.is_zero() {
+            return;
+        }
+    }
+}
