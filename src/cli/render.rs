@@ -67,6 +67,15 @@ pub struct RenderArgs {
     /// W·m⁻²·sr⁻¹.
     #[arg(long)]
     pub mitsuba_units: bool,
+    /// `bdpt` debugging: render only the connection strategy with S light and T camera
+    /// vertices ("S,T"), with its MIS weight (the weighted images of all strategies sum to the
+    /// full render).
+    #[arg(long, value_name = "S,T")]
+    pub bdpt_strategy: Option<String>,
+    /// With --bdpt-strategy: without its MIS weight (an estimator of the paths it can sample
+    /// by itself).
+    #[arg(long, requires = "bdpt_strategy")]
+    pub bdpt_unweighted: bool,
 }
 
 static CANCEL: AtomicBool = AtomicBool::new(false);
@@ -134,11 +143,40 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
             IntegratorArg::Whitted => IntegratorKind::Whitted,
         };
     }
-    if scene.integrator.moment && opts.integrator == IntegratorKind::Light {
+    if let Some(st) = &args.bdpt_strategy {
+        let parsed = st
+            .split_once(',')
+            .and_then(|(a, b)| Some((a.trim().parse().ok()?, b.trim().parse().ok()?)));
+        let Some((s, t)) = parsed else {
+            return Err(CliError::Usage(format!(
+                "--bdpt-strategy {st}: expected S,T (light and camera vertex counts, e.g. 1,2)"
+            )));
+        };
+        if opts.integrator != IntegratorKind::Bdpt {
+            return Err(CliError::Usage(
+                "--bdpt-strategy needs the bdpt integrator (--integrator bdpt)".into(),
+            ));
+        }
+        if t == 0 || s + t < 2 || (s, t) == (1, 1) {
+            return Err(CliError::Usage(format!(
+                "--bdpt-strategy {s},{t}: bdpt has no such strategy (t ≥ 1, s + t ≥ 2, not 1,1)"
+            )));
+        }
+        opts.strategy = Some(crate::integrator::bdpt::Strategy {
+            s,
+            t,
+            weighted: !args.bdpt_unweighted,
+        });
+    }
+    let splats = matches!(
+        opts.integrator,
+        IntegratorKind::Light | IntegratorKind::Bdpt
+    );
+    if scene.integrator.moment && splats {
         // light paths splat into many pixels: a per-pixel second moment of samples is not
         // defined for them
         eprintln!(
-            "note: the light tracer writes no second moments (m2.*); the scene's moment integrator applies to camera-ray integrators"
+            "note: light tracing and bdpt write no second moments (m2.*); the scene's moment integrator applies to camera-ray integrators"
         );
     }
     if let Some(b) = args.spectral_bins {
@@ -206,7 +244,7 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
         inf_samples: stats.inf_samples,
         range: scene.wavelengths,
         mitsuba_units: args.mitsuba_units,
-        moment: scene.integrator.moment && opts.integrator != IntegratorKind::Light,
+        moment: scene.integrator.moment && !splats,
     };
     write_exr(&exr, &image, &info)?;
     let ev = write_png(&png, &image, args.exposure.or(scene.film.exposure_ev))?;

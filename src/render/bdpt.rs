@@ -89,7 +89,13 @@ pub(super) fn render(
                                             let v = v * inv_pixels;
                                             let b = bins.as_ref();
                                             if !splat_filtered(
-                                                &mut list, (w, h), &filter, raster, wl, &v, b,
+                                                &mut list,
+                                                (w, h),
+                                                &filter,
+                                                raster,
+                                                wl,
+                                                &v,
+                                                b,
                                             ) {
                                                 count_dropped(wl, &v, &nan, &inf);
                                             }

@@ -83,8 +83,21 @@ pub fn sample<'a, const N: usize>(
 ) -> SampledSpectrum<N> {
     let max_depth = it.max_depth as usize;
     let conn = s.clone().at_dimension(CONNECT_DIMS);
-    walk::camera_subpath(it, ray, w, s, max_depth.saturating_add(2), &mut scratch.camera);
-    walk::light_subpath(it, w, s_light, max_depth.saturating_add(1), &mut scratch.light);
+    walk::camera_subpath(
+        it,
+        ray,
+        w,
+        s,
+        max_depth.saturating_add(2),
+        &mut scratch.camera,
+    );
+    walk::light_subpath(
+        it,
+        w,
+        s_light,
+        max_depth.saturating_add(1),
+        &mut scratch.light,
+    );
     let (camera, light) = (&scratch.camera, &scratch.light);
     let w = &*w;
     let mut l = SampledSpectrum::zero();
@@ -140,10 +153,19 @@ fn connect<const N: usize>(
         if !qs.connectible(it) {
             return None;
         }
-        let u = conn.clone().at_dimension(CONNECT_DIMS + 4 * s as u32 + 2).get_2d();
+        let u = conn
+            .clone()
+            .at_dimension(CONNECT_DIMS + 4 * s as u32 + 2)
+            .get_2d();
         let c = scene.camera.connect(qs.p, u, margin)?;
-        let v = Vertex::new(Kind::Camera, c.p_lens, SampledSpectrum::splat(c.weight), 0.0);
-        let l = qs.beta * qs.f(c.wi, w, TransportMode::Importance) * (qs.cos_shading(c.wi) * c.weight);
+        let v = Vertex::new(
+            Kind::Camera,
+            c.p_lens,
+            SampledSpectrum::splat(c.weight),
+            0.0,
+        );
+        let l =
+            qs.beta * qs.f(c.wi, w, TransportMode::Importance) * (qs.cos_shading(c.wi) * c.weight);
         if l.is_zero() || !visible(it, qs, &v) {
             return None;
         }
@@ -156,7 +178,10 @@ fn connect<const N: usize>(
         if !pt.connectible(it) {
             return None;
         }
-        let u = conn.clone().at_dimension(CONNECT_DIMS + 4 * t as u32).get_2d();
+        let u = conn
+            .clone()
+            .at_dimension(CONNECT_DIMS + 4 * t as u32)
+            .get_2d();
         let (li, p_sel, ux) = it.lights.pick_reuse(u.x)?;
         let light = &scene.lights[li];
         let ls = light.sample_li(&scene.shapes, pt.p, w, Vec2::new(ux, u.y))?;
@@ -170,7 +195,11 @@ fn connect<const N: usize>(
             0.0,
         );
         v.p_error = ls.p_error;
-        v.ng = if ls.distance.is_finite() { ls.n } else { Vec3::ZERO };
+        v.ng = if ls.distance.is_finite() {
+            ls.n
+        } else {
+            Vec3::ZERO
+        };
         v.d = ls.wi;
         v.pdf_fwd = v.pdf_light_origin(it, pt);
         let l = pt.beta * pt.f(ls.wi, w, TransportMode::Radiance) * v.beta * pt.cos_shading(ls.wi);

@@ -242,7 +242,10 @@ impl<'a, const N: usize> Vertex<'a, N> {
     /// The light this vertex is on (a light vertex, an emitting surface), if any.
     fn light(&self) -> Option<u32> {
         match self.kind {
-            Kind::Light { light } | Kind::Surface { emitter: Some(light) } => Some(light),
+            Kind::Light { light }
+            | Kind::Surface {
+                emitter: Some(light),
+            } => Some(light),
             _ => None,
         }
     }
@@ -317,9 +320,14 @@ impl<'a, const N: usize> Vertex<'a, N> {
             } else {
                 (next.p - self.p).normalize_or_zero()
             };
-            return sel * light.pdf_le(&scene.shapes, sphere, next.p, self.ng, travel).dir;
+            return sel
+                * light
+                    .pdf_le(&scene.shapes, sphere, next.p, self.ng, travel)
+                    .dir;
         }
         let dir = (next.p - self.p).normalize_or_zero();
-        sel * light.pdf_le(&scene.shapes, sphere, self.p, self.ng, dir).pos
+        sel * light
+            .pdf_le(&scene.shapes, sphere, self.p, self.ng, dir)
+            .pos
     }
 }

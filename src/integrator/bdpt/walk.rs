@@ -156,7 +156,14 @@ fn walk<'a, const N: usize>(
         };
         let surf = &scene.surfaces[hit.shape as usize];
         let shading = it.shading(&hit, ray.d, w);
-        let mut v = Vertex::new(Kind::Surface { emitter: surf.light }, hit.p, beta, 0.0);
+        let mut v = Vertex::new(
+            Kind::Surface {
+                emitter: surf.light,
+            },
+            hit.p,
+            beta,
+            0.0,
+        );
         v.p_error = hit.p_error;
         v.ng = hit.n_geom;
         v.uv = hit.uv;
@@ -190,10 +197,7 @@ fn walk<'a, const N: usize>(
             path[cur].delta = true;
             (0.0, 0.0)
         } else {
-            (
-                bs.pdf,
-                sh.bsdf.pdf(bs.wi, wo, w, TransportMode::Radiance),
-            )
+            (bs.pdf, sh.bsdf.pdf(bs.wi, wo, w, TransportMode::Radiance))
         };
         pdf_dir = fwd;
         let (before, after) = path.split_at_mut(cur);
