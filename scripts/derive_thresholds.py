@@ -12,7 +12,13 @@ sigma_d = sqrt(sigma_st^2 + sigma_ref^2). Thresholds, in Mitsuba-normalised Y un
 A global bias of a few percent of the mean, which idiff's per-pixel test cannot see, is caught by
 the closed-form tests (render_physics.rs) instead.
 
-Usage: cargo build --release && python3 scripts/derive_thresholds.py [--spp N] [scene ...]
+With --integrator bdpt the same is done for bidirectional path tracing, written to
+thresholds_bdpt.toml, and the bdpt render (seed 7) is also compared with a path render (seed 7)
+at the same spp: it prints their measured RMS difference against the one expected from both
+noises, sqrt(sigma_bdpt^2 + sigma_path^2), with sigma_path from thresholds.toml.
+
+Usage: cargo build --release && python3 scripts/derive_thresholds.py [--spp N] [--integrator I] [scene ...]
+(the spp defaults to the scene's thresholds.toml, else 256)
 Needs: pip install OpenImageIO numpy
 """
 import argparse
@@ -50,7 +56,8 @@ def rms(a):
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--spp", type=int, default=256)
+    ap.add_argument("--spp", type=int, default=None)
+    ap.add_argument("--integrator", default="path", choices=["path", "bdpt"])
     ap.add_argument("scenes", nargs="*")
     args = ap.parse_args()
     out = ROOT / "target" / "thresholds"
@@ -60,12 +67,10 @@ def main():
         d = REF / name
         a, b = channel(d / "ref_a.exr", "Y"), channel(d / "ref_b.exr", "Y")
         sig_ref = rms(a - b) / math.sqrt(2)
+        spp = args.spp or scene_spp(d)
         s = []
         for seed in (7, 8):
-            exr = out / f"{name}_{seed}.exr"
-            subprocess.run([str(BIN), "render", str(d / "scene.xml"), "--mitsuba-units", "--spp", str(args.spp),
-                            "--seed", str(seed), "--quiet", "-o", str(exr), "--png", str(out / f"{name}_{seed}.png")], check=True)
-            s.append(channel(exr, "Y"))
+            s.append(render(d, out / f"{name}_{args.integrator}_{seed}", spp, seed, args.integrator))
         sig_st = rms(s[0] - s[1]) / math.sqrt(2)
         sig_d = math.sqrt(sig_st ** 2 + sig_ref ** 2)
         bias = float(np.mean(s[0]) / np.mean(a) - 1.0)
@@ -75,18 +80,52 @@ def main():
         text = (
             f"# Derived by scripts/derive_thresholds.py from measured noise (Y, Mitsuba-normalised units).\n"
             f"# Mitsuba reference noise sigma_ref = RMS(ref_a - ref_b)/sqrt(2) = {sig_ref:.4g}\n"
-            f"# spectrace noise at {args.spp} spp sigma_st = RMS(seed7 - seed8)/sqrt(2) = {sig_st:.4g}\n"
+            f"# integrator {args.integrator}\n"
+            f"# spectrace noise at {spp} spp sigma_st = RMS(seed7 - seed8)/sqrt(2) = {sig_st:.4g}\n"
             f"# expected RMS of (spectrace - ref_a) = sqrt(sigma_st^2 + sigma_ref^2) = {sig_d:.4g}; measured {measured:.4g}\n"
             f"# mean Y spectrace / Mitsuba - 1 = {bias:+.4%}\n"
-            f"spp = {args.spp}\n"
+            f"spp = {spp}\n"
             f"fail = {5 * sig_d:.4g}\n"
             f"failrelative = 0.0\n"
             f"failpercent = {failpct}\n"
             f"warn = {3 * sig_d:.4g}\n"
             f'why = "fail at 5 sigma of the combined per-pixel noise (sigma_d = {sig_d:.3g}); at most {failpct} % of pixels, twice the tail of spectrace-vs-spectrace ({tail:.2f} %)"\n'
         )
-        (d / "thresholds.toml").write_text(text)
+        suffix = "" if args.integrator == "path" else f"_{args.integrator}"
+        (d / f"thresholds{suffix}.toml").write_text(text)
         print(f"{name}: sigma_ref {sig_ref:.4g} sigma_st {sig_st:.4g} measured {measured:.4g} expected {sig_d:.4g} bias {bias:+.3%}")
+        if args.integrator != "path":
+            p = render(d, out / f"{name}_path_7", spp, 7, "path")
+            sig_p = path_sigma(d)
+            vs = rms(s[0] - p)
+            want = math.sqrt(sig_st ** 2 + sig_p ** 2)
+            pbias = float(np.mean(s[0]) / np.mean(p) - 1.0)
+            print(f"  vs path: RMS {vs:.4g}, expected {want:.4g} (ratio {vs / want:.3f}); mean Y {pbias:+.3%}")
+
+
+def scene_spp(d):
+    t = d / "thresholds.toml"
+    if t.is_file():
+        for line in t.read_text().splitlines():
+            if line.startswith("spp ="):
+                return int(line.split("=")[1])
+    return 256
+
+
+def path_sigma(d):
+    """sigma_st of `path` from the scene's thresholds.toml comment."""
+    for line in (d / "thresholds.toml").read_text().splitlines():
+        if "sigma_st = RMS" in line:
+            return float(line.rsplit("=", 1)[1])
+    sys.exit(f"{d}/thresholds.toml: no sigma_st")
+
+
+def render(d, stem, spp, seed, integrator):
+    exr = f"{stem}.exr"
+    subprocess.run([str(BIN), "render", str(d / "scene.xml"), "--mitsuba-units", "--spp", str(spp),
+                    "--integrator", integrator, "--seed", str(seed), "--quiet", "-o", exr,
+                    "--png", f"{stem}.png"], check=True)
+    return channel(exr, "Y")
 
 
 if __name__ == "__main__":

@@ -41,18 +41,33 @@ fn render(scene: &Path, out: &Path, extra: &[&str]) {
 
 #[test]
 fn mitsuba_references_pass_idiff() {
+    references_pass_idiff("path", "thresholds.toml");
+}
+
+/// Bidirectional path tracing on the same scenes, at thresholds derived from its own noise
+/// (`python3 scripts/derive_thresholds.py --integrator bdpt`, which also measures it against
+/// `path`). `direct` is skipped: its reference is Mitsuba's `direct` integrator, which `bdpt`
+/// does not imitate.
+#[test]
+fn mitsuba_references_pass_idiff_under_bdpt() {
+    references_pass_idiff("bdpt", "thresholds_bdpt.toml");
+}
+
+/// Renders every scene of `tests/reference/` that has `thresholds` with `integrator` (the
+/// scene's own for `path`) and compares its Y with Mitsuba's `ref_a.exr` through idiff.
+fn references_pass_idiff(integrator: &str, thresholds: &str) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference");
     let mut scenes: Vec<PathBuf> = std::fs::read_dir(&root)
         .map(|r| {
             r.filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| p.join("scene.xml").is_file())
+                .filter(|p| p.join("scene.xml").is_file() && p.join(thresholds).is_file())
                 .collect()
         })
         .unwrap_or_default();
     scenes.sort();
     assert!(
         scenes.len() >= 8,
-        "expected at least 8 reference scenes in {}",
+        "expected at least 8 reference scenes with {thresholds} in {}",
         root.display()
     );
     let mut failures = Vec::new();
@@ -62,31 +77,30 @@ fn mitsuba_references_pass_idiff() {
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default();
         let t: Thresholds = toml::from_str(
-            &std::fs::read_to_string(dir.join("thresholds.toml"))
-                .unwrap_or_else(|e| panic!("{name}: thresholds.toml: {e}")),
+            &std::fs::read_to_string(dir.join(thresholds))
+                .unwrap_or_else(|e| panic!("{name}: {thresholds}: {e}")),
         )
-        .unwrap_or_else(|e| panic!("{name}: thresholds.toml: {e}"));
-        let out = out_dir(&name);
+        .unwrap_or_else(|e| panic!("{name}: {thresholds}: {e}"));
+        let out = out_dir(&format!("{name}_{integrator}"));
         let full = out.join("ours_full.exr");
-        render(
-            &dir.join("scene.xml"),
-            &full,
-            &[
-                "--mitsuba-units",
-                "--spp",
-                &t.spp.to_string(),
-                "--png",
-                &out.join("ours.png").display().to_string(),
-            ],
-        );
+        let spp = t.spp.to_string();
+        let png = out.join("ours.png").display().to_string();
+        let mut args = vec!["--mitsuba-units", "--spp", &spp, "--png", &png];
+        if integrator != "path" {
+            args.extend(["--integrator", integrator]);
+        }
+        render(&dir.join("scene.xml"), &full, &args);
         // Y only: the thresholds are derived from the noise of Y
         let ours = out.join("ours.exr");
         extract(&full, "Y", &ours);
         let reference = out.join("ref_a_y.exr");
         extract(&dir.join("ref_a.exr"), "Y", &reference);
         match idiff(&reference, &ours, &t) {
-            Ok(r) => println!("{name}: pass\n{r}"),
-            Err(r) => failures.push(format!("{name}: FAIL (thresholds: {})\n{r}", t.why)),
+            Ok(r) => println!("{name} ({integrator}): pass\n{r}"),
+            Err(r) => failures.push(format!(
+                "{name} ({integrator}): FAIL (thresholds: {})\n{r}",
+                t.why
+            )),
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));

@@ -21,6 +21,12 @@
 //! multiplies by |cos θᵢ| of the unperturbed frame, so the values here carry
 //! |cos θᵢ in P| / |cos θᵢ|: the product is the same. Densities are per solid angle, the same in
 //! any frame.
+//!
+//! That value is not symmetric in its directions. Particles (importance transport: `wo` toward
+//! the light, `wi` toward the camera) need the adjoint, f*(wo, wi) = f(wi, wo) (Veach 1997
+//! §3.7.6): the frame as seen from `wi`, the cosine ratio and shadowing on `wo`, the nested
+//! material in its own importance mode. Light tracing and `bdpt` then estimate what `path`
+//! does (measured on the `bumps` reference scene).
 
 use glam::{Vec2, Vec3};
 
@@ -156,11 +162,41 @@ impl<const N: usize> Bsdf<'_, N> {
     ) -> (SampledSpectrum<N>, f32) {
         let p = self.frame_for(wo);
         let (po, pi) = (p.to_local(wo), p.to_local(wi));
+        let inner = self.perturbed_inner();
+        if mode == TransportMode::Importance {
+            // the adjoint: f(wi, wo) of radiance transport, with the density of sampling wi
+            return (
+                self.perturbed_adjoint(wo, wi, w),
+                inner.pdf(po, pi, w, mode),
+            );
+        }
         let Some(c) = Self::cos_ratio(p.n, wi, pi) else {
             return (SampledSpectrum::zero(), 0.0);
         };
-        let (f, pdf) = self.perturbed_inner().eval_pdf(po, pi, w, mode);
+        let (f, pdf) = inner.eval_pdf(po, pi, w, mode);
         (f * c, pdf)
+    }
+
+    /// The importance-transport value f*(wo, wi) = f(wi, wo): P as seen from `wi` (the camera
+    /// side), the nested material in importance mode (its own adjoint), the cosine ratio and
+    /// shadowing on `wo` (the light side).
+    #[inline]
+    fn perturbed_adjoint(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
+        let p = self.frame_for(wi);
+        let (po, pi) = (p.to_local(wo), p.to_local(wi));
+        match Self::cos_ratio(p.n, wo, po) {
+            Some(c) => {
+                self.perturbed_inner()
+                    .eval(po, pi, w, TransportMode::Importance)
+                    * c
+            }
+            None => SampledSpectrum::zero(),
+        }
     }
 
     #[inline]
@@ -177,8 +213,20 @@ impl<const N: usize> Bsdf<'_, N> {
             .perturbed_inner()
             .sample(p.to_local(wo), w, uc, u, mode)?;
         let wi = p.to_world(bs.wi);
-        let c = Self::cos_ratio(p.n, wi, bs.wi)?;
-        bs.f *= c;
+        if mode == TransportMode::Importance {
+            // the adjoint value (see `perturbed_eval_pdf`); a delta lobe cannot be evaluated
+            // again, so it takes the cosine ratio of `wo` in the frame it was sampled in
+            bs.f = if bs.specular {
+                bs.f * Self::cos_ratio(p.n, wo, p.to_local(wo))?
+            } else {
+                self.perturbed_adjoint(wo, wi, w)
+            };
+        } else {
+            bs.f *= Self::cos_ratio(p.n, wi, bs.wi)?;
+        }
+        if bs.f.is_zero() {
+            return None;
+        }
         bs.wi = wi;
         bs.transmission = (wi.z > 0.0) != (wo.z > 0.0);
         Some(bs)

@@ -133,9 +133,6 @@ pub fn render(
     let mut partial = false;
     if opts.integrator == IntegratorKind::Bdpt {
         let film = film.into_inner().unwrap_or_else(|p| p.into_inner());
-        if matches!(scene.camera, crate::geometry::Camera::Orthographic(_)) {
-            return Err(RenderError::Camera("bdpt"));
-        }
         let ctx = bdpt::Ctx {
             opts,
             integrator: &integrator,

@@ -12,7 +12,8 @@
 //! - **Strategies.** s = 0: a camera subpath that hits an emitter (or leaves the scene toward
 //!   the lights at infinity). s = 1: the light sampled from a camera vertex (`sample_li`, next
 //!   event estimation). t = 1: a light vertex connected to the camera's lens (`Camera::connect`,
-//!   pinhole or thin lens), splatted at its raster position. Otherwise an edge between the two
+//!   pinhole or thin lens; none for an orthographic camera, whose lens vertex is a delta in
+//!   direction), splatted at its raster position. Otherwise an edge between the two
 //!   subpaths' last vertices. s = t = 1 (an emitter seen directly from a particle) is left to
 //!   s = 0, t = 2, as in pbrt; delta lobes and delta lights take part where they can.
 //! - **Transport.** Camera vertices evaluate f in radiance mode (with η² at refractions), light

@@ -32,7 +32,11 @@ pub(super) fn camera_subpath<'a, const N: usize>(
         return;
     }
     let beta = SampledSpectrum::splat(1.0);
-    path.push(Vertex::new(Kind::Camera, ray.o, beta, 1.0));
+    let mut v = Vertex::new(Kind::Camera, ray.o, beta, 1.0);
+    // an orthographic camera is a delta in direction: no t = 1 strategy can reach it, and MIS
+    // must not count one
+    v.delta = matches!(it.scene.camera, crate::geometry::Camera::Orthographic(_));
+    path.push(v);
     let pdf_dir = it.scene.camera.pdf_we(ray.o, ray.d);
     walk(
         it,
