@@ -150,12 +150,19 @@ emission = { spectrum = "cie-d65", luminance = "100 cd/m^2" }
 /// A small room: a grey box lit by a ceiling light, with a glossy floor and a diffuse wall, at
 /// `max_depth` bounces.
 fn room(max_depth: u32, spp: u32) -> spectrace::scene::Scene {
+    room_with(ROOM_CAMERA, max_depth, spp)
+}
+
+const ROOM_CAMERA: &str = r#"eye = [0, 1.2, 0.95]
+target = [0, 0.6, -1]
+fov = "75 deg""#;
+
+/// [`room`] seen by the camera whose TOML keys are `camera`.
+fn room_with(camera: &str, max_depth: u32, spp: u32) -> spectrace::scene::Scene {
     scene_from(&format!(
         r#"
 [camera]
-eye = [0, 1.2, 0.95]
-target = [0, 0.6, -1]
-fov = "75 deg"
+{camera}
 [film]
 width = 24
 height = 24
@@ -308,6 +315,84 @@ fn agrees_with_path_on_a_room() {
                 (vb / vp - 1.0).abs() < 0.05,
                 "block ({bx}, {by}): bdpt {vb}, path {vp}"
             );
+        }
+    }
+}
+
+/// A thin-lens camera sees the same defocused image through `path`, `bdpt` (whose t = 1
+/// strategies sample the lens from each light vertex) and light tracing (likewise): a spot light
+/// draws a sharp disk of 9 cm radius on a wall 2 m away, and the camera (f/1.4 at the 67 mm
+/// focal length of a 30° view on a 36 mm sensor, focused at 0.5 m) blurs it by a circle of
+/// 7 cm radius there, about 2 pixels. Every 2×2-pixel block holding more than 1 % of the light
+/// agrees with `path` within 10 %, and the image means within 1 % (at 256 spp against `path`
+/// at 1024, seeds 1–3, the blocks differed by at most 4.6 %; these counts halve that). Mapping
+/// lens connections to raster positions as a pinhole does sharpens the disk: its edge blocks
+/// then differ by 30–90 % (measured).
+#[test]
+fn thin_lens_agrees_across_integrators() {
+    let s = scene_from(
+        r#"
+[camera]
+type = "thinlens"
+eye = [0, 0, 0]
+target = [0, 0, 1]
+fov = "30 deg"
+f_number = 1.4
+focus_distance = "0.5 m"
+[film]
+width = 32
+height = 32
+spp = 256
+filter = "box"
+[integrator]
+type = "path"
+max_depth = 1
+[materials.wall]
+type = "diffuse"
+reflectance = 0.8
+[[shapes]]
+type = "rectangle"
+material = "wall"
+transform = [{ rotate = { axis = [0, 1, 0], angle = "180 deg" } }, { translate = [0, 0, 2] }]
+[[lights]]
+type = "spot"
+position = [0.3, 0, 1]
+target = [0, 0, 2]
+cone_angle = "5 deg"
+falloff_start = "4.9 deg"
+spectrum = "cie-e"
+intensity = "10 W/sr"
+"#,
+    );
+    let (p, _) = render_with(&s, |o| o.spp = 4096);
+    let block = |img: &spectrace::film::Image, bx: usize, by: usize| {
+        let mut s = 0.0;
+        for y in by * 2..by * 2 + 2 {
+            for x in bx * 2..bx * 2 + 2 {
+                s += img.band[y * 32 + x] as f64;
+            }
+        }
+        s
+    };
+    let total: f64 = p.band.iter().map(|&v| v as f64).sum();
+    for (kind, spp) in [(IntegratorKind::Bdpt, 1024), (IntegratorKind::Light, 1024)] {
+        let (img, stats) = render_with(&s, |o| {
+            o.integrator = kind;
+            o.spp = spp;
+        });
+        assert_eq!(stats.nan_samples + stats.inf_samples, 0);
+        let (mi, mp) = (mean(img.band.iter().copied()), mean(p.band.iter().copied()));
+        assert!((mi / mp - 1.0).abs() < 0.01, "{kind:?} {mi}, path {mp}");
+        for by in 0..16 {
+            for bx in 0..16 {
+                let (vi, vp) = (block(&img, bx, by), block(&p, bx, by));
+                if vp > 0.01 * total {
+                    assert!(
+                        (vi / vp - 1.0).abs() < 0.1,
+                        "{kind:?} block ({bx}, {by}): {vi}, path {vp}"
+                    );
+                }
+            }
         }
     }
 }
