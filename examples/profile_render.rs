@@ -1,5 +1,6 @@
 //! Renders a scene without writing output, for profilers (`perf`, `valgrind --tool=callgrind`):
-//! `cargo run --release --example profile_render -- SCENE [SPP] [THREADS]`.
+//! `cargo run --release --example profile_render -- SCENE [SPP] [THREADS] [INTEGRATOR]`
+//! (INTEGRATOR: path, bdpt, light or whitted; default the scene's).
 //! Prints the render time and samples per second; the image is discarded. With SPP = 0 it only
 //! loads and builds the scene and prints how long each took (for the large-mesh benchmark:
 //! `/usr/bin/time -v target/release/examples/profile_render SCENE 0` also gives peak memory).
@@ -42,6 +43,19 @@ fn main() {
     let mut o = RenderOptions::from_scene(&scene);
     o.spp = spp;
     o.threads = Some(threads);
+    if let Some(kind) = args.next() {
+        use spectrace::loader::desc::IntegratorKind as K;
+        o.integrator = match kind.as_str() {
+            "path" => K::Path,
+            "bdpt" => K::Bdpt,
+            "light" => K::Light,
+            "whitted" => K::Whitted,
+            other => {
+                eprintln!("unknown integrator {other}: expected path, bdpt, light or whitted");
+                std::process::exit(2)
+            }
+        };
+    }
     let cancel = AtomicBool::new(false);
     let t = Instant::now();
     let (film, stats) = render(&scene, &o, &cancel, &|_, _| {}).expect("renders");

@@ -15,6 +15,13 @@ use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 /// each read taking a pair (a fixed layout keeps each bounce stratified, as in `path`).
 pub(super) const BOUNCE_DIMS: u32 = 8;
 
+/// The bounce from which Russian roulette may end a subpath (unless the scene's `rr_depth` is
+/// smaller). Every vertex of both subpaths pays for connections to the other, so long
+/// low-throughput subpaths cost more here than in `path`: on the Cornell box starting at the
+/// second bounce instead of the fifth (Mitsuba's `rr_depth` default, which `path` keeps) takes
+/// 26 % less time per sample for 5 % more variance (`scripts/bench_bdpt.py`, BENCHMARKS.md).
+const RR_DEPTH: u32 = 2;
+
 /// The camera subpath for `ray` (already sampled by the caller with its lens point): the lens
 /// vertex, then up to `max_vertices − 1` surface hits, ending at an escaped ray (lights at
 /// infinity) if the walk leaves the scene. W_e/p = 1 for a camera ray sampled by importance,
@@ -210,15 +217,16 @@ fn walk<'a, const N: usize>(
             eta_scale *= bs.eta * bs.eta;
         }
         ray = next;
-        // Russian roulette past `rr_depth` bounces: on the throughput (η²-corrected as in
-        // `path`) for camera subpaths, relative to the particle's starting weight for light
-        // subpaths (as `light`); its dimension is read at every bounce
+        // Russian roulette from bounce RR_DEPTH (or the scene's `rr_depth` if smaller): on the
+        // throughput (η²-corrected as in `path`) for camera subpaths, relative to the
+        // particle's starting weight for light subpaths (as `light`); its dimension is read at
+        // every bounce
         let u_rr = s.get_1d();
         let rr = match mode {
             TransportMode::Radiance => (beta * eta_scale).max_component(),
             TransportMode::Importance => beta.max_component() / beta0,
         };
-        if rr < 1.0 && bounce >= it.rr_depth {
+        if rr < 1.0 && bounce >= it.rr_depth.min(RR_DEPTH) {
             let q = (1.0 - rr).max(0.0);
             if u_rr < q {
                 return;
