@@ -73,14 +73,14 @@ pub(super) fn render(
                         for y in y0..y0 + th {
                             for x in x0..x0 + tw {
                                 for i in a..b {
-                                    let (mut s, mut wl, ray) = camera_sample(
+                                    let (mut s, wl, ray) = camera_sample(
                                         it.scene, ctx.lambda, &filter, opts.seed, x, y, i,
                                     );
                                     let mut sl = Sampler::new(opts.seed ^ LIGHT_SEED, x, y, i);
                                     let l = sample(
                                         it,
                                         ray,
-                                        &mut wl,
+                                        &wl,
                                         &mut s,
                                         &mut sl,
                                         filter.radius,
@@ -101,8 +101,14 @@ pub(super) fn render(
                                             }
                                         },
                                     );
-                                    if !tile.add(x, y, &wl, &l, bins.as_ref()) {
-                                        count_dropped(&wl, &l, &nan, &inf);
+                                    // the sample counts once; its hero-only part adds to it
+                                    let b = bins.as_ref();
+                                    if !tile.add(x, y, &wl, &l.all, b) {
+                                        count_dropped(&wl, &l.all, &nan, &inf);
+                                    }
+                                    let wh = &l.hero_only;
+                                    if !l.hero.is_zero() && !tile.splat(x, y, wh, &l.hero, b) {
+                                        count_dropped(wh, &l.hero, &nan, &inf);
                                     }
                                 }
                             }

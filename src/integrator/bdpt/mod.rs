@@ -4,11 +4,14 @@
 //! heuristic, its weights computed by the ratio-of-densities recurrence of Veach 1997 §10.2.1
 //! (pbrt-v4 §13.3.6, `MISWeight`).
 //!
-//! - **Spectral.** Both subpaths carry the camera sample's hero wavelengths. A hit on a
-//!   dispersive material on *either* subpath keeps only the hero (`terminate_secondary`), and
-//!   every strategy is evaluated after both subpaths exist, so a set terminated anywhere is
-//!   terminated for every connection through it: each strategy then estimates the hero's
-//!   contribution alone, as `path` does, and the MIS weights still sum to one.
+//! - **Spectral.** Both subpaths carry the camera sample's hero wavelengths. A strategy whose
+//!   vertices include a dispersive hit on either subpath keeps only the hero
+//!   (`terminate_secondary`), as `path` does at such a hit; the others keep every wavelength.
+//!   Every strategy that samples a given path uses all of its vertices, so all of them decide
+//!   alike for it: each estimates the hero alone where the path is dispersive and every
+//!   wavelength where it is not, and the MIS weights still sum to one. (Terminating the whole
+//!   sample instead would cost a lit room its colour wherever a light subpath crossed a
+//!   prism.)
 //! - **Strategies.** s = 0: a camera subpath that hits an emitter (or leaves the scene toward
 //!   the lights at infinity). s = 1: the light sampled from a camera vertex (`sample_li`, next
 //!   event estimation). t = 1: a light vertex connected to the camera's lens (`Camera::connect`,
@@ -64,24 +67,32 @@ impl<const N: usize> Scratch<'_, N> {
 /// lens point for t = 1), four per subpath vertex after the walks' dimensions.
 const CONNECT_DIMS: u32 = 1 << 16;
 
-/// One BDPT sample: the radiance its camera-side strategies (t ≥ 2) carry along `ray`,
-/// W·m⁻²·sr⁻¹·nm⁻¹ at the wavelengths `w` (which both subpaths may terminate to the hero),
-/// while `splat(raster, w, value)` receives each t = 1 strategy's contribution at its raster
-/// position, `value` in the film's units times the pixel count (the caller divides by it and
-/// spreads it over the filter, as for light tracing). `s` is the camera sample's stream (its
-/// camera dimensions read), `s_light` a stream of the same pixel and index for the light
-/// subpath. `margin` is the filter radius, pixels.
+/// What one BDPT sample's camera-side strategies (t ≥ 2) carry along its camera ray,
+/// W·m⁻²·sr⁻¹·nm⁻¹: the strategies without a dispersive vertex at the sample's wavelengths, the
+/// others at the hero alone (`hero_only`, the wavelengths with the secondaries terminated).
+pub struct Radiance<const N: usize> {
+    pub all: SampledSpectrum<N>,
+    pub hero: SampledSpectrum<N>,
+    pub hero_only: SampledWavelengths<N>,
+}
+
+/// One BDPT sample at the wavelengths `w`, along `ray`. Returns the camera-side radiance, while
+/// `splat(raster, w, value)` receives each t = 1 strategy's contribution at its raster
+/// position with its wavelengths, `value` in the film's units times the pixel count (the
+/// caller divides by it and spreads it over the filter, as for light tracing). `s` is the
+/// camera sample's stream (its camera dimensions read), `s_light` a stream of the same pixel
+/// and index for the light subpath. `margin` is the filter radius, pixels.
 #[allow(clippy::too_many_arguments)]
 pub fn sample<'a, const N: usize>(
     it: &'a Integrator<'a>,
     ray: Ray,
-    w: &mut SampledWavelengths<N>,
+    w: &SampledWavelengths<N>,
     s: &mut Sampler,
     s_light: &mut Sampler,
     margin: f32,
     scratch: &mut Scratch<'a, N>,
     splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, SampledSpectrum<N>),
-) -> SampledSpectrum<N> {
+) -> Radiance<N> {
     let max_depth = it.max_depth as usize;
     let conn = s.clone().at_dimension(CONNECT_DIMS);
     walk::camera_subpath(
@@ -100,8 +111,17 @@ pub fn sample<'a, const N: usize>(
         &mut scratch.light,
     );
     let (camera, light) = (&scratch.camera, &scratch.light);
-    let w = &*w;
-    let mut l = SampledSpectrum::zero();
+    let (disp_c, disp_l) = (
+        walk::first_dispersive(camera),
+        walk::first_dispersive(light),
+    );
+    let mut hero_only = *w;
+    hero_only.terminate_secondary();
+    let mut out = Radiance {
+        all: SampledSpectrum::zero(),
+        hero: SampledSpectrum::zero(),
+        hero_only,
+    };
     for t in 1..=camera.len() {
         for s in 0..=light.len() {
             // depth = interior vertices of the full path = s + t − 2
@@ -114,17 +134,20 @@ pub fn sample<'a, const N: usize>(
                 continue;
             }
             let weighted = it.strategy.is_none_or(|o| o.weighted);
-            let Some((c, raster)) = connect(it, light, camera, s, t, w, &conn, margin, weighted)
+            let dispersive = s > disp_l || t > disp_c;
+            let wl = if dispersive { &hero_only } else { w };
+            let Some((c, raster)) = connect(it, light, camera, s, t, wl, &conn, margin, weighted)
             else {
                 continue;
             };
-            match raster {
-                Some(r) => splat(r, w, c),
-                None => l += c,
+            match (raster, dispersive) {
+                (Some(r), _) => splat(r, wl, c),
+                (None, false) => out.all += c,
+                (None, true) => out.hero += c,
             }
         }
     }
-    l
+    out
 }
 
 /// The contribution of strategy (s, t), MIS-weighted if `weighted`, and for t = 1 the raster

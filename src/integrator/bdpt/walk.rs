@@ -1,6 +1,8 @@
 //! The two subpaths of bidirectional path tracing: a camera subpath from the lens and a light
 //! subpath from a light's own emission sampling (`Light::sample_le`), each a random walk that
 //! records forward and reverse densities at its vertices (Veach 1997 §10.2; pbrt-v4 §13.3.2).
+//! The walks never terminate the wavelengths themselves: a dispersive vertex samples its
+//! direction with the hero, and [`first_dispersive`] tells which strategies pass through one.
 
 use glam::Vec2;
 
@@ -29,7 +31,7 @@ const RR_DEPTH: u32 = 2;
 pub(super) fn camera_subpath<'a, const N: usize>(
     it: &'a Integrator<'a>,
     ray: Ray,
-    w: &mut SampledWavelengths<N>,
+    w: &SampledWavelengths<N>,
     s: &mut Sampler,
     max_vertices: usize,
     path: &mut Vec<Vertex<'a, N>>,
@@ -63,7 +65,7 @@ pub(super) fn camera_subpath<'a, const N: usize>(
 /// particle carries nothing.
 pub(super) fn light_subpath<'a, const N: usize>(
     it: &'a Integrator<'a>,
-    w: &mut SampledWavelengths<N>,
+    w: &SampledWavelengths<N>,
     s: &mut Sampler,
     max_vertices: usize,
     path: &mut Vec<Vertex<'a, N>>,
@@ -141,7 +143,7 @@ pub(super) fn light_subpath<'a, const N: usize>(
 fn walk<'a, const N: usize>(
     it: &'a Integrator<'a>,
     mut ray: Ray,
-    w: &mut SampledWavelengths<N>,
+    w: &SampledWavelengths<N>,
     s: &mut Sampler,
     mut beta: SampledSpectrum<N>,
     mut pdf_dir: f32,
@@ -185,11 +187,6 @@ fn walk<'a, const N: usize>(
         } else {
             path[prev].convert(it, pdf_dir, &v)
         };
-        if let Some(sh) = &v.shading
-            && sh.bsdf.is_dispersive()
-        {
-            w.terminate_secondary();
-        }
         path.push(v);
         let Some(sh) = v.shading else {
             return;
@@ -200,7 +197,10 @@ fn walk<'a, const N: usize>(
         *s = s.clone().at_dimension(base + bounce * BOUNCE_DIMS);
         bounce += 1;
         let wo = sh.frame.to_local(-ray.d);
-        let Some((bs, next)) = sh.scatter(&hit, wo, w, s, mode, &mut beta) else {
+        // a dispersive hit samples with the hero wavelength alone: `scatter` terminates a copy,
+        // and the strategies through this vertex use the terminated set (`Subpath::dispersive`)
+        let mut wl = *w;
+        let Some((bs, next)) = sh.scatter(&hit, wo, &mut wl, s, mode, &mut beta) else {
             return;
         };
         let cur = path.len() - 1;
@@ -237,4 +237,13 @@ fn walk<'a, const N: usize>(
             return;
         }
     }
+}
+
+/// Index of the first vertex of `path` whose material is dispersive (`path.len()` if none):
+/// every strategy using that many vertices of this subpath or more keeps only the hero
+/// wavelength, as `path` does at a dispersive hit; strategies using fewer keep them all.
+pub(super) fn first_dispersive<const N: usize>(path: &[Vertex<'_, N>]) -> usize {
+    path.iter()
+        .position(|v| v.shading.is_some_and(|sh| sh.bsdf.is_dispersive()))
+        .unwrap_or(path.len())
 }
