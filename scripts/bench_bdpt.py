@@ -5,12 +5,13 @@ Usage (from the repository root):
 
     cargo build --release
     python3 scripts/bench_bdpt.py [--spp N] [--threads T] [--repeats R] [--integrators a,b]
-                                  [SCENE[@SPP] ...]
+                                  [SCENE[@SPP[@refR]] ...]
 
-Default scenes: the spectral Cornell box tests/reference/cornell/scene.xml and the caustic
-scene benchmarks/scenes/prism_room.toml (the default scene's room with the beam replaced by a
-small lamp, so that `path` can find the rainbow too, slowly). Needs: pip install OpenImageIO
-numpy.
+Default scenes: the spectral Cornell box tests/reference/cornell/scene.xml (64 spp) and the
+caustic scene benchmarks/scenes/prism_room.toml (16 spp, against a bdpt reference of 1024 spp:
+the default scene's room with the beam replaced by a projector's lamp in a black tube, so that
+`path` can find the rainbow too, rarely; `python3 scripts/gen_prism_scene.py --benchmark`).
+Needs: pip install OpenImageIO numpy.
 
 Definitions (as in scripts/bench_efficiency.py):
   * relative variance per sample: two renders with seeds A and B at N spp,
@@ -20,7 +21,13 @@ Definitions (as in scripts/bench_efficiency.py):
   * ratio = efficiency / path's efficiency on the same scene in the same run (> 1: better than
     path; its inverse is the time `path` needs for the same error relative to this one).
 Both integrators are unbiased, so equal variance means equal error. The variance of `path` on
-caustics is heavy-tailed; two images underestimate it, which favours `path`.
+caustics is heavy-tailed and two images do not see it (the rainbow is simply missing from both),
+so a scene given as SCENE@SPP@refR is measured against a reference instead: `bdpt` at R spp
+(seed 1000, cached in target/bench_bdpt/), and
+    relative error per sample = (mean_pixels((Y - Y_ref)^2) - var_ref) / mean_pixels(Y_ref)^2 * N,
+the mean over the A and B images, with var_ref the reference's own variance (bdpt's variance
+per sample from its A and B images over R). For an unbiased estimator this is the relative
+variance per sample again, measured now with the caustic.
 """
 import argparse
 import pathlib
@@ -34,7 +41,7 @@ from bench_common import read_exr, loadavg, cpu_model  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 BIN = ROOT / "target" / "release" / "spectrace"
-DEFAULT = ["tests/reference/cornell/scene.xml@64", "benchmarks/scenes/prism_room.toml@16"]
+DEFAULT = ["tests/reference/cornell/scene.xml@64", "benchmarks/scenes/prism_room.toml@16@ref1024"]
 
 
 def render(scene, integrator, spp, seed, threads, out):
@@ -62,9 +69,17 @@ def main():
     print("| scene | integrator | spp | time per sample (µs) | rel. variance per sample | efficiency (1/s) | ratio to path |")
     print("| --- | --- | --- | --- | --- | --- | --- |")
     for spec in args.scenes:
-        scene, _, spp = spec.partition("@")
-        spp = args.spp or int(spp or 16)
-        eff = {}
+        parts = spec.split("@")
+        scene = parts[0]
+        spp = args.spp or int(parts[1] if len(parts) > 1 else 16)
+        ref_spp = int(parts[2][3:]) if len(parts) > 2 and parts[2].startswith("ref") else 0
+        ref = None
+        if ref_spp:
+            ref_dir = out / f"ref{ref_spp}"
+            ref_dir.mkdir(exist_ok=True)
+            ref, _ = render(scene, "bdpt", ref_spp, 1000, args.threads, ref_dir)
+            var_ref_per_sample = None
+        raw = {}
         for integrator in integrators:
             tps, rv = [], []
             for r in range(args.repeats):
@@ -73,12 +88,27 @@ def main():
                 n = a.size * spp
                 tps.append((ta + tb) / 2 / n)
                 var = np.mean((a - b) ** 2) / 2 * spp
-                rv.append(var / np.mean((a + b) / 2) ** 2)
-            t, v = float(np.median(tps)), float(np.mean(rv))
-            eff[integrator] = 1 / (v * t)
+                if ref is None:
+                    rv.append(var / np.mean((a + b) / 2) ** 2)
+                else:
+                    if integrator == "bdpt":
+                        var_ref_per_sample = var
+                    mse = (np.mean((a - ref) ** 2) + np.mean((b - ref) ** 2)) / 2
+                    rv.append(mse * spp / np.mean(ref) ** 2)
+            raw[integrator] = (float(np.median(tps)), rv)
+        if ref is not None:
+            if var_ref_per_sample is None:
+                sys.exit("a reference-based scene needs bdpt among the integrators (for var_ref)")
+            rv_ref = var_ref_per_sample / ref_spp / np.mean(ref) ** 2 * spp
+            print(f"# {scene}: reference bdpt at {ref_spp} spp; its relative variance per sample of the "
+                  f"benchmark's spp, subtracted: {rv_ref:.4g}")
+            raw = {k: (t, [x - rv_ref for x in rv]) for k, (t, rv) in raw.items()}
+        eff = {k: 1 / (float(np.mean(rv)) * t) for k, (t, rv) in raw.items()}
+        name = pathlib.Path(scene).parent.name if scene.endswith("scene.xml") else pathlib.Path(scene).stem
+        for integrator, (t, rv) in raw.items():
             ratio = eff[integrator] / eff["path"] if "path" in eff else float("nan")
-            print(f"| {pathlib.Path(scene).parent.name if scene.endswith('scene.xml') else pathlib.Path(scene).stem} | {integrator} | {spp} | {t * 1e6:.3f} | {v:.4g} | {eff[integrator]:.4g} | {ratio:.3f} |",
-                  flush=True)
+            print(f"| {name} | {integrator} | {spp} | {t * 1e6:.3f} | {float(np.mean(rv)):.4g} | "
+                  f"{eff[integrator]:.4g} | {ratio:.3f} |", flush=True)
     print(f"# load average {loadavg():.2f} at end")
 
 

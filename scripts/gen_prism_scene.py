@@ -7,8 +7,14 @@ incidence for the d line (587.56 nm) and leaves straight toward the back wall (-
 N-SF11 (SCHOTT Sellmeier coefficients, as in spectra/glass/sellmeier.toml), apex 60 deg:
 theta_i = asin(n_d sin 30 deg), deviation 2 theta_i - 60 deg.
 
-Usage: python3 scripts/gen_prism_scene.py  (standard library only)
+With --benchmark it writes benchmarks/scenes/prism_room.toml instead: the same room at
+320 x 180 with the beam replaced by a projector (a small lamp disk at the back of a black tube
+aimed at the prism), so that camera paths can find the rainbow too, by hitting the lamp after
+two refractions, rarely: for scripts/bench_bdpt.py.
+
+Usage: python3 scripts/gen_prism_scene.py [--benchmark]  (standard library only)
 """
+import sys
 import math
 import pathlib
 
@@ -169,5 +175,46 @@ radius = "25 mm"
 spectrum = "cie-d65"
 power = "0.1 W"
 """
-(ROOT / "scenes" / "prism.toml").write_text(text)
+if "--benchmark" in sys.argv[1:]:
+    beam = text[text.index("# the projector's beam"):]
+    # a projector: a 1.2 cm lamp disk facing the prism at the back of a 25 cm black square tube
+    # (3 cm wide), which lets out a cone of about 7 deg half-angle onto the prism
+    d3 = (dx, 0.0, dz)
+    side = (-dz, 0.0, dx)
+    hw, length = 0.015, 0.25
+    back = beam_from
+    tube = []
+    for i, (a1, b1) in enumerate([(1, 1), (1, -1), (-1, -1), (-1, 1)]):
+        tube.append(tuple(back[k] + side[k] * hw * a1 + (hw * b1 if k == 1 else 0.0) for k in range(3)))
+    tube += [tuple(p[k] + d3[k] * length for k in range(3)) for p in tube]
+    quads = [(0, 1), (1, 2), (2, 3), (3, 0)]
+    tfaces = []
+    for i, j in quads:
+        tfaces += [[i, j, j + 4], [i, j + 4, i + 4]]
+    tip = tuple(back[k] + d3[k] * 0.001 for k in range(3))
+    target = tuple(back[k] + d3[k] for k in range(3))
+    lamp = f"""# a projector where the beam starts: a lamp disk (1.2 cm radius, facing the prism) at the
+# back of a black square tube 25 cm long and 3 cm wide
+[materials.black]
+type = "diffuse"
+reflectance = "colorchecker:black-2"
+
+[[shapes]]
+type = "mesh"
+material = "black"
+two_sided = true
+vertices = [{", ".join(v3(p) for p in tube)}]
+faces = {tfaces}
+
+[[shapes]]
+type = "disk"
+transform = [{{ scale = 0.012 }}, {{ look_at = {{ eye = {v3(tip)}, target = {v3(target)}, up = [0, 1, 0] }} }}]
+emission = {{ spectrum = "cie-d65", power = "20 W" }}
+"""
+    text = text.replace(beam, lamp)
+    text = text.replace("width = 640\nheight = 360", "width = 320\nheight = 180")
+    text = "# Benchmark variant of scenes/prism.toml (scripts/gen_prism_scene.py --benchmark): the beam is\n# replaced by a projector's lamp, which `path` can also reach through the prism.\n#\n" + text
+    (ROOT / "benchmarks" / "scenes" / "prism_room.toml").write_text(text)
+else:
+    (ROOT / "scenes" / "prism.toml").write_text(text)
 print(f"n_d {n_d:.5f}, theta_i {math.degrees(theta_i):.3f} deg, deviation {math.degrees(dev):.3f} deg")
