@@ -1,5 +1,7 @@
 //! Samples per second on `scenes/cornell.toml` at 512×512 (path tracing, max depth 16, one
-//! sample per pixel per iteration, every core), with `whitted` as a same-run reference.
+//! sample per pixel per iteration, every core), with `whitted` as a same-run reference and
+//! `bdpt` for its cost per sample (its error per sample, and so its efficiency against `path`,
+//! comes from `scripts/bench_bdpt.py`).
 
 use std::path::Path;
 use std::sync::atomic::AtomicBool;
@@ -18,6 +20,7 @@ fn bench(c: &mut Criterion) {
     for (name, kind) in [
         ("path", IntegratorKind::Path),
         ("whitted", IntegratorKind::Whitted),
+        ("bdpt", IntegratorKind::Bdpt),
     ] {
         let mut o = RenderOptions::from_scene(&scene);
         o.spp = 1;

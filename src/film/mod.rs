@@ -365,6 +365,33 @@ impl Film {
         }
     }
 
+    /// An empty film with the same size, filter, range and bins.
+    pub fn empty_like(&self) -> Film {
+        Film::new(
+            self.width,
+            self.height,
+            self.filter.clone(),
+            self.range,
+            self.bins.as_ref().map_or(0, |b| b.count as u32),
+        )
+    }
+
+    /// Adds another film's sums and sample counts (same size and bins) into this one.
+    pub fn merge_film(&mut self, other: &Film) {
+        debug_assert_eq!((self.width, self.height), (other.width, other.height));
+        for (a, b) in self.sums.iter_mut().zip(&other.sums) {
+            for k in 0..3 {
+                a.xyz[k] += b.xyz[k];
+                a.xyz_sq[k] += b.xyz_sq[k];
+            }
+            a.band += b.band;
+            a.count += b.count;
+        }
+        for (a, b) in self.spectral.iter_mut().zip(&other.spectral) {
+            *a += b;
+        }
+    }
+
     /// Sets every pixel's sample count to the number of light paths traced, so that splatted
     /// sums become radiance estimates.
     pub fn set_path_count(&mut self, paths: u64) {

@@ -2,7 +2,10 @@
 //! `path`, each tile also recording the splats of its t = 1 strategies (light vertices seen by
 //! the camera, which land anywhere in the image) in a [`SplatList`]. Tiles are traced in
 //! batches and merged in tile order, their splat lists applied right after them, so the image
-//! does not depend on the number of threads and memory holds only a batch's lists.
+//! does not depend on the number of threads and memory holds only a batch's lists. A pass
+//! accumulates in a film of its own, added to the image only when every tile finished it: a
+//! splat's weight assumes every pixel took the pass's samples, so a render stopped early keeps
+//! its completed passes only.
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::Instant;
@@ -55,6 +58,7 @@ pub(super) fn render(
     let mut spp_done = 0;
     let mut partial = false;
     'passes: for &(a, b) in passes {
+        let mut pass = film.empty_like();
         for chunk in tiles.chunks(batch) {
             if ctx.cancel.load(Ordering::Relaxed) {
                 partial = true;
@@ -67,7 +71,7 @@ pub(super) fn render(
                         if ctx.cancel.load(Ordering::Relaxed) {
                             return None;
                         }
-                        let mut tile = film.tile(x0, y0, tw, th);
+                        let mut tile = pass.tile(x0, y0, tw, th);
                         let mut list = SplatList::new(w);
                         let mut scratch = Scratch::<N_WAVELENGTHS>::new(it.max_depth);
                         for y in y0..y0 + th {
@@ -122,8 +126,8 @@ pub(super) fn render(
             for r in out {
                 match r {
                     Some((tile, list)) => {
-                        film.merge(&tile);
-                        film.apply(&list);
+                        pass.merge(&tile);
+                        pass.apply(&list);
                     }
                     None => partial = true,
                 }
@@ -132,10 +136,12 @@ pub(super) fn render(
                 break 'passes;
             }
         }
+        film.merge_film(&pass);
         spp_done = b;
     }
     let stats = RenderStats {
-        samples: done.load(Ordering::Relaxed),
+        // the samples of completed passes, the only ones in the image
+        samples: w as u64 * h as u64 * spp_done as u64,
         nan_samples: nan.load(Ordering::Relaxed),
         inf_samples: inf.load(Ordering::Relaxed),
         elapsed: start.elapsed(),
