@@ -138,6 +138,19 @@ fn shading_normals_light_matches_path() {
         "light / path = {} (± {se}); light/closed = {lm} ± {lse}, path/closed = {pm} ± {pse}",
         lm / pm
     );
+    // bdpt's light subpaths carry the same correction (and its camera subpaths need none)
+    let (bm, bse) = tilted_ratio("bdpt");
+    let se = (bse / bm).hypot(pse / pm);
+    eprintln!(
+        "bdpt/closed = {bm:.4} ± {bse:.4}, bdpt/path = {:.4} ± {se:.4}",
+        bm / pm
+    );
+    assert!(se < 0.01, "noise too high to decide: {se}");
+    assert!(
+        (bm / pm - 1.0).abs() < 4.5 * se,
+        "bdpt / path = {} (± {se}); bdpt/closed = {bm} ± {bse}",
+        bm / pm
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -184,7 +197,7 @@ fn environment_light_traced() {
     let env = r#"type = "environment"
 spectrum = "cie-e"
 radiance = "1 W/m^2/sr""#;
-    for kind in ["light", "path"] {
+    for kind in ["light", "path", "bdpt"] {
         let s = scene_from(&plane_under_sky(kind, env, "", "\"box\""));
         // about 1 particle in 9 reaches the visible plane: 1024 paths per pixel
         let spp = if kind == "light" { 1024 } else { 64 };
@@ -292,6 +305,10 @@ transform = [{ scale = [3, 0.5, 1] }, { rotate = { axis = [0, 1, 0], angle = "90
     );
     let worst = compare_columns(&light.band, &path.band, 32, 4..28);
     eprintln!("worst column deviation {worst:.2} standard errors");
+    // bdpt samples the disk from both ends (its light subpaths and its light sampling)
+    let bdpt = render("bdpt", 256);
+    let worst = compare_columns(&bdpt.band, &path.band, 32, 4..28);
+    eprintln!("bdpt: worst column deviation {worst:.2} standard errors");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -357,6 +374,10 @@ irradiance = "100 W/m^2"
     assert!(a < 0.9 && b > 0.1, "path edge columns {a}, {b}");
     let worst = compare_columns(&light.band, &path.band, 32, 4..28);
     eprintln!("worst column deviation {worst:.2} standard errors");
+    // bdpt's t = 1 splats and its camera samples must reconstruct alike
+    let bdpt = render("bdpt", 256);
+    let worst = compare_columns(&bdpt.band, &path.band, 32, 4..28);
+    eprintln!("bdpt: worst column deviation {worst:.2} standard errors");
 }
 
 /// Light tracing gives the same image with 1 thread and with 2, filter splats and lights at
