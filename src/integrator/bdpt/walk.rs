@@ -17,11 +17,14 @@ use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 /// each read taking a pair (a fixed layout keeps each bounce stratified, as in `path`).
 pub(super) const BOUNCE_DIMS: u32 = 8;
 
-/// The bounce from which Russian roulette may end a subpath (unless the scene's `rr_depth` is
-/// smaller). Every vertex of both subpaths pays for connections to the other, so long
-/// low-throughput subpaths cost more here than in `path`: on the Cornell box starting at the
-/// second bounce instead of the fifth (Mitsuba's `rr_depth` default, which `path` keeps) takes
-/// 26 % less time per sample for 5 % more variance (`scripts/bench_bdpt.py`, BENCHMARKS.md).
+/// The bounce from which Russian roulette may end a light subpath (unless the scene's
+/// `rr_depth` is smaller; camera subpaths start at `rr_depth`, as `path` does). Every vertex of
+/// a light subpath pays for a connection to each camera vertex, so long low-power particles
+/// cost more than they bring: on the Cornell box, roulette from the second bounce of both
+/// subpaths took 26 % less time per sample than from the fifth, for 5 % more variance, but on a
+/// sky-lit diffuse scene (`tests/reference/constant_env`) the camera side's early roulette
+/// doubled the noise; on the light side alone it keeps the gain there and the noise here
+/// (`scripts/bench_bdpt.py`, `scripts/derive_thresholds.py --integrator bdpt`).
 const RR_DEPTH: u32 = 2;
 
 /// The camera subpath for `ray` (already sampled by the caller with its lens point): the lens
@@ -217,16 +220,19 @@ fn walk<'a, const N: usize>(
             eta_scale *= bs.eta * bs.eta;
         }
         ray = next;
-        // Russian roulette from bounce RR_DEPTH (or the scene's `rr_depth` if smaller): on the
-        // throughput (η²-corrected as in `path`) for camera subpaths, relative to the
-        // particle's starting weight for light subpaths (as `light`); its dimension is read at
-        // every bounce
+        // Russian roulette past `rr_depth` bounces for camera subpaths, on the throughput
+        // (η²-corrected as in `path`); from bounce RR_DEPTH for light subpaths, relative to the
+        // particle's starting weight (as `light`); its dimension is read at every bounce
         let u_rr = s.get_1d();
         let rr = match mode {
             TransportMode::Radiance => (beta * eta_scale).max_component(),
             TransportMode::Importance => beta.max_component() / beta0,
         };
-        if rr < 1.0 && bounce >= it.rr_depth.min(RR_DEPTH) {
+        let start = match mode {
+            TransportMode::Radiance => it.rr_depth,
+            TransportMode::Importance => it.rr_depth.min(RR_DEPTH),
+        };
+        if rr < 1.0 && bounce >= start {
             let q = (1.0 - rr).max(0.0);
             if u_rr < q {
                 return;
