@@ -10,7 +10,8 @@ theta_i = asin(n_d sin 30 deg), deviation 2 theta_i - 60 deg.
 With --benchmark it writes benchmarks/scenes/prism_room.toml instead: the same room at
 320 x 180 with the beam replaced by a projector (a small lamp disk at the back of a black tube
 aimed at the prism), so that camera paths can find the rainbow too, by hitting the lamp after
-two refractions, rarely: for scripts/bench_bdpt.py.
+two refractions, rarely, and the camera looking at the part of the wall the rainbow covers: a
+caustic-dominated scene for scripts/bench_bdpt.py.
 
 Usage: python3 scripts/gen_prism_scene.py [--benchmark]  (standard library only)
 """
@@ -212,6 +213,12 @@ transform = [{{ scale = 0.012 }}, {{ look_at = {{ eye = {v3(tip)}, target = {v3(
 emission = {{ spectrum = "cie-d65", power = "20 W" }}
 """
     text = text.replace(beam, lamp)
+    # the view: the wall where the lamp's rainbow lands, which fills most of the image (the
+    # prism and the lamp stay outside it), so that the image's error is the caustic's
+    text = text.replace(
+        'eye = [0.45, 1.15, 0.8]\ntarget = [-0.5, 0.8, -2.5]\nfov = "50 deg"',
+        f'eye = [0.2, 1.0, 0.3]\ntarget = [{CENTRE[0]:.2f}, {TABLE_TOP + HEIGHT / 2:.2f}, -2.5]\nfov = "30 deg"',
+    )
     text = text.replace("width = 640\nheight = 360", "width = 320\nheight = 180")
     text = "# Benchmark variant of scenes/prism.toml (scripts/gen_prism_scene.py --benchmark): the beam is\n# replaced by a projector's lamp, which `path` can also reach through the prism.\n#\n" + text
     (ROOT / "benchmarks" / "scenes" / "prism_room.toml").write_text(text)
