@@ -14,30 +14,7 @@ const CIE_Y_INTEGRAL: f64 = 106.856895;
 const K_M: f64 = 683.002;
 
 fn furnace_scene(rho: f64) -> spectrace::scene::Scene {
-    scene_from(&format!(
-        r#"
-[camera]
-eye = [0, 0, 0]
-target = [0, 0, 1]
-fov = "90 deg"
-[film]
-width = 16
-height = 16
-spp = 256
-[integrator]
-type = "bdpt"
-max_depth = 1000
-[materials.m]
-type = "diffuse"
-reflectance = {rho}
-[[shapes]]
-type = "sphere"
-radius = 1
-material = "m"
-two_sided = true
-emission = {{ radiance = "1 W/m^2/sr", two_sided = true }}
-"#
-    ))
+    scene_from(&support::render::furnace_toml("bdpt", rho, 256))
 }
 
 /// The white furnace with the tolerance `path` has: a closed sphere of albedo ρ emitting Le
@@ -65,35 +42,7 @@ fn furnace() {
 /// seeds 0–5 at 1024 spp the blocks' σ is ≤ 0.05 %, so ≤ 0.1 % at 256).
 #[test]
 fn point_light_over_plane() {
-    let s = scene_from(
-        r#"
-[camera]
-eye = [0, 5, 0]
-target = [0, 0, 0]
-up = [0, 0, -1]
-fov = "60 deg"
-[film]
-width = 32
-height = 32
-spp = 256
-filter = "box"
-[integrator]
-type = "bdpt"
-max_depth = 1
-[materials.grey]
-type = "diffuse"
-reflectance = 0.5
-[[shapes]]
-type = "rectangle"
-material = "grey"
-transform = [{ scale = 10 }, { rotate = { axis = [1, 0, 0], angle = "-90 deg" } }]
-[[lights]]
-type = "point"
-position = [0, 2, 0]
-spectrum = "cie-e"
-power = "100 W"
-"#,
-    );
+    let s = scene_from(&support::render::point_over_plane_toml("bdpt"));
     let (img, stats) = render_with(&s, |_| {});
     assert_eq!(stats.nan_samples + stats.inf_samples, 0);
     for by in 0..4 {

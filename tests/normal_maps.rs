@@ -68,10 +68,11 @@ irradiance = "100 W/m^2"
 
 const PAINT: &str = "[materials.paint]\ntype = \"diffuse\"\nreflectance = 0.5\n";
 
-#[test]
-fn constant_normal_map_tilts_the_lambert_cosine() {
-    let d = dir("normalmap");
-    // a normal tilted 30° toward +x (the rectangle's ∂p/∂u), stored as (n + 1)/2 in bytes
+/// A normal map of one texel tilting the normal 30° toward +x (the rectangle's ∂p/∂u), stored
+/// as (n + 1)/2 in bytes, written into the folder `name`: the materials with the map over
+/// `PAINT` and without it (both named "top"), and the map's normal as the renderer decodes it.
+fn tilted_map(name: &str) -> (String, String, Vec3) {
+    let d = dir(name);
     let t = 30f64.to_radians();
     let bytes = [t.sin(), 0.0, t.cos()].map(|c| ((c + 1.0) / 2.0 * 255.0).round() as u8);
     let png = d.join("n.png");
@@ -82,6 +83,12 @@ fn constant_normal_map_tilts_the_lambert_cosine() {
         png.display()
     );
     let plain = PAINT.replace("paint", "top");
+    (mapped, plain, n)
+}
+
+#[test]
+fn constant_normal_map_tilts_the_lambert_cosine() {
+    let (mapped, plain, n) = tilted_map("normalmap");
     for deg in [0.0f32, 40.0, -40.0, 75.0] {
         let a = deg.to_radians();
         let l = Vec3::new(a.sin(), 0.0, a.cos());
@@ -142,17 +149,7 @@ fn linear_height_ramp_tilts_like_its_gradient() {
 /// the ratio cos θ′ of the view, 0.867 for every light direction here (measured).
 #[test]
 fn particles_see_the_same_tilted_normal() {
-    let d = dir("normalmap-particles");
-    let t = 30f64.to_radians();
-    let bytes = [t.sin(), 0.0, t.cos()].map(|c| ((c + 1.0) / 2.0 * 255.0).round() as u8);
-    let png = d.join("n.png");
-    spectrace::image_io::write_png_srgb8(&png, 1, 1, &[bytes]).unwrap();
-    let n = Vec3::from(bytes.map(|b| b as f32 / 255.0 * 2.0 - 1.0)).normalize();
-    let mapped = format!(
-        "{PAINT}[materials.top]\ntype = \"normal_map\"\nmap = {{ image = \"{}\" }}\nmaterial = \"paint\"\n",
-        png.display()
-    );
-    let plain = PAINT.replace("paint", "top");
+    let (mapped, plain, n) = tilted_map("normalmap-particles");
     for integrator in ["light", "bdpt"] {
         for deg in [40.0f32, -40.0] {
             let a = deg.to_radians();

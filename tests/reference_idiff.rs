@@ -196,31 +196,7 @@ emission = { spectrum = "cie-d65", luminance = "100 cd/m^2" }
         },
     );
     // point light over a plane: Y = K_m ȳ-weighted ρ/π · I cos θ / r², equal-energy spectrum
-    let plane = r#"
-[camera]
-eye = [0, 5, 0]
-target = [0, 0, 0]
-up = [0, 0, -1]
-fov = "60 deg"
-[film]
-width = 32
-height = 32
-filter = "box"
-[integrator]
-max_depth = 1
-[materials.grey]
-type = "diffuse"
-reflectance = 0.5
-[[shapes]]
-type = "rectangle"
-material = "grey"
-transform = [{ scale = 10 }, { rotate = { axis = [1, 0, 0], angle = "-90 deg" } }]
-[[lights]]
-type = "point"
-position = [0, 2, 0]
-spectrum = "cie-e"
-power = "100 W"
-"#;
+    let plane = &support::render::point_over_plane_toml("path");
     let scene = support::render::scene_from(plane);
     let analytic = |px: usize, py: usize| {
         let (r2, cos) = support::render::plane_point(&scene, px, py);

@@ -19,30 +19,7 @@ const K_M: f64 = 683.002;
 fn furnace_path_and_light() {
     for (integrator, rho) in [("path", 0.5), ("path", 0.8), ("light", 0.5), ("light", 0.8)] {
         let spp = if integrator == "light" { 2048 } else { 256 };
-        let s = scene_from(&format!(
-            r#"
-[camera]
-eye = [0, 0, 0]
-target = [0, 0, 1]
-fov = "90 deg"
-[film]
-width = 16
-height = 16
-spp = {spp}
-[integrator]
-type = "{integrator}"
-max_depth = 1000
-[materials.m]
-type = "diffuse"
-reflectance = {rho}
-[[shapes]]
-type = "sphere"
-radius = 1
-material = "m"
-two_sided = true
-emission = {{ radiance = "1 W/m^2/sr", two_sided = true }}
-"#
-        ));
+        let s = scene_from(&support::render::furnace_toml(integrator, rho, spp));
         let (img, stats) = render_with(&s, |_| {});
         assert_eq!(stats.nan_samples + stats.inf_samples, 0);
         let got = mean(img.band.iter().copied());
@@ -55,35 +32,7 @@ emission = {{ radiance = "1 W/m^2/sr", two_sided = true }}
 }
 
 fn radiometry_scene(integrator: &str) -> spectrace::scene::Scene {
-    scene_from(&format!(
-        r#"
-[camera]
-eye = [0, 5, 0]
-target = [0, 0, 0]
-up = [0, 0, -1]
-fov = "60 deg"
-[film]
-width = 32
-height = 32
-spp = 256
-filter = "box"
-[integrator]
-type = "{integrator}"
-max_depth = 1
-[materials.grey]
-type = "diffuse"
-reflectance = 0.5
-[[shapes]]
-type = "rectangle"
-material = "grey"
-transform = [{{ scale = 10 }}, {{ rotate = {{ axis = [1, 0, 0], angle = "-90 deg" }} }}]
-[[lights]]
-type = "point"
-position = [0, 2, 0]
-spectrum = "cie-e"
-power = "100 W"
-"#
-    ))
+    scene_from(&support::render::point_over_plane_toml(integrator))
 }
 
 /// A 100 W point light 2 m above a ρ = 0.5 Lambertian plane: L = ρ/π · I cos θ / r² with

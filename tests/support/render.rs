@@ -33,6 +33,71 @@ pub fn mean(v: impl Iterator<Item = f32>) -> f64 {
     s / n as f64
 }
 
+/// The white furnace, TOML: a closed sphere of albedo `rho` emitting 1 W·m⁻²·sr⁻¹ everywhere
+/// (both sides), the camera inside, 16×16 pixels at `spp`, `integrator` with 1000 bounces; every
+/// pixel converges to L = Le/(1 − ρ).
+pub fn furnace_toml(integrator: &str, rho: f64, spp: u32) -> String {
+    format!(
+        r#"
+[camera]
+eye = [0, 0, 0]
+target = [0, 0, 1]
+fov = "90 deg"
+[film]
+width = 16
+height = 16
+spp = {spp}
+[integrator]
+type = "{integrator}"
+max_depth = 1000
+[materials.m]
+type = "diffuse"
+reflectance = {rho}
+[[shapes]]
+type = "sphere"
+radius = 1
+material = "m"
+two_sided = true
+emission = {{ radiance = "1 W/m^2/sr", two_sided = true }}
+"#
+    )
+}
+
+/// The point-light-over-plane scene, TOML: a 100 W equal-energy point light 2 m above a
+/// ρ = 0.5 Lambertian plane (the 20 m square y = 0), seen from 5 m above through a 60° view at
+/// 32×32 pixels with a box filter, 256 spp, rendered by `integrator` at one bounce.
+pub fn point_over_plane_toml(integrator: &str) -> String {
+    format!(
+        r#"
+[camera]
+eye = [0, 5, 0]
+target = [0, 0, 0]
+up = [0, 0, -1]
+fov = "60 deg"
+[film]
+width = 32
+height = 32
+spp = 256
+filter = "box"
+[integrator]
+type = "{integrator}"
+max_depth = 1
+[materials.grey]
+type = "diffuse"
+reflectance = 0.5
+[[shapes]]
+type = "rectangle"
+material = "grey"
+transform = [{{ scale = 10 }}, {{ rotate = {{ axis = [1, 0, 0], angle = "-90 deg" }} }}]
+[[lights]]
+type = "point"
+position = [0, 2, 0]
+spectrum = "cie-e"
+power = "100 W"
+"#
+    )
+}
+
 /// For the point-light-over-plane scenes (light 2 m above the origin of the plane y = 0): the
 /// squared distance r² (m²) from the light to the plane point seen through the centre of pixel
 /// (px, py), and the cosine of incidence there.
