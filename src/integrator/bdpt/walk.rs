@@ -201,7 +201,7 @@ fn walk<'a, const N: usize>(
         bounce += 1;
         let wo = sh.frame.to_local(-ray.d);
         // a dispersive hit samples with the hero wavelength alone: `scatter` terminates a copy,
-        // and the strategies through this vertex use the terminated set (`Subpath::dispersive`)
+        // and the strategies through this vertex use the terminated set (`first_dispersive`)
         let mut wl = *w;
         let Some((bs, next)) = sh.scatter(&hit, wo, &mut wl, s, mode, &mut beta) else {
             return;
