@@ -201,3 +201,43 @@ fn ctrl_c_writes_a_partial_image() {
     let y = exr.channel("Y").unwrap();
     assert!(y.iter().all(|v| v.is_finite()) && y.iter().any(|v| *v > 0.0));
 }
+
+/// `--bdpt-strategy` takes S,T of a strategy bdpt has, and only with bdpt.
+#[test]
+fn bdpt_strategy_flag_is_checked() {
+    let dir = tmpdir("bdpt-strategy");
+    let furnace = scene_path("furnace.toml");
+    for (args, says) in [
+        (
+            vec!["--integrator", "bdpt", "--bdpt-strategy", "1,1"],
+            "no such strategy",
+        ),
+        (
+            vec!["--integrator", "bdpt", "--bdpt-strategy", "2"],
+            "expected S,T",
+        ),
+        (
+            vec![
+                "--integrator",
+                "bdpt",
+                "--bdpt-strategy",
+                "4294967295,4294967295",
+            ],
+            "max_depth",
+        ),
+        (vec!["--bdpt-strategy", "0,2"], "needs the bdpt integrator"),
+    ] {
+        let mut all = vec![
+            "render",
+            furnace.as_str(),
+            "-o",
+            "x.exr",
+            "--quiet",
+            "--spp",
+            "1",
+        ];
+        all.extend(args.iter().copied());
+        let (ok, err) = spectrace(&dir, &all);
+        assert!(!ok && err.contains(says), "{args:?}: {err}");
+    }
+}

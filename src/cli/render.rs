@@ -144,9 +144,9 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
         };
     }
     if let Some(st) = &args.bdpt_strategy {
-        let parsed = st
-            .split_once(',')
-            .and_then(|(a, b)| Some((a.trim().parse().ok()?, b.trim().parse().ok()?)));
+        let parsed = st.split_once(',').and_then(|(a, b)| {
+            Some((a.trim().parse::<u32>().ok()?, b.trim().parse::<u32>().ok()?))
+        });
         let Some((s, t)) = parsed else {
             return Err(CliError::Usage(format!(
                 "--bdpt-strategy {st}: expected S,T (light and camera vertex counts, e.g. 1,2)"
@@ -157,9 +157,16 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
                 "--bdpt-strategy needs the bdpt integrator (--integrator bdpt)".into(),
             ));
         }
-        if t == 0 || s + t < 2 || (s, t) == (1, 1) {
+        if t == 0 || s.saturating_add(t) < 2 || (s, t) == (1, 1) {
             return Err(CliError::Usage(format!(
                 "--bdpt-strategy {s},{t}: bdpt has no such strategy (t ≥ 1, s + t ≥ 2, not 1,1)"
+            )));
+        }
+        if s as u64 + t as u64 - 2 > opts.max_depth as u64 {
+            return Err(CliError::Usage(format!(
+                "--bdpt-strategy {s},{t}: its paths have {} bounces, more than the scene's max_depth {}",
+                s as u64 + t as u64 - 2,
+                opts.max_depth
             )));
         }
         opts.strategy = Some(crate::integrator::bdpt::Strategy {

@@ -20,7 +20,6 @@ use glam::{Vec2, Vec3};
 
 use super::Integrator;
 use crate::geometry::{Ray, spawn_ray, spawn_ray_to};
-use crate::light::Light;
 use crate::material::TransportMode;
 use crate::sampler::Sampler;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
@@ -49,10 +48,11 @@ pub fn trace<const N: usize>(
     let Some(e) = light.sample_le(&scene.shapes, scene.bounding_sphere(), w, u1, u2) else {
         return;
     };
-    // t = 1 with s = 1: an area light's point seen directly by the camera, Le·|cos θ| per unit
-    // area probability (the side the particle leaves does not matter here)
+    // t = 1 with s = 1: a point of a light with a surface (an area light) seen directly by the
+    // camera, Le·|cos θ| per unit area probability (the side the particle leaves does not
+    // matter here)
     let u_lens = s.get_2d();
-    if let Light::Area(_) = light
+    if e.n != Vec3::ZERO
         && let Some(c) = camera.connect(e.o, u_lens, margin)
     {
         let le = light.emitted(e.n, c.wi, e.uv, w);
@@ -125,15 +125,11 @@ fn occluded_to_camera(it: &Integrator<'_>, p: Vec3, p_error: Vec3, n: Vec3, eye:
 /// environment, or a directional light with an angular diameter): light tracing then adds
 /// [`escaped`] along camera rays.
 pub fn has_visible_infinite_lights(it: &Integrator<'_>) -> bool {
-    it.scene.lights.iter().any(|l| match l {
-        Light::Environment(_) | Light::EnvMap(_) => true,
-        Light::Directional(d) => !d.is_delta(),
-        Light::Area(_)
-        | Light::Point(_)
-        | Light::Spot(_)
-        | Light::Beam(_)
-        | Light::Projector(_) => false,
-    })
+    // at infinity and not collimated: an environment, or a sun with a disk
+    it.scene
+        .lights
+        .iter()
+        .any(|l| l.is_at_infinity() && !l.is_delta())
 }
 
 /// Radiance seen directly along a camera ray from the lights at infinity, W·m⁻²·sr⁻¹·nm⁻¹:

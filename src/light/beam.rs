@@ -29,15 +29,7 @@ impl BeamLight {
         p: Vec3,
         w: &SampledWavelengths<N>,
     ) -> Option<LightSample<N>> {
-        let local = p - self.center;
-        let along = local.dot(self.frame.n);
-        if along <= 0.0 {
-            return None;
-        }
-        let perp = local - self.frame.n * along;
-        if perp.length_squared() > self.radius * self.radius {
-            return None;
-        }
+        let along = self.reaches(p)?;
         let e = self.power.sample(w) * (1.0 / (std::f32::consts::PI * self.radius * self.radius));
         Some(LightSample {
             wi: -self.frame.n,
@@ -76,20 +68,25 @@ impl BeamLight {
     /// Densities of [`BeamLight::sample_le`] for a particle reaching `p`: 1/(π r²) if `p` lies
     /// in the beam's cylinder ahead of the disk, else 0; the direction is a delta (0).
     pub fn pdf_le(&self, p: Vec3) -> EmissionPdf {
-        let inside = self.sample_li::<1>(
-            p,
-            &SampledWavelengths::<1> {
-                lambda: [550.0],
-                pdf: [1.0],
-            },
-        );
         EmissionPdf {
-            pos: if inside.is_some() {
+            pos: if self.reaches(p).is_some() {
                 1.0 / (std::f32::consts::PI * self.radius * self.radius)
             } else {
                 0.0
             },
             dir: 0.0,
         }
+    }
+
+    /// The distance (m) from the disk to `p` along the beam if `p` lies in the beam's cylinder
+    /// ahead of the disk; None otherwise.
+    fn reaches(&self, p: Vec3) -> Option<f32> {
+        let local = p - self.center;
+        let along = local.dot(self.frame.n);
+        if along <= 0.0 {
+            return None;
+        }
+        let perp = local - self.frame.n * along;
+        (perp.length_squared() <= self.radius * self.radius).then_some(along)
     }
 }
