@@ -131,7 +131,16 @@ pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraD
                     return Err(cx.unsupported(c, "sampler", o));
                 }
                 let asked = match cx.opt_float(c, "sample_count")? {
-                    Some(n) if n >= 1.0 && n.fract() == 0.0 => n.min(1e9) as u32,
+                    // the TOML film's limit, an error rather than a silent clamp
+                    Some(n) if n > MAX_SPP as f64 && n.fract() == 0.0 => {
+                        return Err(cx.err(
+                            cx.child(c, "sample_count").unwrap_or(c),
+                            format!(
+                                "sample_count {n} is more than spectrace renders: at most {MAX_SPP} samples per pixel (as a TOML film's spp)"
+                            ),
+                        ));
+                    }
+                    Some(n) if n >= 1.0 && n.fract() == 0.0 => n as u32,
                     Some(n) => {
                         return Err(cx.err(
                             c,
@@ -235,6 +244,10 @@ pub(super) fn camera_frame(
         up.normalize().to_array(),
     ))
 }
+
+/// The most samples per pixel a scene may ask for, whatever its format (the TOML loader's
+/// `film.spp` limit, 2²⁴).
+const MAX_SPP: u32 = 1 << 24;
 
 /// The samples per pixel Mitsuba 3.9.1's sampler `name` renders for `sample_count` n (each
 /// rounds up to the structure it needs; measured in Mitsuba with `sampler.sample_count()`):
