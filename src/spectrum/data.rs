@@ -152,6 +152,14 @@ pub fn table_to_curve(
     file: &str,
 ) -> Result<super::curve::PiecewiseLinear, DataError> {
     let lambda: Vec<f32> = table.column(lambda_col).iter().map(|&v| v as f32).collect();
+    // a wavelength of 0 nm or less is no wavelength (inline samples refuse it too)
+    if let Some(i) = lambda.iter().position(|&l| !(l > 0.0)) {
+        return Err(DataError {
+            file: file.to_string(),
+            line: table.row_lines[i],
+            message: format!("wavelength {} nm is not positive", lambda[i]),
+        });
+    }
     let value: Vec<f32> = table.column(value_col).iter().map(|&v| v as f32).collect();
     super::curve::PiecewiseLinear::new(lambda, value).map_err(|e| {
         let line = match e {

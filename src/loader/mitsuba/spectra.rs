@@ -49,6 +49,13 @@ impl Cx<'_> {
                             let t = self
                                 .opt_float(e, "temperature")?
                                 .ok_or_else(|| self.err(e, "missing temperature"))?;
+                            if !(t > 0.0) {
+                                let at = self.child(e, "temperature").unwrap_or(e);
+                                return Err(self.err(
+                                    at,
+                                    format!("a blackbody's temperature must be above 0 K, not {t} K"),
+                                ));
+                            }
                             Ok(Spectrum::Blackbody(Blackbody::absolute(t as f32)))
                         }
                         "d65" => {
