@@ -96,7 +96,7 @@ pub enum GeometryError {
     },
 
     /// A mesh file that cannot be parsed, or whose contents are invalid.
-    #[error("malformed OBJ {}: {message}", path.display())]
+    #[error("malformed mesh file {}: {message}", path.display())]
     MeshParse { path: PathBuf, message: String },
 }
 

@@ -20,8 +20,8 @@ impl Mesh {
     /// reads OBJ files).
     ///
     /// Errors name the path: `cannot open mesh <path>: <io error>` if the file cannot be opened
-    /// or read, `malformed OBJ <path>: <tobj's message>` if it cannot be parsed (e.g. a bad
-    /// number or a face index out of range), and `malformed OBJ <path>: mesh ...` if the data is
+    /// or read, `malformed mesh file <path>: <tobj's message>` if it cannot be parsed (e.g. a bad
+    /// number or a face index out of range), and `malformed mesh file <path>: mesh ...` if the data is
     /// invalid for [`Mesh::new`] (no faces, non-finite values, zero area). Unknown statements are
     /// ignored, as tobj does.
     pub fn load_obj(path: &Path, transform: &Transform) -> Result<Mesh, GeometryError> {

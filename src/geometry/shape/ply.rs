@@ -194,7 +194,23 @@ impl Mesh {
         let (mut positions, mut normals, mut uvs, mut indices) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let truncated = || bad("the file ends early or has a bad value");
+        let body_len = bytes.len() - body_start;
         for e in &elems {
+            if e.props.is_empty() {
+                // nothing to read; a vertex needs a position
+                if e.name == "vertex" && e.count > 0 {
+                    return Err(bad("element vertex has no properties (x, y, z)"));
+                }
+                continue;
+            }
+            // every entry reads at least one byte per property (a token and its separator in
+            // ASCII): a declared count the data cannot hold is refused before looping
+            if e.count.saturating_mul(e.props.len()) > body_len {
+                return Err(bad(&format!(
+                    "element {} declares {} entries, more than the {body_len} bytes after the header can hold",
+                    e.name, e.count
+                )));
+            }
             for _ in 0..e.count {
                 let mut v = [0.0f64; 8]; // x y z nx ny nz u v
                 let mut face: Vec<u32> = Vec::new();
@@ -207,6 +223,12 @@ impl Mesh {
                                 if e.name == "face"
                                     && (p.name == "vertex_indices" || p.name == "vertex_index")
                                 {
+                                    if !(x >= 0.0 && x <= u32::MAX as f64 && x.fract() == 0.0) {
+                                        return Err(bad(&format!(
+                                            "face {}: vertex index {x} is not a vertex",
+                                            indices.len()
+                                        )));
+                                    }
                                     face.push(x as u32);
                                 }
                             }
@@ -246,8 +268,7 @@ impl Mesh {
         };
         let normals = has("nx").then_some(normals);
         let uvs = (has("u") || has("s") || has("texture_u")).then_some(uvs);
-        Mesh::new(positions, normals, uvs, indices, transform)
-            .map_err(|e| bad(&format!("mesh {e}")))
+        Mesh::new(positions, normals, uvs, indices, transform).map_err(|e| bad(&e.to_string()))
     }
 }
 
