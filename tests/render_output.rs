@@ -241,3 +241,28 @@ fn bdpt_strategy_flag_is_checked() {
         assert!(!ok && err.contains(says), "{args:?}: {err}");
     }
 }
+
+/// Light tracing connects particles to the lens, which an orthographic camera does not have: a
+/// clear error, no image. (`bdpt` renders it without those strategies.)
+#[test]
+fn light_tracing_refuses_an_orthographic_camera() {
+    let dir = tmpdir("ortho-light");
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/reference/orthographic/scene.xml")
+        .display()
+        .to_string();
+    let base = [
+        "render",
+        scene.as_str(),
+        "-o",
+        "o.exr",
+        "--quiet",
+        "--spp",
+        "1",
+    ];
+    let (ok, err) = spectrace(&dir, &[&base[..], &["--integrator", "light"]].concat());
+    assert!(!ok && err.contains("orthographic camera"), "{err}");
+    assert!(!dir.join("o.exr").exists(), "no image after an error");
+    let (ok, err) = spectrace(&dir, &[&base[..], &["--integrator", "bdpt"]].concat());
+    assert!(ok, "{err}");
+}

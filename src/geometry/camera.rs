@@ -85,6 +85,33 @@ impl Film {
         (ndc + Vec2::ONE) * 0.5 * Vec2::new(self.width as f32, self.height as f32)
     }
 
+    /// Where a ray from the lens point `pl` (camera space, on z = 0) along `v` (camera space,
+    /// v.z > 0) appears on the image, pixels: the point where it meets the plane of focus at
+    /// z = `focus` (None: a pinhole, the ray's own direction), projected through the lens centre
+    /// onto z = 1.
+    #[inline]
+    fn raster_of_ray(&self, pl: Vec2, v: Vec3, focus: Option<f32>) -> Vec2 {
+        self.raster(match focus {
+            None => v.truncate() / v.z,
+            Some(f) => (pl + v.truncate() * (f / v.z)) / f,
+        })
+    }
+
+    /// Whether `raster` lies in the image grown by `margin` pixels on every side.
+    #[inline]
+    fn contains(&self, raster: Vec2, margin: f32) -> bool {
+        raster.x >= -margin
+            && raster.y >= -margin
+            && raster.x < self.width as f32 + margin
+            && raster.y < self.height as f32 + margin
+    }
+
+    /// Area of the image on the plane z = 1 (perspective cameras), m² per m² of distance.
+    #[inline]
+    fn plane_area(&self) -> f32 {
+        4.0 * self.half.x * self.half.y
+    }
+
     /// Camera-plane (x, y) of a raster position.
     #[inline]
     fn plane(&self, raster: Vec2) -> Vec2 {
@@ -275,23 +302,12 @@ impl Camera {
         }
         let d = v.length();
         let cos = v.z / d;
-        // the image point: where the ray from the lens point through p meets the plane of focus,
-        // projected through the lens centre onto z = 1 (a pinhole: v itself)
-        let xy = match lens {
-            None => v.truncate() / v.z,
-            Some((_, focus)) => (pl.truncate() + v.truncate() * (focus / v.z)) / focus,
-        };
-        let raster = film.raster(xy);
-        let size = Vec2::new(film.width as f32, film.height as f32);
-        if !(raster.x >= -margin
-            && raster.y >= -margin
-            && raster.x < size.x + margin
-            && raster.y < size.y + margin)
-        {
+        let raster = film.raster_of_ray(pl.truncate(), v, lens.map(|(_, f)| f));
+        if !film.contains(raster, margin) {
             return None;
         }
-        let area = 4.0 * film.half.x * film.half.y;
-        let weight = size.x * size.y / (area * cos * cos * cos * d * d);
+        let pixels = film.width as f32 * film.height as f32;
+        let weight = pixels / (film.plane_area() * cos * cos * cos * d * d);
         let p_lens = to_world.point(pl);
         Some(CameraConnection {
             raster,
@@ -318,17 +334,11 @@ impl Camera {
         if !(v.z > 0.0) {
             return 0.0;
         }
-        let xy = match focus {
-            None => v.truncate() / v.z,
-            Some(f) => (inv.point(o).truncate() + v.truncate() * (f / v.z)) / f,
-        };
-        let raster = film.raster(xy);
-        let size = Vec2::new(film.width as f32, film.height as f32);
-        if !(raster.x >= 0.0 && raster.y >= 0.0 && raster.x < size.x && raster.y < size.y) {
+        let raster = film.raster_of_ray(inv.point(o).truncate(), v, focus);
+        if !film.contains(raster, 0.0) {
             return 0.0;
         }
-        let area = 4.0 * film.half.x * film.half.y;
-        1.0 / (area * v.z * v.z * v.z)
+        1.0 / (film.plane_area() * v.z * v.z * v.z)
     }
 
     fn parts(&self) -> (&Transform, &Film) {

@@ -61,16 +61,15 @@ pub fn trace<const N: usize>(
             splat(c.raster, w, le * (cos * c.weight / (p_sel * e.pdf_pos)));
         }
     }
-    let (origin, p_error, n0, dir) = (e.o, e.o_error, e.n, e.d);
     let mut beta = e.weight() * (1.0 / p_sel);
     if beta.is_zero() {
         return;
     }
     let beta0 = beta.max_component();
-    let mut ray = if n0 == Vec3::ZERO {
-        Ray::new(origin, dir)
+    let mut ray = if e.n == Vec3::ZERO {
+        Ray::new(e.o, e.d)
     } else {
-        spawn_ray(origin, p_error, n0, dir)
+        spawn_ray(e.o, e.o_error, e.n, e.d)
     };
     for depth in 0..it.max_depth {
         let Some(hit) = scene.accel.intersect(&scene.shapes, &ray) else {

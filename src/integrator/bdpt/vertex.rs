@@ -8,7 +8,6 @@
 use glam::{Vec2, Vec3};
 
 use super::super::{Integrator, Shading};
-use crate::light::Light;
 use crate::material::TransportMode;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
@@ -113,11 +112,11 @@ impl<'a, const N: usize> Vertex<'a, N> {
     pub fn connectible(&self, it: &Integrator<'_>) -> bool {
         match self.kind {
             Kind::Camera => true,
-            Kind::Light { light } => match &it.scene.lights[light as usize] {
-                Light::Directional(l) => !l.is_delta(),
-                Light::Beam(_) => false,
-                _ => true,
-            },
+            // not a light that emits in one direction only (collimated: directional, beam)
+            Kind::Light { light } => {
+                let l = &it.scene.lights[light as usize];
+                !(l.emits_parallel() && l.is_delta())
+            }
             Kind::Surface { .. } => self
                 .shading
                 .as_ref()
@@ -250,6 +249,17 @@ impl<'a, const N: usize> Vertex<'a, N> {
         }
     }
 
+    /// The direction of travel from this vertex of a light that emits parallel light toward
+    /// `next`: a vertex at infinity stores the direction toward the light; a beam's vertex is
+    /// on its disk and emits along the beam.
+    fn parallel_travel(&self, it: &Integrator<'_>, next: &Vertex<'_, N>) -> Vec3 {
+        if self.at_infinity(it) {
+            -self.d
+        } else {
+            (next.p - self.p).normalize_or_zero()
+        }
+    }
+
     /// Density per unit area with which this light vertex's emission generates `next`
     /// (`Light::pdf_le`): the directional density over d² for lights at a point or on a
     /// surface; the positional density across the direction for parallel light. × |cos θ_next|.
@@ -273,13 +283,7 @@ impl<'a, const N: usize> Vertex<'a, N> {
         };
         let light = &scene.lights[li as usize];
         if light.emits_parallel() {
-            // a vertex at infinity stores the direction toward the light; a beam's vertex is on
-            // its disk and emits along the beam
-            let travel = if self.at_infinity(it) {
-                -self.d
-            } else {
-                (next.p - self.p).normalize_or_zero()
-            };
+            let travel = self.parallel_travel(it, next);
             let pdf = light.pdf_le(&scene.shapes, sphere, next.p, self.ng, travel);
             return pdf.pos * cos_next(travel);
         }
@@ -315,11 +319,7 @@ impl<'a, const N: usize> Vertex<'a, N> {
         let light = &scene.lights[li as usize];
         let sel = it.lights.prob(li as usize);
         if light.emits_parallel() {
-            let travel = if self.at_infinity(it) {
-                -self.d
-            } else {
-                (next.p - self.p).normalize_or_zero()
-            };
+            let travel = self.parallel_travel(it, next);
             return sel
                 * light
                     .pdf_le(&scene.shapes, sphere, next.p, self.ng, travel)

@@ -15,7 +15,7 @@ use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
 /// Sampler dimensions each bounce of a walk reads: lobe choice 1D, direction 2D, roulette 1D,
 /// each read taking a pair (a fixed layout keeps each bounce stratified, as in `path`).
-pub(super) const BOUNCE_DIMS: u32 = 8;
+const BOUNCE_DIMS: u32 = 8;
 
 /// The bounce from which Russian roulette may end a light subpath (unless the scene's
 /// `rr_depth` is smaller; camera subpaths start at `rr_depth`, as `path` does). Every vertex of
