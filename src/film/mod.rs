@@ -6,11 +6,18 @@
 //! pdf p_j and radiance L_j contributes XYZ = K_m · (1/N) Σ_j L_j (x̄, ȳ, z̄)(λ_j) / p_j and
 //! L = (1/N) Σ_j L_j / p_j; wavelengths with p_j = 0 (terminated secondaries) are dropped, and
 //! the hero's pdf was divided by N when they were terminated, so the estimate stays unbiased.
+//!
+//! Sums are exact ([`Exact`], fixed point): each term is rounded once, and sums do not depend
+//! on the order of additions, so threads, checkpoints and render parts cannot change a bit.
 
+mod exact;
 mod filter;
 mod splats;
+mod state;
 
+pub use exact::{Exact, MAX_TERM};
 pub use filter::Filter;
+pub use state::STATE_PREFIX;
 pub use splats::{Splat, SplatList};
 
 use crate::colour::cie::{K_M, cmf};
@@ -42,15 +49,16 @@ pub fn non_finite<const N: usize>(
     }
 }
 
-/// Per-pixel sums of sample estimates, in f64.
-#[derive(Clone, Debug, Default)]
+/// Per-pixel sums of sample estimates, exact ([`Exact`]).
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct PixelSums {
     /// Σ XYZ estimates, cd/m².
-    pub xyz: [f64; 3],
+    pub xyz: [Exact; 3],
     /// Σ band radiance estimates, W·m⁻²·sr⁻¹.
-    pub band: f64,
-    /// Σ of the squared XYZ estimates of camera samples, (cd/m²)², for second moments.
-    pub xyz_sq: [f64; 3],
+    pub band: Exact,
+    /// Σ of the squared XYZ estimates of camera samples, (cd/m²)², for second moments (each
+    /// square clamped to [`MAX_TERM`]).
+    pub xyz_sq: [Exact; 3],
     /// Number of samples that reached the pixel (NaN/∞ samples are not counted); for light
     /// tracing, the number of light paths traced in all.
     pub count: u64,
@@ -63,19 +71,29 @@ impl PixelSums {
     #[inline]
     fn add_weighted(
         &mut self,
-        spectral: &mut [f64],
+        spectral: &mut [Exact],
         xyz: [f64; 3],
         band: f64,
         bins: &[(usize, f64)],
         wgt: f64,
     ) {
         for (a, c) in self.xyz.iter_mut().zip(xyz) {
-            *a += c * wgt;
+            a.add_f64(c * wgt);
         }
-        self.band += band * wgt;
+        self.band.add_f64(band * wgt);
         for &(k, v) in bins {
-            spectral[k] += v * wgt;
+            spectral[k].add_f64(v * wgt);
         }
+    }
+
+    /// Adds another pixel's sums and count.
+    fn add_sums(&mut self, b: &PixelSums) {
+        for k in 0..3 {
+            self.xyz[k].add(b.xyz[k]);
+            self.xyz_sq[k].add(b.xyz_sq[k]);
+        }
+        self.band.add(b.band);
+        self.count += b.count;
     }
 }
 
@@ -130,7 +148,7 @@ pub struct Tile {
     pub height: u32,
     pub pixels: Vec<PixelSums>,
     /// Σ per-bin estimates, `bins × pixels` (empty without spectral output).
-    pub spectral: Vec<f64>,
+    pub spectral: Vec<Exact>,
     nbins: usize,
 }
 
@@ -143,7 +161,7 @@ impl Tile {
             width,
             height,
             pixels: vec![PixelSums::default(); n],
-            spectral: vec![0.0; n * nbins],
+            spectral: vec![Exact::ZERO; n * nbins],
             nbins,
         }
     }
@@ -165,7 +183,7 @@ impl Tile {
         };
         let p = self.accumulate(x, y, &s, 1.0);
         for k in 0..3 {
-            p.xyz_sq[k] += s.xyz[k] * s.xyz[k];
+            p.xyz_sq[k].add_f64(s.xyz[k] * s.xyz[k]);
         }
         p.count += 1;
         true
@@ -201,7 +219,26 @@ impl Tile {
         l: &SampledSpectrum<N>,
         bins: Option<&Bins>,
     ) -> bool {
-        self.splat_weighted(std::iter::once((x, y, 1.0)), w, l, bins)
+        self.splat_scaled(x, y, w, l, bins, 1.0)
+    }
+
+    /// [`Tile::splat`] with the sample's estimate multiplied by `scale` (in f64, before the
+    /// exact sum).
+    #[inline]
+    pub fn splat_scaled<const N: usize>(
+        &mut self,
+        x: u32,
+        y: u32,
+        w: &SampledWavelengths<N>,
+        l: &SampledSpectrum<N>,
+        bins: Option<&Bins>,
+        scale: f64,
+    ) -> bool {
+        let Some(s) = SampleSums::new(w, l, bins) else {
+            return false;
+        };
+        self.accumulate(x, y, &s, scale);
+        true
     }
 }
 
@@ -242,7 +279,9 @@ pub(crate) struct SampleSums<const N: usize> {
 }
 
 impl<const N: usize> SampleSums<N> {
-    /// None for NaN or infinite values at a live wavelength ([`non_finite`]).
+    /// None for NaN or infinite values at a live wavelength ([`non_finite`]), and for sums
+    /// too large to add exactly (XYZ or band radiance of magnitude [`MAX_TERM`] ≈ 3·10²⁶ or
+    /// more: the caller counts them as infinite).
     #[inline]
     pub fn new(
         w: &SampledWavelengths<N>,
@@ -272,6 +311,10 @@ impl<const N: usize> SampleSums<N> {
                 nbins += 1;
             }
         }
+        let fits = |v: f64| v.abs() < MAX_TERM;
+        if !(xyz.iter().all(|&v| fits(v)) && fits(band)) {
+            return None;
+        }
         Some(Self {
             xyz,
             band,
@@ -296,7 +339,7 @@ pub struct Film {
     pub range: WavelengthRange,
     pub bins: Option<Bins>,
     sums: Vec<PixelSums>,
-    spectral: Vec<f64>,
+    spectral: Vec<Exact>,
 }
 
 impl Film {
@@ -320,7 +363,7 @@ impl Film {
             range,
             bins,
             sums: vec![PixelSums::default(); n],
-            spectral: vec![0.0; n * nb],
+            spectral: vec![Exact::ZERO; n * nb],
         }
     }
 
@@ -335,31 +378,17 @@ impl Film {
         )
     }
 
-    /// Adds a tile's sums into the film. Tiles cover disjoint pixels, so the order does not
-    /// matter and the result is the same for any number of threads.
+    /// Adds a tile's sums and sample counts into the film. Sums are exact, so the order of
+    /// merges never matters.
     pub fn merge(&mut self, t: &Tile) {
-        self.merge_scaled(t, 1.0);
-    }
-
-    /// Adds a tile's sums, multiplied by `scale`, into the film, and its sample counts as they
-    /// are. Light tracing uses it to add camera samples (the directly visible lights at
-    /// infinity, a mean over the samples per pixel) to a film whose splats are divided by the
-    /// number of light paths: `scale` = paths / camera samples per pixel.
-    pub fn merge_scaled(&mut self, t: &Tile, scale: f64) {
         let nb = self.bins.as_ref().map_or(0, |b| b.count);
         for ty in 0..t.height {
             for tx in 0..t.width {
                 let src = (ty * t.width + tx) as usize;
                 let dst = ((t.y0 + ty) * self.width + t.x0 + tx) as usize;
-                let (a, b) = (&mut self.sums[dst], &t.pixels[src]);
-                for k in 0..3 {
-                    a.xyz[k] += b.xyz[k] * scale;
-                    a.xyz_sq[k] += b.xyz_sq[k] * scale * scale;
-                }
-                a.band += b.band * scale;
-                a.count += b.count;
+                self.sums[dst].add_sums(&t.pixels[src]);
                 for k in 0..nb {
-                    self.spectral[dst * nb + k] += t.spectral[src * nb + k] * scale;
+                    self.spectral[dst * nb + k].add(t.spectral[src * nb + k]);
                 }
             }
         }
@@ -380,15 +409,10 @@ impl Film {
     pub fn merge_film(&mut self, other: &Film) {
         debug_assert_eq!((self.width, self.height), (other.width, other.height));
         for (a, b) in self.sums.iter_mut().zip(&other.sums) {
-            for k in 0..3 {
-                a.xyz[k] += b.xyz[k];
-                a.xyz_sq[k] += b.xyz_sq[k];
-            }
-            a.band += b.band;
-            a.count += b.count;
+            a.add_sums(b);
         }
         for (a, b) in self.spectral.iter_mut().zip(&other.spectral) {
-            *a += b;
+            a.add(*b);
         }
     }
 
@@ -403,6 +427,20 @@ impl Film {
     /// Number of samples in pixel (x, y).
     pub fn samples_at(&self, x: u32, y: u32) -> u64 {
         self.sums[(y * self.width + x) as usize].count
+    }
+
+    /// Per-pixel mean luminance Y, cd/m² (0 without samples).
+    pub fn mean_luminance(&self) -> Vec<f64> {
+        self.sums
+            .iter()
+            .map(|s| {
+                if s.count > 0 {
+                    s.xyz[1].to_f64() / s.count as f64
+                } else {
+                    0.0
+                }
+            })
+            .collect()
     }
 
     /// Per-pixel means. Pixels without samples (a render stopped early) are 0, never NaN.
@@ -420,13 +458,13 @@ impl Film {
             } else {
                 0.0
             };
-            let m = s.xyz.map(|v| v * inv);
+            let m = s.xyz.map(|v| v.to_f64() * inv);
             xyz.push(m.map(|v| v as f32));
             rgb.push(xyz_to_srgb(m).map(|v| v as f32));
-            band.push((s.band * inv) as f32);
-            xyz_m2.push(s.xyz_sq.map(|v| (v * inv) as f32));
+            band.push((s.band.to_f64() * inv) as f32);
+            xyz_m2.push(s.xyz_sq.map(|v| (v.to_f64() * inv) as f32));
             for (k, sp) in spectral.iter_mut().enumerate() {
-                sp.push((self.spectral[i * nb + k] * inv) as f32);
+                sp.push((self.spectral[i * nb + k].to_f64() * inv) as f32);
             }
         }
         Image {

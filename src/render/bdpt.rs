@@ -7,33 +7,26 @@
 //! splat's weight assumes every pixel took the pass's samples, so a render stopped early keeps
 //! its completed passes only.
 
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::{RenderOptions, RenderStats, camera_sample, count_dropped, splat_filtered};
+use super::control::ErrorEstimate;
+use super::{
+    Ctx, RenderStats, Snapshot, StopReason, camera_sample, count_dropped, splat_filtered,
+};
 use crate::film::{Film, SplatList, Tile};
-use crate::integrator::Integrator;
 use crate::integrator::bdpt::{Scratch, sample};
 use crate::sampler::Sampler;
-use crate::spectrum::{N_WAVELENGTHS, WavelengthSampler};
-
-/// What a BDPT render reads.
-pub(super) struct Ctx<'a> {
-    pub opts: &'a RenderOptions,
-    pub integrator: &'a Integrator<'a>,
-    pub lambda: &'a WavelengthSampler,
-    pub pool: &'a rayon::ThreadPool,
-    pub cancel: &'a AtomicBool,
-    pub progress: &'a (dyn Fn(u64, u64) + Sync),
-}
+use crate::spectrum::N_WAVELENGTHS;
 
 /// Key of the light subpaths' sampler streams (a stream per camera sample, apart from the
 /// camera's).
 const LIGHT_SEED: u32 = 0x4244_5054;
 
-/// Renders `tiles` (x0, y0, width, height) in `passes` of sample indices [a, b).
+/// Renders `tiles` (x0, y0, width, height) in `passes` of sample indices [a, b), continuing
+/// from `snap`.
 ///
 /// Each pixel's value is the mean of its camera samples' t ≥ 2 strategies plus the splats of
 /// the t = 1 strategies of all light subpaths (one per camera sample), whose estimator divides
@@ -41,37 +34,73 @@ const LIGHT_SEED: u32 = 0x4244_5054;
 /// count here, so that the film's division by each pixel's sample count (spp) completes it.
 pub(super) fn render(
     ctx: &Ctx<'_>,
-    mut film: Film,
+    snap: Snapshot,
     tiles: &[(u32, u32, u32, u32)],
     passes: &[(u32, u32)],
-    start: Instant,
 ) -> (Film, RenderStats) {
     let (opts, it) = (ctx.opts, ctx.integrator);
+    let mut film = snap.film;
     let (w, h) = (film.width, film.height);
+    let first = opts.sample_range().0;
     let inv_pixels = 1.0 / (w as f32 * h as f32);
-    let total = w as u64 * h as u64 * opts.spp as u64;
     let (filter, bins) = (film.filter.clone(), film.bins.clone());
-    let done = AtomicU64::new(0);
-    let (nan, inf) = (AtomicU64::new(0), AtomicU64::new(0));
+    let pass0 = (snap.pass as usize).min(passes.len());
+    let pixels = w as u64 * h as u64;
+    let done_before: u64 = passes[..pass0].iter().map(|(a, b)| (b - a) as u64 * pixels).sum();
+    let done = AtomicU64::new(done_before);
+    let (nan, inf) = (
+        AtomicU64::new(snap.nan_samples),
+        AtomicU64::new(snap.inf_samples),
+    );
     // tiles traced at once: a few per thread, each holding its pass's splats
     let batch = 4 * ctx.pool.current_num_threads().max(1);
-    let mut spp_done = 0;
-    let mut partial = false;
-    'passes: for &(a, b) in passes {
-        let mut pass = film.empty_like();
-        for chunk in tiles.chunks(batch) {
+    let mut spp_done = if pass0 > 0 { passes[pass0 - 1].1 - first } else { 0 };
+    let mut stop = StopReason::Complete;
+    let mut estimate = ErrorEstimate::default();
+    let mut resumed = Some((snap.pass_film, snap.tiles_done));
+    let snapshot = |film: &Film, pass_film: &Film, pass: usize, tiles_done: &[bool]| Snapshot {
+        film: film.clone(),
+        pass_film: Some(pass_film.clone()),
+        pass: pass as u32,
+        tiles_done: tiles_done.to_vec(),
+        paths_done: 0,
+        nan_samples: nan.load(Ordering::Relaxed),
+        inf_samples: inf.load(Ordering::Relaxed),
+        elapsed: ctx.budget.elapsed(),
+    };
+    let mut pass = pass0;
+    let mut pass_film = film.empty_like();
+    let mut tiles_done = vec![false; tiles.len()];
+    'passes: while pass < passes.len() {
+        let (a, b) = passes[pass];
+        pass_film = film.empty_like();
+        tiles_done = vec![false; tiles.len()];
+        if let Some((pf, td)) = resumed.take()
+            && let Some(pf) = pf
+            && td.len() == tiles.len()
+        {
+            (pass_film, tiles_done) = (pf, td);
+        }
+        if ctx.budget.spent() {
+            stop = StopReason::TimeLimit;
+            break;
+        }
+        let t0 = Instant::now();
+        let todo: Vec<usize> = (0..tiles.len()).filter(|&t| !tiles_done[t]).collect();
+        for chunk in todo.chunks(batch) {
             if ctx.cancel.load(Ordering::Relaxed) {
-                partial = true;
+                stop = StopReason::Cancelled;
                 break 'passes;
             }
             let out: Vec<Option<(Tile, SplatList)>> = ctx.pool.install(|| {
                 chunk
                     .par_iter()
-                    .map(|&(x0, y0, tw, th)| {
+                    .map(|&ti| {
+                        let (x0, y0, tw, th) = tiles[ti];
                         if ctx.cancel.load(Ordering::Relaxed) {
                             return None;
                         }
-                        let mut tile = pass.tile(x0, y0, tw, th);
+                        let mut tile = pass_film.tile(x0, y0, tw, th);
                         let mut list = SplatList::new(w);
                         let mut scratch = Scratch::<N_WAVELENGTHS>::new(it.max_depth);
                         for y in y0..y0 + th {
@@ -118,35 +147,62 @@ pub(super) fn render(
                             }
                         }
                         let n = (tw * th * (b - a)) as u64;
-                        (ctx.progress)(done.fetch_add(n, Ordering::Relaxed) + n, total);
+                        (ctx.progress)(done.fetch_add(n, Ordering::Relaxed) + n, ctx.total);
                         Some((tile, list))
                     })
                     .collect()
             });
-            for r in out {
+            let mut cancelled = false;
+            for (&ti, r) in chunk.iter().zip(out) {
                 match r {
                     Some((tile, list)) => {
-                        pass.merge(&tile);
-                        pass.apply(&list);
+                        pass_film.merge(&tile);
+                        pass_film.apply(&list);
+                        tiles_done[ti] = true;
                     }
-                    None => partial = true,
+                    None => cancelled = true,
                 }
             }
-            if partial {
+            if cancelled {
+                stop = StopReason::Cancelled;
                 break 'passes;
             }
+            if let Some(t) = &ctx.ticker
+                && t.due()
+            {
+                t.write(&snapshot(&film, &pass_film, pass, &tiles_done));
+            }
         }
-        film.merge_film(&pass);
-        spp_done = b;
+        film.merge_film(&pass_film);
+        pass_film = film.empty_like();
+        tiles_done = vec![false; tiles.len()];
+        spp_done = b - first;
+        pass += 1;
+        estimate.update(&film, spp_done);
+        if let Some(next) = passes.get(pass) {
+            if ctx.budget.would_exceed(b - a, t0.elapsed(), next.1 - next.0) {
+                stop = StopReason::TimeLimit;
+                break;
+            }
+            if let (Some(target), Some(e)) = (opts.target_error, estimate.last)
+                && e <= target
+            {
+                stop = StopReason::TargetError;
+                break;
+            }
+        }
     }
+    ctx.final_checkpoint(&snapshot(&film, &pass_film, pass, &tiles_done));
     let stats = RenderStats {
         // the samples of completed passes, the only ones in the image
-        samples: w as u64 * h as u64 * spp_done as u64,
+        samples: pixels * spp_done as u64,
         nan_samples: nan.load(Ordering::Relaxed),
         inf_samples: inf.load(Ordering::Relaxed),
-        elapsed: start.elapsed(),
-        partial: partial || ctx.cancel.load(Ordering::Relaxed),
+        elapsed: ctx.budget.elapsed(),
+        partial: stop == StopReason::Cancelled,
         spp_done,
+        stop,
+        rel_error: estimate.last,
     };
     (film, stats)
 }

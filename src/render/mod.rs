@@ -1,10 +1,18 @@
-//! The tile scheduler: renders a [`Scene`] into a [`Film`] on a rayon thread pool (the only
-//! module that names rayon), in passes of samples per pixel so that a render stopped early is
-//! uniformly converged. Progress is reported through a callback.
+//! The scheduler: renders a [`Scene`] into a [`Film`] on a rayon thread pool (the only module
+//! that names rayon), in passes of samples per pixel so that a render stopped early is
+//! uniformly converged. Progress is reported through a callback; checkpoints, resuming, render
+//! parts and budgets are steered by a [`Control`] (see `control.rs`).
 //!
 //! Determinism: every sample draws from a [`Sampler`] keyed on (seed, pixel, sample index), and
-//! every pixel belongs to one tile that adds its samples in index order, so the image is the
-//! same for any number of threads.
+//! the film's sums are exact, so the image is the same for any number of threads, for a render
+//! resumed from a checkpoint, and for the merge of render parts.
+//!
+//! | file | what it holds |
+//! | --- | --- |
+//! | `mod.rs` | options, statistics, [`render_with`] and the camera-ray integrators' tiles |
+//! | `control.rs` | passes, budgets, the error estimate, [`Snapshot`] |
+//! | `light.rs` | light tracing in chunks of light paths |
+//! | `bdpt.rs` | bidirectional path tracing: tiles and their splat lists |
 
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
@@ -21,6 +29,11 @@ use crate::scene::Scene;
 use crate::spectrum::{N_WAVELENGTHS, SampledWavelengths, WavelengthSampler};
 
 mod bdpt;
+mod control;
+mod light;
+
+pub use control::{Snapshot, StopReason};
+use control::{Budget, ErrorEstimate, Ticker, check_resume, passes};
 
 /// Tile side, pixels.
 const TILE: u32 = 16;
@@ -37,6 +50,16 @@ pub struct RenderOptions {
     pub spectral_bins: u32,
     /// `bdpt` only: one connection strategy alone (debugging).
     pub strategy: Option<crate::integrator::bdpt::Strategy>,
+    /// Render only part `i` of `n` (0-based): the sample indices [⌊i·spp/n⌋, ⌊(i+1)·spp/n⌋) of
+    /// every pixel (light tracing: the light paths of those samples). Merged, the parts' sums
+    /// are those of the whole render, bit for bit.
+    pub part: Option<(u32, u32)>,
+    /// Stop at the end of a pass when the next one would end past this render time (counted
+    /// over resumed sessions; light tracing: between batches of light paths).
+    pub time_limit: Option<Duration>,
+    /// Stop at the end of the first pass whose estimated relative error of Y (see
+    /// `control::ErrorEstimate`) is below this (dimensionless, e.g. 0.01).
+    pub target_error: Option<f64>,
 }
 
 impl RenderOptions {
@@ -50,6 +73,20 @@ impl RenderOptions {
             max_depth: scene.integrator.max_depth,
             spectral_bins: scene.film.spectral_bins,
             strategy: None,
+            part: None,
+            time_limit: None,
+            target_error: None,
+        }
+    }
+
+    /// The sample indices [first, end) of every pixel this render takes.
+    pub fn sample_range(&self) -> (u32, u32) {
+        match self.part {
+            Some((i, n)) if n > 0 && i < n => {
+                let at = |k: u32| (self.spp as u64 * k as u64 / n as u64) as u32;
+                (at(i), at(i + 1))
+            }
+            _ => (0, self.spp),
         }
     }
 }
@@ -63,11 +100,15 @@ pub struct RenderStats {
     pub nan_samples: u64,
     /// Samples dropped because their radiance was infinite.
     pub inf_samples: u64,
+    /// Render time, over every session of a resumed render.
     pub elapsed: Duration,
-    /// Whether the render was stopped before all samples were taken.
+    /// Whether the render was cancelled before all samples were taken.
     pub partial: bool,
-    /// Samples per pixel completed everywhere.
+    /// Samples per pixel completed everywhere (counted in the sample range).
     pub spp_done: u32,
+    pub stop: StopReason,
+    /// The last estimated relative error of Y, if two passes ended.
+    pub rel_error: Option<f64>,
 }
 
 /// Why a render could not start.
@@ -80,6 +121,23 @@ pub enum RenderError {
          does not have; use a perspective or thin-lens camera"
     )]
     Camera(&'static str),
+    #[error("cannot resume: {0}")]
+    Resume(String),
+    #[error("--target-error needs passes of camera samples; the light integrator has none")]
+    TargetErrorLight,
+}
+
+/// How a render is steered from outside.
+pub struct Control<'a> {
+    /// Set to stop the render between tiles.
+    pub cancel: &'a AtomicBool,
+    /// Called with (samples done, samples of the render) as tiles finish.
+    pub progress: &'a (dyn Fn(u64, u64) + Sync),
+    /// Checkpoints: the writer is given the render's state between tiles at most once per
+    /// interval, and once more when the render ends for any reason.
+    pub checkpoint: Option<(Duration, &'a (dyn Fn(&Snapshot) + Sync))>,
+    /// A state to continue from, written by an earlier render of the same scene and options.
+    pub resume: Option<Snapshot>,
 }
 
 /// Renders `scene`. `cancel` stops the render between tiles; `progress(done, total)` is called
@@ -90,6 +148,47 @@ pub fn render(
     cancel: &AtomicBool,
     progress: &(dyn Fn(u64, u64) + Sync),
 ) -> Result<(Film, RenderStats), RenderError> {
+    render_with(
+        scene,
+        opts,
+        Control {
+            cancel,
+            progress,
+            checkpoint: None,
+            resume: None,
+        },
+    )
+}
+
+/// What every scheduler reads.
+struct Ctx<'a> {
+    opts: &'a RenderOptions,
+    integrator: &'a Integrator<'a>,
+    lambda: &'a WavelengthSampler,
+    pool: &'a rayon::ThreadPool,
+    cancel: &'a AtomicBool,
+    progress: &'a (dyn Fn(u64, u64) + Sync),
+    ticker: Option<Ticker<'a>>,
+    budget: Budget,
+    /// Samples this render takes in all (pixels × samples per pixel of the range).
+    total: u64,
+}
+
+impl Ctx<'_> {
+    /// Writes a final checkpoint, if checkpointing.
+    fn final_checkpoint(&self, snap: &Snapshot) {
+        if let Some(t) = &self.ticker {
+            t.write(snap);
+        }
+    }
+}
+
+/// Renders `scene` under `ctl` (see [`Control`]).
+pub fn render_with(
+    scene: &Scene,
+    opts: &RenderOptions,
+    ctl: Control<'_>,
+) -> Result<(Film, RenderStats), RenderError> {
     let start = Instant::now();
     let (w, h) = (scene.film.width, scene.film.height);
     let film = Film::new(
@@ -99,8 +198,6 @@ pub fn render(
         scene.wavelengths,
         opts.spectral_bins,
     );
-    let (filter, bins) = (film.filter.clone(), film.bins.clone());
-    let film = Mutex::new(film);
     let mut integrator = Integrator::new(scene, opts.integrator, opts.max_depth);
     integrator.strategy = opts.strategy;
     let lambda = WavelengthSampler::visible(scene.wavelengths);
@@ -108,10 +205,11 @@ pub fn render(
         .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
         .map(|(x0, y0)| (x0, y0, TILE.min(w - x0), TILE.min(h - y0)))
         .collect();
-    let total = w as u64 * h as u64 * opts.spp as u64;
-    let done = AtomicU64::new(0);
-    let nan = AtomicU64::new(0);
-    let inf = AtomicU64::new(0);
+    let (first, end) = opts.sample_range();
+    let passes = passes(first, end);
+    if let Some(snap) = &ctl.resume {
+        check_resume(snap, &film, tiles.len(), passes.len()).map_err(RenderError::Resume)?;
+    }
     let threads = opts.threads.unwrap_or(0);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -120,104 +218,181 @@ pub fn render(
             threads,
             message: e.to_string(),
         })?;
-    // passes of doubling size: 1, 1, 2, 4, … samples per pixel, so an early stop has every
-    // pixel at the same sample count
-    let mut passes = Vec::new();
-    let mut s0 = 0;
-    while s0 < opts.spp {
-        let n = s0.max(1).min(opts.spp - s0).min(64);
-        passes.push((s0, s0 + n));
-        s0 += n;
-    }
-    let mut spp_done = 0;
-    let mut partial = false;
-    if opts.integrator == IntegratorKind::Bdpt {
-        let film = film.into_inner().unwrap_or_else(|p| p.into_inner());
-        let ctx = bdpt::Ctx {
-            opts,
-            integrator: &integrator,
-            lambda: &lambda,
-            pool: &pool,
-            cancel,
-            progress,
-        };
-        return Ok(bdpt::render(&ctx, film, &tiles, &passes, start));
-    }
-    if opts.integrator == IntegratorKind::Light {
-        let film = film.into_inner().unwrap_or_else(|p| p.into_inner());
-        if matches!(scene.camera, crate::geometry::Camera::Orthographic(_)) {
-            return Err(RenderError::Camera("light"));
-        }
-        return render_light(
-            opts,
-            film,
-            &integrator,
-            &lambda,
-            &pool,
-            cancel,
-            progress,
+    let ctx = Ctx {
+        opts,
+        integrator: &integrator,
+        lambda: &lambda,
+        pool: &pool,
+        cancel: ctl.cancel,
+        progress: ctl.progress,
+        ticker: ctl.checkpoint.map(|(every, write)| Ticker::new(every, write)),
+        budget: Budget {
+            limit: opts.time_limit,
+            before: ctl.resume.as_ref().map_or(Duration::ZERO, |s| s.elapsed),
             start,
-        );
+        },
+        total: w as u64 * h as u64 * (end - first) as u64,
+    };
+    let snap = ctl.resume.unwrap_or_else(|| Snapshot {
+        film,
+        pass_film: None,
+        pass: 0,
+        tiles_done: Vec::new(),
+        paths_done: 0,
+        nan_samples: 0,
+        inf_samples: 0,
+        elapsed: Duration::ZERO,
+    });
+    match opts.integrator {
+        IntegratorKind::Bdpt => Ok(bdpt::render(&ctx, snap, &tiles, &passes)),
+        IntegratorKind::Light => {
+            if matches!(scene.camera, crate::geometry::Camera::Orthographic(_)) {
+                return Err(RenderError::Camera("light"));
+            }
+            if opts.target_error.is_some() {
+                return Err(RenderError::TargetErrorLight);
+            }
+            Ok(light::render(&ctx, snap))
+        }
+        _ => Ok(render_tiles(&ctx, snap, &tiles, &passes)),
     }
-    for (a, b) in passes {
-        if cancel.load(Ordering::Relaxed) {
-            partial = true;
+}
+
+/// The state of a pass shared by the threads: the film and the tiles summed into it.
+struct Shared {
+    film: Film,
+    tiles_done: Vec<bool>,
+    nan: u64,
+    inf: u64,
+}
+
+/// Camera-ray integrators (`path`, `whitted`, `direct`): each pass renders the tiles not yet
+/// done, each tile summing its pixels' samples in a tile of its own and adding it to the film.
+fn render_tiles(
+    ctx: &Ctx<'_>,
+    snap: Snapshot,
+    tiles: &[(u32, u32, u32, u32)],
+    passes: &[(u32, u32)],
+) -> (Film, RenderStats) {
+    let (opts, scene) = (ctx.opts, ctx.integrator.scene);
+    let first = opts.sample_range().0;
+    let (filter, bins) = (snap.film.filter.clone(), snap.film.bins.clone());
+    let pixels = snap.film.width as u64 * snap.film.height as u64;
+    let pass0 = (snap.pass as usize).min(passes.len());
+    let done_before: u64 = passes[..pass0]
+        .iter()
+        .map(|(a, b)| (b - a) as u64 * pixels)
+        .sum();
+    let mut tiles_done = snap.tiles_done;
+    if tiles_done.is_empty() {
+        tiles_done = vec![false; tiles.len()];
+    }
+    let shared = Mutex::new(Shared {
+        film: snap.film,
+        tiles_done,
+        nan: snap.nan_samples,
+        inf: snap.inf_samples,
+    });
+    let lock = || shared.lock().unwrap_or_else(|p| p.into_inner());
+    let done = AtomicU64::new(done_before);
+    let snapshot = |s: &Shared, pass: usize| Snapshot {
+        film: s.film.clone(),
+        pass_film: None,
+        pass: pass as u32,
+        tiles_done: s.tiles_done.clone(),
+        paths_done: 0,
+        nan_samples: s.nan,
+        inf_samples: s.inf,
+        elapsed: ctx.budget.elapsed(),
+    };
+    let mut spp_done = if pass0 > 0 { passes[pass0 - 1].1 - first } else { 0 };
+    let mut stop = StopReason::Complete;
+    let mut estimate = ErrorEstimate::default();
+    let mut pass = pass0;
+    while pass < passes.len() {
+        let (a, b) = passes[pass];
+        if ctx.cancel.load(Ordering::Relaxed) {
+            stop = StopReason::Cancelled;
             break;
         }
-        let finished: Vec<bool> = pool.install(|| {
-            tiles
-                .par_iter()
-                .map(|&(x0, y0, tw, th)| {
-                    if cancel.load(Ordering::Relaxed) {
-                        return false;
-                    }
-                    let mut tile = crate::film::Tile::new(
-                        x0,
-                        y0,
-                        tw,
-                        th,
-                        bins.as_ref().map_or(0, |b| b.count),
-                    );
-                    for y in y0..y0 + th {
-                        for x in x0..x0 + tw {
-                            for i in a..b {
-                                let (mut s, mut wl, ray) =
-                                    camera_sample(scene, &lambda, &filter, opts.seed, x, y, i);
-                                let l = integrator.radiance(ray, &mut wl, &mut s);
-                                if !tile.add(x, y, &wl, &l, bins.as_ref()) {
-                                    count_dropped(&wl, &l, &nan, &inf);
+        if ctx.budget.spent() {
+            stop = StopReason::TimeLimit;
+            break;
+        }
+        let t0 = Instant::now();
+        ctx.pool.install(|| {
+            tiles.par_iter().enumerate().for_each(|(ti, &(x0, y0, tw, th))| {
+                if ctx.cancel.load(Ordering::Relaxed) || lock().tiles_done[ti] {
+                    return;
+                }
+                let nb = bins.as_ref().map_or(0, |b| b.count);
+                let mut tile = crate::film::Tile::new(x0, y0, tw, th, nb);
+                let (mut nan, mut inf) = (0, 0);
+                for y in y0..y0 + th {
+                    for x in x0..x0 + tw {
+                        for i in a..b {
+                            let (mut s, mut wl, ray) =
+                                camera_sample(scene, ctx.lambda, &filter, opts.seed, x, y, i);
+                            let l = ctx.integrator.radiance(ray, &mut wl, &mut s);
+                            if !tile.add(x, y, &wl, &l, bins.as_ref()) {
+                                match non_finite(&wl, &l) {
+                                    Some(NonFinite::NaN) => nan += 1,
+                                    _ => inf += 1,
                                 }
                             }
                         }
                     }
-                    match film.lock() {
-                        Ok(mut f) => f.merge(&tile),
-                        Err(p) => p.into_inner().merge(&tile),
-                    }
-                    let n = done.fetch_add((tw * th * (b - a)) as u64, Ordering::Relaxed)
-                        + (tw * th * (b - a)) as u64;
-                    progress(n, total);
-                    true
-                })
-                .collect()
+                }
+                let n = (tw * th * (b - a)) as u64;
+                let mut s = lock();
+                s.film.merge(&tile);
+                s.tiles_done[ti] = true;
+                s.nan += nan;
+                s.inf += inf;
+                let due = ctx.ticker.as_ref().filter(|t| t.due()).map(|_| snapshot(&s, pass));
+                drop(s);
+                if let (Some(t), Some(snap)) = (&ctx.ticker, due) {
+                    t.write(&snap);
+                }
+                (ctx.progress)(done.fetch_add(n, Ordering::Relaxed) + n, ctx.total);
+            })
         });
-        if finished.iter().all(|&f| f) {
-            spp_done = b;
-        } else {
-            partial = true;
+        let mut s = lock();
+        if !s.tiles_done.iter().all(|&d| d) {
+            stop = StopReason::Cancelled;
             break;
         }
+        s.tiles_done.iter_mut().for_each(|d| *d = false);
+        spp_done = b - first;
+        pass += 1;
+        estimate.update(&s.film, spp_done);
+        drop(s);
+        if let Some(next) = passes.get(pass) {
+            if ctx.budget.would_exceed(b - a, t0.elapsed(), next.1 - next.0) {
+                stop = StopReason::TimeLimit;
+                break;
+            }
+            if let (Some(target), Some(e)) = (opts.target_error, estimate.last)
+                && e <= target
+            {
+                stop = StopReason::TargetError;
+                break;
+            }
+        }
     }
-    let film = film.into_inner().unwrap_or_else(|p| p.into_inner());
+    let s = shared.into_inner().unwrap_or_else(|p| p.into_inner());
+    ctx.final_checkpoint(&snapshot(&s, pass));
     let stats = RenderStats {
         samples: done.load(Ordering::Relaxed),
-        nan_samples: nan.load(Ordering::Relaxed),
-        inf_samples: inf.load(Ordering::Relaxed),
-        elapsed: start.elapsed(),
-        partial: partial || cancel.load(Ordering::Relaxed),
+        nan_samples: s.nan,
+        inf_samples: s.inf,
+        elapsed: ctx.budget.elapsed(),
+        partial: stop == StopReason::Cancelled,
         spp_done,
+        stop,
+        rel_error: estimate.last,
     };
-    Ok((film, stats))
+    (s.film, stats)
 }
 
 /// Camera sample `i` of pixel (x, y) under `seed`: the wavelengths, the filter offset and the
@@ -295,131 +470,3 @@ fn splat_filtered<const N: usize>(
     to.splat_weighted(pixels, wl, l, bins)
 }
 
-/// Light paths per chunk of the light tracer: a chunk's splat list stays a few MB.
-const LIGHT_CHUNK: u64 = 4096;
-
-/// Light tracing: `spp × pixels` paths in chunks of [`LIGHT_CHUNK`] paths, each recording its
-/// splats in a [`crate::film::SplatList`] (memory for its splats, not a full-image tile, so
-/// there can be many chunks and every thread stays busy). Chunks are traced in batches of a few
-/// per thread and their lists applied to the film in chunk order, so the image does not depend
-/// on the number of threads.
-#[allow(clippy::too_many_arguments)]
-fn render_light(
-    opts: &RenderOptions,
-    mut film: Film,
-    integrator: &Integrator<'_>,
-    lambda: &WavelengthSampler,
-    pool: &rayon::ThreadPool,
-    cancel: &AtomicBool,
-    progress: &(dyn Fn(u64, u64) + Sync),
-    start: Instant,
-) -> Result<(Film, RenderStats), RenderError> {
-    let (w, h) = (film.width, film.height);
-    let pixels = w as u64 * h as u64;
-    let total = pixels * opts.spp as u64;
-    let bins = film.bins.clone();
-    let filter = film.filter.clone();
-    let done = AtomicU64::new(0);
-    let (nan, inf) = (AtomicU64::new(0), AtomicU64::new(0));
-    let chunks = total.div_ceil(LIGHT_CHUNK);
-    // lists alive at once: two per thread (a few MB each), whatever the image size
-    let batch = 2 * pool.current_num_threads().max(1) as u64;
-    let mut paths = 0;
-    let mut first = 0;
-    while first < chunks && !cancel.load(Ordering::Relaxed) {
-        let last = (first + batch).min(chunks);
-        let lists: Vec<(crate::film::SplatList, u64)> = pool.install(|| {
-            (first..last)
-                .into_par_iter()
-                .map(|c| {
-                    let mut list = crate::film::SplatList::new(w);
-                    let (lo, hi) = (c * LIGHT_CHUNK, ((c + 1) * LIGHT_CHUNK).min(total));
-                    if cancel.load(Ordering::Relaxed) {
-                        return (list, 0);
-                    }
-                    let n = done.fetch_add(hi - lo, Ordering::Relaxed);
-                    progress(n, total);
-                    let mut traced = 0;
-                    for i in lo..hi {
-                        let px = i % pixels;
-                        let mut s = Sampler::new(
-                            opts.seed ^ 0x4c49_4748,
-                            (px % w as u64) as u32,
-                            (px / w as u64) as u32,
-                            (i / pixels) as u32,
-                        );
-                        let mut wl: SampledWavelengths<N_WAVELENGTHS> = lambda.sample(s.get_1d());
-                        crate::integrator::light::trace(
-                            integrator,
-                            filter.radius,
-                            &mut wl,
-                            &mut s,
-                            &mut |raster, wl, l| {
-                                let b = bins.as_ref();
-                                let size = (w, h);
-                                if !splat_filtered(&mut list, size, &filter, raster, wl, &l, b) {
-                                    count_dropped(wl, &l, &nan, &inf);
-                                }
-                            },
-                        );
-                        traced += 1;
-                    }
-                    (list, traced)
-                })
-                .collect()
-        });
-        for (list, traced) in &lists {
-            film.apply(list);
-            paths += traced;
-        }
-        first = last;
-    }
-    film.set_path_count(paths.max(1));
-    // Lights at infinity seen directly (sky, sun disk): camera rays with the filter's offsets,
-    // as in `render`, each adding the escaped radiance; their per-pixel sums are scaled by
-    // paths / spp so that the film's division by the path count leaves their mean.
-    let mut cam_cancelled = false;
-    if crate::integrator::light::has_visible_infinite_lights(integrator) && paths > 0 {
-        let scene = integrator.scene;
-        let filter = film.filter.clone();
-        let rows: Vec<Option<crate::film::Tile>> = pool.install(|| {
-            (0..h)
-                .into_par_iter()
-                .map(|y| {
-                    if cancel.load(Ordering::Relaxed) {
-                        return None;
-                    }
-                    let mut tile = film.tile(0, y, w, 1);
-                    for x in 0..w {
-                        for i in 0..opts.spp {
-                            let seed = opts.seed ^ 0x534b_5900;
-                            let (_, wl, ray) = camera_sample(scene, lambda, &filter, seed, x, y, i);
-                            let l = crate::integrator::light::escaped(integrator, &ray, &wl);
-                            if !tile.splat(x, y, &wl, &l, bins.as_ref()) {
-                                count_dropped(&wl, &l, &nan, &inf);
-                            }
-                        }
-                    }
-                    Some(tile)
-                })
-                .collect()
-        });
-        let scale = paths as f64 / opts.spp.max(1) as f64;
-        for row in &rows {
-            match row {
-                Some(t) => film.merge_scaled(t, scale),
-                None => cam_cancelled = true,
-            }
-        }
-    }
-    let partial = paths < total || cam_cancelled || cancel.load(Ordering::Relaxed);
-    let stats = RenderStats {
-        samples: paths,
-        nan_samples: nan.load(Ordering::Relaxed),
-        inf_samples: inf.load(Ordering::Relaxed),
-        elapsed: start.elapsed(),
-        partial,
-        spp_done: (paths / pixels) as u32,
-    };
-    Ok((film, stats))
-}
