@@ -16,7 +16,7 @@
 use std::path::Path;
 
 use crate::film::Image;
-use crate::image_io::{self, AttrValue, Channel, ImageError};
+use crate::image_io::{self, AttrValue, Channel, ImageError, WordChannel};
 use crate::spectrum::WavelengthRange;
 
 /// What the header records about a render.
@@ -35,6 +35,17 @@ pub struct RenderInfo<'a> {
     pub mitsuba_units: bool,
     /// Also write the second moments `m2.X`, `m2.Y`, `m2.Z` (Mitsuba's `moment` integrator).
     pub moment: bool,
+    /// Why the render ended ([`crate::render::StopReason::name`]).
+    pub stop: &'a str,
+    /// The estimated relative error of Y (dimensionless), if known.
+    pub rel_error: Option<f64>,
+}
+
+/// What a checkpoint or a render part stores beside its image: the film's exact sums as
+/// unsigned-integer channels and header attributes to continue or merge from.
+pub struct State<'a> {
+    pub words: &'a [(String, Vec<u32>)],
+    pub attributes: Vec<(&'a str, AttrValue)>,
 }
 
 /// Mitsuba 3.9.1's XYZ film multiplies by `MI_CIE_Y_NORMALIZATION` = 1/106.7502594, not by
@@ -58,6 +69,16 @@ pub fn to_mitsuba_scale(img: &mut Image) {
 
 /// Writes the EXR (spectral when the image has bins).
 pub fn write_exr(path: &Path, img: &Image, info: &RenderInfo<'_>) -> Result<(), ImageError> {
+    write_exr_state(path, img, info, None)
+}
+
+/// [`write_exr`], with a film's state beside the image when `state` is given.
+pub fn write_exr_state(
+    path: &Path,
+    img: &Image,
+    info: &RenderInfo<'_>,
+    state: Option<&State<'_>>,
+) -> Result<(), ImageError> {
     let plane =
         |f: &dyn Fn(usize) -> f32| -> Vec<f32> { (0..img.width * img.height).map(f).collect() };
     let x = plane(&|i| img.xyz[i][0]);
@@ -121,7 +142,7 @@ pub fn write_exr(path: &Path, img: &Image, info: &RenderInfo<'_>) -> Result<(), 
             ""
         }
     );
-    let attrs = [
+    let mut attrs = vec![
         ("spectrace:units", AttrValue::Text(units)),
         ("spectrace:samplesPerPixel", AttrValue::Int(info.spp as i32)),
         ("spectrace:seed", AttrValue::Int(info.seed as i32)),
@@ -153,16 +174,37 @@ pub fn write_exr(path: &Path, img: &Image, info: &RenderInfo<'_>) -> Result<(), 
             "spectrace:droppedInfSamples",
             AttrValue::Double(info.inf_samples as f64),
         ),
+        ("spectrace:stopReason", AttrValue::Text(info.stop.to_string())),
     ];
+    if let Some(e) = info.rel_error {
+        attrs.push(("spectrace:estimatedRelativeErrorY", AttrValue::Double(e)));
+    }
+    let words: Vec<WordChannel> = state
+        .map(|s| {
+            s.words
+                .iter()
+                .map(|(name, data)| WordChannel { name, data })
+                .collect()
+        })
+        .unwrap_or_default();
+    if let Some(s) = state {
+        attrs.extend(s.attributes.iter().cloned());
+    }
     match &img.bins {
         Some(bins) => {
             let lambdas: Vec<f32> = (0..bins.count).map(|i| bins.centre(i)).collect();
             let planes: Vec<&[f32]> = img.spectral.iter().map(Vec::as_slice).collect();
-            image_io::write_spectral_exr(
-                path, img.width, img.height, &lambdas, &planes, &channels, &attrs,
+            let spectral = image_io::Spectral {
+                wavelengths_nm: &lambdas,
+                bins: &planes,
+            };
+            image_io::write_spectral_exr_words(
+                path, img.width, img.height, &spectral, &channels, &words, &attrs,
             )
         }
-        None => image_io::write_exr(path, img.width, img.height, &channels, &attrs),
+        None => {
+            image_io::write_exr_words(path, img.width, img.height, &channels, &words, &attrs)
+        }
     }
 }
 

@@ -1,5 +1,6 @@
 //! Command-line interface (clap).
 
+mod farm;
 mod progress;
 mod render;
 mod spectrum;
@@ -28,6 +29,9 @@ pub enum Command {
     Spectrum(spectrum::SpectrumArgs),
     /// Render a scene file to EXR and PNG.
     Render(render::RenderArgs),
+    /// Merge the EXR files of render parts (`render --part I/N`) into one image, bit for bit
+    /// the image one render of all their samples gives.
+    Merge(farm::MergeArgs),
 }
 
 /// An error for the user, printed after "error: ".
@@ -50,6 +54,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Some(Command::Spectrum(args)) => spectrum::run(args),
         Some(Command::Render(args)) => render::run(args),
+        Some(Command::Merge(args)) => farm::merge(args),
         None => render::run_default(),
     }
 }

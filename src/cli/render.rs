@@ -9,12 +9,13 @@ use super::CliError;
 use super::progress::Progress;
 use crate::loader::desc::IntegratorKind;
 use crate::output::{RenderInfo, write_exr, write_png};
-use crate::render::{RenderOptions, render};
+use crate::render::{RenderOptions, render_with};
 
 /// The built-in default scene: `scenes/prism.toml`, embedded in the binary.
 pub const DEFAULT_SCENE: &str = include_str!("../../scenes/prism.toml");
 
-#[derive(Clone, Copy, Debug, ValueEnum)]
+#[derive(Clone, Copy, Debug, ValueEnum, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum IntegratorArg {
     /// Unidirectional path tracing with next-event estimation and MIS.
     Path,
@@ -26,10 +27,12 @@ pub enum IntegratorArg {
     Whitted,
 }
 
-#[derive(Args, Debug, Default)]
+#[derive(Args, Debug, Default, Clone, serde::Serialize, serde::Deserialize)]
+#[serde(default)]
 pub struct RenderArgs {
     /// Scene file: spectrace TOML, or Mitsuba 3 XML (.xml).
-    pub scene: PathBuf,
+    #[arg(required_unless_present = "resume")]
+    pub scene: Option<PathBuf>,
     /// Output EXR (float32: X, Y, Z in cd/m², linear sRGB R, G, B, band radiance L in
     /// W·m⁻²·sr⁻¹; spectral channels with --spectral-bins). Default: the scene's name with .exr,
     /// in the current folder.
@@ -76,7 +79,35 @@ pub struct RenderArgs {
     /// by itself).
     #[arg(long, requires = "bdpt_strategy")]
     pub bdpt_unweighted: bool,
+    /// Render only part I of N ("I/N", I from 0 to N − 1): a disjoint share of every pixel's
+    /// samples. The EXR carries the part's exact sums; `spectrace merge` combines all N parts
+    /// into the image one render would give, bit for bit.
+    #[arg(long, value_name = "I/N")]
+    pub part: Option<String>,
+    /// Write checkpoints into folder DIR (created if needed), from which `--resume DIR`
+    /// continues to the image an uninterrupted render gives, bit for bit.
+    #[arg(long, value_name = "DIR")]
+    pub checkpoint: Option<PathBuf>,
+    /// Time between checkpoints ("60s", "5m", "500ms"; a bare number is seconds).
+    #[arg(long, value_name = "TIME", default_value = "60s", requires = "checkpoint")]
+    pub checkpoint_every: String,
+    /// Continue the render checkpointed in DIR, with the arguments it was started with
+    /// (only --threads and --quiet may be given again).
+    #[arg(long, value_name = "DIR", conflicts_with = "checkpoint")]
+    #[serde(skip)]
+    pub resume: Option<PathBuf>,
+    /// Render time budget ("90s", "10m", "2h"): stop at the end of the pass after which the
+    /// next would end past it. Without --spp, renders as many samples as fit.
+    #[arg(long, value_name = "TIME")]
+    pub time: Option<String>,
+    /// Stop at the end of the first pass whose estimated relative RMS error of luminance is
+    /// below this fraction (e.g. 0.01). Without --spp, renders as many samples as it takes.
+    #[arg(long, value_name = "FRACTION")]
+    pub target_error: Option<f64>,
 }
+
+/// Samples per pixel a render may take at most (as the scene loaders' limit).
+const MAX_SPP: u32 = 1 << 24;
 
 static CANCEL: AtomicBool = AtomicBool::new(false);
 
@@ -95,16 +126,51 @@ fn install_ctrl_c() {
 /// Renders the default scene to `spectrace.exr` and `spectrace.png` in the current folder.
 pub fn run_default() -> Result<(), CliError> {
     let args = RenderArgs {
-        scene: PathBuf::from("<built-in>/prism.toml"),
         output: Some(PathBuf::from("spectrace.exr")),
         png: Some(PathBuf::from("spectrace.png")),
         ..Default::default()
     };
-    let desc = crate::loader::load_str(DEFAULT_SCENE, &args.scene)?;
-    run_desc(&args, desc)
+    let path = PathBuf::from("<built-in>/prism.toml");
+    let desc = crate::loader::load_str(DEFAULT_SCENE, &path)?;
+    run_desc(&args, &path, desc, None)
 }
 
 pub fn run(args: RenderArgs) -> Result<(), CliError> {
+    let (args, resume) = match &args.resume {
+        Some(dir) => {
+            let given = [
+                (args.scene.is_some(), "a scene file"),
+                (args.output.is_some(), "--output"),
+                (args.png.is_some(), "--png"),
+                (args.spp.is_some(), "--spp"),
+                (args.seed != 0, "--seed"),
+                (args.integrator.is_some(), "--integrator"),
+                (args.spectral_bins.is_some(), "--spectral-bins"),
+                (args.exposure.is_some(), "--exposure"),
+                (!args.define.is_empty(), "-D"),
+                (args.mitsuba_units, "--mitsuba-units"),
+                (args.bdpt_strategy.is_some(), "--bdpt-strategy"),
+                (args.part.is_some(), "--part"),
+                (args.time.is_some(), "--time"),
+                (args.target_error.is_some(), "--target-error"),
+            ];
+            if let Some((_, what)) = given.iter().find(|(g, _)| *g) {
+                return Err(CliError::Usage(format!(
+                    "--resume continues the render as it was started; {what} cannot be given again (only --threads and --quiet)"
+                )));
+            }
+            let ck = super::farm::read_checkpoint(dir)?;
+            let mut stored = ck.args.clone();
+            stored.threads = args.threads.or(stored.threads);
+            stored.quiet = args.quiet;
+            stored.checkpoint = Some(dir.clone());
+            (stored, Some(ck))
+        }
+        None => (args, None),
+    };
+    let Some(scene) = args.scene.clone() else {
+        return Err(CliError::Usage("no scene file given".into()));
+    };
     let mut defines = Vec::new();
     for d in &args.define {
         let Some((k, v)) = d.split_once('=') else {
@@ -112,11 +178,16 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         };
         defines.push((k.to_string(), v.to_string()));
     }
-    let desc = crate::loader::load_any(&args.scene, &defines)?;
-    run_desc(&args, desc)
+    let desc = crate::loader::load_any(&scene, &defines)?;
+    run_desc(&args, &scene, desc, resume)
 }
 
-fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), CliError> {
+fn run_desc(
+    args: &RenderArgs,
+    scene_path: &Path,
+    desc: crate::loader::SceneDesc,
+    resume: Option<super::farm::Checkpoint>,
+) -> Result<(), CliError> {
     for n in &desc.notes {
         eprintln!("note: {n}");
     }
@@ -194,8 +265,42 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
         }
         opts.spectral_bins = b;
     }
-    let stem = args
-        .scene
+    let budgets = args.time.is_some() || args.target_error.is_some();
+    if budgets && args.spp.is_none() {
+        opts.spp = MAX_SPP;
+    }
+    if let Some(t) = &args.time {
+        opts.time_limit = Some(super::farm::parse_duration(t, "--time")?);
+    }
+    if let Some(e) = args.target_error {
+        if !(e > 0.0 && e < 1.0) {
+            return Err(CliError::Usage(format!(
+                "--target-error {e}: expected a fraction between 0 and 1, such as 0.01"
+            )));
+        }
+        opts.target_error = Some(e);
+    }
+    if let Some(p) = &args.part {
+        if budgets {
+            return Err(CliError::Usage(
+                "--part renders a fixed share of the samples; it cannot be combined with --time or --target-error".into(),
+            ));
+        }
+        opts.part = Some(super::farm::parse_part(p, opts.spp)?);
+    }
+    let hash = if args.part.is_some() || args.checkpoint.is_some() {
+        super::farm::scene_hash(scene_path, &args.define)?
+    } else {
+        String::new()
+    };
+    let every = match &args.checkpoint {
+        Some(_) => Some(super::farm::parse_duration(
+            &args.checkpoint_every,
+            "--checkpoint-every",
+        )?),
+        None => None,
+    };
+    let stem = scene_path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "render".into());
@@ -219,16 +324,6 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
         }
     }
 
-    install_ctrl_c();
-    let total = scene.film.width as u64 * scene.film.height as u64 * opts.spp as u64;
-    let bar = Progress::new(total, args.quiet);
-    let (film, stats) = render(&scene, &opts, &CANCEL, &|done, _| bar.set(done))
-        .map_err(|e| CliError::Usage(e.to_string()))?;
-    bar.finish();
-    let mut image = film.image();
-    if args.mitsuba_units {
-        crate::output::to_mitsuba_scale(&mut image);
-    }
     let integrator = match opts.integrator {
         IntegratorKind::Path => "path",
         IntegratorKind::Light => "light",
@@ -236,38 +331,129 @@ fn run_desc(args: &RenderArgs, desc: crate::loader::SceneDesc) -> Result<(), Cli
         IntegratorKind::Whitted => "whitted",
         IntegratorKind::Direct { .. } => "direct",
     };
-    let info = RenderInfo {
-        scene_file: &args.scene.display().to_string(),
+    let scene_file = scene_path.display().to_string();
+    let base_info = || RenderInfo {
+        scene_file: &scene_file,
         integrator,
-        spp: if stats.partial {
-            stats.spp_done
-        } else {
-            opts.spp
-        },
+        spp: 0,
         seed: opts.seed,
-        seconds: stats.elapsed.as_secs_f64(),
-        partial: stats.partial,
-        nan_samples: stats.nan_samples,
-        inf_samples: stats.inf_samples,
+        seconds: 0.0,
+        partial: true,
+        nan_samples: 0,
+        inf_samples: 0,
         range: scene.wavelengths,
         mitsuba_units: args.mitsuba_units,
         moment: scene.integrator.moment && !splats,
+        stop: "checkpoint",
+        rel_error: None,
     };
-    write_exr(&exr, &image, &info)?;
+    let snapshot = match &resume {
+        Some(ck) => {
+            if super::farm::scene_hash(scene_path, &args.define)? != ck.scene_hash {
+                return Err(CliError::Usage(format!(
+                    "--resume: {} changed since the checkpoint was started",
+                    scene_path.display()
+                )));
+            }
+            let f = crate::film::Film::new(
+                scene.film.width,
+                scene.film.height,
+                crate::film::Filter::from_desc(&scene.film.filter),
+                scene.wavelengths,
+                opts.spectral_bins,
+            );
+            ck.snapshot(f)?
+        }
+        None => {
+            if let Some(dir) = &args.checkpoint {
+                super::farm::start_checkpoint(dir, args, &hash)?;
+            }
+            None
+        }
+    };
+    let warned = AtomicBool::new(false);
+    let write_checkpoint = |snap: &crate::render::Snapshot| {
+        let Some(dir) = &args.checkpoint else { return };
+        let mut info = base_info();
+        info.seconds = snap.elapsed.as_secs_f64();
+        info.nan_samples = snap.nan_samples;
+        info.inf_samples = snap.inf_samples;
+        if let Err(e) = super::farm::write_checkpoint(dir, snap, &info, &hash)
+            && !warned.swap(true, Ordering::Relaxed)
+        {
+            eprintln!("\nwarning: checkpoint not written (the render goes on): {e}");
+        }
+    };
+
+    install_ctrl_c();
+    let (first, end) = opts.sample_range();
+    let total = scene.film.width as u64 * scene.film.height as u64 * (end - first) as u64;
+    let bar = match opts.time_limit {
+        Some(t) => Progress::timed(t, args.quiet),
+        None => Progress::new(total, args.quiet),
+    };
+    let ctl = crate::render::Control {
+        cancel: &CANCEL,
+        progress: &|done, _| bar.set(done),
+        checkpoint: every.map(|e| (e, &write_checkpoint as &(dyn Fn(&_) + Sync))),
+        resume: snapshot,
+    };
+    let (film, stats) =
+        render_with(&scene, &opts, ctl).map_err(|e| CliError::Usage(e.to_string()))?;
+    bar.finish();
+    let mut image = film.image();
+    if args.mitsuba_units {
+        crate::output::to_mitsuba_scale(&mut image);
+    }
+    let mut info = base_info();
+    info.spp = stats.spp_done;
+    info.seconds = stats.elapsed.as_secs_f64();
+    info.partial = stats.partial;
+    info.nan_samples = stats.nan_samples;
+    info.inf_samples = stats.inf_samples;
+    info.stop = stats.stop.name();
+    info.rel_error = stats.rel_error;
+    match opts.part {
+        Some(part) => {
+            let words = film.state_channels(crate::film::STATE_PREFIX);
+            let state = crate::output::State {
+                words: &words,
+                attributes: super::farm::part_attributes(
+                    part,
+                    &hash,
+                    opts.spp,
+                    scene.wavelengths,
+                    opts.spectral_bins,
+                    info.moment,
+                    args.mitsuba_units,
+                ),
+            };
+            crate::output::write_exr_state(&exr, &image, &info, Some(&state))?;
+        }
+        None => write_exr(&exr, &image, &info)?,
+    }
     let ev = write_png(&png, &image, args.exposure.or(scene.film.exposure_ev))?;
     if !args.quiet {
         let secs = stats.elapsed.as_secs_f64();
+        let why = match stats.stop {
+            crate::render::StopReason::Complete => String::new(),
+            crate::render::StopReason::Cancelled => ", stopped early: the image is partial".into(),
+            crate::render::StopReason::TimeLimit => {
+                format!(", {} spp within the time limit", stats.spp_done)
+            }
+            crate::render::StopReason::TargetError => {
+                format!(", {} spp reached the target error", stats.spp_done)
+            }
+        };
         eprintln!(
-            "{} samples in {:.1} s ({:.2} M samples/s){}",
+            "{} samples in {:.1} s ({:.2} M samples/s){why}",
             stats.samples,
             secs,
             stats.samples as f64 / secs.max(1e-9) / 1e6,
-            if stats.partial {
-                ", stopped early: the image is partial"
-            } else {
-                ""
-            }
         );
+        if let Some(e) = stats.rel_error {
+            eprintln!("estimated relative error of luminance: {:.2} %", e * 100.0);
+        }
         if stats.nan_samples + stats.inf_samples > 0 {
             eprintln!(
                 "dropped {} NaN and {} infinite samples",

@@ -5,7 +5,8 @@
 //! Channels, each `width × height` words, row-major: `<prefix>X.w0` … `<prefix>X.w5` (the six
 //! words of an [`Exact`], least significant first) for the sums `X`, `Y`, `Z` (cd/m²), `L`
 //! (W·m⁻²·sr⁻¹), `m2X`, `m2Y`, `m2Z` ((cd/m²)²) and `S<k>` (bin k, W·m⁻²·sr⁻¹·nm⁻¹), and
-//! `<prefix>count.w0`, `.w1` (the sample count, a u64). The prefix is [`STATE_PREFIX`].
+//! `<prefix>count.w0`, `.w1` (the sample count, a u64). Files use the prefix [`STATE_PREFIX`]
+//! for a film's sums (and `spectrace.pass.` for a `bdpt` checkpoint's unfinished pass).
 
 use super::{Exact, Film};
 
@@ -49,8 +50,8 @@ impl Film {
         }
     }
 
-    /// The state channels (see the module doc), sorted by name.
-    pub fn state_channels(&self) -> Vec<(String, Vec<u32>)> {
+    /// The state channels (see the module doc) with names starting `prefix`, sorted by name.
+    pub fn state_channels(&self, prefix: &str) -> Vec<(String, Vec<u32>)> {
         let n = (self.width * self.height) as usize;
         let mut out = Vec::new();
         for (q, name) in sum_names(self.nbins()).iter().enumerate() {
@@ -61,20 +62,25 @@ impl Film {
                 }
             }
             for (k, plane) in planes.into_iter().enumerate() {
-                out.push((format!("{STATE_PREFIX}{name}.w{k}"), plane));
+                out.push((format!("{prefix}{name}.w{k}"), plane));
             }
         }
         let counts = |shift: u32| self.sums.iter().map(|p| (p.count >> shift) as u32).collect();
-        out.push((format!("{STATE_PREFIX}count.w0"), counts(0)));
-        out.push((format!("{STATE_PREFIX}count.w1"), counts(32)));
+        out.push((format!("{prefix}count.w0"), counts(0)));
+        out.push((format!("{prefix}count.w1"), counts(32)));
         out.sort_by(|a, b| a.0.cmp(&b.0));
         out
     }
 
-    /// Adds the sums and counts stored in `channels` (as [`Film::state_channels`] writes them
-    /// for a film of this size and bin count). Fails, naming it, if a channel is missing or
-    /// holds a wrong number of words; other channels are ignored.
-    pub fn add_state_channels(&mut self, channels: &[(String, Vec<u32>)]) -> Result<(), String> {
+    /// Adds the sums and counts stored in the channels named `prefix…` of `channels` (as
+    /// [`Film::state_channels`] writes them for a film of this size and bin count). Fails,
+    /// naming it, if a channel is missing or holds a wrong number of words, adding nothing;
+    /// other channels are ignored.
+    pub fn add_state_channels(
+        &mut self,
+        prefix: &str,
+        channels: &[(String, Vec<u32>)],
+    ) -> Result<(), String> {
         let n = (self.width * self.height) as usize;
         let find = |name: String| -> Result<&[u32], String> {
             match channels.iter().find(|(c, _)| *c == name) {
@@ -89,12 +95,12 @@ impl Film {
         let mut planes = Vec::new();
         for name in sum_names(self.nbins()) {
             let words: Vec<&[u32]> = (0..6)
-                .map(|k| find(format!("{STATE_PREFIX}{name}.w{k}")))
+                .map(|k| find(format!("{prefix}{name}.w{k}")))
                 .collect::<Result<_, _>>()?;
             planes.push(words);
         }
-        let lo = find(format!("{STATE_PREFIX}count.w0"))?;
-        let hi = find(format!("{STATE_PREFIX}count.w1"))?;
+        let lo = find(format!("{prefix}count.w0"))?;
+        let hi = find(format!("{prefix}count.w1"))?;
         for (q, words) in planes.iter().enumerate() {
             for i in 0..n {
                 let e = Exact::from_words([0, 1, 2, 3, 4, 5].map(|k| words[k][i]));
@@ -137,19 +143,19 @@ mod tests {
             assert!(tile.add(s % 5, s % 3, &w, &l, bins.as_ref()));
         }
         a.merge(&tile);
-        let ch = a.state_channels();
+        let ch = a.state_channels(STATE_PREFIX);
         assert_eq!(ch.len(), 6 * (7 + 4) + 2);
         let mut b = a.empty_like();
-        b.add_state_channels(&ch).unwrap();
+        b.add_state_channels(STATE_PREFIX, &ch).unwrap();
         assert!(a.same_sums(&b));
-        b.add_state_channels(&ch).unwrap();
+        b.add_state_channels(STATE_PREFIX, &ch).unwrap();
         let mut a2 = a.clone();
         a2.merge_film(&a);
         assert!(a2.same_sums(&b));
         assert!(!a.same_sums(&b));
         let mut short = ch.clone();
         short.retain(|(n, _)| !n.ends_with("S3.w2"));
-        let err = a.empty_like().add_state_channels(&short).unwrap_err();
+        let err = a.empty_like().add_state_channels(STATE_PREFIX, &short).unwrap_err();
         assert!(err.contains("S3.w2") && err.contains("missing"), "{err}");
     }
 }

@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 
 use super::{ImageError, invalid};
 
-/// Writes `path` atomically: `f` writes into `<path>.tmp-<pid>` in the same folder, which is then
+/// Writes `path` atomically: `f` writes into `<path>.tmp-<pid>-<n>` in the same folder, which is then
 /// flushed, fsynced and renamed over `path`. Readers see either the old file or the complete new
 /// one, never a partial one.
 ///
@@ -67,13 +67,17 @@ pub fn write_atomically(
     Ok(())
 }
 
-/// `<path>.tmp-<pid>`, in the same folder as `path`.
+/// `<path>.tmp-<pid>-<n>`, in the same folder as `path`.
 fn temp_path(path: &Path) -> Result<PathBuf, ImageError> {
     let Some(name) = path.file_name() else {
         return Err(invalid(path, "the output path does not name a file"));
     };
+    // process id and a counter: threads of one process (a checkpoint beside the image) never
+    // share a temporary file
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let k = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let mut tmp_name = OsString::from(name);
-    tmp_name.push(format!(".tmp-{}", std::process::id()));
+    tmp_name.push(format!(".tmp-{}-{k}", std::process::id()));
     Ok(path.with_file_name(tmp_name))
 }
 
@@ -96,16 +100,14 @@ mod tests {
 
     #[test]
     fn temp_name_sits_beside_the_target() {
+        let pid = std::process::id();
         let t = temp_path(Path::new("/a/b/out.exr")).unwrap();
-        assert_eq!(
-            t,
-            PathBuf::from(format!("/a/b/out.exr.tmp-{}", std::process::id()))
-        );
-        let t = temp_path(Path::new("out.png")).unwrap();
-        assert_eq!(
-            t,
-            PathBuf::from(format!("out.png.tmp-{}", std::process::id()))
-        );
+        assert_eq!(t.parent(), Some(Path::new("/a/b")));
+        let name = t.file_name().unwrap().to_string_lossy().into_owned();
+        assert!(name.starts_with(&format!("out.exr.tmp-{pid}-")), "{name}");
+        // two temporary files of one process differ (threads writing at once)
+        let (a, b) = (temp_path(Path::new("out.png")), temp_path(Path::new("out.png")));
+        assert_ne!(a.unwrap(), b.unwrap());
         assert!(temp_path(Path::new("/")).is_err());
     }
 }

@@ -13,9 +13,9 @@ use super::{ExrImage, ImageError, invalid};
 /// channels by name, converted to `f32` (half floats are exact in `f32`), and the text, float,
 /// double and int header attributes.
 ///
-/// The data window's size is the image size; its offset is ignored. Fails with an error naming
-/// the file if it cannot be opened or decoded, holds several layers (parts) or deep data, or a
-/// channel that is unsigned-integer or subsampled. A panic inside the decoder on a corrupt file
+/// Unsigned-integer channels are returned apart, in [`ExrImage::words`]. The data window's size
+/// is the image size; its offset is ignored. Fails with an error naming the file if it cannot
+/// be opened or decoded, holds several layers (parts) or deep data, or a subsampled channel. A panic inside the decoder on a corrupt file
 /// is caught and reported as an error too.
 pub fn read_exr(path: &Path) -> Result<ExrImage, ImageError> {
     let decoded = catch_unwind(AssertUnwindSafe(|| {
@@ -63,6 +63,7 @@ pub fn read_exr(path: &Path) -> Result<ExrImage, ImageError> {
     let (width, height) = (layer.size.0, layer.size.1);
     let pixels = width * height;
     let mut channels = Vec::with_capacity(layer.channel_data.list.len());
+    let mut words = Vec::new();
     for channel in &layer.channel_data.list {
         let name = from_text(&channel.name);
         if channel.sampling.0 != 1 || channel.sampling.1 != 1 {
@@ -71,11 +72,15 @@ pub fn read_exr(path: &Path) -> Result<ExrImage, ImageError> {
         let values: Vec<f32> = match &channel.sample_data {
             FlatSamples::F32(v) => v.clone(),
             FlatSamples::F16(v) => v.iter().map(|h| h.to_f32()).collect(),
-            FlatSamples::U32(_) => {
-                return Err(invalid(
-                    path,
-                    format!("channel `{name}` holds unsigned integers, not floats"),
-                ));
+            FlatSamples::U32(v) => {
+                if v.len() != pixels {
+                    return Err(invalid(
+                        path,
+                        format!("channel `{name}` holds {} values for {pixels} pixels", v.len()),
+                    ));
+                }
+                words.push((name, v.clone()));
+                continue;
             }
         };
         if values.len() != pixels {
@@ -94,6 +99,7 @@ pub fn read_exr(path: &Path) -> Result<ExrImage, ImageError> {
         width,
         height,
         channels,
+        words,
         attributes,
     })
 }

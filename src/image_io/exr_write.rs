@@ -10,7 +10,9 @@ use exr::prelude::{
 
 use super::exr_attrs::{check_name, layer_attributes, to_text};
 use super::spectral_names::{self, EMISSIVE_UNITS, SPECTRAL_LAYOUT_VERSION};
-use super::{AttrValue, Channel, ImageError, invalid, pixel_count, write_atomically};
+use super::{
+    AttrValue, Channel, ImageError, WordChannel, invalid, pixel_count, write_atomically,
+};
 
 /// Lossless for float32 (unlike PXR24 or B44), widely supported, and compact.
 const ENCODING: Encoding = Encoding {
@@ -35,6 +37,20 @@ pub fn write_exr(
     channels: &[Channel],
     attributes: &[(&str, AttrValue)],
 ) -> Result<(), ImageError> {
+    write_exr_words(path, width, height, channels, &[], attributes)
+}
+
+/// [`write_exr`] with unsigned 32-bit integer channels `words` beside the float channels
+/// (OpenEXR's `UINT` pixel type: exact data such as a film's sums, which viewers list but do
+/// not show as colour). Names must differ from every float channel's.
+pub fn write_exr_words(
+    path: &Path,
+    width: usize,
+    height: usize,
+    channels: &[Channel],
+    words: &[WordChannel],
+    attributes: &[(&str, AttrValue)],
+) -> Result<(), ImageError> {
     let pixels = pixel_count(path, width, height)?;
     if i32::try_from(width).is_err() || i32::try_from(height).is_err() {
         return Err(invalid(
@@ -56,11 +72,35 @@ pub fn write_exr(
         }
         check_pixels(path, width, pixels, c)?;
     }
+    for c in words {
+        check_name(path, "channel", c.name)?;
+        if !names.insert(c.name) {
+            return Err(invalid(
+                path,
+                format!("channel `{}` is given twice", c.name),
+            ));
+        }
+        if c.data.len() != pixels {
+            return Err(invalid(
+                path,
+                format!(
+                    "channel `{}` holds {} values, the image has {pixels} pixels",
+                    c.name,
+                    c.data.len()
+                ),
+            ));
+        }
+    }
     let layer_attributes = layer_attributes(path, attributes)?;
 
     let list: SmallVec<[AnyChannel<FlatSamples>; 4]> = channels
         .iter()
         .map(|c| AnyChannel::new(to_text(c.name), FlatSamples::F32(c.data.to_vec())))
+        .chain(
+            words
+                .iter()
+                .map(|c| AnyChannel::new(to_text(c.name), FlatSamples::U32(c.data.to_vec()))),
+        )
         .collect();
     let layer = Layer::new(
         (width, height),
@@ -108,6 +148,31 @@ pub fn write_spectral_exr(
     extra: &[Channel],
     attributes: &[(&str, AttrValue)],
 ) -> Result<(), ImageError> {
+    let spectral = Spectral {
+        wavelengths_nm,
+        bins,
+    };
+    write_spectral_exr_words(path, width, height, &spectral, extra, &[], attributes)
+}
+
+/// The spectral channels of [`write_spectral_exr_words`]: bin centres (nm) and the mean
+/// spectral radiance of each bin (W·m⁻²·sr⁻¹·nm⁻¹).
+pub struct Spectral<'a> {
+    pub wavelengths_nm: &'a [f32],
+    pub bins: &'a [&'a [f32]],
+}
+
+/// [`write_spectral_exr`] with unsigned-integer channels `words`, as [`write_exr_words`].
+pub fn write_spectral_exr_words(
+    path: &Path,
+    width: usize,
+    height: usize,
+    spectral: &Spectral,
+    extra: &[Channel],
+    words: &[WordChannel],
+    attributes: &[(&str, AttrValue)],
+) -> Result<(), ImageError> {
+    let (wavelengths_nm, bins) = (spectral.wavelengths_nm, spectral.bins);
     if wavelengths_nm.len() != bins.len() {
         return Err(invalid(
             path,
@@ -171,7 +236,7 @@ pub fn write_spectral_exr(
         ("emissiveUnits", AttrValue::Text(EMISSIVE_UNITS.into())),
     ];
     all_attributes.extend(attributes.iter().cloned());
-    write_exr(path, width, height, &channels, &all_attributes)
+    write_exr_words(path, width, height, &channels, words, &all_attributes)
 }
 
 /// Checks a channel's length and that every value is finite.

@@ -6,7 +6,7 @@
 //! touching the file formats. This is the only module that names the `exr` and `png` crates.
 //!
 //! Every writer validates everything first (sizes, names, finite values) and then writes
-//! through [`write_atomically`]: a temporary file `<path>.tmp-<pid>` in the same folder, fsync,
+//! through [`write_atomically`]: a temporary file `<path>.tmp-<pid>-<n>` in the same folder, fsync,
 //! rename. A failed write never leaves a partial file and never clobbers an existing one.
 //!
 //! | file | what it holds |
@@ -33,7 +33,9 @@ use std::path::{Path, PathBuf};
 
 pub use atomic::write_atomically;
 pub use exr_read::read_exr;
-pub use exr_write::{write_exr, write_spectral_exr};
+pub use exr_write::{
+    Spectral, write_exr, write_exr_words, write_spectral_exr, write_spectral_exr_words,
+};
 pub use png_out::{write_png_linear, write_png_srgb8};
 pub use rgb_in::{Encoding, RgbImage, read_rgb};
 pub use spectral_names::{EMISSIVE_UNITS, SPECTRAL_LAYOUT_VERSION, spectral_channels};
@@ -43,6 +45,13 @@ pub use spectral_names::{EMISSIVE_UNITS, SPECTRAL_LAYOUT_VERSION, spectral_chann
 pub struct Channel<'a> {
     pub name: &'a str,
     pub data: &'a [f32],
+}
+
+/// One unsigned 32-bit integer channel, row-major, top row first, `width * height` values.
+#[derive(Debug, Clone, Copy)]
+pub struct WordChannel<'a> {
+    pub name: &'a str,
+    pub data: &'a [u32],
 }
 
 /// The value of an extra header attribute.
@@ -65,6 +74,8 @@ pub struct ExrImage {
     /// All channels as stored in the file (EXR sorts them by name), each `width * height`
     /// values, row-major, top row first.
     pub channels: Vec<(String, Vec<f32>)>,
+    /// Unsigned 32-bit integer channels, by name, as stored.
+    pub words: Vec<(String, Vec<u32>)>,
     /// Text, float, double and int header attributes, sorted by name. Structural attributes
     /// (`channels`, `dataWindow`, `compression`, …) are not listed.
     pub attributes: Vec<(String, AttrValue)>,

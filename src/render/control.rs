@@ -8,6 +8,7 @@
 //! uninterrupted render.
 
 use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
 use crate::film::Film;
@@ -102,10 +103,15 @@ pub(super) fn passes(first: u32, end: u32) -> Vec<(u32, u32)> {
     out
 }
 
-/// Calls the checkpoint writer at most once per `every`.
+/// Calls the checkpoint writer at most once per `every`, one call at a time.
 pub(super) struct Ticker<'a> {
     every: Duration,
     last: Mutex<Instant>,
+    /// Held while a checkpoint is written: one writer at a time, and the last one written
+    /// is the newest state.
+    writing: Mutex<()>,
+    /// Set by the caller of [`Ticker::due`] that will write.
+    claimed: AtomicBool,
     write: &'a (dyn Fn(&Snapshot) + Sync),
 }
 
@@ -114,23 +120,27 @@ impl<'a> Ticker<'a> {
         Self {
             every,
             last: Mutex::new(Instant::now()),
+            writing: Mutex::new(()),
+            claimed: AtomicBool::new(false),
             write,
         }
     }
 
-    /// Whether a checkpoint is due (and, if so, restarts the interval).
+    /// Whether a checkpoint is due: `every` has passed since the last one was written, and
+    /// none is being written (the interval counts from the end of a write, so that slow
+    /// writes never take over the render).
+    /// A true answer claims the checkpoint: the caller must call [`Ticker::write`].
     pub fn due(&self) -> bool {
-        let mut last = self.last.lock().unwrap_or_else(|p| p.into_inner());
-        if last.elapsed() >= self.every {
-            *last = Instant::now();
-            true
-        } else {
-            false
-        }
+        let last = self.last.lock().unwrap_or_else(|p| p.into_inner());
+        last.elapsed() >= self.every && !self.claimed.swap(true, Ordering::AcqRel)
     }
 
+    /// Writes `snap` (after any write in progress) and restarts the interval.
     pub fn write(&self, snap: &Snapshot) {
-        (self.write)(snap)
+        let _one = self.writing.lock().unwrap_or_else(|p| p.into_inner());
+        (self.write)(snap);
+        *self.last.lock().unwrap_or_else(|p| p.into_inner()) = Instant::now();
+        self.claimed.store(false, Ordering::Release);
     }
 }
 
