@@ -53,6 +53,12 @@ MERGE_SBATCH=$REPO/docs/slurm/merge.sbatch
 [[ $SPP =~ ^[1-9][0-9]*$ ]] || die "SPP=$SPP is not a positive integer"
 [[ $N =~ ^[1-9][0-9]*$ ]] || die "N=$N is not a positive integer"
 [[ -f $PARTS_SBATCH && -f $MERGE_SBATCH ]] || die "missing docs/slurm/*.sbatch"
+if [[ $STANDIN != 1 ]]; then # the real binary must know --part and merge
+  help=$("$SPECTRACE_BIN" render --help 2>/dev/null || true)
+  [[ $help == *--part* ]] ||
+    die "$SPECTRACE_BIN has no 'render --part' (not built yet?); SPECTRACE_STANDIN=1 tests the Slurm side alone"
+  "$SPECTRACE_BIN" merge --help >/dev/null 2>&1 || die "$SPECTRACE_BIN has no 'merge' command"
+fi
 
 WORK=${SLURM_TEST_WORKDIR:-$(mktemp -d /tmp/spectrace-slurm-test.XXXXXX)}
 mkdir -p "$WORK/out" "$WORK/logs"
@@ -267,11 +273,6 @@ else
 fi
 EOF
   chmod +x "$BIN"
-else
-  # The real binary must know --part and merge.
-  "$BIN" render --help 2>/dev/null | grep -q -- '--part' ||
-    die "$BIN has no 'render --part' (not built yet?); SPECTRACE_STANDIN=1 tests the Slurm side alone"
-  "$BIN" merge --help >/dev/null 2>&1 || die "$BIN has no 'merge' command"
 fi
 
 # --- 3. The array of parts and the merge ----------------------------------------------------------

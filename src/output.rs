@@ -174,7 +174,10 @@ pub fn write_exr_state(
             "spectrace:droppedInfSamples",
             AttrValue::Double(info.inf_samples as f64),
         ),
-        ("spectrace:stopReason", AttrValue::Text(info.stop.to_string())),
+        (
+            "spectrace:stopReason",
+            AttrValue::Text(info.stop.to_string()),
+        ),
     ];
     if let Some(e) = info.rel_error {
         attrs.push(("spectrace:estimatedRelativeErrorY", AttrValue::Double(e)));
@@ -202,9 +205,7 @@ pub fn write_exr_state(
                 path, img.width, img.height, &spectral, &channels, &words, &attrs,
             )
         }
-        None => {
-            image_io::write_exr_words(path, img.width, img.height, &channels, &words, &attrs)
-        }
+        None => image_io::write_exr_words(path, img.width, img.height, &channels, &words, &attrs),
     }
 }
 

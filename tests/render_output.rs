@@ -61,6 +61,8 @@ fn spectral_exr_reads_back_with_the_same_bins_and_values() {
         range: scene.wavelengths,
         mitsuba_units: false,
         moment: false,
+        stop: "complete",
+        rel_error: stats.rel_error,
     };
     spectrace::output::write_exr(&path, &img, &info).unwrap();
     let back = read_exr(&path).unwrap();

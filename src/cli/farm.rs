@@ -76,9 +76,8 @@ pub fn parse_part(text: &str, spp: u32) -> Result<(u32, u32), CliError> {
 /// FNV-1a (64 bits) of the scene file's bytes and the -D definitions, as hex: a checkpoint or
 /// part made from another scene file is refused.
 pub fn scene_hash(scene: &Path, defines: &[String]) -> Result<String, CliError> {
-    let bytes = std::fs::read(scene).map_err(|e| {
-        CliError::Usage(format!("cannot read scene {}: {e}", scene.display()))
-    })?;
+    let bytes = std::fs::read(scene)
+        .map_err(|e| CliError::Usage(format!("cannot read scene {}: {e}", scene.display())))?;
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for b in bytes.iter().chain(defines.join("\n").as_bytes()) {
         h ^= *b as u64;
@@ -127,7 +126,10 @@ pub fn start_checkpoint(dir: &Path, args: &RenderArgs, hash: &str) -> Result<(),
         )));
     }
     std::fs::create_dir_all(dir).map_err(|e| {
-        CliError::Usage(format!("cannot create checkpoint folder {}: {e}", dir.display()))
+        CliError::Usage(format!(
+            "cannot create checkpoint folder {}: {e}",
+            dir.display()
+        ))
     })?;
     let stored = Stored {
         scene_hash: hash.to_string(),
@@ -231,12 +233,15 @@ pub fn read_checkpoint(dir: &Path) -> Result<Checkpoint, CliError> {
             a.display()
         ))
     })?;
-    let stored: Stored = toml::from_str(&text)
-        .map_err(|e| CliError::Usage(format!("{}: {e}", a.display())))?;
+    let stored: Stored =
+        toml::from_str(&text).map_err(|e| CliError::Usage(format!("{}: {e}", a.display())))?;
     // temporary files of sessions killed while writing a checkpoint (never the state itself)
     if let Ok(entries) = std::fs::read_dir(dir) {
         for e in entries.flatten() {
-            if e.file_name().to_string_lossy().starts_with("state.exr.tmp-") {
+            if e.file_name()
+                .to_string_lossy()
+                .starts_with("state.exr.tmp-")
+            {
                 let _ = std::fs::remove_file(e.path());
             }
         }
@@ -271,7 +276,8 @@ impl Checkpoint {
             return Err(bad("the state belongs to another render".into()));
         }
         let mut f = film.empty_like();
-        f.add_state_channels(STATE_PREFIX, &img.words).map_err(bad)?;
+        f.add_state_channels(STATE_PREFIX, &img.words)
+            .map_err(bad)?;
         let pass_film = if num_attr::<i32>(img, path, "spectrace:checkpointPassFilm")? != 0 {
             let mut p = film.empty_like();
             p.add_state_channels(PASS_PREFIX, &img.words).map_err(bad)?;
@@ -281,7 +287,9 @@ impl Checkpoint {
         };
         let done = text_attr(img, path, "spectrace:checkpointTilesDone")?;
         if done.chars().any(|c| c != '0' && c != '1') {
-            return Err(bad("attribute `spectrace:checkpointTilesDone` is not 0s and 1s".into()));
+            return Err(bad(
+                "attribute `spectrace:checkpointTilesDone` is not 0s and 1s".into(),
+            ));
         }
         let secs: f64 = num_attr(img, path, "spectrace:checkpointSeconds")?;
         Ok(Some(Snapshot {
@@ -308,14 +316,26 @@ pub fn part_attributes(
     mitsuba_units: bool,
 ) -> Vec<(&'static str, AttrValue)> {
     vec![
-        ("spectrace:part", AttrValue::Text(format!("{}/{}", part.0, part.1))),
+        (
+            "spectrace:part",
+            AttrValue::Text(format!("{}/{}", part.0, part.1)),
+        ),
         ("spectrace:sceneHash", AttrValue::Text(hash.to_string())),
         ("spectrace:partsSamplesPerPixel", AttrValue::Int(spp as i32)),
-        ("spectrace:wavelengthMinNm", AttrValue::Double(range.min_nm as f64)),
-        ("spectrace:wavelengthMaxNm", AttrValue::Double(range.max_nm as f64)),
+        (
+            "spectrace:wavelengthMinNm",
+            AttrValue::Double(range.min_nm as f64),
+        ),
+        (
+            "spectrace:wavelengthMaxNm",
+            AttrValue::Double(range.max_nm as f64),
+        ),
         ("spectrace:spectralBins", AttrValue::Int(bins as i32)),
         ("spectrace:moment", AttrValue::Int(moment as i32)),
-        ("spectrace:mitsubaUnits", AttrValue::Int(mitsuba_units as i32)),
+        (
+            "spectrace:mitsubaUnits",
+            AttrValue::Int(mitsuba_units as i32),
+        ),
     ]
 }
 
@@ -487,7 +507,10 @@ pub fn merge(args: MergeArgs) -> Result<(), CliError> {
 /// The first field in which two parts differ, for the error message.
 fn difference(a: &PartKey, b: &PartKey) -> String {
     if a.size != b.size {
-        format!("{}×{} against {}×{} pixels", b.size.0, b.size.1, a.size.0, a.size.1)
+        format!(
+            "{}×{} against {}×{} pixels",
+            b.size.0, b.size.1, a.size.0, a.size.1
+        )
     } else if a.n != b.n {
         format!("a part of {} against a part of {}", b.n, a.n)
     } else if a.hash != b.hash || a.scene != b.scene {

@@ -27,9 +27,9 @@ impl Progress {
         if quiet || !std::io::stderr().is_terminal() {
             bar.set_draw_target(ProgressDrawTarget::hidden());
         }
-        if let Ok(style) =
-            ProgressStyle::with_template("{elapsed_precise} [{wide_bar}] {percent:>3}% of the time budget")
-        {
+        if let Ok(style) = ProgressStyle::with_template(
+            "{elapsed_precise} [{wide_bar}] {percent:>3}% of the time budget",
+        ) {
             bar.set_style(style.progress_chars("=> "));
         }
         bar.set_message("timed");

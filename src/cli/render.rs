@@ -89,7 +89,12 @@ pub struct RenderArgs {
     #[arg(long, value_name = "DIR")]
     pub checkpoint: Option<PathBuf>,
     /// Time between checkpoints ("60s", "5m", "500ms"; a bare number is seconds).
-    #[arg(long, value_name = "TIME", default_value = "60s", requires = "checkpoint")]
+    #[arg(
+        long,
+        value_name = "TIME",
+        default_value = "60s",
+        requires = "checkpoint"
+    )]
     pub checkpoint_every: String,
     /// Continue the render checkpointed in DIR, with the arguments it was started with
     /// (only --threads and --quiet may be given again).

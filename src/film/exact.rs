@@ -139,7 +139,10 @@ mod tests {
         for v in [0.0, 1.0, -1.0, 0.5, 3.25, -7.75e-3, 1e20, -2.5e25, 1e-28] {
             let e = Exact::from_f64(v);
             let back = e.to_f64();
-            assert!((back - v).abs() <= v.abs() * 1e-15 + 2f64.powi(-96), "{v} → {back}");
+            assert!(
+                (back - v).abs() <= v.abs() * 1e-15 + 2f64.powi(-96),
+                "{v} → {back}"
+            );
         }
         assert_eq!(Exact::from_f64(1e-30), Exact::ZERO);
         assert_eq!(Exact::from_f64(f64::NAN), Exact::ZERO);
@@ -148,15 +151,24 @@ mod tests {
         // 2⁻⁹⁶ itself, and 1.5 · 2⁻⁹⁶ truncates to it
         assert_eq!(Exact::from_f64(2f64.powi(-96)).0, [1, 0, 0]);
         assert_eq!(Exact::from_f64(1.5 * 2f64.powi(-96)).0, [1, 0, 0]);
-        assert_eq!(Exact::from_f64(-1.5 * 2f64.powi(-96)), Exact([1, 0, 0]).neg());
+        assert_eq!(
+            Exact::from_f64(-1.5 * 2f64.powi(-96)),
+            Exact([1, 0, 0]).neg()
+        );
 
         let mut k = 7u64;
         let terms: Vec<f64> = (0..2000)
             .map(|_| {
-                k = k.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                k = k
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
                 let m = (k >> 11) as f64 / (1u64 << 53) as f64;
                 let e = ((k >> 3) % 60) as i32 - 40;
-                if k & 1 == 0 { m * 2f64.powi(e) } else { -m * 2f64.powi(e) }
+                if k & 1 == 0 {
+                    m * 2f64.powi(e)
+                } else {
+                    -m * 2f64.powi(e)
+                }
             })
             .collect();
         let mut fwd = Exact::ZERO;

@@ -17,8 +17,8 @@ mod state;
 
 pub use exact::{Exact, MAX_TERM};
 pub use filter::Filter;
-pub use state::STATE_PREFIX;
 pub use splats::{Splat, SplatList};
+pub use state::STATE_PREFIX;
 
 use crate::colour::cie::{K_M, cmf};
 use crate::colour::spaces::xyz_to_srgb;

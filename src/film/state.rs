@@ -65,7 +65,12 @@ impl Film {
                 out.push((format!("{prefix}{name}.w{k}"), plane));
             }
         }
-        let counts = |shift: u32| self.sums.iter().map(|p| (p.count >> shift) as u32).collect();
+        let counts = |shift: u32| {
+            self.sums
+                .iter()
+                .map(|p| (p.count >> shift) as u32)
+                .collect()
+        };
         out.push((format!("{prefix}count.w0"), counts(0)));
         out.push((format!("{prefix}count.w1"), counts(32)));
         out.sort_by(|a, b| a.0.cmp(&b.0));
@@ -155,7 +160,10 @@ mod tests {
         assert!(!a.same_sums(&b));
         let mut short = ch.clone();
         short.retain(|(n, _)| !n.ends_with("S3.w2"));
-        let err = a.empty_like().add_state_channels(STATE_PREFIX, &short).unwrap_err();
+        let err = a
+            .empty_like()
+            .add_state_channels(STATE_PREFIX, &short)
+            .unwrap_err();
         assert!(err.contains("S3.w2") && err.contains("missing"), "{err}");
     }
 }

@@ -106,7 +106,10 @@ mod tests {
         let name = t.file_name().unwrap().to_string_lossy().into_owned();
         assert!(name.starts_with(&format!("out.exr.tmp-{pid}-")), "{name}");
         // two temporary files of one process differ (threads writing at once)
-        let (a, b) = (temp_path(Path::new("out.png")), temp_path(Path::new("out.png")));
+        let (a, b) = (
+            temp_path(Path::new("out.png")),
+            temp_path(Path::new("out.png")),
+        );
         assert_ne!(a.unwrap(), b.unwrap());
         assert!(temp_path(Path::new("/")).is_err());
     }

@@ -76,7 +76,10 @@ pub fn read_exr(path: &Path) -> Result<ExrImage, ImageError> {
                 if v.len() != pixels {
                     return Err(invalid(
                         path,
-                        format!("channel `{name}` holds {} values for {pixels} pixels", v.len()),
+                        format!(
+                            "channel `{name}` holds {} values for {pixels} pixels",
+                            v.len()
+                        ),
                     ));
                 }
                 words.push((name, v.clone()));

@@ -10,9 +10,7 @@ use exr::prelude::{
 
 use super::exr_attrs::{check_name, layer_attributes, to_text};
 use super::spectral_names::{self, EMISSIVE_UNITS, SPECTRAL_LAYOUT_VERSION};
-use super::{
-    AttrValue, Channel, ImageError, WordChannel, invalid, pixel_count, write_atomically,
-};
+use super::{AttrValue, Channel, ImageError, WordChannel, invalid, pixel_count, write_atomically};
 
 /// Lossless for float32 (unlike PXR24 or B44), widely supported, and compact.
 const ENCODING: Encoding = Encoding {

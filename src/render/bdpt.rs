@@ -13,9 +13,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use super::control::ErrorEstimate;
-use super::{
-    Ctx, RenderStats, Snapshot, StopReason, camera_sample, count_dropped, splat_filtered,
-};
+use super::{Ctx, RenderStats, Snapshot, StopReason, camera_sample, count_dropped, splat_filtered};
 use crate::film::{Film, SplatList, Tile};
 use crate::integrator::bdpt::{Scratch, sample};
 use crate::sampler::Sampler;
@@ -46,7 +44,10 @@ pub(super) fn render(
     let (filter, bins) = (film.filter.clone(), film.bins.clone());
     let pass0 = (snap.pass as usize).min(passes.len());
     let pixels = w as u64 * h as u64;
-    let done_before: u64 = passes[..pass0].iter().map(|(a, b)| (b - a) as u64 * pixels).sum();
+    let done_before: u64 = passes[..pass0]
+        .iter()
+        .map(|(a, b)| (b - a) as u64 * pixels)
+        .sum();
     let done = AtomicU64::new(done_before);
     let (nan, inf) = (
         AtomicU64::new(snap.nan_samples),
@@ -54,7 +55,11 @@ pub(super) fn render(
     );
     // tiles traced at once: a few per thread, each holding its pass's splats
     let batch = 4 * ctx.pool.current_num_threads().max(1);
-    let mut spp_done = if pass0 > 0 { passes[pass0 - 1].1 - first } else { 0 };
+    let mut spp_done = if pass0 > 0 {
+        passes[pass0 - 1].1 - first
+    } else {
+        0
+    };
     let mut stop = StopReason::Complete;
     let mut estimate = ErrorEstimate::default();
     let mut resumed = Some((snap.pass_film, snap.tiles_done));
@@ -180,7 +185,10 @@ pub(super) fn render(
         pass += 1;
         estimate.update(&film, spp_done);
         if let Some(next) = passes.get(pass) {
-            if ctx.budget.would_exceed(b - a, t0.elapsed(), next.1 - next.0) {
+            if ctx
+                .budget
+                .would_exceed(b - a, t0.elapsed(), next.1 - next.0)
+            {
                 stop = StopReason::TimeLimit;
                 break;
             }

@@ -248,7 +248,9 @@ mod tests {
         let mut k = 99u64;
         let mut gauss = || {
             let mut u = || {
-                k = k.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                k = k
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
                 ((k >> 11) as f64 + 0.5) / (1u64 << 53) as f64
             };
             let (a, b) = (u(), u());

@@ -61,8 +61,11 @@ pub(super) fn render(ctx: &Ctx<'_>, snap: Snapshot) -> (Film, RenderStats) {
         let n_next = (last * LIGHT_CHUNK).min(total) - first_chunk * LIGHT_CHUNK;
         if ctx.budget.spent()
             || last_batch.is_some_and(|(n, took)| {
-                ctx.budget
-                    .would_exceed(n.min(u32::MAX as u64) as u32, took, n_next.min(u32::MAX as u64) as u32)
+                ctx.budget.would_exceed(
+                    n.min(u32::MAX as u64) as u32,
+                    took,
+                    n_next.min(u32::MAX as u64) as u32,
+                )
             })
         {
             stop = StopReason::TimeLimit;

@@ -32,8 +32,8 @@ mod bdpt;
 mod control;
 mod light;
 
-pub use control::{Snapshot, StopReason};
 use control::{Budget, ErrorEstimate, Ticker, check_resume, passes};
+pub use control::{Snapshot, StopReason};
 
 /// Tile side, pixels.
 const TILE: u32 = 16;
@@ -225,7 +225,9 @@ pub fn render_with(
         pool: &pool,
         cancel: ctl.cancel,
         progress: ctl.progress,
-        ticker: ctl.checkpoint.map(|(every, write)| Ticker::new(every, write)),
+        ticker: ctl
+            .checkpoint
+            .map(|(every, write)| Ticker::new(every, write)),
         budget: Budget {
             limit: opts.time_limit,
             before: ctl.resume.as_ref().map_or(Duration::ZERO, |s| s.elapsed),
@@ -305,7 +307,11 @@ fn render_tiles(
         inf_samples: s.inf,
         elapsed: ctx.budget.elapsed(),
     };
-    let mut spp_done = if pass0 > 0 { passes[pass0 - 1].1 - first } else { 0 };
+    let mut spp_done = if pass0 > 0 {
+        passes[pass0 - 1].1 - first
+    } else {
+        0
+    };
     let mut stop = StopReason::Complete;
     let mut estimate = ErrorEstimate::default();
     let mut pass = pass0;
@@ -321,41 +327,48 @@ fn render_tiles(
         }
         let t0 = Instant::now();
         ctx.pool.install(|| {
-            tiles.par_iter().enumerate().for_each(|(ti, &(x0, y0, tw, th))| {
-                if ctx.cancel.load(Ordering::Relaxed) || lock().tiles_done[ti] {
-                    return;
-                }
-                let nb = bins.as_ref().map_or(0, |b| b.count);
-                let mut tile = crate::film::Tile::new(x0, y0, tw, th, nb);
-                let (mut nan, mut inf) = (0, 0);
-                for y in y0..y0 + th {
-                    for x in x0..x0 + tw {
-                        for i in a..b {
-                            let (mut s, mut wl, ray) =
-                                camera_sample(scene, ctx.lambda, &filter, opts.seed, x, y, i);
-                            let l = ctx.integrator.radiance(ray, &mut wl, &mut s);
-                            if !tile.add(x, y, &wl, &l, bins.as_ref()) {
-                                match non_finite(&wl, &l) {
-                                    Some(NonFinite::NaN) => nan += 1,
-                                    _ => inf += 1,
+            tiles
+                .par_iter()
+                .enumerate()
+                .for_each(|(ti, &(x0, y0, tw, th))| {
+                    if ctx.cancel.load(Ordering::Relaxed) || lock().tiles_done[ti] {
+                        return;
+                    }
+                    let nb = bins.as_ref().map_or(0, |b| b.count);
+                    let mut tile = crate::film::Tile::new(x0, y0, tw, th, nb);
+                    let (mut nan, mut inf) = (0, 0);
+                    for y in y0..y0 + th {
+                        for x in x0..x0 + tw {
+                            for i in a..b {
+                                let (mut s, mut wl, ray) =
+                                    camera_sample(scene, ctx.lambda, &filter, opts.seed, x, y, i);
+                                let l = ctx.integrator.radiance(ray, &mut wl, &mut s);
+                                if !tile.add(x, y, &wl, &l, bins.as_ref()) {
+                                    match non_finite(&wl, &l) {
+                                        Some(NonFinite::NaN) => nan += 1,
+                                        _ => inf += 1,
+                                    }
                                 }
                             }
                         }
                     }
-                }
-                let n = (tw * th * (b - a)) as u64;
-                let mut s = lock();
-                s.film.merge(&tile);
-                s.tiles_done[ti] = true;
-                s.nan += nan;
-                s.inf += inf;
-                let due = ctx.ticker.as_ref().filter(|t| t.due()).map(|_| snapshot(&s, pass));
-                drop(s);
-                if let (Some(t), Some(snap)) = (&ctx.ticker, due) {
-                    t.write(&snap);
-                }
-                (ctx.progress)(done.fetch_add(n, Ordering::Relaxed) + n, ctx.total);
-            })
+                    let n = (tw * th * (b - a)) as u64;
+                    let mut s = lock();
+                    s.film.merge(&tile);
+                    s.tiles_done[ti] = true;
+                    s.nan += nan;
+                    s.inf += inf;
+                    let due = ctx
+                        .ticker
+                        .as_ref()
+                        .filter(|t| t.due())
+                        .map(|_| snapshot(&s, pass));
+                    drop(s);
+                    if let (Some(t), Some(snap)) = (&ctx.ticker, due) {
+                        t.write(&snap);
+                    }
+                    (ctx.progress)(done.fetch_add(n, Ordering::Relaxed) + n, ctx.total);
+                })
         });
         let mut s = lock();
         if !s.tiles_done.iter().all(|&d| d) {
@@ -368,7 +381,10 @@ fn render_tiles(
         estimate.update(&s.film, spp_done);
         drop(s);
         if let Some(next) = passes.get(pass) {
-            if ctx.budget.would_exceed(b - a, t0.elapsed(), next.1 - next.0) {
+            if ctx
+                .budget
+                .would_exceed(b - a, t0.elapsed(), next.1 - next.0)
+            {
                 stop = StopReason::TimeLimit;
                 break;
             }
@@ -469,4 +485,3 @@ fn splat_filtered<const N: usize>(
         });
     to.splat_weighted(pixels, wl, l, bins)
 }
-
