@@ -108,3 +108,59 @@ fn every_bad_scene_errors_cleanly() {
         failures.join("\n")
     );
 }
+
+/// A FIFO named as the scene, an include or a mesh is refused at once (opening it would block
+/// until a writer comes, reading it could go on for ever).
+#[test]
+fn fifos_are_refused_without_blocking() {
+    let dir = std::env::temp_dir().join(format!("spectrace-fifo-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let fifo = dir.join("pipe");
+    let ok = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .expect("mkfifo runs");
+    assert!(ok.success());
+    let (tx, rx) = std::sync::mpsc::channel();
+    let d = dir.clone();
+    std::thread::spawn(move || {
+        let sensor = r#"<sensor type="perspective"><float name="fov" value="40"/></sensor>"#;
+        let scene = |body: &str| format!(r#"<scene version="3.0.0">{sensor}{body}</scene>"#);
+        let mut msgs = Vec::new();
+        msgs.push(
+            spectrace::loader::mitsuba::load(&d.join("pipe"), &[])
+                .err()
+                .map(|e| e.to_string()),
+        );
+        msgs.push(
+            spectrace::loader::load(&d.join("pipe"))
+                .err()
+                .map(|e| e.to_string()),
+        );
+        for body in [
+            r#"<include filename="pipe"/>"#,
+            r#"<shape type="obj"><string name="filename" value="pipe"/></shape>"#,
+        ] {
+            let p = d.join("s.xml");
+            std::fs::write(&p, scene(body)).unwrap();
+            let r = spectrace::loader::mitsuba::load(&p, &[]).map_err(|e| e.to_string());
+            msgs.push(match r {
+                Ok(desc) => spectrace::scene::build(&desc).err().map(|e| e.to_string()),
+                Err(e) => Some(e),
+            });
+        }
+        tx.send(msgs).unwrap();
+    });
+    let msgs = rx
+        .recv_timeout(std::time::Duration::from_secs(20))
+        .expect("loading FIFOs blocked");
+    for m in msgs {
+        let m = m.expect("a FIFO was accepted");
+        assert!(
+            m.contains("not a regular file") && m.contains("pipe"),
+            "{m}"
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

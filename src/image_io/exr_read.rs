@@ -18,6 +18,12 @@ use super::{ExrImage, ImageError, invalid};
 /// be opened or decoded, holds several layers (parts) or deep data, or a subsampled channel. A panic inside the decoder on a corrupt file
 /// is caught and reported as an error too.
 pub fn read_exr(path: &Path) -> Result<ExrImage, ImageError> {
+    // a device or FIFO is refused before the decoder opens it
+    crate::files::open_regular(path, u64::MAX).map_err(|source| ImageError::Io {
+        path: path.to_path_buf(),
+        action: "cannot read".to_string(),
+        source,
+    })?;
     let decoded = catch_unwind(AssertUnwindSafe(|| {
         read()
             .no_deep_data()

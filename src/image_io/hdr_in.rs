@@ -12,11 +12,14 @@ use super::rgb_in::{Encoding, RgbImage};
 use super::{ImageError, invalid, pixel_count};
 
 pub(crate) fn read_hdr(path: &Path) -> Result<RgbImage, ImageError> {
-    let bytes = std::fs::read(path).map_err(|source| ImageError::Io {
-        path: path.to_path_buf(),
-        action: "cannot read".to_string(),
-        source,
-    })?;
+    let bytes =
+        crate::files::read_bytes(path, crate::files::MAX_IMAGE_BYTES).map_err(|source| {
+            ImageError::Io {
+                path: path.to_path_buf(),
+                action: "cannot read".to_string(),
+                source,
+            }
+        })?;
     let bad = |why: &str| invalid(path, format!("not a readable Radiance HDR file: {why}"));
     // header lines up to an empty line, then the resolution line
     let mut pos = 0;

@@ -30,7 +30,7 @@ pub fn load_any(path: &Path, defines: &[(String, String)]) -> Result<SceneDesc, 
 
 /// Reads and validates a scene file.
 pub fn load(path: &Path) -> Result<SceneDesc, LoadError> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let text = crate::files::read_text(path, crate::files::MAX_TEXT_BYTES).map_err(|e| {
         LoadError::new(
             path,
             Loc { line: 0, col: 0 },

@@ -125,11 +125,12 @@ pub fn parse_csv(text: &str, file: &str) -> Result<Table, DataError> {
 /// column) and one value column. Errors name the file and line.
 pub fn load_spectrum_file(path: &Path) -> Result<super::curve::PiecewiseLinear, DataError> {
     let file = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| DataError {
-        file: file.clone(),
-        line: 0,
-        message: format!("cannot read: {e}"),
-    })?;
+    let text =
+        crate::files::read_text(path, crate::files::MAX_TEXT_BYTES).map_err(|e| DataError {
+            file: file.clone(),
+            line: 0,
+            message: format!("cannot read: {e}"),
+        })?;
     let table = parse_csv(&text, &file)?;
     if table.columns.len() != 2 {
         return Err(DataError {

@@ -4,7 +4,6 @@ use super::Mesh;
 use crate::geometry::error::GeometryError;
 use crate::geometry::transform::Transform;
 use glam::{Vec2, Vec3};
-use std::fs::File;
 use std::io::BufReader;
 use std::path::Path;
 
@@ -36,7 +35,8 @@ impl Mesh {
         if path.is_dir() {
             return Err(open_error(std::io::Error::other("is a directory")));
         }
-        let file = File::open(path).map_err(open_error)?;
+        let (file, _) =
+            crate::files::open_regular(path, crate::files::MAX_MESH_BYTES).map_err(open_error)?;
         #[allow(clippy::needless_update)]
         let options = tobj::LoadOptions {
             single_index: true,

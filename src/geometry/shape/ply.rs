@@ -103,10 +103,13 @@ impl Mesh {
     /// Loads a PLY file as one mesh, transformed by `transform`. Errors name the path, like
     /// [`Mesh::load_obj`].
     pub fn load_ply(path: &Path, transform: &Transform) -> Result<Mesh, GeometryError> {
-        let bytes = std::fs::read(path).map_err(|source| GeometryError::MeshOpen {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let bytes =
+            crate::files::read_bytes(path, crate::files::MAX_MESH_BYTES).map_err(|source| {
+                GeometryError::MeshOpen {
+                    path: path.to_path_buf(),
+                    source,
+                }
+            })?;
         let bad = |m: &str| GeometryError::MeshParse {
             path: path.to_path_buf(),
             message: m.to_string(),

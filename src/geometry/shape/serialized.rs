@@ -34,10 +34,13 @@ impl Mesh {
         index: usize,
         transform: &Transform,
     ) -> Result<Mesh, GeometryError> {
-        let bytes = std::fs::read(path).map_err(|source| GeometryError::MeshOpen {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let bytes =
+            crate::files::read_bytes(path, crate::files::MAX_MESH_BYTES).map_err(|source| {
+                GeometryError::MeshOpen {
+                    path: path.to_path_buf(),
+                    source,
+                }
+            })?;
         let bad = |m: String| GeometryError::MeshParse {
             path: path.to_path_buf(),
             message: m,

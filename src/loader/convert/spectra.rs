@@ -121,7 +121,7 @@ impl Cx<'_> {
 
     fn spectrum_file(&self, s: &str, span: &std::ops::Range<usize>, field: &str) -> R<Spectrum> {
         let path = self.path(s);
-        if !path.is_file() {
+        if !path.exists() {
             return Err(self.err(
                 span,
                 field,

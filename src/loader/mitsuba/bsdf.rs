@@ -55,6 +55,25 @@ fn perfect_mirror() -> ComplexIor {
 
 /// A BSDF; returns the material and whether it was wrapped in `twosided`.
 pub(super) fn bsdf(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, bool)> {
+    let depth = cx.bsdf_depth.get();
+    if depth >= MAX_BSDF_NESTING {
+        return Err(cx.err(
+            b,
+            format!(
+                "BSDFs nest more than {MAX_BSDF_NESTING} deep here (do two BSDFs refer to each other?)"
+            ),
+        ));
+    }
+    cx.bsdf_depth.set(depth + 1);
+    let r = bsdf_inner(cx, b, name);
+    cx.bsdf_depth.set(depth);
+    r
+}
+
+/// BSDFs nested in one another (`twosided`, `blendbsdf`, `mask`, … and `ref`s) at most.
+const MAX_BSDF_NESTING: u32 = 32;
+
+fn bsdf_inner(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, bool)> {
     let b = cx.resolve(b)?;
     let t = b.attr("type").unwrap_or("");
     // Mitsuba's rough BSDFs: `distribution` beckmann (its default) or ggx; `alpha` (default

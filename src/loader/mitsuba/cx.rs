@@ -105,6 +105,8 @@ pub(super) struct Cx<'a> {
     /// Things the user should know, once each (message, located line): e.g. a Mitsuba sampler
     /// replaced by spectrace's.
     pub(super) notes: std::cell::RefCell<Vec<(String, String)>>,
+    /// BSDFs being converted, nested (through `ref`s too): bounds a reference cycle.
+    pub(super) bsdf_depth: std::cell::Cell<u32>,
 }
 
 impl Cx<'_> {

@@ -39,7 +39,7 @@ pub use xml::Element;
 
 /// Reads a Mitsuba XML scene; `defines` override its `default` parameters.
 pub fn load(path: &Path, defines: &[(String, String)]) -> Result<SceneDesc, LoadError> {
-    let text = std::fs::read_to_string(path).map_err(|e| {
+    let text = crate::files::read_text(path, crate::files::MAX_TEXT_BYTES).map_err(|e| {
         LoadError::new(
             path,
             Loc { line: 0, col: 0 },

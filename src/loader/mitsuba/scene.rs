@@ -13,6 +13,10 @@ use super::xml::Element;
 use crate::loader::desc::*;
 use crate::units::{Length, length};
 
+/// Includes a scene may make in all, whatever their nesting: bounds a file that includes
+/// itself several times per level (4 per level would be 4¹⁶ files by the depth limit alone).
+const MAX_INCLUDES: u32 = 1000;
+
 pub(super) fn scene(
     mut root: Element,
     text: &str,
@@ -26,6 +30,7 @@ pub(super) fn scene(
         ids: HashMap::new(),
         search: vec![path.parent().map(Path::to_path_buf).unwrap_or_default()],
         notes: Default::default(),
+        bsdf_depth: Default::default(),
     };
     if root.tag != "scene" {
         return Err(cx.err(&root, "the root element must be <scene>"));
@@ -48,6 +53,7 @@ pub(super) fn scene(
     // images, spectra) is resolved by the scene's resolver, not against the included file's
     // folder. Included children are spliced in place (depth-limited).
     let mut depth = 0;
+    let (mut includes, mut bytes) = (0u32, cx.sources[0].1.len() as u64);
     while root
         .children
         .iter()
@@ -90,8 +96,25 @@ pub(super) fn scene(
                         p if p.is_file() => p,
                         _ => cx.resolve_file(f),
                     };
-                    let t = std::fs::read_to_string(&p)
+                    includes += 1;
+                    if includes > MAX_INCLUDES {
+                        return Err(cx.err(
+                            &c,
+                            format!("more than {MAX_INCLUDES} includes in all (does a file include itself?)"),
+                        ));
+                    }
+                    let t = crate::files::read_text(&p, crate::files::MAX_TEXT_BYTES)
                         .map_err(|e| cx.err(&c, format!("cannot read {}: {e}", p.display())))?;
+                    bytes += t.len() as u64;
+                    if bytes > crate::files::MAX_TEXT_BYTES {
+                        return Err(cx.err(
+                            &c,
+                            format!(
+                                "the scene and its includes exceed {} MiB of text in all (does a file include itself?)",
+                                crate::files::MAX_TEXT_BYTES >> 20
+                            ),
+                        ));
+                    }
                     let mut inc = super::parse_file(&t, &p)?;
                     cx.sources.push((p, t));
                     inc.set_source(cx.sources.len() - 1);

@@ -75,7 +75,7 @@ impl Cx<'_> {
                 }
                 if let Some(f) = e.attr("filename") {
                     let path = self.resolve_file(f);
-                    let text = std::fs::read_to_string(&path).map_err(|er| {
+                    let text = crate::files::read_text(&path, crate::files::MAX_TEXT_BYTES).map_err(|er| {
                         self.err(
                             e,
                             format!("cannot read spectrum file {}: {er}", path.display()),

@@ -65,6 +65,10 @@ fn start(e: &BytesStart<'_>, pos: usize) -> Result<Element, XmlError> {
     })
 }
 
+/// Elements nested in one another at most: real scenes nest a few levels; the tree's
+/// recursive walks (and its drop) must not exhaust the stack.
+const MAX_NESTING: usize = 64;
+
 /// Parses a document into its root element.
 pub fn parse(text: &str) -> Result<Element, XmlError> {
     let mut r = Reader::from_str(text);
@@ -77,7 +81,15 @@ pub fn parse(text: &str) -> Result<Element, XmlError> {
             message: e.to_string(),
         })?;
         match ev {
-            Event::Start(e) => stack.push(start(&e, pos)?),
+            Event::Start(e) => {
+                if stack.len() >= MAX_NESTING {
+                    return Err(XmlError {
+                        pos,
+                        message: format!("elements nest more than {MAX_NESTING} deep"),
+                    });
+                }
+                stack.push(start(&e, pos)?)
+            }
             Event::Empty(e) => {
                 let el = start(&e, pos)?;
                 match stack.last_mut() {
