@@ -309,3 +309,28 @@ radiance = "1 W/m^2/sr"
         );
     }
 }
+
+/// A wavelength range that misses the CIE colour-matching functions (360–830 nm) loads, with a
+/// note that X, Y, Z, R, G, B will be black and L holds the radiance; one that overlaps them
+/// has no note.
+#[test]
+fn wavelength_range_outside_the_cmfs_is_noted() {
+    let scene = |range: &str| {
+        format!(
+            "[scene]\nwavelength_range = {range}\n[camera]\neye = [0, 1, 4]\ntarget = [0, 1, 0]\nfov = \"40 deg\"\n[film]\nwidth = 8\nheight = 8\nspp = 1\n[materials.m]\ntype = \"diffuse\"\nreflectance = 0.5\n[[shapes]]\ntype = \"sphere\"\nradius = \"1 m\"\nmaterial = \"m\"\n[[lights]]\ntype = \"point\"\nposition = [0, 3, 0]\npower = \"10 W\"\n"
+        )
+    };
+    let p = Path::new("range.toml");
+    let ir = spectrace::loader::load_str(&scene("[\"900 nm\", \"1000 nm\"]"), p).unwrap();
+    assert_eq!(ir.notes.len(), 1, "{:?}", ir.notes);
+    assert!(
+        ir.notes[0].contains("900–1000 nm lies outside the CIE colour-matching functions")
+            && ir.notes[0].contains("L channel"),
+        "{}",
+        ir.notes[0]
+    );
+    let uv = spectrace::loader::load_str(&scene("[\"200 nm\", \"360 nm\"]"), p).unwrap();
+    assert_eq!(uv.notes.len(), 1);
+    let vis = spectrace::loader::load_str(&scene("[\"700 nm\", \"1000 nm\"]"), p).unwrap();
+    assert!(vis.notes.is_empty(), "{:?}", vis.notes);
+}

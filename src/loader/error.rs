@@ -80,7 +80,63 @@ impl LoadError {
             file: file.to_path_buf(),
             loc,
             field: field.into(),
-            message: message.into(),
+            message: shorten_quoted(&message.into()),
         }
+    }
+}
+
+/// Longest quoted value an error message repeats whole, in characters.
+const MAX_QUOTED: usize = 80;
+
+/// `message` with every quoted value ("…") longer than [`MAX_QUOTED`] characters cut to its
+/// start, an ellipsis and its length: an error about a 1 MB value must not print it.
+pub fn shorten_quoted(message: &str) -> String {
+    let mut out = String::with_capacity(message.len().min(4 * MAX_QUOTED + 200));
+    let mut rest = message;
+    while let Some(open) = rest.find('"') {
+        out.push_str(&rest[..=open]);
+        let after = &rest[open + 1..];
+        let Some(close) = after.find('"') else {
+            rest = after;
+            // an unpaired quote: cut what follows if long
+            if rest.chars().count() > MAX_QUOTED {
+                let cut: String = rest.chars().take(MAX_QUOTED / 2).collect();
+                out.push_str(&format!("{cut}… ({} characters)", rest.chars().count()));
+                rest = "";
+            }
+            break;
+        };
+        let inner = &after[..close];
+        let n = inner.chars().count();
+        if n > MAX_QUOTED {
+            let cut: String = inner.chars().take(MAX_QUOTED / 2).collect();
+            out.push_str(&format!("{cut}…\" ({n} characters)"));
+        } else {
+            out.push_str(inner);
+            out.push('"');
+        }
+        rest = &after[close + 1..];
+    }
+    out.push_str(rest);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_quoted_values_are_cut_with_their_length() {
+        let long = "x".repeat(1_000_000);
+        let m = shorten_quoted(&format!("unknown spectrum \"{long}\"; see the list"));
+        assert!(m.len() < 200, "{m}");
+        assert!(
+            m.contains("(1000000 characters)") && m.ends_with("; see the list"),
+            "{m}"
+        );
+        let short = "value \"abc\" and \"d\"";
+        assert_eq!(shorten_quoted(short), short);
+        let m = shorten_quoted(&format!("unpaired \"{long}"));
+        assert!(m.len() < 200 && m.contains("1000000 characters"), "{m}");
     }
 }

@@ -48,7 +48,32 @@ pub fn load_str(text: &str, path: &Path) -> Result<SceneDesc, LoadError> {
             .span()
             .map(|s| error::SourceMap::new(text).span(&s))
             .unwrap_or(Loc { line: 1, col: 1 });
-        LoadError::new(path, loc, "", e.message().trim().to_string())
+        let mut msg = e.message().trim().to_string();
+        if msg == "duplicate key"
+            && let Some(span) = e.span()
+        {
+            // name the key, and the table when a whole table is repeated
+            let start = text[..span.start.min(text.len())]
+                .rfind('\n')
+                .map_or(0, |i| i + 1);
+            let line = text[start..].lines().next().unwrap_or("").trim();
+            // the header alone, without a comment after it
+            let line = line.find(']').map_or(line, |i| {
+                let end = if line[i + 1..].starts_with(']') {
+                    i + 2
+                } else {
+                    i + 1
+                };
+                &line[..end]
+            });
+            let key = text.get(span.clone()).unwrap_or("").trim();
+            msg = if line.starts_with('[') {
+                format!("table {line} is defined twice (also earlier in the file)")
+            } else {
+                format!("key `{key}` is given twice")
+            };
+        }
+        LoadError::new(path, loc, "", msg)
     })?;
     convert::convert(raw, path, text)
 }

@@ -157,16 +157,40 @@ impl Cx<'_> {
             .find(|(k, _)| *k == what)
             .map(|(_, names)| *names)
             .unwrap_or(&[]);
+        // a suggestion only when it is close (Jaro–Winkler ≥ 0.85), and only of the same
+        // kind; a plugin of another kind is named as such
         let near = same_kind
             .iter()
-            .max_by(|a, b| strsim::jaro_winkler(kind, a).total_cmp(&strsim::jaro_winkler(kind, b)))
-            .copied();
-        let msg = match near {
-            Some(near) => format!(
-                "{what} type \"{kind}\" is not supported; the nearest supported {what} is \"{near}\" (supported: {})",
-                same_kind.join(", ")
+            .map(|n| (strsim::jaro_winkler(kind, n), *n))
+            .max_by(|a, b| a.0.total_cmp(&b.0))
+            .filter(|(s, _)| *s >= 0.85)
+            .map(|(_, n)| n);
+        let other = PLUGINS
+            .iter()
+            .find(|(k, names)| *k != what && names.contains(&kind))
+            .map(|(k, _)| *k);
+        let supported = same_kind.join(", ");
+        let msg = match (other, near) {
+            (Some(k), _) => {
+                let a = |w: &str| {
+                    if w.starts_with(['a', 'e', 'i', 'o', 'u']) {
+                        "an"
+                    } else {
+                        "a"
+                    }
+                };
+                format!(
+                    "\"{kind}\" is {} {k} type, not {} {what} type; write <{k} type=\"{kind}\"> (supported {what} types: {supported})",
+                    a(k),
+                    a(what)
+                )
+            }
+            (None, Some(near)) => format!(
+                "{what} type \"{kind}\" is not supported; did you mean \"{near}\"? (supported: {supported})"
             ),
-            None => format!("{what} type \"{kind}\" is not supported"),
+            (None, None) => {
+                format!("{what} type \"{kind}\" is not supported (supported: {supported})")
+            }
         };
         self.err(e, msg)
     }

@@ -92,21 +92,16 @@ pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraD
         };
         match (c.tag.as_str(), c.attr("type")) {
             ("film", Some("hdrfilm")) => {
-                if let Some(w) = cx.opt_float(c, "width")? {
-                    film.width = w as u32;
-                }
-                if let Some(h) = cx.opt_float(c, "height")? {
-                    film.height = h as u32;
-                }
-                if film.width == 0 || film.height == 0 || film.width > 32768 || film.height > 32768
-                {
-                    return Err(cx.err(
-                        c,
-                        format!(
-                            "{}×{} is not a supported resolution",
-                            film.width, film.height
-                        ),
-                    ));
+                for (name, slot) in [("width", &mut film.width), ("height", &mut film.height)] {
+                    let Some(e) = cx.child(c, name) else { continue };
+                    let v = cx.float(e)?;
+                    if !(v.fract() == 0.0 && (1.0..=32768.0).contains(&v)) {
+                        return Err(cx.err(
+                            e,
+                            format!("expected an integer from 1 to 32768 pixels, found {v}"),
+                        ));
+                    }
+                    *slot = v as u32;
                 }
                 for f in c.children.iter().filter(|f| f.tag == "rfilter") {
                     film.filter = match f.attr("type") {

@@ -129,7 +129,22 @@ pub(super) fn scene(cx: &mut Cx<'_>, raw: RawScene) -> R<SceneDesc> {
         groups,
         instances,
         lights,
-        notes: Vec::new(),
+        notes: range_note(&range).into_iter().collect(),
+    })
+}
+
+/// A note when the film's wavelength range misses the CIE colour-matching functions (360–830
+/// nm) entirely: X, Y, Z, R, G, B are then zero by definition, and only L (and spectral bins)
+/// hold radiance.
+fn range_note(range: &[Length; 2]) -> Option<String> {
+    let (lo, hi) = (
+        range[0].get::<length::nanometer>(),
+        range[1].get::<length::nanometer>(),
+    );
+    (hi <= 360.0 || lo >= 830.0).then(|| {
+        format!(
+            "scene.wavelength_range {lo}–{hi} nm lies outside the CIE colour-matching functions (360–830 nm): X, Y, Z, R, G, B and the PNG are black; the L channel and spectral bins (--spectral-bins) hold the radiance"
+        )
     })
 }
 
