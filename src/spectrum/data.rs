@@ -131,7 +131,17 @@ pub fn load_spectrum_file(path: &Path) -> Result<super::curve::PiecewiseLinear, 
             line: 0,
             message: format!("cannot read: {e}"),
         })?;
-    let table = parse_csv(&text, &file)?;
+    parse_spectrum_text(&text, &file)
+}
+
+/// Parses the text of a user spectrum file as [`load_spectrum_file`] does; `file` names it in
+/// errors.
+pub fn parse_spectrum_text(
+    text: &str,
+    file: &str,
+) -> Result<super::curve::PiecewiseLinear, DataError> {
+    let file = file.to_string();
+    let table = parse_csv(text, &file)?;
     if table.columns.len() != 2 {
         return Err(DataError {
             file,

@@ -28,15 +28,29 @@ impl Mesh {
             path: path.to_path_buf(),
             source,
         };
-        let parse_error = |message: String| GeometryError::MeshParse {
-            path: path.to_path_buf(),
-            message,
-        };
         if path.is_dir() {
             return Err(open_error(std::io::Error::other("is a directory")));
         }
         let (file, _) =
             crate::files::open_regular(path, crate::files::MAX_MESH_BYTES).map_err(open_error)?;
+        Self::parse_obj(&mut BufReader::new(file), path, transform)
+    }
+
+    /// Parses OBJ text from `reader` as [`Mesh::load_obj`] does a file; `path` names it in
+    /// errors.
+    pub fn parse_obj(
+        reader: &mut impl std::io::BufRead,
+        path: &Path,
+        transform: &Transform,
+    ) -> Result<Mesh, GeometryError> {
+        let open_error = |source| GeometryError::MeshOpen {
+            path: path.to_path_buf(),
+            source,
+        };
+        let parse_error = |message: String| GeometryError::MeshParse {
+            path: path.to_path_buf(),
+            message,
+        };
         #[allow(clippy::needless_update)]
         let options = tobj::LoadOptions {
             single_index: true,
@@ -46,7 +60,7 @@ impl Mesh {
             // Other fields exist only with optional tobj features.
             ..Default::default()
         };
-        let loaded = tobj::load_obj_buf(&mut BufReader::new(file), &options, |_| {
+        let loaded = tobj::load_obj_buf(reader, &options, |_| {
             Err(tobj::LoadError::GenericFailure)
         });
         let models = match loaded {

@@ -64,5 +64,18 @@ pub fn load_str(
 ) -> Result<SceneDesc, LoadError> {
     let root = parse_file(text, path)?;
     let defines: HashMap<String, String> = defines.iter().cloned().collect();
-    scene::scene(root, text, path, &defines)
+    scene::scene(root, text, path, &defines, None)
+}
+
+/// [`load_str`] with every `<include>` served from `includes` (file name as written → text)
+/// instead of the disk: for tests and fuzzing. A name missing from the map is an error.
+pub fn load_str_with_includes(
+    text: &str,
+    path: &Path,
+    defines: &[(String, String)],
+    includes: &HashMap<String, String>,
+) -> Result<SceneDesc, LoadError> {
+    let root = parse_file(text, path)?;
+    let defines: HashMap<String, String> = defines.iter().cloned().collect();
+    scene::scene(root, text, path, &defines, Some(includes))
 }

@@ -2,7 +2,7 @@
 //! handed to its plugin family (sensor, integrator, bsdf, shape, emitter).
 
 use std::collections::HashMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use super::bsdf::bsdf;
 use super::cx::{Cx, R};
@@ -22,6 +22,7 @@ pub(super) fn scene(
     text: &str,
     path: &Path,
     defines: &HashMap<String, String>,
+    served_includes: Option<&HashMap<String, String>>,
 ) -> R<SceneDesc> {
     let mut cx = Cx {
         sources: vec![(path.to_path_buf(), text.to_string())],
@@ -92,9 +93,17 @@ pub(super) fn scene(
                     let f = c
                         .attr("filename")
                         .ok_or_else(|| cx.err(&c, "missing filename"))?;
-                    let p = match own_dir.join(f) {
-                        p if p.is_file() => p,
-                        _ => cx.resolve_file(f),
+                    let (p, served) = match served_includes {
+                        Some(map) => (
+                            PathBuf::from(f),
+                            Some(map.get(f).cloned().ok_or_else(|| {
+                                cx.err(&c, format!("cannot read {f}: not among the given includes"))
+                            })?),
+                        ),
+                        None => match own_dir.join(f) {
+                            p if p.is_file() => (p, None),
+                            _ => (cx.resolve_file(f), None),
+                        },
                     };
                     includes += 1;
                     if includes > MAX_INCLUDES {
@@ -103,8 +112,13 @@ pub(super) fn scene(
                             format!("more than {MAX_INCLUDES} includes in all (does a file include itself?)"),
                         ));
                     }
-                    let t = crate::files::read_text(&p, crate::files::MAX_TEXT_BYTES)
-                        .map_err(|e| cx.err(&c, format!("cannot read {}: {e}", p.display())))?;
+                    let t = match served {
+                        Some(t) => t,
+                        None => crate::files::read_text(&p, crate::files::MAX_TEXT_BYTES)
+                            .map_err(|e| {
+                                cx.err(&c, format!("cannot read {}: {e}", p.display()))
+                            })?,
+                    };
                     bytes += t.len() as u64;
                     if bytes > crate::files::MAX_TEXT_BYTES {
                         return Err(cx.err(
