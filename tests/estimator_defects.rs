@@ -173,7 +173,7 @@ fn film_keeps_hero_when_a_terminated_secondary_is_not_finite() {
             tile.add(0, 0, &w, &l, None),
             "hero dropped for {bad} in a terminated secondary"
         );
-        let y = tile.pixels[0].xyz[1];
+        let y = tile.pixels[0].xyz[1].to_f64();
         assert!((y / want_y - 1.0).abs() < 1e-6, "Y = {y}, want {want_y}");
         assert_eq!(tile.pixels[0].count, 1);
     }

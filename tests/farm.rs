@@ -255,6 +255,23 @@ fn resume_refuses_a_changed_scene_and_new_settings() {
         !ok && err.contains("cannot read") && err.contains("args.toml"),
         "{err}"
     );
+    // a render that cannot start leaves no checkpoint folder and no image
+    let ortho =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference/orthographic/scene.xml");
+    let o = ortho.display().to_string();
+    let args = [
+        "render",
+        &o,
+        "--integrator",
+        "light",
+        "--checkpoint",
+        "ck2",
+        "-o",
+        "o.exr",
+    ];
+    let (ok, err) = spectrace(&dir, &args);
+    assert!(!ok && err.contains("orthographic"), "{err}");
+    assert!(!dir.join("ck2").exists() && !dir.join("o.exr").exists());
 }
 
 #[test]
@@ -319,7 +336,7 @@ fn time_budget_stops_at_a_pass_boundary() {
     let spp: u32 = text(&img, "spectrace:samplesPerPixel").parse().unwrap();
     // pass boundaries: 1, 2, 4, …, 64, then every 64
     assert!(
-        spp > 0 && (spp.is_power_of_two() || spp % 64 == 0),
+        spp > 0 && (spp.is_power_of_two() || spp.is_multiple_of(64)),
         "{spp} spp"
     );
     let (ok, err) = spectrace(&dir, &["render", &cornell(), "--time", "10 parsecs"]);

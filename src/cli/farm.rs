@@ -147,6 +147,14 @@ pub fn start_checkpoint(dir: &Path, args: &RenderArgs, hash: &str) -> Result<(),
     Ok(())
 }
 
+/// Removes a checkpoint folder's `args.toml` (and the folder, if then empty) after a render
+/// that could not start.
+pub fn abandon_checkpoint(dir: &Path) {
+    let (a, _) = files(dir);
+    let _ = std::fs::remove_file(a);
+    let _ = std::fs::remove_dir(dir);
+}
+
 /// `args.toml`.
 #[derive(serde::Serialize, serde::Deserialize)]
 struct Stored {

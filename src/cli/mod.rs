@@ -28,7 +28,7 @@ pub enum Command {
     /// unit ("587.56nm", "0.55 um"); a bare number is read as nm.
     Spectrum(spectrum::SpectrumArgs),
     /// Render a scene file to EXR and PNG.
-    Render(render::RenderArgs),
+    Render(Box<render::RenderArgs>),
     /// Merge the EXR files of render parts (`render --part I/N`) into one image, bit for bit
     /// the image one render of all their samples gives.
     Merge(farm::MergeArgs),
@@ -53,7 +53,7 @@ pub enum CliError {
 pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Some(Command::Spectrum(args)) => spectrum::run(args),
-        Some(Command::Render(args)) => render::run(args),
+        Some(Command::Render(args)) => render::run(*args),
         Some(Command::Merge(args)) => farm::merge(args),
         None => render::run_default(),
     }

@@ -352,6 +352,7 @@ fn run_desc(
         stop: "checkpoint",
         rel_error: None,
     };
+    let mut started: Option<&Path> = None;
     let snapshot = match &resume {
         Some(ck) => {
             if super::farm::scene_hash(scene_path, &args.define)? != ck.scene_hash {
@@ -372,6 +373,7 @@ fn run_desc(
         None => {
             if let Some(dir) = &args.checkpoint {
                 super::farm::start_checkpoint(dir, args, &hash)?;
+                started = Some(dir);
             }
             None
         }
@@ -403,8 +405,13 @@ fn run_desc(
         checkpoint: every.map(|e| (e, &write_checkpoint as &(dyn Fn(&_) + Sync))),
         resume: snapshot,
     };
-    let (film, stats) =
-        render_with(&scene, &opts, ctl).map_err(|e| CliError::Usage(e.to_string()))?;
+    let (film, stats) = render_with(&scene, &opts, ctl).map_err(|e| {
+        // a render that could not start leaves no checkpoint folder behind
+        if let Some(dir) = started {
+            super::farm::abandon_checkpoint(dir);
+        }
+        CliError::Usage(e.to_string())
+    })?;
     bar.finish();
     let mut image = film.image();
     if args.mitsuba_units {

@@ -55,12 +55,12 @@ impl Exact {
             }
         }
         let e = Exact(m);
-        if v < 0.0 { e.neg() } else { e }
+        if v < 0.0 { e.negated() } else { e }
     }
 
     /// The two's complement negation.
     #[inline]
-    pub fn neg(self) -> Exact {
+    pub fn negated(self) -> Exact {
         let mut out = [0u64; 3];
         let mut carry = 1u64;
         for (o, l) in out.iter_mut().zip(self.0) {
@@ -96,7 +96,7 @@ impl Exact {
     /// The nearest f64 (within one rounding per limb: relative error below 10⁻¹⁵).
     pub fn to_f64(self) -> f64 {
         let (neg, m) = if self.is_negative() {
-            (true, self.neg().0)
+            (true, self.negated().0)
         } else {
             (false, self.0)
         };
@@ -153,7 +153,7 @@ mod tests {
         assert_eq!(Exact::from_f64(1.5 * 2f64.powi(-96)).0, [1, 0, 0]);
         assert_eq!(
             Exact::from_f64(-1.5 * 2f64.powi(-96)),
-            Exact([1, 0, 0]).neg()
+            Exact([1, 0, 0]).negated()
         );
 
         let mut k = 7u64;

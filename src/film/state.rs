@@ -55,7 +55,7 @@ impl Film {
         let n = (self.width * self.height) as usize;
         let mut out = Vec::new();
         for (q, name) in sum_names(self.nbins()).iter().enumerate() {
-            let mut planes = vec![Vec::with_capacity(n); 6];
+            let mut planes: Vec<Vec<u32>> = (0..6).map(|_| Vec::with_capacity(n)).collect();
             for i in 0..n {
                 for (plane, w) in planes.iter_mut().zip(self.sum(q, i).to_words()) {
                     plane.push(w);
@@ -107,10 +107,10 @@ impl Film {
         let lo = find(format!("{prefix}count.w0"))?;
         let hi = find(format!("{prefix}count.w1"))?;
         for (q, words) in planes.iter().enumerate() {
-            for i in 0..n {
-                let e = Exact::from_words([0, 1, 2, 3, 4, 5].map(|k| words[k][i]));
+            (0..n).for_each(|i| {
+                let e = Exact::from_words(std::array::from_fn(|k| words[k][i]));
                 self.sum_mut(q, i).add(e);
-            }
+            });
         }
         for (i, p) in self.sums.iter_mut().enumerate() {
             p.count += lo[i] as u64 | (hi[i] as u64) << 32;

@@ -127,6 +127,9 @@ pub enum RenderError {
     TargetErrorLight,
 }
 
+/// Writes a checkpoint of the render's state (reports its own failures: the render goes on).
+pub type CheckpointWriter<'a> = dyn Fn(&Snapshot) + Sync + 'a;
+
 /// How a render is steered from outside.
 pub struct Control<'a> {
     /// Set to stop the render between tiles.
@@ -135,7 +138,7 @@ pub struct Control<'a> {
     pub progress: &'a (dyn Fn(u64, u64) + Sync),
     /// Checkpoints: the writer is given the render's state between tiles at most once per
     /// interval, and once more when the render ends for any reason.
-    pub checkpoint: Option<(Duration, &'a (dyn Fn(&Snapshot) + Sync))>,
+    pub checkpoint: Option<(Duration, &'a CheckpointWriter<'a>)>,
     /// A state to continue from, written by an earlier render of the same scene and options.
     pub resume: Option<Snapshot>,
 }

@@ -60,9 +60,7 @@ impl Mesh {
             // Other fields exist only with optional tobj features.
             ..Default::default()
         };
-        let loaded = tobj::load_obj_buf(reader, &options, |_| {
-            Err(tobj::LoadError::GenericFailure)
-        });
+        let loaded = tobj::load_obj_buf(reader, &options, |_| Err(tobj::LoadError::GenericFailure));
         let models = match loaded {
             Ok((models, _materials)) => models,
             Err(tobj::LoadError::ReadError) => {

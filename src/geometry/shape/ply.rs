@@ -115,7 +115,11 @@ impl Mesh {
 
     /// Parses PLY data (ASCII or binary) as [`Mesh::load_ply`] does a file; `path` names it in
     /// errors.
-    pub fn parse_ply(bytes: &[u8], path: &Path, transform: &Transform) -> Result<Mesh, GeometryError> {
+    pub fn parse_ply(
+        bytes: &[u8],
+        path: &Path,
+        transform: &Transform,
+    ) -> Result<Mesh, GeometryError> {
         let bad = |m: &str| GeometryError::MeshParse {
             path: path.to_path_buf(),
             message: m.to_string(),

@@ -254,7 +254,14 @@ fn max_depth(cx: &Cx<'_>, d: &Element) -> R<u32> {
             d,
             format!("max_depth must be -1 (unlimited) or at least 1, not {n}"),
         )),
-        n => Ok((n - 1).min(1024) as u32),
+        // the TOML loader's limit, 1024 bounces, as an error rather than a silent clamp
+        n if n > 1025 => Err(cx.err(
+            d,
+            format!(
+                "max_depth {n} is more than spectrace traces: at most 1025 (1024 bounces, as a TOML scene's limit), or -1 for unlimited (1024 bounces, Russian roulette ends paths long before)"
+            ),
+        )),
+        n => Ok((n - 1) as u32),
     }
 }
 
