@@ -1,6 +1,8 @@
 //! Command-line interface (clap).
 
+mod checkpoint;
 mod farm;
+mod merge;
 mod progress;
 mod render;
 mod spectrum;
@@ -10,7 +12,8 @@ use clap::{Parser, Subcommand};
 /// spectrace: a spectral path tracer in physical units.
 ///
 /// Wavelengths are in nm, radiance in W·m⁻²·sr⁻¹·nm⁻¹, luminance (Y) in cd/m². Without a
-/// command, renders the built-in default scene (a white beam through a BK7 prism) to
+/// command, renders the built-in default scene (a projector's white beam through an N-SF11
+/// prism, a rainbow on the wall of a room) to
 /// spectrace.exr and spectrace.png in the current folder.
 #[derive(Parser, Debug)]
 #[command(name = "spectrace", version, about, long_about)]
@@ -31,7 +34,7 @@ pub enum Command {
     Render(Box<render::RenderArgs>),
     /// Merge the EXR files of render parts (`render --part I/N`) into one image, bit for bit
     /// the image one render of all their samples gives.
-    Merge(farm::MergeArgs),
+    Merge(merge::MergeArgs),
 }
 
 /// An error for the user, printed after "error: ".
@@ -54,7 +57,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
     match cli.command {
         Some(Command::Spectrum(args)) => spectrum::run(args),
         Some(Command::Render(args)) => render::run(*args),
-        Some(Command::Merge(args)) => farm::merge(args),
+        Some(Command::Merge(args)) => merge::merge(args),
         None => render::run_default(),
     }
 }

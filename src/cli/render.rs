@@ -164,7 +164,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
                     "--resume continues the render as it was started; {what} cannot be given again (only --threads and --quiet)"
                 )));
             }
-            let ck = super::farm::read_checkpoint(dir)?;
+            let ck = super::checkpoint::read_checkpoint(dir)?;
             let mut stored = ck.args.clone();
             stored.threads = args.threads.or(stored.threads);
             stored.quiet = args.quiet;
@@ -191,7 +191,7 @@ fn run_desc(
     args: &RenderArgs,
     scene_path: &Path,
     desc: crate::loader::SceneDesc,
-    resume: Option<super::farm::Checkpoint>,
+    resume: Option<super::checkpoint::Checkpoint>,
 ) -> Result<(), CliError> {
     for n in &desc.notes {
         eprintln!("note: {n}");
@@ -372,7 +372,7 @@ fn run_desc(
         }
         None => {
             if let Some(dir) = &args.checkpoint {
-                super::farm::start_checkpoint(dir, args, &hash)?;
+                super::checkpoint::start_checkpoint(dir, args, &hash)?;
                 started = Some(dir);
             }
             None
@@ -385,7 +385,7 @@ fn run_desc(
         info.seconds = snap.elapsed.as_secs_f64();
         info.nan_samples = snap.nan_samples;
         info.inf_samples = snap.inf_samples;
-        if let Err(e) = super::farm::write_checkpoint(dir, snap, &info, &hash)
+        if let Err(e) = super::checkpoint::write_checkpoint(dir, snap, &info, &hash)
             && !warned.swap(true, Ordering::Relaxed)
         {
             eprintln!("\nwarning: checkpoint not written (the render goes on): {e}");
@@ -408,7 +408,7 @@ fn run_desc(
     let (film, stats) = render_with(&scene, &opts, ctl).map_err(|e| {
         // a render that could not start leaves no checkpoint folder behind
         if let Some(dir) = started {
-            super::farm::abandon_checkpoint(dir);
+            super::checkpoint::abandon_checkpoint(dir);
         }
         CliError::Usage(e.to_string())
     })?;

@@ -13,6 +13,7 @@ mod cylinder;
 mod disk;
 mod mesh;
 mod obj;
+mod obj_check;
 mod ply;
 mod serialized;
 mod sphere;

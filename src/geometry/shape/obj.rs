@@ -60,18 +60,15 @@ impl Mesh {
             // Other fields exist only with optional tobj features.
             ..Default::default()
         };
-        // tobj 4.0.5 multiplies a face's texture and normal indices without overflow checks
-        // (`vt * 2 + 1`): a huge or wrapped negative index panics where overflow checks are on
-        // (found by the `obj` fuzz target); that panic is caught and reported as a malformed
-        // file. Without overflow checks the wrapped index fails tobj's bounds test instead.
-        let loaded = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-            tobj::load_obj_buf(reader, &options, |_| Err(tobj::LoadError::GenericFailure))
-        }));
-        let Ok(loaded) = loaded else {
-            return Err(parse_error(
-                "a face index is out of range (the OBJ reader failed on it)".into(),
-            ));
-        };
+        // face indices are checked on their way to tobj, which would overflow on some
+        // (`obj_check.rs`)
+        let mut checked = super::obj_check::IndexCheck::new(reader);
+        let loaded = tobj::load_obj_buf(&mut checked, &options, |_| {
+            Err(tobj::LoadError::GenericFailure)
+        });
+        if let Some(e) = checked.error {
+            return Err(parse_error(e));
+        }
         let models = match loaded {
             Ok((models, _materials)) => models,
             Err(tobj::LoadError::ReadError) => {

@@ -1,0 +1,163 @@
+//! The camera-ray integrators' scheduler: passes of samples over 16×16 tiles, each tile summed
+//! apart and added to the film, the tiles done recorded for checkpoints.
+
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use super::control::ErrorEstimate;
+use super::{Ctx, RenderStats, Snapshot, StopReason, camera_sample};
+use crate::film::{Film, NonFinite, non_finite};
+
+/// The state of a pass shared by the threads: the film and the tiles summed into it.
+struct Shared {
+    film: Film,
+    tiles_done: Vec<bool>,
+    nan: u64,
+    inf: u64,
+}
+
+/// Camera-ray integrators (`path`, `whitted`, `direct`): each pass renders the tiles not yet
+/// done, each tile summing its pixels' samples in a tile of its own and adding it to the film.
+pub(super) fn render(
+    ctx: &Ctx<'_>,
+    snap: Snapshot,
+    tiles: &[(u32, u32, u32, u32)],
+    passes: &[(u32, u32)],
+) -> (Film, RenderStats) {
+    let (opts, scene) = (ctx.opts, ctx.integrator.scene);
+    let first = opts.sample_range().0;
+    let (filter, bins) = (snap.film.filter.clone(), snap.film.bins.clone());
+    let pixels = snap.film.width as u64 * snap.film.height as u64;
+    let pass0 = (snap.pass as usize).min(passes.len());
+    let done_before: u64 = passes[..pass0]
+        .iter()
+        .map(|(a, b)| (b - a) as u64 * pixels)
+        .sum();
+    let mut tiles_done = snap.tiles_done;
+    if tiles_done.is_empty() {
+        tiles_done = vec![false; tiles.len()];
+    }
+    let shared = Mutex::new(Shared {
+        film: snap.film,
+        tiles_done,
+        nan: snap.nan_samples,
+        inf: snap.inf_samples,
+    });
+    let lock = || shared.lock().unwrap_or_else(|p| p.into_inner());
+    let done = AtomicU64::new(done_before);
+    let snapshot = |s: &Shared, pass: usize| Snapshot {
+        film: s.film.clone(),
+        pass_film: None,
+        pass: pass as u32,
+        tiles_done: s.tiles_done.clone(),
+        paths_done: 0,
+        nan_samples: s.nan,
+        inf_samples: s.inf,
+        elapsed: ctx.budget.elapsed(),
+    };
+    let mut spp_done = if pass0 > 0 {
+        passes[pass0 - 1].1 - first
+    } else {
+        0
+    };
+    let mut stop = StopReason::Complete;
+    let mut estimate = ErrorEstimate::default();
+    let mut pass = pass0;
+    while pass < passes.len() {
+        let (a, b) = passes[pass];
+        if ctx.cancel.load(Ordering::Relaxed) {
+            stop = StopReason::Cancelled;
+            break;
+        }
+        if ctx.budget.spent() {
+            stop = StopReason::TimeLimit;
+            break;
+        }
+        let t0 = Instant::now();
+        ctx.pool.install(|| {
+            tiles
+                .par_iter()
+                .enumerate()
+                .for_each(|(ti, &(x0, y0, tw, th))| {
+                    if ctx.cancel.load(Ordering::Relaxed) || lock().tiles_done[ti] {
+                        return;
+                    }
+                    let nb = bins.as_ref().map_or(0, |b| b.count);
+                    let mut tile = crate::film::Tile::new(x0, y0, tw, th, nb);
+                    let (mut nan, mut inf) = (0, 0);
+                    for y in y0..y0 + th {
+                        for x in x0..x0 + tw {
+                            for i in a..b {
+                                let (mut s, mut wl, ray) =
+                                    camera_sample(scene, ctx.lambda, &filter, opts.seed, x, y, i);
+                                let l = ctx.integrator.radiance(ray, &mut wl, &mut s);
+                                if !tile.add(x, y, &wl, &l, bins.as_ref()) {
+                                    match non_finite(&wl, &l) {
+                                        Some(NonFinite::NaN) => nan += 1,
+                                        _ => inf += 1,
+                                    }
+                                }
+                            }
+                        }
+                    }
+                    let n = (tw * th * (b - a)) as u64;
+                    let mut s = lock();
+                    s.film.merge(&tile);
+                    s.tiles_done[ti] = true;
+                    s.nan += nan;
+                    s.inf += inf;
+                    let due = ctx
+                        .ticker
+                        .as_ref()
+                        .filter(|t| t.due())
+                        .map(|_| snapshot(&s, pass));
+                    drop(s);
+                    if let (Some(t), Some(snap)) = (&ctx.ticker, due) {
+                        t.write(&snap);
+                    }
+                    (ctx.progress)(done.fetch_add(n, Ordering::Relaxed) + n, ctx.total);
+                })
+        });
+        let mut s = lock();
+        if !s.tiles_done.iter().all(|&d| d) {
+            stop = StopReason::Cancelled;
+            break;
+        }
+        s.tiles_done.iter_mut().for_each(|d| *d = false);
+        spp_done = b - first;
+        pass += 1;
+        estimate.update(&s.film, spp_done);
+        drop(s);
+        if let Some(next) = passes.get(pass) {
+            if ctx
+                .budget
+                .would_exceed(b - a, t0.elapsed(), next.1 - next.0)
+            {
+                stop = StopReason::TimeLimit;
+                break;
+            }
+            if let (Some(target), Some(e)) = (opts.target_error, estimate.last)
+                && e <= target
+            {
+                stop = StopReason::TargetError;
+                break;
+            }
+        }
+    }
+    let s = shared.into_inner().unwrap_or_else(|p| p.into_inner());
+    ctx.final_checkpoint(&snapshot(&s, pass));
+    let stats = RenderStats {
+        samples: done.load(Ordering::Relaxed),
+        nan_samples: s.nan,
+        inf_samples: s.inf,
+        elapsed: ctx.budget.elapsed(),
+        partial: stop == StopReason::Cancelled,
+        spp_done,
+        stop,
+        rel_error: estimate.last,
+    };
+    (s.film, stats)
+}
