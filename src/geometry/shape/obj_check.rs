@@ -39,13 +39,18 @@ impl<R: BufRead> IndexCheck<R> {
     fn check(&mut self) -> Result<(), String> {
         let text = String::from_utf8_lossy(&self.line);
         let mut words = text.split_whitespace();
-        let kind = match words.next() {
-            Some("v") => return Ok(self.counts[0] += 1),
-            Some("vt") => return Ok(self.counts[1] += 1),
-            Some("vn") => return Ok(self.counts[2] += 1),
-            Some("f") => "face",
+        let slot = match words.next() {
+            Some("v") => 0,
+            Some("vt") => 1,
+            Some("vn") => 2,
+            Some("f") => 3,
             _ => return Ok(()),
         };
+        if slot < 3 {
+            self.counts[slot] += 1;
+            return Ok(());
+        }
+        let kind = "face";
         const NAMES: [&str; 3] = ["vertex", "texture coordinate", "normal"];
         for word in words {
             for (k, part) in word.split('/').take(3).enumerate() {
