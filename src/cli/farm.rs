@@ -63,7 +63,7 @@ pub fn parse_part(text: &str, spp: u32) -> Result<(u32, u32), CliError> {
 /// FNV-1a (64 bits) of the scene file's bytes and the -D definitions, as hex: a checkpoint or
 /// part made from another scene file is refused.
 pub fn scene_hash(scene: &Path, defines: &[String]) -> Result<String, CliError> {
-    let bytes = std::fs::read(scene)
+    let bytes = crate::files::read_bytes(scene, crate::files::MAX_TEXT_BYTES)
         .map_err(|e| CliError::Usage(format!("cannot read scene {}: {e}", scene.display())))?;
     let mut h: u64 = 0xcbf2_9ce4_8422_2325;
     for b in bytes.iter().chain(defines.join("\n").as_bytes()) {
