@@ -8,18 +8,12 @@
 
 mod support;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Child, Command};
 use std::time::Duration;
 
 use spectrace::image_io::{AttrValue, ExrImage, read_exr};
-
-fn tmpdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("spectrace-farm-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("temp dir");
-    d
-}
+use support::cli::{spectrace, tmpdir};
 
 /// The 96×96 Cornell box of the Mitsuba references (about 1 s at 64 spp).
 fn cornell() -> String {
@@ -27,18 +21,6 @@ fn cornell() -> String {
         .join("tests/reference/cornell/scene.xml")
         .display()
         .to_string()
-}
-
-fn spectrace(dir: &Path, args: &[&str]) -> (bool, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_spectrace"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("runs");
-    (
-        out.status.success(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
 }
 
 fn spawn(dir: &Path, args: &[&str]) -> Child {
@@ -391,4 +373,37 @@ fn target_error_estimate_matches_the_error_against_mitsuba() {
         (0.75..1.33).contains(&ratio),
         "estimated {est:.4}, measured {measured:.4} (ratio {ratio:.3})"
     );
+}
+
+/// The budget and part flags refuse what they cannot do, before rendering anything.
+#[test]
+fn budget_and_part_flags_are_checked() {
+    let dir = tmpdir("flags");
+    let scene = cornell();
+    let cases: [(&[&str], &str); 5] = [
+        (&["--target-error", "2"], "a fraction between 0 and 1"),
+        (
+            &["--target-error", "0.1", "--integrator", "light"],
+            "light integrator has none",
+        ),
+        (
+            &["--part", "0/2", "--time", "10s"],
+            "cannot be combined with --time",
+        ),
+        (
+            &["--checkpoint", "ck", "--checkpoint-every", "soon"],
+            "--checkpoint-every soon: unknown unit",
+        ),
+        (&["--part", "1-2"], "expected I/N"),
+    ];
+    for (extra, want) in cases {
+        let mut args = vec!["render", scene.as_str(), "-q", "-o", "x.exr"];
+        args.extend_from_slice(extra);
+        let (ok, err) = spectrace(&dir, &args);
+        assert!(!ok && err.contains(want), "{extra:?}: {err}");
+        assert!(
+            !dir.join("x.exr").exists() && !dir.join("ck").exists(),
+            "{extra:?}"
+        );
+    }
 }

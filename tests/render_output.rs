@@ -3,30 +3,12 @@
 
 mod support;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 use spectrace::image_io::{AttrValue, read_exr, spectral_channels};
+use support::cli::{spectrace, tmpdir};
 use support::render::scene_from;
-
-fn tmpdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("spectrace-test-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).expect("temp dir");
-    d
-}
-
-fn spectrace(dir: &Path, args: &[&str]) -> (bool, String) {
-    let out = Command::new(env!("CARGO_BIN_EXE_spectrace"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("runs");
-    (
-        out.status.success(),
-        String::from_utf8_lossy(&out.stderr).into(),
-    )
-}
 
 fn scene_path(name: &str) -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))

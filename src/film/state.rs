@@ -119,6 +119,7 @@ impl Film {
     }
 
     /// Whether two films hold the same sums and counts, bit for bit.
+    #[cfg(test)]
     pub fn same_sums(&self, other: &Film) -> bool {
         self.sums == other.sums && self.spectral == other.spectral
     }

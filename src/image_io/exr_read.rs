@@ -19,11 +19,7 @@ use super::{ExrImage, ImageError, invalid};
 /// is caught and reported as an error too.
 pub fn read_exr(path: &Path) -> Result<ExrImage, ImageError> {
     // a device or FIFO is refused before the decoder opens it
-    crate::files::open_regular(path, u64::MAX).map_err(|source| ImageError::Io {
-        path: path.to_path_buf(),
-        action: "cannot read".to_string(),
-        source,
-    })?;
+    super::open_input(path, u64::MAX)?;
     let decoded = catch_unwind(AssertUnwindSafe(|| {
         read()
             .no_deep_data()

@@ -60,34 +60,21 @@ pub fn write_exr_words(
         return Err(invalid(path, "an EXR file needs at least one channel"));
     }
     let mut names = HashSet::new();
-    for c in channels {
-        check_name(path, "channel", c.name)?;
-        if !names.insert(c.name) {
+    let all = channels.iter().map(|c| (c.name, c.data.len()));
+    for (name, len) in all.chain(words.iter().map(|c| (c.name, c.data.len()))) {
+        check_name(path, "channel", name)?;
+        if !names.insert(name) {
+            return Err(invalid(path, format!("channel `{name}` is given twice")));
+        }
+        if len != pixels {
             return Err(invalid(
                 path,
-                format!("channel `{}` is given twice", c.name),
+                format!("channel `{name}` holds {len} values, the image has {pixels} pixels"),
             ));
         }
-        check_pixels(path, width, pixels, c)?;
     }
-    for c in words {
-        check_name(path, "channel", c.name)?;
-        if !names.insert(c.name) {
-            return Err(invalid(
-                path,
-                format!("channel `{}` is given twice", c.name),
-            ));
-        }
-        if c.data.len() != pixels {
-            return Err(invalid(
-                path,
-                format!(
-                    "channel `{}` holds {} values, the image has {pixels} pixels",
-                    c.name,
-                    c.data.len()
-                ),
-            ));
-        }
+    for c in channels {
+        check_finite(path, width, c)?;
     }
     let layer_attributes = layer_attributes(path, attributes)?;
 
@@ -237,18 +224,8 @@ pub fn write_spectral_exr_words(
     write_exr_words(path, width, height, &channels, words, &all_attributes)
 }
 
-/// Checks a channel's length and that every value is finite.
-fn check_pixels(path: &Path, width: usize, pixels: usize, c: &Channel) -> Result<(), ImageError> {
-    if c.data.len() != pixels {
-        return Err(invalid(
-            path,
-            format!(
-                "channel `{}` holds {} values, the image has {pixels} pixels",
-                c.name,
-                c.data.len()
-            ),
-        ));
-    }
+/// Checks that every value of a channel is finite.
+fn check_finite(path: &Path, width: usize, c: &Channel) -> Result<(), ImageError> {
     match c.data.iter().position(|v| !v.is_finite()) {
         None => Ok(()),
         Some(i) => Err(ImageError::NonFinite {

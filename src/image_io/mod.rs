@@ -147,6 +147,18 @@ impl ImageError {
     }
 }
 
+/// Opens an input image through [`crate::files::open_regular`] (a regular file of at most
+/// `cap` bytes), its failure as an [`ImageError`] naming the file.
+pub(crate) fn open_input(path: &Path, cap: u64) -> Result<std::fs::File, ImageError> {
+    crate::files::open_regular(path, cap)
+        .map(|(file, _)| file)
+        .map_err(|source| ImageError::Io {
+            path: path.to_path_buf(),
+            action: "cannot read".to_string(),
+            source,
+        })
+}
+
 pub(crate) fn invalid(path: &Path, reason: impl Into<String>) -> ImageError {
     ImageError::Invalid {
         path: path.to_path_buf(),

@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use super::{ImageError, invalid, pixel_count, read_exr};
+use super::{ImageError, invalid, open_input, pixel_count, read_exr};
 
 /// How an image's stored values relate to linear light.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -69,13 +69,7 @@ pub fn read_rgb(path: &Path) -> Result<RgbImage, ImageError> {
 }
 
 fn exr_rgb(path: &Path) -> Result<RgbImage, ImageError> {
-    crate::files::open_regular(path, crate::files::MAX_IMAGE_BYTES).map_err(|source| {
-        ImageError::Io {
-            path: path.to_path_buf(),
-            action: "cannot read".to_string(),
-            source,
-        }
-    })?;
+    open_input(path, crate::files::MAX_IMAGE_BYTES)?;
     let e = read_exr(path)?;
     let n = pixel_count(path, e.width, e.height)?;
     let rgb = match (
@@ -107,14 +101,7 @@ fn exr_rgb(path: &Path) -> Result<RgbImage, ImageError> {
 }
 
 fn read_png(path: &Path) -> Result<RgbImage, ImageError> {
-    let (file, _) =
-        crate::files::open_regular(path, crate::files::MAX_IMAGE_BYTES).map_err(|source| {
-            ImageError::Io {
-                path: path.to_path_buf(),
-                action: "cannot open".to_string(),
-                source,
-            }
-        })?;
+    let file = open_input(path, crate::files::MAX_IMAGE_BYTES)?;
     let codec = |e: png::DecodingError| ImageError::Codec {
         path: path.to_path_buf(),
         action: "cannot decode PNG",
@@ -165,14 +152,7 @@ fn read_png(path: &Path) -> Result<RgbImage, ImageError> {
 /// An 8-bit JPEG (sRGB-encoded, as JPEG files are): grey or RGB; CMYK and 16-bit lossless files
 /// are refused.
 fn read_jpeg(path: &Path) -> Result<RgbImage, ImageError> {
-    let (file, _) =
-        crate::files::open_regular(path, crate::files::MAX_IMAGE_BYTES).map_err(|source| {
-            ImageError::Io {
-                path: path.to_path_buf(),
-                action: "cannot open".to_string(),
-                source,
-            }
-        })?;
+    let file = open_input(path, crate::files::MAX_IMAGE_BYTES)?;
     let mut decoder = jpeg_decoder::Decoder::new(std::io::BufReader::new(file));
     let pixels = decoder.decode().map_err(|e| ImageError::Codec {
         path: path.to_path_buf(),

@@ -184,20 +184,10 @@ pub(super) fn render(
         spp_done = b - first;
         pass += 1;
         estimate.update(&film, spp_done);
-        if let Some(next) = passes.get(pass) {
-            if ctx
-                .budget
-                .would_exceed(b - a, t0.elapsed(), next.1 - next.0)
-            {
-                stop = StopReason::TimeLimit;
-                break;
-            }
-            if let (Some(target), Some(e)) = (opts.target_error, estimate.last)
-                && e <= target
-            {
-                stop = StopReason::TargetError;
-                break;
-            }
+        if let Some(why) = ctx.stop_after_pass(b - a, t0.elapsed(), passes.get(pass), estimate.last)
+        {
+            stop = why;
+            break;
         }
     }
     ctx.final_checkpoint(&snapshot(&film, &pass_film, pass, &tiles_done));

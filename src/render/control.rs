@@ -164,9 +164,9 @@ impl Budget {
         self.limit.is_some_and(|l| self.before >= l)
     }
 
-    /// Whether a pass of `next` samples per pixel, after one of `last` that took `took`,
+    /// Whether `next` samples (per pixel, or light paths), after `last` that took `took`,
     /// would end past the limit.
-    pub fn would_exceed(&self, last: u32, took: Duration, next: u32) -> bool {
+    pub fn would_exceed(&self, last: u64, took: Duration, next: u64) -> bool {
         let Some(limit) = self.limit else {
             return false;
         };

@@ -60,13 +60,7 @@ pub(super) fn render(ctx: &Ctx<'_>, snap: Snapshot) -> (Film, RenderStats) {
         let last = (first_chunk + batch).min(chunks);
         let n_next = (last * LIGHT_CHUNK).min(total) - first_chunk * LIGHT_CHUNK;
         if ctx.budget.spent()
-            || last_batch.is_some_and(|(n, took)| {
-                ctx.budget.would_exceed(
-                    n.min(u32::MAX as u64) as u32,
-                    took,
-                    n_next.min(u32::MAX as u64) as u32,
-                )
-            })
+            || last_batch.is_some_and(|(n, took)| ctx.budget.would_exceed(n, took, n_next))
         {
             stop = StopReason::TimeLimit;
             break;

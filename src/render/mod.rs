@@ -178,6 +178,28 @@ struct Ctx<'a> {
 }
 
 impl Ctx<'_> {
+    /// Why to stop after a pass of `n` samples per pixel that took `took`, if there is a next
+    /// pass: it would end past the time limit, or the estimated error `error` met the target.
+    fn stop_after_pass(
+        &self,
+        n: u32,
+        took: Duration,
+        next: Option<&(u32, u32)>,
+        error: Option<f64>,
+    ) -> Option<StopReason> {
+        let next = next?;
+        if self
+            .budget
+            .would_exceed(n as u64, took, (next.1 - next.0) as u64)
+        {
+            return Some(StopReason::TimeLimit);
+        }
+        match (self.opts.target_error, error) {
+            (Some(target), Some(e)) if e <= target => Some(StopReason::TargetError),
+            _ => None,
+        }
+    }
+
     /// Writes a final checkpoint, if checkpointing.
     fn final_checkpoint(&self, snap: &Snapshot) {
         if let Some(t) = &self.ticker {

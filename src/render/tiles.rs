@@ -131,20 +131,10 @@ pub(super) fn render(
         pass += 1;
         estimate.update(&s.film, spp_done);
         drop(s);
-        if let Some(next) = passes.get(pass) {
-            if ctx
-                .budget
-                .would_exceed(b - a, t0.elapsed(), next.1 - next.0)
-            {
-                stop = StopReason::TimeLimit;
-                break;
-            }
-            if let (Some(target), Some(e)) = (opts.target_error, estimate.last)
-                && e <= target
-            {
-                stop = StopReason::TargetError;
-                break;
-            }
+        if let Some(why) = ctx.stop_after_pass(b - a, t0.elapsed(), passes.get(pass), estimate.last)
+        {
+            stop = why;
+            break;
         }
     }
     let s = shared.into_inner().unwrap_or_else(|p| p.into_inner());

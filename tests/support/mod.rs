@@ -51,6 +51,7 @@ impl Csv {
 }
 
 /// A small deterministic generator (SplitMix64) for Monte Carlo checks.
+pub mod cli;
 pub mod idiff;
 pub mod render;
 
