@@ -5,6 +5,7 @@
 //! | light | spectrum unit |
 //! | --- | --- |
 //! | point, spot | spectral intensity, W·sr⁻¹·nm⁻¹ |
+//! | goniometric (a luminaire file) | spectral intensity per candela of its table, W·sr⁻¹·nm⁻¹·cd⁻¹ |
 //! | area, environment, environment map | spectral radiance, W·m⁻²·sr⁻¹·nm⁻¹ |
 //! | directional | spectral irradiance on a plane perpendicular to it, W·m⁻²·nm⁻¹ |
 //! | beam | total spectral power, W·nm⁻¹ |
@@ -19,6 +20,7 @@ mod directional;
 mod distribution2d;
 mod environment;
 mod envmap;
+mod goniometric;
 mod point;
 mod projector;
 mod spot;
@@ -28,6 +30,7 @@ pub use beam::BeamLight;
 pub use directional::DirectionalLight;
 pub use environment::EnvironmentLight;
 pub use envmap::EnvMapLight;
+pub use goniometric::{Fold, GoniometricLight, IntensityTable};
 pub use point::PointLight;
 pub use projector::ProjectorLight;
 pub use spot::{SpotLight, SpotTexture};
@@ -190,6 +193,8 @@ pub enum Light {
     Beam(BeamLight),
     /// Mitsuba's `projector`: an image projected from a point.
     Projector(Box<ProjectorLight>),
+    /// A measured luminaire (IES LM-63 or EULUMDAT): a point with a tabulated distribution.
+    Goniometric(Box<GoniometricLight>),
 }
 
 impl Light {
@@ -212,6 +217,7 @@ impl Light {
             Light::EnvMap(l) => l.sample_li(w, u),
             Light::Beam(l) => l.sample_li(p, w),
             Light::Projector(l) => l.sample_li(p, w),
+            Light::Goniometric(l) => l.sample_li(p, w),
         }
     }
 
@@ -224,7 +230,11 @@ impl Light {
             Light::Directional(l) => l.pdf_li(wi),
             Light::Environment(_) => crate::sampling::UNIFORM_SPHERE_PDF,
             Light::EnvMap(l) => l.pdf_li(wi),
-            Light::Point(_) | Light::Spot(_) | Light::Beam(_) | Light::Projector(_) => 0.0,
+            Light::Point(_)
+            | Light::Spot(_)
+            | Light::Beam(_)
+            | Light::Projector(_)
+            | Light::Goniometric(_) => 0.0,
         }
     }
 
@@ -278,6 +288,7 @@ impl Light {
             Light::Spot(l) => Some(l.sample_le(w, u_dir)),
             Light::Beam(l) => Some(l.sample_le(w, u_pos)),
             Light::Projector(l) => Some(l.sample_le(w, u_dir)),
+            Light::Goniometric(l) => Some(l.sample_le(w, u_dir)),
             Light::Directional(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
             Light::Environment(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
             Light::EnvMap(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
@@ -306,6 +317,7 @@ impl Light {
             },
             Light::Spot(l) => l.pdf_le(d),
             Light::Projector(l) => l.pdf_le(d),
+            Light::Goniometric(l) => l.pdf_le(d),
             Light::Beam(l) => l.pdf_le(p),
             Light::Directional(l) => EmissionPdf {
                 pos: disk,
@@ -332,7 +344,11 @@ impl Light {
             Light::Directional(_) | Light::Environment(_) | Light::EnvMap(_) | Light::Beam(_) => {
                 true
             }
-            Light::Point(_) | Light::Spot(_) | Light::Area(_) | Light::Projector(_) => false,
+            Light::Point(_)
+            | Light::Spot(_)
+            | Light::Area(_)
+            | Light::Projector(_)
+            | Light::Goniometric(_) => false,
         }
     }
 
@@ -344,14 +360,19 @@ impl Light {
             | Light::Spot(_)
             | Light::Area(_)
             | Light::Beam(_)
-            | Light::Projector(_) => false,
+            | Light::Projector(_)
+            | Light::Goniometric(_) => false,
         }
     }
 
     /// Whether the light is a delta distribution in position or direction.
     pub fn is_delta(&self) -> bool {
         match self {
-            Light::Point(_) | Light::Spot(_) | Light::Beam(_) | Light::Projector(_) => true,
+            Light::Point(_)
+            | Light::Spot(_)
+            | Light::Beam(_)
+            | Light::Projector(_)
+            | Light::Goniometric(_) => true,
             Light::Directional(l) => l.is_delta(),
             Light::Area(_) | Light::Environment(_) | Light::EnvMap(_) => false,
         }
@@ -384,6 +405,7 @@ impl Light {
             Light::Projector(l) => {
                 pi * band(&l.spectrum) * l.image.mean() as f64 * l.image_area() as f64
             }
+            Light::Goniometric(l) => l.power(band(&l.spectrum)),
         }
     }
 }

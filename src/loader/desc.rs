@@ -528,6 +528,19 @@ pub enum LightKind {
         fov_axis_y: bool,
         image: TextureDesc,
     },
+    /// A measured luminaire (an IES LM-63 or EULUMDAT file, `crate::light::GoniometricLight`):
+    /// its photometric nadir (γ = 0°) points from `position` at `target`, its C = 0° plane
+    /// toward `c0` (a direction, made perpendicular to the nadir; None: world +x, or +z when
+    /// the nadir is within 25° of the x axis), and the file's tilt table is read at `tilt`.
+    /// The light's `spectrum` shapes the emission; the file gives the candela.
+    Luminaire {
+        position: Point,
+        target: Point,
+        c0: Option<[f64; 3]>,
+        tilt: Angle,
+        photometry: Box<crate::loader::photometric::Photometry>,
+        amount: LuminaireAmount,
+    },
     /// A collimated beam leaving a disk of `radius` at `position` toward `target`; `amount` is
     /// its total power (W or lm) or a scale of a spectrum already in W·nm⁻¹.
     Beam {
@@ -536,6 +549,19 @@ pub enum LightKind {
         radius: Length,
         amount: PointAmount,
     },
+}
+
+/// How bright a luminaire is: as its file says, scaled, or set to a total flux.
+#[derive(Clone, Debug)]
+pub enum LuminaireAmount {
+    /// The file's absolute candela (times the tilt factor).
+    File,
+    /// The file's candela (times the tilt factor) times this.
+    Scale(f64),
+    /// The distribution rescaled to this total luminous flux.
+    LuminousFlux(LuminousFlux),
+    /// The distribution rescaled to this radiant power over the film's wavelength range.
+    Power(Power),
 }
 
 #[derive(Clone, Debug)]

@@ -8,6 +8,7 @@ mod convert;
 pub mod desc;
 pub mod error;
 pub mod mitsuba;
+pub mod photometric;
 mod raw;
 
 use std::path::Path;

@@ -176,6 +176,12 @@ pub struct RawLight {
     pub radius: Option<S<Value>>,
     /// An environment map's image file.
     pub image: Option<S<String>>,
+    /// A luminaire's photometric file (.ies or .ldt).
+    pub file: Option<S<String>>,
+    /// A luminaire's C = 0° direction.
+    pub c0: Option<S<Value>>,
+    /// The tilt a luminaire's tilt table is read at.
+    pub tilt: Option<S<Value>>,
     /// An environment map's rotation (transform steps, as shapes have).
     pub transform: Option<S<Vec<S<Value>>>>,
 }

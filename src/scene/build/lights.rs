@@ -12,6 +12,7 @@
 //! | spot power | Φ/(Ω B), Ω = 2π[(1 − cos θ_start) + (cos θ_start − cos θ_total)/2] |
 //! | area power | Φ/(π A B), two-sided Φ/(2π A B) (Φ = π L A) |
 //! | beam power Φ (W or lm) | Φ/B or Φ/V (spread over the beam's disk) |
+//! | luminaire file (candela table T, ∫ T dω = F lm) | t/V per cd (t the tilt factor); `scale` s: s·t/V; power Φ: Φ/(F V) or Φ/(F B) |
 //! | scale s | s (S is already absolute) |
 //! | environment map: mean radiance L̄ or luminance L̄_v over the sphere | 4π L̄ / ∫∫ M dλ dω or 4π L̄_v / (K_m ∫∫ M ȳ dλ dω), M the map under S |
 //!
@@ -35,12 +36,13 @@ use crate::colour::cie::{K_M, cmf};
 use crate::geometry::Frame;
 use crate::geometry::shape::Shape;
 use crate::light::{
-    AreaLight, BeamLight, DirectionalLight, EnvMapLight, EnvironmentLight, Light, PointLight,
-    ProjectorLight, SpotLight, SpotTexture,
+    AreaLight, BeamLight, DirectionalLight, EnvMapLight, EnvironmentLight, Fold, GoniometricLight,
+    IntensityTable, Light, PointLight, ProjectorLight, SpotLight, SpotTexture,
 };
 use crate::loader::desc::{
-    DirectionalAmount, EmitAmount, EnvMapAmount, LightKind, PointAmount, SceneDesc,
+    DirectionalAmount, EmitAmount, EnvMapAmount, LightKind, LuminaireAmount, PointAmount, SceneDesc,
 };
+use crate::loader::photometric::{Photometry, Symmetry};
 use crate::loader::{LoadError, Loc};
 use crate::scene::Surface;
 use crate::spectrum::{Spectrum, WavelengthRange};
@@ -201,6 +203,76 @@ fn envmap(
     at(illuminant.scaled(k as f32))
 }
 
+/// A luminaire: the photometric frame from the nadir (`position` → `target`) and the C0
+/// direction, the table in plain `f32`, and the spectrum per candela scaled as `amount` says
+/// (see the table in the module doc).
+fn luminaire(
+    position: Vec3,
+    target: Vec3,
+    c0: Option<[f64; 3]>,
+    tilt_deg: f64,
+    p: &Photometry,
+    amount: &LuminaireAmount,
+    spectrum: &Spectrum,
+    r: WavelengthRange,
+) -> Result<GoniometricLight, String> {
+    let up = (position - target).normalize();
+    let c0 = match c0 {
+        Some(d) => Vec3::new(d[0] as f32, d[1] as f32, d[2] as f32),
+        // world +x, or +z when the nadir is within 25° of the x axis
+        None if up.x.abs() > 25f32.to_radians().cos() => Vec3::Z,
+        None => Vec3::X,
+    };
+    let x = (c0 - up * c0.dot(up)).normalize();
+    let frame = glam::Mat3::from_cols(x, up.cross(x), up);
+    let table = IntensityTable {
+        vertical: p.vertical_deg.iter().map(|&a| a as f32).collect(),
+        horizontal: p.horizontal_deg.iter().map(|&a| a as f32).collect(),
+        fold: match p.symmetry {
+            Symmetry::Axial => Fold::Axial,
+            Symmetry::Quadrant => Fold::Quadrant,
+            Symmetry::Bilateral0To180 => Fold::Bilateral0To180,
+            Symmetry::Bilateral90To270 => Fold::Bilateral90To270,
+            Symmetry::Full => Fold::Full,
+        },
+        cd: p.candela.iter().map(|&c| c as f32).collect(),
+    };
+    let flux = table.luminous_flux();
+    if !(flux > 0.0) {
+        return Err(format!(
+            "{}: the luminaire emits nothing (every intensity is 0)",
+            p.file.display()
+        ));
+    }
+    let v = luminous_integral(spectrum, r);
+    if !(v > 0.0) {
+        return Err(
+            "the spectrum has no visible light, so the file's candela cannot set its scale".into(),
+        );
+    }
+    let tilt = p.tilt_factor(tilt_deg);
+    let k = match amount {
+        LuminaireAmount::File => tilt / v,
+        LuminaireAmount::Scale(s) => s * tilt / v,
+        LuminaireAmount::LuminousFlux(f) => f.get::<luminous_flux::lumen>() / (flux * v),
+        LuminaireAmount::Power(w) => {
+            let b = band_integral(spectrum, r);
+            if !(b > 0.0) {
+                return Err(format!(
+                    "the spectrum carries no power in {}–{} nm",
+                    r.min_nm, r.max_nm
+                ));
+            }
+            w.get::<power::watt>() / (flux * b)
+        }
+    };
+    if !(k.is_finite() && (k as f32).is_finite()) {
+        return Err(format!("the luminaire's scale ({k}) is not representable"));
+    }
+    GoniometricLight::new(position, frame, spectrum.scaled(k as f32), table)
+        .ok_or_else(|| "the luminaire emits nothing".into())
+}
+
 /// The lights, their sampling weights and the surfaces table, as [`lights`] returns them.
 type Lights = (Vec<Light>, Vec<f64>, Vec<Surface>);
 
@@ -341,6 +413,26 @@ pub(super) fn lights(
                     spectrum: l.spectrum.clone(),
                 }))
             }
+            LightKind::Luminaire {
+                position,
+                target,
+                c0,
+                tilt,
+                photometry,
+                amount,
+            } => Light::Goniometric(Box::new(
+                luminaire(
+                    v3(position),
+                    v3(target),
+                    *c0,
+                    tilt.get::<crate::units::angle::degree>(),
+                    photometry,
+                    amount,
+                    &l.spectrum,
+                    r,
+                )
+                .map_err(e)?,
+            )),
             LightKind::Environment { amount } => {
                 let (per, g) = emit(amount, None).map_err(e)?;
                 Light::Environment(EnvironmentLight {

@@ -6,15 +6,19 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
     let sp = l.span();
     let f = format!("lights[{i}]");
     let l = l.get_ref();
-    let all = present!(l; kind, spectrum, position, target, direction, power, intensity, radiance, luminance, irradiance, scale, cone_angle, falloff_start, falloff, angular_diameter, radius, image, transform);
+    let all = present!(l; kind, spectrum, position, target, direction, power, intensity, radiance, luminance, irradiance, scale, cone_angle, falloff_start, falloff, angular_diameter, radius, image, transform, file, c0, tilt);
     let ty = cx.required(
         &l.kind,
         &sp,
         &format!("{f}.type"),
-        "point, spot, directional, environment or beam",
+        "point, spot, directional, environment, beam or luminaire",
     )?;
     let spectrum = match &l.spectrum {
         Some(s) => cx.spectrum(s, &format!("{f}.spectrum"), SpectrumUse::Emission)?,
+        // a luminaire's default: CIE illuminant A, the lamp of classical photometry
+        None if ty.get_ref() == "luminaire" => {
+            Spectrum::Blackbody(crate::spectrum::blackbody::Blackbody::cie_illuminant_a())
+        }
         None => Spectrum::Constant(1.0),
     };
     let pos = |cx: &Cx<'_>| {
@@ -341,12 +345,24 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
                 amount: point_amount(cx)?,
             }
         }
+        "luminaire" => {
+            cx.only(
+                "a luminaire",
+                &f,
+                &all,
+                &[
+                    "kind", "spectrum", "position", "target", "file", "c0", "tilt", "power",
+                    "scale",
+                ],
+            )?;
+            luminaire(cx, &sp, &f, l, aim(cx, "luminaire's nadir (0° vertical)")?)?
+        }
         o => {
             return Err(cx.err(
                 &ty.span(),
                 format!("{f}.type"),
                 format!(
-                    "unknown light type \"{o}\"; expected point, spot, directional, environment or beam"
+                    "unknown light type \"{o}\"; expected point, spot, directional, environment, beam or luminaire"
                 ),
             ));
         }
@@ -365,6 +381,115 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
         spectrum,
         sampling_weight: 1.0,
         loc: cx.src.span(&sp),
+    })
+}
+
+/// A luminaire: its photometric file read, its C0 direction and tilt, and its amount (the
+/// file's candela by default, `scale` times them, or `power` in lm or W setting the total).
+fn luminaire(
+    cx: &Cx<'_>,
+    sp: &Range<usize>,
+    f: &str,
+    l: &RawLight,
+    (position, target): (Point, Point),
+) -> R<LightKind> {
+    let file = cx.required(
+        &l.file,
+        sp,
+        &format!("{f}.file"),
+        "a photometric file, IES LM-63 (.ies) or EULUMDAT (.ldt)",
+    )?;
+    let path = cx.path(file.get_ref());
+    if !path.is_file() {
+        return Err(cx.err(
+            &file.span(),
+            format!("{f}.file"),
+            format!("photometric file not found: {}", path.display()),
+        ));
+    }
+    let photometry = crate::loader::photometric::load(&path)?;
+    let c0 = match &l.c0 {
+        None => None,
+        Some(v) => {
+            let d = cx.vec3(v, &format!("{f}.c0"))?;
+            let nadir = [0, 1, 2]
+                .map(|k| target[k].get::<length::meter>() - position[k].get::<length::meter>());
+            let n2: f64 = nadir.iter().map(|x| x * x).sum();
+            let d2: f64 = d.iter().map(|x| x * x).sum();
+            let dot: f64 = (0..3).map(|k| nadir[k] * d[k]).sum();
+            // the part of c0 perpendicular to the nadir must not vanish
+            if !(d2 > 0.0 && d2 - dot * dot / n2 > 1e-6 * d2) {
+                return Err(cx.err(
+                    &v.span(),
+                    format!("{f}.c0"),
+                    "the C0 direction must not be zero or along the nadir (position → target)",
+                ));
+            }
+            Some(d)
+        }
+    };
+    let tilt = match &l.tilt {
+        None => Angle::new::<angle::degree>(0.0),
+        Some(t) => {
+            let a: Angle = cx.quantity(t, &format!("{f}.tilt"))?;
+            let d = a.get::<angle::degree>();
+            if !(0.0..=180.0).contains(&d) {
+                return Err(cx.err(
+                    &t.span(),
+                    format!("{f}.tilt"),
+                    format!("expected a tilt from 0 to 180 deg, found {} deg", round9(d)),
+                ));
+            }
+            a
+        }
+    };
+    let amount = match (&l.power, &l.scale) {
+        (Some(_), Some(s)) => {
+            return Err(cx.err(
+                &s.span(),
+                format!("{f}.scale"),
+                "give power or scale, not both",
+            ));
+        }
+        (Some(p), None) => {
+            let field = format!("{f}.power");
+            let (amount, v) = match cx.quantity_of(p, &field, &[D::Power, D::LuminousFlux])? {
+                (D::Power, w) => (LuminaireAmount::Power(Power::new::<power::watt>(w)), w),
+                (_, lm) => (
+                    LuminaireAmount::LuminousFlux(LuminousFlux::new::<luminous_flux::lumen>(lm)),
+                    lm,
+                ),
+            };
+            if !(v >= 0.0) {
+                return Err(cx.err(
+                    &p.span(),
+                    field,
+                    format!("light cannot be negative, found {v}"),
+                ));
+            }
+            amount
+        }
+        (None, Some(s)) => {
+            let field = format!("{f}.scale");
+            let k = cx.number(s, &field)?;
+            if !(k >= 0.0) {
+                return Err(cx.err(
+                    &s.span(),
+                    field,
+                    format!("light cannot be negative, found {k}"),
+                ));
+            }
+            LuminaireAmount::Scale(k)
+        }
+        (None, None) => LuminaireAmount::File,
+    };
+    Ok(LightKind::Luminaire {
+        position,
+        target,
+        c0,
+        tilt,
+        photometry: Box::new(photometry),
+        amount,
     })
 }
 
