@@ -2,6 +2,7 @@
 
 mod checkpoint;
 mod farm;
+mod measure;
 mod merge;
 mod progress;
 mod render;
@@ -35,6 +36,9 @@ pub enum Command {
     /// Merge the EXR files of render parts (`render --part I/N`) into one image, bit for bit
     /// the image one render of all their samples gives.
     Merge(merge::MergeArgs),
+    /// Measure illuminance (lx) and irradiance (W/m²) at the scene's `[[sensors]]` by
+    /// hemispherical integration, with a standard error per point, into a CSV file.
+    Measure(measure::MeasureArgs),
 }
 
 /// An error for the user, printed after "error: ".
@@ -58,6 +62,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Some(Command::Spectrum(args)) => spectrum::run(args),
         Some(Command::Render(args)) => render::run(*args),
         Some(Command::Merge(args)) => merge::merge(args),
+        Some(Command::Measure(args)) => measure::run(args),
         None => render::run_default(),
     }
 }

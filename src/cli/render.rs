@@ -114,9 +114,9 @@ pub struct RenderArgs {
 /// Samples per pixel a render may take at most (as the scene loaders' limit).
 const MAX_SPP: u32 = 1 << 24;
 
-static CANCEL: AtomicBool = AtomicBool::new(false);
+pub(super) static CANCEL: AtomicBool = AtomicBool::new(false);
 
-fn install_ctrl_c() {
+pub(super) fn install_ctrl_c() {
     // A second handler cannot be installed in the same process; the first one stays.
     let _ = ctrlc::set_handler(|| {
         if CANCEL.swap(true, Ordering::SeqCst) {

@@ -9,6 +9,7 @@
 pub mod bdpt;
 mod direct;
 pub mod light;
+pub mod meter;
 mod path;
 mod whitted;
 

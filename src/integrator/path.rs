@@ -16,17 +16,44 @@ use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 /// Radiance along `ray`, W·m⁻²·sr⁻¹·nm⁻¹ at the wavelengths `w`.
 pub(super) fn radiance<const N: usize>(
     it: &Integrator<'_>,
+    ray: Ray,
+    w: &mut SampledWavelengths<N>,
+    s: &mut Sampler,
+) -> SampledSpectrum<N> {
+    trace(it, ray, w, s, None)
+}
+
+/// Radiance along `ray`, which a sampling step at `ray.o` chose with density `pdf` per sr
+/// against which light sampling there is weighted (an irradiance meter's cosine-weighted
+/// direction): emission at the first hit is MIS-weighted as after a BSDF sample.
+pub(super) fn radiance_after_sample<const N: usize>(
+    it: &Integrator<'_>,
+    ray: Ray,
+    pdf: f32,
+    w: &mut SampledWavelengths<N>,
+    s: &mut Sampler,
+) -> SampledSpectrum<N> {
+    trace(it, ray, w, s, Some(pdf))
+}
+
+/// The path tracer; `first_pdf` is the density of the first direction when it was sampled
+/// against light sampling (None: a camera ray, weighted 1).
+#[inline(always)]
+fn trace<const N: usize>(
+    it: &Integrator<'_>,
     mut ray: Ray,
     w: &mut SampledWavelengths<N>,
     s: &mut Sampler,
+    first_pdf: Option<f32>,
 ) -> SampledSpectrum<N> {
     let scene = it.scene;
     let mut l = SampledSpectrum::<N>::zero();
     let mut beta = SampledSpectrum::<N>::splat(1.0);
     // the previous vertex, for MIS of emitters hit by BSDF sampling
     let mut prev_p = ray.o;
-    let mut prev_pdf = 0.0f32;
-    let mut specular_bounce = true; // the camera ray counts as "specular": no MIS
+    let mut prev_pdf = first_pdf.unwrap_or(0.0);
+    // the camera ray counts as "specular": no MIS
+    let mut specular_bounce = first_pdf.is_none();
     let mut eta_scale = 1.0f32;
     let mut depth = 0u32;
     // Every bounce reads the same dimensions whatever happened before (pbrt-v4 §8.3: a fixed

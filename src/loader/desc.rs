@@ -33,6 +33,8 @@ pub struct SceneDesc {
     /// Placements of groups (Mitsuba's `instance`).
     pub instances: Vec<InstanceDesc>,
     pub lights: Vec<LightDesc>,
+    /// Irradiance and illuminance meters (`[[sensors]]`), measured by `spectrace measure`.
+    pub sensors: Vec<SensorDesc>,
     /// What the loader wants the user to know without refusing the file ("file:line: message"),
     /// e.g. a Mitsuba sampler replaced by spectrace's own. Printed once by the CLI.
     pub notes: Vec<String>,
@@ -549,6 +551,30 @@ pub enum LightKind {
         radius: Length,
         amount: PointAmount,
     },
+}
+
+/// Where a meter measures.
+#[derive(Clone, Debug)]
+pub enum SensorKind {
+    /// One point; `normal` (dimensionless, non-zero) is the side measured.
+    Point { position: Point, normal: [f64; 3] },
+    /// `count[0] × count[1]` points at the centres of the cells of the parallelogram
+    /// `corner + s·edge_u + t·edge_v` (s, t in [0, 1]), measuring the side of `normal`.
+    Grid {
+        corner: Point,
+        edge_u: Point,
+        edge_v: Point,
+        count: [u32; 2],
+        normal: [f64; 3],
+    },
+}
+
+/// A meter (`[[sensors]]`).
+#[derive(Clone, Debug)]
+pub struct SensorDesc {
+    pub name: String,
+    pub kind: SensorKind,
+    pub loc: Loc,
 }
 
 /// How bright a luminaire is: as its file says, scaled, or set to a total flux.

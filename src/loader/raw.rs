@@ -27,6 +27,23 @@ pub struct RawScene {
     pub groups: BTreeMap<S<String>, S<RawGroup>>,
     #[serde(default)]
     pub instances: Vec<S<RawInstance>>,
+    /// Irradiance and illuminance meters (`spectrace measure`).
+    #[serde(default)]
+    pub sensors: Vec<S<RawSensor>>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawSensor {
+    #[serde(rename = "type")]
+    pub kind: Option<S<String>>,
+    pub name: Option<S<String>>,
+    pub position: Option<S<Value>>,
+    pub normal: Option<S<Value>>,
+    pub corner: Option<S<Value>>,
+    pub edge_u: Option<S<Value>>,
+    pub edge_v: Option<S<Value>>,
+    pub count: Option<S<Value>>,
 }
 
 #[derive(Deserialize, Debug)]

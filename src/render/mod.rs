@@ -30,6 +30,7 @@ use crate::spectrum::{N_WAVELENGTHS, SampledWavelengths, WavelengthSampler};
 mod bdpt;
 mod control;
 mod light;
+pub mod measure;
 mod tiles;
 
 use control::{Budget, Ticker, check_resume, passes};

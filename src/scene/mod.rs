@@ -78,6 +78,24 @@ pub struct Scene {
     pub wavelengths: WavelengthRange,
     /// Axis-aligned bounds of all shapes, m.
     pub bounds: (Vec3, Vec3),
+    /// Irradiance meters, measured by `spectrace measure` (not by rendering).
+    pub meters: Vec<Meter>,
+}
+
+/// A point where irradiance is measured: position (m) and unit normal of the measured side.
+#[derive(Clone, Copy, Debug)]
+pub struct MeterPoint {
+    pub p: Vec3,
+    pub n: Vec3,
+}
+
+/// A named meter: one point, or a grid of `grid[0] × grid[1]` points, row `j` of `grid[1]`
+/// holding points `j·grid[0] .. (j + 1)·grid[0]` along the first edge.
+#[derive(Clone, Debug)]
+pub struct Meter {
+    pub name: String,
+    pub grid: [u32; 2],
+    pub points: Vec<MeterPoint>,
 }
 
 impl Scene {

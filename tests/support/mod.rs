@@ -53,6 +53,7 @@ impl Csv {
 /// A small deterministic generator (SplitMix64) for Monte Carlo checks.
 pub mod cli;
 pub mod idiff;
+pub mod photometric;
 pub mod render;
 
 pub struct Rng(u64);

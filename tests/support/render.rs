@@ -114,3 +114,31 @@ pub fn plane_point(scene: &Scene, px: usize, py: usize) -> (f64, f64) {
     let r2 = x * x + z * z + 4.0;
     (r2, 2.0 / r2.sqrt())
 }
+
+/// Loads and builds a scene file.
+pub fn scene_at(path: &Path) -> Scene {
+    let desc = spectrace::loader::load(path).unwrap_or_else(|e| panic!("{e}"));
+    spectrace::scene::build(&desc).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// Every meter point's reading, `samples` per point, 2 threads, seed `seed`.
+pub fn measure(scene: &Scene, samples: u32, seed: u32) -> Vec<spectrace::render::measure::Reading> {
+    let points: Vec<_> = scene
+        .meters
+        .iter()
+        .flat_map(|m| m.points.iter().copied())
+        .collect();
+    let opts = spectrace::render::measure::MeasureOptions {
+        samples,
+        threads: Some(2),
+        seed,
+        max_depth: scene.integrator.max_depth,
+        spectral_bins: 0,
+    };
+    let cancel = AtomicBool::new(false);
+    spectrace::render::measure::measure(scene, &points, &opts, &cancel, &|_| {})
+        .expect("measure starts")
+        .into_iter()
+        .map(|r| r.expect("complete"))
+        .collect()
+}

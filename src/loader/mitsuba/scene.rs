@@ -232,6 +232,7 @@ pub(super) fn scene(
         groups,
         instances,
         lights,
+        sensors: Vec::new(),
         notes: cx.notes.into_inner().into_iter().map(|(_, l)| l).collect(),
     })
 }

@@ -121,7 +121,47 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         },
         wavelengths: range,
         bounds,
+        meters: desc.sensors.iter().map(meter).collect(),
     })
+}
+
+/// A meter's points in metres: a grid's at the centres of its cells.
+fn meter(s: &crate::loader::desc::SensorDesc) -> super::Meter {
+    use crate::loader::desc::SensorKind;
+    let unit = |n: &[f64; 3]| Vec3::new(n[0] as f32, n[1] as f32, n[2] as f32).normalize();
+    match &s.kind {
+        SensorKind::Point { position, normal } => super::Meter {
+            name: s.name.clone(),
+            grid: [1, 1],
+            points: vec![super::MeterPoint {
+                p: v3(position),
+                n: unit(normal),
+            }],
+        },
+        SensorKind::Grid {
+            corner,
+            edge_u,
+            edge_v,
+            count,
+            normal,
+        } => {
+            let (c, a, b) = (v3(corner), v3(edge_u), v3(edge_v));
+            let n = unit(normal);
+            let points = (0..count[1])
+                .flat_map(|j| (0..count[0]).map(move |i| (i, j)))
+                .map(|(i, j)| super::MeterPoint {
+                    p: c + a * ((i as f32 + 0.5) / count[0] as f32)
+                        + b * ((j as f32 + 0.5) / count[1] as f32),
+                    n,
+                })
+                .collect();
+            super::Meter {
+                name: s.name.clone(),
+                grid: *count,
+                points,
+            }
+        }
+    }
 }
 
 /// Surfaces per shape: filled by `lights` (which also knows the emitters).

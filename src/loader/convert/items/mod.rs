@@ -3,11 +3,13 @@
 mod camera;
 mod lights;
 mod materials;
+mod sensors;
 mod shapes;
 
 use camera::{camera, film, integrator};
 use lights::light;
 use materials::material;
+use sensors::sensor;
 use shapes::{emit_amount, one_amount, shape};
 
 use std::ops::Range;
@@ -129,6 +131,12 @@ pub(super) fn scene(cx: &mut Cx<'_>, raw: RawScene) -> R<SceneDesc> {
         groups,
         instances,
         lights,
+        sensors: raw
+            .sensors
+            .iter()
+            .enumerate()
+            .map(|(i, s)| sensor(cx, i, s))
+            .collect::<R<Vec<_>>>()?,
         notes: range_note(&range).into_iter().collect(),
     })
 }
