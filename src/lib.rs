@@ -14,6 +14,7 @@ extern crate uom;
 
 pub mod cli;
 pub mod colour;
+pub mod daylight;
 pub mod files;
 pub mod film;
 pub mod geometry;

@@ -543,6 +543,15 @@ pub enum LightKind {
         photometry: Box<crate::loader::photometric::Photometry>,
         amount: LuminaireAmount,
     },
+    /// A CIE sky (`crate::daylight::sky`) above the plane perpendicular to `up`, its sun toward
+    /// `sun` (unit, world; it shapes the sky, it is not itself a light), radiance
+    /// L_z·(L/L_z)(direction)·S(λ)/(K_m ∫ S ȳ dλ) with the zenith luminance L_z from `amount`.
+    Sky {
+        model: crate::daylight::sky::SkyModel,
+        sun: [f64; 3],
+        up: [f64; 3],
+        amount: SkyAmount,
+    },
     /// A collimated beam leaving a disk of `radius` at `position` toward `target`; `amount` is
     /// its total power (W or lm) or a scale of a spectrum already in W·nm⁻¹.
     Beam {
@@ -575,6 +584,15 @@ pub struct SensorDesc {
     pub name: String,
     pub kind: SensorKind,
     pub loc: Loc,
+}
+
+/// How bright a sky is: its zenith luminance, or the illuminance (or band irradiance) it
+/// gives an unobstructed horizontal plane.
+#[derive(Clone, Debug)]
+pub enum SkyAmount {
+    ZenithLuminance(Luminance),
+    HorizontalIlluminance(Illuminance),
+    HorizontalIrradiance(Irradiance),
 }
 
 /// How bright a luminaire is: as its file says, scaled, or set to a total flux.

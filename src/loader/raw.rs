@@ -199,6 +199,18 @@ pub struct RawLight {
     pub c0: Option<S<Value>>,
     /// The tilt a luminaire's tilt table is read at.
     pub tilt: Option<S<Value>>,
+    /// A sky's model ("cie-overcast", "cie-1" … "cie-15").
+    pub model: Option<S<String>>,
+    /// The sun by angles: elevation above the horizon and azimuth clockwise from north.
+    pub sun_elevation: Option<S<Value>>,
+    pub sun_azimuth: Option<S<Value>>,
+    /// The sun by place and time (deg, east positive; ISO 8601 with a zone).
+    pub latitude: Option<S<Value>>,
+    pub longitude: Option<S<Value>>,
+    pub time: Option<S<String>>,
+    /// The scene's up and north directions for the sky and the sun.
+    pub up: Option<S<Value>>,
+    pub north: Option<S<Value>>,
     /// An environment map's rotation (transform steps, as shapes have).
     pub transform: Option<S<Vec<S<Value>>>>,
 }

@@ -39,6 +39,7 @@ use crate::light::{
     AreaLight, BeamLight, DirectionalLight, EnvMapLight, EnvironmentLight, Fold, GoniometricLight,
     IntensityTable, Light, PointLight, ProjectorLight, SpotLight, SpotTexture,
 };
+use crate::loader::desc::SkyAmount;
 use crate::loader::desc::{
     DirectionalAmount, EmitAmount, EnvMapAmount, LightKind, LuminaireAmount, PointAmount, SceneDesc,
 };
@@ -162,10 +163,21 @@ fn envmap(
     };
     let m = super::shapes::steps(transform, 1.0, false)?.matrix();
     let rot = glam::Mat3::from_mat4(m);
-    let at = |s: Spectrum| {
-        EnvMapLight::new(img.width, img.height, &rgb, s, rot)
-            .map_err(|e| format!("{}: {e}", path.display()))
-    };
+    envmap_of(img.width, img.height, &rgb, rot, amount, illuminant, r)
+        .map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// An environment map from linear RGB pixels (see [`envmap`]).
+fn envmap_of(
+    width: usize,
+    height: usize,
+    rgb: &[[f32; 3]],
+    rot: glam::Mat3,
+    amount: &EnvMapAmount,
+    illuminant: &Spectrum,
+    r: WavelengthRange,
+) -> Result<EnvMapLight, String> {
+    let at = |s: Spectrum| EnvMapLight::new(width, height, rgb, s, rot);
     let unit = at(illuminant.clone())?;
     let four_pi = 4.0 * std::f64::consts::PI;
     let visible = WavelengthRange {
@@ -201,6 +213,59 @@ fn envmap(
         ));
     }
     at(illuminant.scaled(k as f32))
+}
+
+/// A CIE sky baked into a 1024 × 513 latitude–longitude map (the horizon on row 256, the
+/// zenith on row 0) whose grey pixels are L/L_z, under the illuminant S/(K_m ∫ S ȳ dλ) (one
+/// pixel unit = 1 cd/m²), the map's +y turned to `up`; scaled to the zenith luminance, or to
+/// the horizontal illuminance or irradiance of the bilinear map itself. Bilinear
+/// interpolation errs by O(1/512²) (measured in `tests/daylight.rs`).
+fn sky(
+    model: crate::daylight::sky::SkyModel,
+    sun: [f64; 3],
+    up: [f64; 3],
+    amount: &SkyAmount,
+    spectrum: &Spectrum,
+    r: WavelengthRange,
+) -> Result<EnvMapLight, String> {
+    let (w, h) = (1024usize, 513usize);
+    let upv = glam::DVec3::from_array(up).normalize();
+    let sunv = glam::DVec3::from_array(sun).normalize();
+    let x = upv.any_orthonormal_vector();
+    let z = x.cross(upv);
+    let rot = glam::DMat3::from_cols(x, upv, z);
+    let zs = sunv.dot(upv).clamp(-1.0, 1.0).acos();
+    let mut rgb = Vec::with_capacity(w * h);
+    for j in 0..h {
+        let theta = std::f64::consts::PI * j as f64 / (h - 1) as f64;
+        for i in 0..w {
+            let u = 2.0 * std::f64::consts::PI * (i as f64 + 0.5) / w as f64;
+            let d =
+                rot * glam::DVec3::new(theta.sin() * u.sin(), theta.cos(), -theta.sin() * u.cos());
+            let chi = d.dot(sunv).clamp(-1.0, 1.0).acos();
+            let v = if j * 2 > h - 1 {
+                0.0
+            } else {
+                model.relative_luminance(theta.min(std::f64::consts::FRAC_PI_2), chi, zs)
+            };
+            rgb.push([v as f32; 3]);
+        }
+    }
+    let v = luminous_integral(spectrum, r);
+    if !(v > 0.0) {
+        return Err(
+            "the spectrum has no visible light, so a luminance cannot set its scale".into(),
+        );
+    }
+    let illuminant = spectrum.scaled((1.0 / v) as f32);
+    let amount = match amount {
+        SkyAmount::ZenithLuminance(l) => {
+            EnvMapAmount::Scale(l.get::<luminance::candela_per_square_meter>())
+        }
+        SkyAmount::HorizontalIlluminance(e) => EnvMapAmount::Illuminance(*e),
+        SkyAmount::HorizontalIrradiance(e) => EnvMapAmount::Irradiance(*e),
+    };
+    envmap_of(w, h, &rgb, rot.as_mat3(), &amount, &illuminant, r)
 }
 
 /// A luminaire: the photometric frame from the nadir (`position` → `target`) and the C0
@@ -432,6 +497,14 @@ pub(super) fn lights(
                     r,
                 )
                 .map_err(e)?,
+            )),
+            LightKind::Sky {
+                model,
+                sun,
+                up,
+                amount,
+            } => Light::EnvMap(Box::new(
+                sky(*model, *sun, *up, amount, &l.spectrum, r).map_err(e)?,
             )),
             LightKind::Environment { amount } => {
                 let (per, g) = emit(amount, None).map_err(e)?;

@@ -102,9 +102,12 @@ pub(super) fn scene(cx: &mut Cx<'_>, raw: RawScene) -> R<SceneDesc> {
         .map(|(i, l)| light(cx, i, l))
         .collect::<R<Vec<_>>>()?;
 
-    let has_env = lights
-        .iter()
-        .any(|l| matches!(l.kind, LightKind::Environment { .. }));
+    let has_env = lights.iter().any(|l| {
+        matches!(
+            l.kind,
+            LightKind::Environment { .. } | LightKind::EnvMap { .. } | LightKind::Sky { .. }
+        )
+    });
     if shapes.is_empty() && instances.is_empty() && !has_env {
         let span = raw.camera.as_ref().map(|c| c.span()).unwrap_or(WHOLE_FILE);
         return Err(cx.err(
