@@ -110,8 +110,8 @@ pub fn sun_position(latitude: f64, longitude: f64, t: UtcTime) -> SunPosition {
     let (r, d) = (f64::to_radians, f64::to_degrees);
     let jd = t.julian_day();
     let tc = (jd - 2_451_545.0) / 36_525.0;
-    let l0 = (280.46646 + tc * (36_000.76983 + 0.000_303_2 * tc)).rem_euclid(360.0);
-    let m = 357.52911 + tc * (35_999.05029 - 0.000_153_7 * tc);
+    let l0 = (280.46646 + tc * (36000.76983 + 0.0003032 * tc)).rem_euclid(360.0);
+    let m = 357.52911 + tc * (35999.05029 - 0.0001537 * tc);
     let e = 0.016_708_634 - tc * (0.000_042_037 + 0.000_000_126_7 * tc);
     let c = r(m).sin() * (1.914602 - tc * (0.004817 + 0.000014 * tc))
         + r(2.0 * m).sin() * (0.019993 - 0.000101 * tc)

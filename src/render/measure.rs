@@ -70,7 +70,7 @@ pub fn measure(
 ) -> Result<Vec<Option<Reading>>, RenderError> {
     let integrator = Integrator::new(scene, IntegratorKind::Path, opts.max_depth);
     let lambda = WavelengthSampler::visible(scene.wavelengths);
-    let bins = (opts.spectral_bins > 0).then(|| Bins {
+    let bins = (opts.spectral_bins > 0).then_some(Bins {
         range: scene.wavelengths,
         count: opts.spectral_bins as usize,
     });

@@ -171,7 +171,7 @@ pub fn parse_ies(text: &str, path: &Path) -> Result<Photometry, LoadError> {
         symmetry,
         candela,
         tilt,
-        lamp_lumens: (lumens_per_lamp > 0.0).then(|| lumens_per_lamp * lamps as f64),
+        lamp_lumens: (lumens_per_lamp > 0.0).then_some(lumens_per_lamp * lamps as f64),
         light_output_ratio: None,
     })
 }

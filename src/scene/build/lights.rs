@@ -272,9 +272,7 @@ fn sky(
 /// direction, the table in plain `f32`, and the spectrum per candela scaled as `amount` says
 /// (see the table in the module doc).
 fn luminaire(
-    position: Vec3,
-    target: Vec3,
-    c0: Option<[f64; 3]>,
+    (position, target, c0): (Vec3, Vec3, Option<[f64; 3]>),
     tilt_deg: f64,
     p: &Photometry,
     amount: &LuminaireAmount,
@@ -487,9 +485,7 @@ pub(super) fn lights(
                 amount,
             } => Light::Goniometric(Box::new(
                 luminaire(
-                    v3(position),
-                    v3(target),
-                    *c0,
+                    (v3(position), v3(target), *c0),
                     tilt.get::<crate::units::angle::degree>(),
                     photometry,
                     amount,
