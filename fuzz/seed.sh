@@ -16,3 +16,4 @@ seed mitsuba_xml tests/bad_scenes/*.xml tests/reference/*/scene.xml benchmarks/s
 seed obj $(find scenes tests benchmarks -name '*.obj')
 seed ply $(find scenes tests benchmarks -name '*.ply')
 seed spectrum_csv spectra/*.csv $(find tests -name '*.csv')
+seed photometric scenes/luminaires/*
