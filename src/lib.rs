@@ -15,6 +15,7 @@ extern crate uom;
 pub mod cli;
 pub mod colour;
 pub mod daylight;
+pub mod falsecolour;
 pub mod files;
 pub mod film;
 pub mod geometry;

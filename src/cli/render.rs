@@ -27,6 +27,27 @@ pub enum IntegratorArg {
     Whitted,
 }
 
+/// What a false-colour image shows.
+#[derive(Clone, Copy, Debug, PartialEq, ValueEnum, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum FalseColourKind {
+    /// Luminance of the rendered image, cd/m².
+    Luminance,
+    /// Illuminance at the surfaces the pixels see, lx (an extra pass, as `rpict -i`).
+    Illuminance,
+}
+
+/// The scale of a false-colour image.
+#[derive(
+    Clone, Copy, Debug, Default, PartialEq, ValueEnum, serde::Serialize, serde::Deserialize,
+)]
+#[serde(rename_all = "lowercase")]
+pub enum FalseColourScale {
+    #[default]
+    Log,
+    Linear,
+}
+
 #[derive(Args, Debug, Default, Clone, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
 pub struct RenderArgs {
@@ -59,6 +80,29 @@ pub struct RenderArgs {
     /// PNG exposure EV₁₀₀ (saturation at 1.2·2^EV cd/m²). Default: automatic.
     #[arg(long, allow_negative_numbers = true)]
     pub exposure: Option<f32>,
+    /// Also write a false-colour PNG (viridis, with a legend in its unit) of `luminance` (cd/m²,
+    /// the render's Y) or `illuminance` (lx at the surfaces seen: an extra pass at the render's
+    /// spp, as Radiance's `rpict -i`).
+    #[arg(long, value_name = "KIND", alias = "false-color")]
+    pub false_colour: Option<FalseColourKind>,
+    /// The false-colour PNG. Default: the EXR's name with .false.png.
+    #[arg(long, value_name = "PNG", alias = "false-color-png")]
+    pub false_colour_png: Option<PathBuf>,
+    /// The false colours' scale.
+    #[arg(long, value_enum, default_value_t, alias = "false-color-scale")]
+    pub false_colour_scale: FalseColourScale,
+    /// The top of the false colours' scale, in cd/m² or lx. Default: the largest value rounded
+    /// up to 1, 2 or 5 × 10ⁿ.
+    #[arg(long, value_name = "VALUE", alias = "false-color-max")]
+    pub false_colour_max: Option<f64>,
+    /// Decades below the top on the log scale.
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 3,
+        alias = "false-color-decades"
+    )]
+    pub false_colour_decades: u32,
     /// No progress bar and no summary.
     #[arg(short, long)]
     pub quiet: bool,
@@ -317,7 +361,28 @@ fn run_desc(
         .png
         .clone()
         .unwrap_or_else(|| exr.with_extension("png"));
-    for p in [&exr, &png] {
+    let false_png = args
+        .false_colour_png
+        .clone()
+        .unwrap_or_else(|| exr.with_extension("false.png"));
+    if args.false_colour_png.is_some() && args.false_colour.is_none() {
+        return Err(CliError::Usage(
+            "--false-colour-png needs --false-colour luminance or illuminance".into(),
+        ));
+    }
+    if let Some(m) = args.false_colour_max
+        && !(m > 0.0 && m.is_finite())
+    {
+        return Err(CliError::Usage(format!(
+            "--false-colour-max must be a positive number, found {m}"
+        )));
+    }
+    if !(1..=12).contains(&args.false_colour_decades) {
+        return Err(CliError::Usage(
+            "--false-colour-decades must be from 1 to 12".into(),
+        ));
+    }
+    for p in [&exr, &png, &false_png] {
         if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty())
             && !dir.is_dir()
         {
@@ -445,6 +510,11 @@ fn run_desc(
         None => write_exr(&exr, &image, &info)?,
     }
     let ev = write_png(&png, &image, args.exposure.or(scene.film.exposure_ev))?;
+    if let Some(kind) = args.false_colour
+        && stats.stop != crate::render::StopReason::Cancelled
+    {
+        false_colour(args, &scene, &opts, &image, kind, &false_png)?;
+    }
     if !args.quiet {
         let secs = stats.elapsed.as_secs_f64();
         let why = match stats.stop {
@@ -478,6 +548,56 @@ fn run_desc(
             shown(&png),
             ev
         );
+    }
+    Ok(())
+}
+
+/// Writes the false-colour PNG of `kind` (see [`RenderArgs::false_colour`]).
+fn false_colour(
+    args: &RenderArgs,
+    scene: &crate::scene::Scene,
+    opts: &RenderOptions,
+    image: &crate::film::Image,
+    kind: FalseColourKind,
+    path: &Path,
+) -> Result<(), CliError> {
+    let (values, unit): (Vec<f32>, &str) = match kind {
+        FalseColourKind::Luminance => (image.xyz.iter().map(|p| p[1]).collect(), "cd/m²"),
+        FalseColourKind::Illuminance => {
+            let m = crate::render::measure::MeasureOptions {
+                samples: opts.spp,
+                threads: opts.threads,
+                seed: opts.seed,
+                max_depth: opts.max_depth,
+                spectral_bins: 0,
+            };
+            let bar = super::progress::Progress::new(scene.film.height as u64, args.quiet);
+            let v = crate::render::measure::illuminance_image(scene, opts.spp, &m, &CANCEL, &|d| {
+                bar.set(d)
+            })
+            .map_err(|e| CliError::Usage(e.to_string()))?;
+            bar.finish();
+            if CANCEL.load(Ordering::Relaxed) {
+                return Ok(());
+            }
+            (v, "lx")
+        }
+    };
+    let log = args.false_colour_scale == FalseColourScale::Log;
+    let scale = match args.false_colour_max {
+        Some(hi) if log => crate::falsecolour::Scale::Log {
+            lo: hi / 10f64.powi(args.false_colour_decades as i32),
+            hi,
+        },
+        Some(hi) => crate::falsecolour::Scale::Linear { lo: 0.0, hi },
+        None => crate::falsecolour::Scale::auto(&values, log, args.false_colour_decades)
+            .unwrap_or(crate::falsecolour::Scale::Linear { lo: 0.0, hi: 1.0 }),
+    };
+    let (w, h) = (scene.film.width as usize, scene.film.height as usize);
+    let (img, fw, fh) = crate::falsecolour::image(&values, w, h, scale, unit);
+    crate::image_io::write_png_srgb8(path, fw, fh, &img)?;
+    if !args.quiet {
+        eprintln!("wrote {} ({unit}, {scale:?})", shown(path));
     }
     Ok(())
 }

@@ -150,3 +150,63 @@ pub fn measure(
         .collect();
     Ok(readings)
 }
+
+/// Illuminance at the surface each pixel sees, lx, row-major from the top row (Radiance's
+/// `rpict -i`): per sample a camera ray through the pixel (jittered by the film's filter), its
+/// first hit, and the irradiance there on the side facing the camera (the geometric normal),
+/// estimated as at a meter; 0 where the ray escapes. `progress` receives rows done.
+pub fn illuminance_image(
+    scene: &Scene,
+    spp: u32,
+    opts: &MeasureOptions,
+    cancel: &AtomicBool,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Vec<f32>, RenderError> {
+    let integrator = Integrator::new(scene, IntegratorKind::Path, opts.max_depth);
+    let lambda = WavelengthSampler::visible(scene.wavelengths);
+    let filter = crate::film::Filter::from_desc(&scene.film.filter);
+    let (w, h) = (scene.film.width, scene.film.height);
+    let threads = opts.threads.unwrap_or(0);
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| RenderError::Threads {
+            threads,
+            message: e.to_string(),
+        })?;
+    let done = AtomicU64::new(0);
+    let rows: Vec<Vec<f32>> = pool.install(|| {
+        (0..h)
+            .into_par_iter()
+            .map(|y| {
+                let mut row = vec![0.0f32; w as usize];
+                for x in 0..w {
+                    if cancel.load(Ordering::Relaxed) {
+                        break;
+                    }
+                    let mut sum = 0.0f64;
+                    for i in 0..spp {
+                        let (mut s, mut wl, ray) =
+                            super::camera_sample(scene, &lambda, &filter, opts.seed, x, y, i);
+                        let Some(hit) = scene.accel.intersect(&scene.shapes, &ray) else {
+                            continue;
+                        };
+                        let n = if hit.n_geom.dot(ray.d) > 0.0 {
+                            -hit.n_geom
+                        } else {
+                            hit.n_geom
+                        };
+                        let e = meter::irradiance(&integrator, hit.p, n, &mut wl, &mut s);
+                        if let Some(ss) = SampleSums::new(&wl, &e, None) {
+                            sum += ss.xyz[1];
+                        }
+                    }
+                    row[x as usize] = (sum / spp.max(1) as f64) as f32;
+                }
+                progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+                row
+            })
+            .collect()
+    });
+    Ok(rows.concat())
+}
