@@ -25,6 +25,7 @@ pub mod light;
 pub mod loader;
 pub mod material;
 pub mod output;
+pub mod plot;
 pub mod render;
 pub mod sampler;
 pub mod sampling;

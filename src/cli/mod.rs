@@ -4,6 +4,7 @@ mod checkpoint;
 mod farm;
 mod measure;
 mod merge;
+mod probe;
 mod progress;
 mod render;
 mod spectrum;
@@ -39,6 +40,8 @@ pub enum Command {
     /// Measure illuminance (lx) and irradiance (W/m²) at the scene's `[[sensors]]` by
     /// hemispherical integration, with a standard error per point, into a CSV file.
     Measure(measure::MeasureArgs),
+    /// Print (and plot) the spectral radiance of a pixel or region of a spectral EXR.
+    Probe(probe::ProbeArgs),
 }
 
 /// An error for the user, printed after "error: ".
@@ -63,6 +66,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Some(Command::Render(args)) => render::run(*args),
         Some(Command::Merge(args)) => merge::merge(args),
         Some(Command::Measure(args)) => measure::run(args),
+        Some(Command::Probe(args)) => probe::run(args),
         None => render::run_default(),
     }
 }

@@ -22,6 +22,10 @@ pub struct SpectrumArgs {
     /// List every named spectrum.
     #[arg(long)]
     pub list: bool,
+    /// Plot the spectrum to an SVG file: the value (with its unit) against wavelength in nm.
+    /// NAME may also be a spectrum CSV file (wavelength_nm,value).
+    #[arg(long, value_name = "SVG")]
+    pub plot: Option<std::path::PathBuf>,
 }
 
 fn wavelength_nm(s: &str) -> Result<f32, CliError> {
@@ -54,7 +58,24 @@ pub fn run(args: SpectrumArgs) -> Result<(), CliError> {
         print_data_summary();
         return Ok(());
     };
-    let named = lookup(&name)?;
+    let named = match lookup(&name) {
+        Ok(n) => n,
+        // a spectrum file, for plotting
+        Err(_) if args.plot.is_some() && std::path::Path::new(&name).is_file() => {
+            let t = crate::spectrum::data::load_spectrum_file(std::path::Path::new(&name))
+                .map_err(|e| CliError::Usage(e.to_string()))?;
+            Named::Curve {
+                spectrum: crate::spectrum::Spectrum::Piecewise(std::sync::Arc::new(t)),
+                kind: CurveKind::Illuminant,
+                source: String::new(),
+            }
+        }
+        Err(e) => return Err(e.into()),
+    };
+    if let Some(path) = &args.plot {
+        let is_file = lookup(&name).is_err();
+        return plot(&name, &named, is_file, path);
+    }
     if args.wavelengths.is_empty() {
         print_summary(&name, &named);
         return Ok(());
@@ -74,6 +95,86 @@ pub fn run(args: SpectrumArgs) -> Result<(), CliError> {
             }
         }
     }
+    Ok(())
+}
+
+/// Writes an SVG plot of a named (or file) spectrum, atomically.
+fn plot(name: &str, named: &Named, is_file: bool, path: &std::path::Path) -> Result<(), CliError> {
+    use crate::plot::Series;
+    let range = |lo: f32, hi: f32| {
+        let n = ((hi - lo).round() as usize).max(1);
+        (0..=n).map(move |k| lo + (hi - lo) * k as f32 / n as f32)
+    };
+    let (series, y_label): (Vec<Series<'_>>, &str) = match named {
+        Named::Curve { spectrum, kind, .. } => {
+            let (lo, hi) = match spectrum {
+                crate::spectrum::Spectrum::Piecewise(t) => t.domain(),
+                _ => (360.0, 830.0),
+            };
+            let label = match (is_file, kind) {
+                (true, _) => "value (as in the file)",
+                (_, CurveKind::Illuminant) => "relative spectral power (100 at 560 nm)",
+                (_, CurveKind::Reflectance) => "reflectance factor",
+                (_, CurveKind::ColourMatching) => "tristimulus value (ȳ(555 nm) = 1)",
+                (_, CurveKind::Blackbody) => "relative spectral radiance (peak 1)",
+            };
+            let pts = range(lo, hi)
+                .map(|l| (l as f64, spectrum.eval(l) as f64))
+                .collect();
+            (vec![Series { name, points: pts }], label)
+        }
+        Named::Dielectric(g) => {
+            let (lo, hi) = g.range_nm;
+            let pts = range(lo, hi)
+                .map(|l| (l as f64, g.ior.eval(l) as f64))
+                .collect();
+            (
+                vec![Series {
+                    name: "n",
+                    points: pts,
+                }],
+                "refractive index n",
+            )
+        }
+        Named::Conductor(m) => {
+            let n = range(360.0, 830.0)
+                .map(|l| (l as f64, m.ior.eval(l).0 as f64))
+                .collect();
+            let k = range(360.0, 830.0)
+                .map(|l| (l as f64, m.ior.eval(l).1 as f64))
+                .collect();
+            (
+                vec![
+                    Series {
+                        name: "n",
+                        points: n,
+                    },
+                    Series {
+                        name: "k",
+                        points: k,
+                    },
+                ],
+                "complex index n + ik",
+            )
+        }
+    };
+    let svg = crate::plot::svg(&series, name, "wavelength (nm)", y_label);
+    write_text(path, &svg)?;
+    eprintln!("wrote {}", path.display());
+    Ok(())
+}
+
+/// Writes text to `path` atomically.
+pub(super) fn write_text(path: &std::path::Path, text: &str) -> Result<(), CliError> {
+    crate::image_io::write_atomically(path, |f| {
+        use std::io::Write;
+        f.write_all(text.as_bytes())
+            .map_err(|e| crate::image_io::ImageError::Io {
+                path: path.to_path_buf(),
+                action: "write".into(),
+                source: e,
+            })
+    })?;
     Ok(())
 }
 
