@@ -39,6 +39,80 @@ pub struct RenderInfo<'a> {
     pub stop: &'a str,
     /// The estimated relative error of Y (dimensionless), if known.
     pub rel_error: Option<f64>,
+    /// The camera's sensor and the cosine of each pixel's chief ray with the optical axis:
+    /// adds the sensor's channels (see [`sensor_channels`]).
+    pub sensor: Option<(&'a crate::colour::sensor::CameraSensor, &'a [f32])>,
+}
+
+/// The sensor's channels of `img`: `sensor.H` (photometric exposure, lx·s), raw `sensor.R`,
+/// `sensor.G`, `sensor.B` and, with white balance, `sensor.wb.R/G/B` (see
+/// `crate::colour::sensor`), with the header text that states their units. Camera curves read
+/// the spectral bins (the caller renders with them).
+pub fn sensor_channels(
+    img: &Image,
+    sensor: &crate::colour::sensor::CameraSensor,
+    cos_theta: &[f32],
+) -> (Vec<(String, Vec<f32>)>, String) {
+    let n = img.width * img.height;
+    let weights = img.bins.as_ref().map(|b| {
+        let centres: Vec<f32> = (0..b.count).map(|i| b.centre(i)).collect();
+        sensor.bin_weights(&centres, b.width())
+    });
+    let mut h = vec![0.0f32; n];
+    let mut raw = [vec![0.0f32; n], vec![0.0f32; n], vec![0.0f32; n]];
+    let mut wb = sensor
+        .white_balance
+        .as_ref()
+        .map(|_| [vec![0.0f32; n], vec![0.0f32; n], vec![0.0f32; n]]);
+    for i in 0..n {
+        let e = sensor.exposure_per_radiance(cos_theta[i] as f64);
+        h[i] = (img.xyz[i][1] as f64 * e) as f32;
+        let r: [f64; 3] = match (&sensor.curves, &weights) {
+            (Some(_), Some(w)) => {
+                let mut r = [0.0; 3];
+                for (b, wk) in w.iter().enumerate() {
+                    for k in 0..3 {
+                        r[k] += img.spectral[b][i] as f64 * wk[k];
+                    }
+                }
+                r
+            }
+            _ => img.xyz[i].map(|v| v as f64),
+        };
+        let r = r.map(|v| v * e * sensor.raw_per_exposure());
+        for k in 0..3 {
+            raw[k][i] = r[k] as f32;
+        }
+        if let (Some(out), Some((_, _, m))) = (&mut wb, &sensor.white_balance) {
+            let b = *m * glam::DVec3::from(r);
+            for k in 0..3 {
+                out[k][i] = b[k] as f32;
+            }
+        }
+    }
+    let mut ch = vec![("sensor.H".to_string(), h)];
+    for (k, c) in ["R", "G", "B"].iter().enumerate() {
+        ch.push((format!("sensor.{c}"), std::mem::take(&mut raw[k])));
+    }
+    if let Some(mut out) = wb {
+        for (k, c) in ["R", "G", "B"].iter().enumerate() {
+            ch.push((format!("sensor.wb.{c}"), std::mem::take(&mut out[k])));
+        }
+    }
+    let balance = match &sensor.white_balance {
+        None => String::new(),
+        Some((name, crate::colour::sensor::Adaptation::VonKries, _)) => {
+            format!("; sensor.wb.R,G,B: raw balanced to {name} by von Kries in the sensor's space")
+        }
+        Some((name, crate::colour::sensor::Adaptation::Bradford, _)) => format!(
+            "; sensor.wb.R,G,B: linear sRGB (D65) of the raw values through the sensor's XYZ fit, Bradford-adapted from {name}"
+        ),
+    };
+    let text = format!(
+        "sensor {}: ISO {}, {} s, f/{}; sensor.H: photometric exposure of the sensor plane in lx.s, H = (pi/4) L t cos^4(theta) / N^2; sensor.R,G,B: raw values, 0.18 x ISO/10 x the channel's exposure response (lx.s, green matched to luminance under D65), so 10/ISO lx.s reads 0.18{balance}",
+        sensor.name, sensor.iso, sensor.shutter_s, sensor.f_number
+    );
+    (ch, text)
 }
 
 /// What a checkpoint or a render part stores beside its image: the film's exact sums as
@@ -127,6 +201,12 @@ pub fn write_exr_state(
             channels.push(Channel { name, data });
         }
     }
+    let sensor = info.sensor.map(|(s, cos)| sensor_channels(img, s, cos));
+    if let Some((sc, _)) = &sensor {
+        for (name, data) in sc {
+            channels.push(Channel { name, data });
+        }
+    }
     let xyz_units = if info.mitsuba_units {
         "X,Y,Z: CIE 1931 2deg on Mitsuba 3.9.1's scale (cd/m^2 divided by 683.002 x 106.7502594)"
     } else {
@@ -181,6 +261,9 @@ pub fn write_exr_state(
     ];
     if let Some(e) = info.rel_error {
         attrs.push(("spectrace:estimatedRelativeErrorY", AttrValue::Double(e)));
+    }
+    if let Some((_, text)) = &sensor {
+        attrs.push(("spectrace:sensor", AttrValue::Text(text.clone())));
     }
     let words: Vec<WordChannel> = state
         .map(|s| {

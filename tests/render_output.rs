@@ -32,6 +32,7 @@ fn spectral_exr_reads_back_with_the_same_bins_and_values() {
     let dir = tmpdir("spectral");
     let path = dir.join("s.exr");
     let info = spectrace::output::RenderInfo {
+        sensor: None,
         scene_file: "radiometry.toml",
         integrator: "path",
         spp: 4,

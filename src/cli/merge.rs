@@ -144,6 +144,8 @@ pub fn merge(args: MergeArgs) -> Result<(), CliError> {
     }
     let range = film.range;
     let info = RenderInfo {
+        // the parts carry no scene: sensor channels are not recomputed
+        sensor: None,
         scene_file: &key.scene,
         integrator: &key.integrator,
         spp: spp.min(u32::MAX as u64) as u32,

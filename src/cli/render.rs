@@ -314,6 +314,44 @@ fn run_desc(
         }
         opts.spectral_bins = b;
     }
+    // a camera's sensitivities are integrated over spectral bins: 5 nm unless asked otherwise
+    if scene
+        .camera_sensor
+        .as_ref()
+        .is_some_and(|s| s.curves.is_some())
+        && opts.spectral_bins == 0
+    {
+        opts.spectral_bins = (scene.wavelengths.width() / 5.0).ceil().max(1.0) as u32;
+        if !args.quiet {
+            eprintln!(
+                "note: the camera sensor's curves are integrated over {} spectral bins of 5 nm, which the EXR also holds",
+                opts.spectral_bins
+            );
+        }
+    }
+    let cos_theta: Option<Vec<f32>> = scene.camera_sensor.as_ref().map(|_| {
+        let (w, h) = (scene.film.width, scene.film.height);
+        let centre = scene
+            .camera
+            .generate_ray(
+                glam::Vec2::new(w as f32 / 2.0, h as f32 / 2.0),
+                glam::Vec2::splat(0.5),
+            )
+            .d;
+        (0..h)
+            .flat_map(|y| (0..w).map(move |x| (x, y)))
+            .map(|(x, y)| {
+                let d = scene
+                    .camera
+                    .generate_ray(
+                        glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5),
+                        glam::Vec2::splat(0.5),
+                    )
+                    .d;
+                d.dot(centre).clamp(0.0, 1.0)
+            })
+            .collect()
+    });
     let budgets = args.time.is_some() || args.target_error.is_some();
     if budgets && args.spp.is_none() {
         opts.spp = MAX_SPP;
@@ -416,6 +454,7 @@ fn run_desc(
         moment: scene.integrator.moment && !splats,
         stop: "checkpoint",
         rel_error: None,
+        sensor: scene.camera_sensor.as_ref().zip(cos_theta.as_deref()),
     };
     let mut started: Option<&Path> = None;
     let snapshot = match &resume {

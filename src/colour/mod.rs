@@ -3,4 +3,5 @@
 
 pub mod cie;
 pub mod lab;
+pub mod sensor;
 pub mod spaces;

@@ -221,6 +221,6 @@ mod tests {
         assert_eq!(img[(h - 14) * w + x], VIRIDIS[0]);
         assert_eq!(img[(10 + 14 + 14) * w + x], VIRIDIS[255]);
         // the title was drawn
-        assert!(img[10 * w..30 * w].iter().any(|p| *p == [235, 235, 235]));
+        assert!(img[10 * w..30 * w].contains(&[235, 235, 235]));
     }
 }

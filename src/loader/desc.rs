@@ -83,7 +83,23 @@ pub struct CameraDesc {
     pub target: Point,
     /// Dimensionless direction.
     pub up: [f64; 3],
+    /// `[camera.sensor]`.
+    pub sensor: Option<CameraSensorDesc>,
     pub loc: Loc,
+}
+
+/// A camera's sensor (see `crate::colour::sensor`).
+#[derive(Clone, Debug)]
+pub struct CameraSensorDesc {
+    /// "cie-1931", a camera's name or a file's.
+    pub name: String,
+    /// r, g, b sensitivities; None for the CIE 1931 observer.
+    pub curves: Option<[Spectrum; 3]>,
+    pub iso: f64,
+    pub shutter: crate::units::Time,
+    pub f_number: f64,
+    /// The illuminant to balance to (name, spectrum) and how.
+    pub white_balance: Option<(String, Spectrum, crate::colour::sensor::Adaptation)>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -82,6 +82,20 @@ pub struct RawCamera {
     pub f_number: Option<S<Value>>,
     pub focus_distance: Option<S<Value>>,
     pub view_width: Option<S<Value>>,
+    /// `[camera.sensor]`: spectral sensitivities, exposure and white balance.
+    pub sensor: Option<S<RawCameraSensor>>,
+}
+
+#[derive(Deserialize, Debug)]
+#[serde(deny_unknown_fields)]
+pub struct RawCameraSensor {
+    pub curves: Option<S<String>>,
+    pub file: Option<S<String>>,
+    pub iso: Option<S<Value>>,
+    pub shutter: Option<S<Value>>,
+    pub f_number: Option<S<Value>>,
+    pub white_balance: Option<S<String>>,
+    pub adaptation: Option<S<String>>,
 }
 
 #[derive(Deserialize, Debug)]

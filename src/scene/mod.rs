@@ -80,6 +80,8 @@ pub struct Scene {
     pub bounds: (Vec3, Vec3),
     /// Irradiance meters, measured by `spectrace measure` (not by rendering).
     pub meters: Vec<Meter>,
+    /// The camera's sensor (`[camera.sensor]`): raw values and exposure in the EXR.
+    pub camera_sensor: Option<crate::colour::sensor::CameraSensor>,
 }
 
 /// A point where irradiance is measured: position (m) and unit normal of the measured side.

@@ -180,6 +180,7 @@ pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraD
             ));
         }
         return Ok(CameraDesc {
+            sensor: None,
             kind: CameraKind::Orthographic {
                 view_width: Length::new::<length::meter>(2.0 * sx),
             },
@@ -209,6 +210,7 @@ pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraD
         CameraKind::Perspective { projection }
     };
     Ok(CameraDesc {
+        sensor: None,
         kind,
         eye,
         target,

@@ -122,6 +122,20 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         wavelengths: range,
         bounds,
         meters: desc.sensors.iter().map(meter).collect(),
+        camera_sensor: match &desc.camera.sensor {
+            None => None,
+            Some(s) => Some(
+                crate::colour::sensor::CameraSensor::new(
+                    s.name.clone(),
+                    s.curves.clone(),
+                    s.iso,
+                    s.shutter.get::<crate::units::time::second>(),
+                    s.f_number,
+                    s.white_balance.clone(),
+                )
+                .map_err(|e| err(desc.camera.loc, "camera.sensor".into(), e))?,
+            ),
+        },
     })
 }
 
