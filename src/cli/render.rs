@@ -415,7 +415,7 @@ fn run_desc(
             "--false-colour-max must be a positive number, found {m}"
         )));
     }
-    if !(1..=12).contains(&args.false_colour_decades) {
+    if args.false_colour_decades.is_some_and(|d| !(1..=12).contains(&d)) {
         return Err(CliError::Usage(
             "--false-colour-decades must be from 1 to 12".into(),
         ));
@@ -623,13 +623,14 @@ fn false_colour(
         }
     };
     let log = args.false_colour_scale == FalseColourScale::Log;
+    let decades = args.false_colour_decades.unwrap_or(3);
     let scale = match args.false_colour_max {
         Some(hi) if log => crate::falsecolour::Scale::Log {
-            lo: hi / 10f64.powi(args.false_colour_decades as i32),
+            lo: hi / 10f64.powi(decades as i32),
             hi,
         },
         Some(hi) => crate::falsecolour::Scale::Linear { lo: 0.0, hi },
-        None => crate::falsecolour::Scale::auto(&values, log, args.false_colour_decades)
+        None => crate::falsecolour::Scale::auto(&values, log, decades)
             .unwrap_or(crate::falsecolour::Scale::Linear { lo: 0.0, hi: 1.0 }),
     };
     let (w, h) = (scene.film.width as usize, scene.film.height as usize);
