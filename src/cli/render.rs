@@ -95,14 +95,9 @@ pub struct RenderArgs {
     /// up to 1, 2 or 5 × 10ⁿ.
     #[arg(long, value_name = "VALUE", alias = "false-color-max")]
     pub false_colour_max: Option<f64>,
-    /// Decades below the top on the log scale.
-    #[arg(
-        long,
-        value_name = "N",
-        default_value_t = 3,
-        alias = "false-color-decades"
-    )]
-    pub false_colour_decades: u32,
+    /// Decades below the top on the log scale [default: 3].
+    #[arg(long, value_name = "N", alias = "false-color-decades")]
+    pub false_colour_decades: Option<u32>,
     /// No progress bar and no summary.
     #[arg(short, long)]
     pub quiet: bool,
