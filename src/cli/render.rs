@@ -410,7 +410,10 @@ fn run_desc(
             "--false-colour-max must be a positive number, found {m}"
         )));
     }
-    if args.false_colour_decades.is_some_and(|d| !(1..=12).contains(&d)) {
+    if args
+        .false_colour_decades
+        .is_some_and(|d| !(1..=12).contains(&d))
+    {
         return Err(CliError::Usage(
             "--false-colour-decades must be from 1 to 12".into(),
         ));
