@@ -182,3 +182,39 @@ normal = [0, 1, 0]
     );
     assert!(rel.abs() < 0.005, "DF {got} vs closed form {df}");
 }
+
+/// `cie-d:<T>K` against colour-science's D series at the same CCTs (10 nm points), and the
+/// LED illuminants' chromaticities against colour-science's integration.
+#[test]
+fn daylight_of_a_cct_and_led_illuminants() {
+    use spectrace::spectrum::named::{Named, lookup};
+    let csv = Csv::read("cie_daylight_cct.csv");
+    for (c, name) in csv.columns.iter().enumerate().skip(1) {
+        let t = &name[1..];
+        let Ok(Named::Curve { spectrum, .. }) = lookup(&format!("cie-d:{t}K")) else {
+            panic!("cie-d:{t}K")
+        };
+        for row in &csv.rows {
+            let (l, v): (f32, f64) = (row[0].parse().unwrap(), row[c].parse().unwrap());
+            let got = spectrum.eval(l) as f64;
+            assert!(
+                (got - v).abs() < 1e-4 * v.max(1.0),
+                "{t} K at {l} nm: {got} vs {v}"
+            );
+        }
+    }
+    let csv = Csv::read("cie_led_xy.csv");
+    for row in &csv.rows {
+        let Ok(Named::Curve { spectrum, .. }) = lookup(&row[0]) else {
+            panic!("{}", row[0])
+        };
+        let xyz = spectrace::colour::cie::integrate_xyz(|l| spectrum.eval(l) as f64);
+        let xy = spectrace::colour::cie::xyz_to_xy(xyz);
+        let (x, y): (f64, f64) = (row[1].parse().unwrap(), row[2].parse().unwrap());
+        assert!(
+            (xy[0] - x).abs() < 5e-4 && (xy[1] - y).abs() < 5e-4,
+            "{}: {xy:?} vs ({x}, {y})",
+            row[0]
+        );
+    }
+}

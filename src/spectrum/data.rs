@@ -207,6 +207,8 @@ pub mod embedded {
         METAL_AG = "spectra/metals/ag.csv";
         METAL_CU = "spectra/metals/cu.csv";
         METAL_AL = "spectra/metals/al.csv";
+        CIE_LED = "spectra/illuminants/cie_led.csv";
+        CIE_DAYLIGHT_BASIS = "spectra/illuminants/cie_daylight_basis.csv";
         CAMERA_NIKON_D5100 = "spectra/cameras/nikon_d5100.csv";
         CAMERA_SIGMA_SD_MERRILL = "spectra/cameras/sigma_sd_merrill.csv";
     }

@@ -168,6 +168,12 @@ fn build() -> Registry {
             source: "CIE 015:2018: equal-energy illuminant, the constant 100".into(),
         },
     );
+    for led in ["b1", "b2", "b3", "b4", "b5", "bh1", "rgb1", "v1", "v2"] {
+        add(
+            format!("cie-led-{led}"),
+            curve(CIE_LED, led, CurveKind::Illuminant),
+        );
+    }
     for (name, col) in [("cie-x", "xbar"), ("cie-y", "ybar"), ("cie-z", "zbar")] {
         add(
             name.into(),
@@ -336,6 +342,10 @@ pub fn names() -> Vec<(String, &'static str)> {
         "blackbody:<T>K".into(),
         "Planck curve at temperature T, peak-normalised",
     ));
+    v.push((
+        "cie-d:<T>K".into(),
+        "CIE daylight of correlated colour temperature T (4000–25000 K)",
+    ));
     v
 }
 
@@ -357,10 +367,53 @@ pub fn lookup(name: &str) -> Result<Named, UnknownSpectrum> {
             });
         }
     }
+    if key.starts_with("cie-d:")
+        && let Some(t) = name.trim().get(6..)
+        && let Ok(temp) = crate::units::parse::parse::<crate::units::ThermodynamicTemperature>(t)
+        && let Some(spectrum) = cie_daylight(crate::units::plain::kelvin_f32(temp) as f64)
+    {
+        return Ok(Named::Curve {
+            spectrum,
+            kind: CurveKind::Illuminant,
+            source: "CIE 015:2018 §4.1.2: daylight from its correlated colour temperature (x_D(T), M1 and M2 rounded to three decimals as for the standard D illuminants), S0, S1, S2 of Table 6".into(),
+        });
+    }
     Err(UnknownSpectrum {
         name: name.to_string(),
         suggestions: closest(&key),
     })
+}
+
+/// CIE daylight of correlated colour temperature `t` (K, 4000–25000): S0 + M1·S1 + M2·S2 with
+/// the chromaticity x_D(T) of CIE 015:2018 eq. 4.7/4.8, y_D = −3 x_D² + 2.87 x_D − 0.275, M1 and
+/// M2 rounded to three decimals, tabulated at 5 nm over 300–830 nm and scaled to 100 at 560 nm.
+/// None outside the temperature range.
+pub fn cie_daylight(t: f64) -> Option<Spectrum> {
+    if !(4000.0..=25000.0).contains(&t) {
+        return None;
+    }
+    let xd = if t <= 7000.0 {
+        -4.6070e9 / t.powi(3) + 2.9678e6 / t.powi(2) + 0.09911e3 / t + 0.244063
+    } else {
+        -2.0064e9 / t.powi(3) + 1.9018e6 / t.powi(2) + 0.24748e3 / t + 0.237040
+    };
+    let yd = -3.0 * xd * xd + 2.870 * xd - 0.275;
+    let m = 0.0241 + 0.2562 * xd - 0.7341 * yd;
+    let round3 = |v: f64| (v * 1000.0).round() / 1000.0;
+    let m1 = round3((-1.3515 - 1.7703 * xd + 5.9114 * yd) / m);
+    let m2 = round3((0.0300 - 31.4424 * xd + 30.0717 * yd) / m);
+    let b = embedded_table(crate::spectrum::data::embedded::CIE_DAYLIGHT_BASIS);
+    let (l, s0, s1, s2) = (b.column(0), b.column(1), b.column(2), b.column(3));
+    let v: Vec<f64> = (0..l.len())
+        .map(|i| s0[i] + m1 * s1[i] + m2 * s2[i])
+        .collect();
+    let at560 = l.iter().position(|&x| x == 560.0).map(|i| v[i])?;
+    let curve = crate::spectrum::curve::PiecewiseLinear::new(
+        l.iter().map(|&x| x as f32).collect(),
+        v.iter().map(|&x| (x / at560 * 100.0) as f32).collect(),
+    )
+    .ok()?;
+    Some(Spectrum::Piecewise(Arc::new(curve)))
 }
 
 fn closest(key: &str) -> Vec<String> {
