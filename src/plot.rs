@@ -199,7 +199,9 @@ mod tests {
         assert_eq!(axis(360.0, 830.0), (300.0, 900.0, 100.0));
         assert_eq!(axis(0.0, 0.93), (0.0, 1.0, 0.2));
         let (a, b, s) = axis(1.5066, 1.5302);
-        assert!(a <= 1.5066 && b >= 1.5302 && s == 0.005, "{a} {b} {s}");
+        // 1, 2 or 5 × 10ⁿ, four to ten steps
+        assert!(a <= 1.5066 && b >= 1.5302 && s == 0.01, "{a} {b} {s}");
+        assert!((4.0..=10.0).contains(&((b - a) / s).round()));
         assert_eq!(tick(0.4, 0.2), "0.4");
         assert_eq!(tick(500.0, 100.0), "500");
         assert_eq!(tick(1.505, 0.005), "1.505");

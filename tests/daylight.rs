@@ -218,3 +218,74 @@ fn daylight_of_a_cct_and_led_illuminants() {
         );
     }
 }
+
+/// A sun placed by time and place: on a horizontal plane E = E_n·cos Z, with Z from NREL's SPA
+/// (`solar_position_spa.csv`, Greenwich at noon on the 2024 June solstice: 28.0357°); the sky's
+/// and the sun's keys are checked.
+#[test]
+fn a_sun_placed_by_time_and_place() {
+    let sun = "type = \"sun\"\nirradiance = \"100000 lx\"\nlatitude = 51.4779\nlongitude = -0.0015\ntime = \"2024-06-21T13:00:00+01:00\"";
+    let scene = scene_from(&format!(
+        r#"
+[camera]
+eye = [0, 1, 5]
+target = [0, 1, 0]
+fov = "60 deg"
+[film]
+width = 8
+height = 8
+spp = 1
+[materials.black]
+type = "diffuse"
+reflectance = 0
+[[shapes]]
+type = "sphere"
+radius = 0.1
+material = "black"
+transform = [{{ translate = [0, -5, 0] }}]
+[[lights]]
+{sun}
+[[sensors]]
+type = "point"
+position = [0, 0, 0]
+normal = [0, 1, 0]
+"#
+    ));
+    let e = measure(&scene, 1024, 0)[0].illuminance_lx;
+    let want = 100_000.0 * 28.0357f64.to_radians().cos();
+    assert!((e / want - 1.0).abs() < 0.001, "{e} vs {want} lx");
+    // errors: direction and time together; a time without a zone; the sun below the horizon
+    for (extra, want) in [(
+        "direction = [0, -1, 0]",
+        "give the direction, or the sun's place and time",
+    )] {
+        let text = format!(
+            "[camera]\neye = [0, 1, 5]\ntarget = [0, 1, 0]\nfov = \"40 deg\"\n[[lights]]\n{sun}\n{extra}\n"
+        );
+        let e = spectrace::loader::load_str(&text, std::path::Path::new("s.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(want), "{e}");
+    }
+    for (from, to, want) in [
+        (
+            "13:00:00+01:00",
+            "13:00:00",
+            "expected an ISO 8601 time with a zone",
+        ),
+        (
+            "2024-06-21T13:00:00+01:00",
+            "2024-12-21T23:00:00Z",
+            "the sun is below the horizon then",
+        ),
+    ] {
+        let text = format!(
+            "[camera]\neye = [0, 1, 5]\ntarget = [0, 1, 0]\nfov = \"40 deg\"\n[[lights]]\n{}\n",
+            sun.replace(from, to)
+        );
+        let e = spectrace::loader::load_str(&text, std::path::Path::new("s.toml"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(want) && e.contains("lights[0].time"), "{e}");
+    }
+}

@@ -33,12 +33,8 @@ pub fn run(args: ProbeArgs) -> Result<(), CliError> {
             args.image.display()
         )));
     }
-    if args.size == 0
-        || args.x >= img.width
-        || args.y >= img.height
-        || args.x + args.size > img.width
-        || args.y + args.size > img.height
-    {
+    let fits = |at: usize, len: usize| at.checked_add(args.size).is_some_and(|e| e <= len);
+    if args.size == 0 || !fits(args.x, img.width) || !fits(args.y, img.height) {
         return Err(CliError::Usage(format!(
             "the region {}×{} at ({}, {}) does not fit in the {}×{} image",
             args.size, args.size, args.x, args.y, img.width, img.height

@@ -224,9 +224,15 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
                     "north",
                 ],
             )?;
-            let direction = if l.direction.is_none()
-                && (l.time.is_some() || l.sun_elevation.is_some())
-            {
+            let placed = l.time.is_some() || l.sun_elevation.is_some();
+            if let (Some(d), true) = (&l.direction, placed) {
+                return Err(cx.err(
+                    &d.span(),
+                    format!("{f}.direction"),
+                    "give the direction, or the sun's place and time (or angles), not both",
+                ));
+            }
+            let direction = if l.direction.is_none() && placed {
                 let (_, sun) = sun_placement(cx, &sp, &f, l)?;
                 match sun {
                     Some(d) => d.map(|x| -x),
