@@ -155,6 +155,19 @@ pub fn parse_ies(text: &str, path: &Path) -> Result<Photometry, LoadError> {
     let symmetry = symmetry(&horizontal_deg)
         .map_err(|m| LoadError::new(path, h_loc, "horizontal angles", m))?;
     let factor = multiplier * ballast * if modern { 1.0 } else { second };
+    // the table cannot hold more values than the file has numbers left (no huge allocation
+    // from a header's counts)
+    let left = n.toks.len() - n.next;
+    if nv * nh > left {
+        return Err(LoadError::new(
+            path,
+            h_loc,
+            "candela values",
+            format!(
+                "the header declares {nv} × {nh} candela values, but only {left} numbers follow"
+            ),
+        ));
+    }
     let mut candela = Vec::with_capacity(nv * nh);
     for h in 0..nh {
         for v in 0..nv {
@@ -266,7 +279,14 @@ mod tests {
         );
         let f = FILE.replace("90 70 0\n", "90 70\n");
         let e = parse_ies(&f, Path::new("a.ies")).unwrap_err().to_string();
-        assert!(e.contains("candela[1][2]: the file ends"), "{e}");
+        assert!(
+            e.contains("declares 3 × 2 candela values, but only 5 numbers follow"),
+            "{e}"
+        );
+        // counts far beyond the data are refused before anything is allocated for them
+        let f = FILE.replace("1 1000 2 3 2 1 2", "1 1000 2 3 100000 1 2");
+        let e = parse_ies(&f, Path::new("a.ies")).unwrap_err().to_string();
+        assert!(e.contains("horizontal angles"), "{e}");
         let f = FILE.replace("0 90\n", "0 120\n");
         let e = parse_ies(&f, Path::new("a.ies")).unwrap_err().to_string();
         assert!(e.contains("8:1: horizontal angles: type C"), "{e}");

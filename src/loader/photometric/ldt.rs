@@ -222,7 +222,9 @@ pub fn parse_ldt(text: &str, path: &Path) -> Result<Photometry, LoadError> {
         ));
     }
     let factor = flux / 1000.0 * cfli;
-    let mut candela = Vec::with_capacity(horizontal.len() * g_angles.len());
+    // at most one value per remaining line (no huge allocation from the header's counts)
+    let mut candela =
+        Vec::with_capacity((horizontal.len() * g_angles.len()).min(l.lines.len() - l.next));
     for h in 0..horizontal.len() {
         for g in 0..g_angles.len() {
             let what = format!("intensities[{h}][{g}]");
