@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes, from colour-science 0.4.7 (BSD-3-Clause; CIE data):
 - spectra/illuminants/cie_led.csv: the CIE LED illuminants of CIE 015:2018 (LED-B1 … B5,
-  BH1, RGB1, V1, V2), 380–780 nm at 5 nm, relative SPD (100 at 560 nm).
+  BH1, RGB1, V1, V2), 380–780 nm at 5 nm, relative SPD as tabulated.
 - spectra/illuminants/cie_daylight_basis.csv: the CIE daylight basis functions S0, S1, S2
   (CIE 015:2018 Table 6), 300–830 nm at 5 nm, from which `cie-d:<T>K` is built.
 - tests/data/cie_daylight_cct.csv: colour-science's D-series SPDs for chromaticities from
@@ -17,7 +17,7 @@ ROOT = os.path.join(os.path.dirname(__file__), "..")
 leds = ["LED-B1", "LED-B2", "LED-B3", "LED-B4", "LED-B5", "LED-BH1", "LED-RGB1", "LED-V1", "LED-V2"]
 wl = np.arange(380, 781, 5)
 with open(os.path.join(ROOT, "spectra/illuminants/cie_led.csv"), "w") as f:
-    f.write("# CIE LED illuminants (CIE 015:2018 Table 11.4): relative spectral power, 100 at 560 nm\n")
+    f.write("# CIE LED illuminants (CIE 015:2018 Table 11.4): relative spectral power as the CIE tabulates it\n")
     f.write("# source: colour-science 0.4.7 SDS_ILLUMINANTS (BSD-3-Clause; CIE data), scripts/gen_led_daylight.py\n")
     f.write("# units: wavelength nm; relative SPD\n")
     f.write("wavelength_nm," + ",".join(l.lower().replace("led-", "") for l in leds) + "\n")

@@ -255,6 +255,12 @@ normal = [0, 1, 0]
     let want = 100_000.0 * 28.0357f64.to_radians().cos();
     assert!((e / want - 1.0).abs() < 0.001, "{e} vs {want} lx");
     // errors: direction and time together; a time without a zone; the sun below the horizon
+    // a direction with the sun's place (here a latitude alone) is refused
+    let text = "[camera]\neye = [0, 1, 5]\ntarget = [0, 1, 0]\nfov = \"40 deg\"\n[[lights]]\ntype = \"sun\"\nirradiance = \"1 lx\"\ndirection = [0, -1, 0]\nlatitude = 50\n";
+    let e = spectrace::loader::load_str(text, std::path::Path::new("s.toml"))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("give the direction, or the sun's place"), "{e}");
     let extra = "direction = [0, -1, 0]";
     let text = format!(
         "[camera]\neye = [0, 1, 5]\ntarget = [0, 1, 0]\nfov = \"40 deg\"\n[[lights]]\n{sun}\n{extra}\n"

@@ -222,4 +222,10 @@ fn measure_writes_a_csv() {
         assert!(err.contains("bad.toml:"), "{err}");
     }
     assert!(!dir.join("b.csv").exists());
+    // a missing output folder is found before measuring
+    let (ok, err) = spectrace(&dir, &["measure", "s.toml", "-o", "nowhere/m.csv"]);
+    assert!(
+        !ok && err.contains("folder nowhere does not exist"),
+        "{err}"
+    );
 }

@@ -78,6 +78,15 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
         max_depth: args.max_depth.unwrap_or(scene.integrator.max_depth),
         spectral_bins: bins,
     };
+    if let Some(dir) = args.output.parent().filter(|d| !d.as_os_str().is_empty())
+        && !dir.is_dir()
+    {
+        return Err(CliError::Usage(format!(
+            "cannot write {}: folder {} does not exist",
+            args.output.display(),
+            dir.display()
+        )));
+    }
     super::render::install_ctrl_c();
     let points: Vec<_> = scene
         .meters

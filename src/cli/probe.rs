@@ -68,8 +68,18 @@ pub fn run(args: ProbeArgs) -> Result<(), CliError> {
     }
     // a closed pipe (`| head`) ends the output quietly
     let _ = std::io::Write::write_all(&mut std::io::stdout().lock(), csv.as_bytes());
+    // `--mitsuba-units` renders say so in their units text (and parts in mitsubaUnits)
+    let mitsuba = img.attributes.iter().any(|(n, v)| match v {
+        crate::image_io::AttrValue::Text(t) => n == "spectrace:units" && t.contains("Mitsuba"),
+        crate::image_io::AttrValue::Int(1) => n == "spectrace:mitsubaUnits",
+        _ => false,
+    });
     if let Some(y) = img.channel("Y") {
-        eprintln!("luminance Y = {:.6} cd/m²", mean(y));
+        if mitsuba {
+            eprintln!("Y = {:.6} (Mitsuba's scale, not cd/m²)", mean(y));
+        } else {
+            eprintln!("luminance Y = {:.6} cd/m²", mean(y));
+        }
     }
     if !units.is_empty() {
         eprintln!("file's emissive units: {units} (per nm)");

@@ -193,6 +193,13 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
                 (args.exposure.is_some(), "--exposure"),
                 (!args.define.is_empty(), "-D"),
                 (args.mitsuba_units, "--mitsuba-units"),
+                (args.false_colour.is_some(), "--false-colour"),
+                (args.false_colour_png.is_some(), "--false-colour-png"),
+                (args.false_colour_max.is_some(), "--false-colour-max"),
+                (
+                    args.false_colour_decades.is_some(),
+                    "--false-colour-decades",
+                ),
                 (args.bdpt_strategy.is_some(), "--bdpt-strategy"),
                 (args.part.is_some(), "--part"),
                 (args.time.is_some(), "--time"),
@@ -398,6 +405,11 @@ fn run_desc(
         .false_colour_png
         .clone()
         .unwrap_or_else(|| exr.with_extension("false.png"));
+    if args.mitsuba_units && (args.false_colour.is_some() || scene.camera_sensor.is_some()) {
+        return Err(CliError::Usage(
+            "--mitsuba-units rescales X, Y, Z away from cd/m², which false colour and a camera sensor read; leave it out".into(),
+        ));
+    }
     if args.false_colour_png.is_some() && args.false_colour.is_none() {
         return Err(CliError::Usage(
             "--false-colour-png needs --false-colour luminance or illuminance".into(),
@@ -550,7 +562,9 @@ fn run_desc(
     if let Some(kind) = args.false_colour
         && stats.stop != crate::render::StopReason::Cancelled
     {
-        false_colour(args, &scene, &opts, &image, kind, &false_png)?;
+        // the illuminance pass takes the samples the render took (not a time budget's cap)
+        let spp = stats.spp_done.clamp(1, opts.spp.max(1));
+        false_colour(args, &scene, &opts, spp, &image, kind, &false_png)?;
     }
     if !args.quiet {
         let secs = stats.elapsed.as_secs_f64();
@@ -594,6 +608,7 @@ fn false_colour(
     args: &RenderArgs,
     scene: &crate::scene::Scene,
     opts: &RenderOptions,
+    spp: u32,
     image: &crate::film::Image,
     kind: FalseColourKind,
     path: &Path,
@@ -602,7 +617,7 @@ fn false_colour(
         FalseColourKind::Luminance => (image.xyz.iter().map(|p| p[1]).collect(), "cd/m²"),
         FalseColourKind::Illuminance => {
             let m = crate::render::measure::MeasureOptions {
-                samples: opts.spp,
+                samples: spp,
                 threads: opts.threads,
                 seed: opts.seed,
                 max_depth: opts.max_depth,

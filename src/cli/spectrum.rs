@@ -102,7 +102,8 @@ pub fn run(args: SpectrumArgs) -> Result<(), CliError> {
 fn plot(name: &str, named: &Named, is_file: bool, path: &std::path::Path) -> Result<(), CliError> {
     use crate::plot::Series;
     let range = |lo: f32, hi: f32| {
-        let n = ((hi - lo).round() as usize).max(1);
+        // about one point per nm, at most 4096
+        let n = ((hi - lo).round() as usize).clamp(1, 4096);
         (0..=n).map(move |k| lo + (hi - lo) * k as f32 / n as f32)
     };
     let (series, y_label): (Vec<Series<'_>>, &str) = match named {
@@ -113,7 +114,7 @@ fn plot(name: &str, named: &Named, is_file: bool, path: &std::path::Path) -> Res
             };
             let label = match (is_file, kind) {
                 (true, _) => "value (as in the file)",
-                (_, CurveKind::Illuminant) => "relative spectral power (100 at 560 nm)",
+                (_, CurveKind::Illuminant) => "relative spectral power",
                 (_, CurveKind::Reflectance) => "reflectance factor",
                 (_, CurveKind::ColourMatching) => "tristimulus value (ȳ(555 nm) = 1)",
                 (_, CurveKind::Blackbody) => "relative spectral radiance (peak 1)",

@@ -234,7 +234,12 @@ impl GoniometricLight {
                 let c1 = 360.0 * (c + 1) as f32 / COLS as f32;
                 cvals.clear();
                 cvals.extend([c0, c1.min(359.9999)]);
-                cvals.extend(cs.iter().copied().filter(|&x| x > c0 && x < c1));
+                // the sorted breakpoints strictly inside the column
+                let (a, b) = (
+                    cs.partition_point(|&x| x <= c0),
+                    cs.partition_point(|&x| x < c1),
+                );
+                cvals.extend_from_slice(&cs[a..b.max(a)]);
                 let mut m = 0.0f32;
                 for &g in &gammas {
                     for &cc in &cvals {

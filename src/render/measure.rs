@@ -56,7 +56,30 @@ struct Sums {
     band: f64,
     bins: Vec<f64>,
     dropped: u64,
-    complete: bool,
+}
+
+/// A point's reading from its replicas' sums (`per` samples each).
+fn reading(reps: &[Sums], per: u32) -> Reading {
+    let r = reps.len() as f64;
+    let mean_se = |f: &dyn Fn(&Sums) -> f64| {
+        let m: Vec<f64> = reps.iter().map(|s| f(s) / per as f64).collect();
+        let mean = m.iter().sum::<f64>() / r;
+        let var = m.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (r - 1.0);
+        (mean, (var / r).sqrt())
+    };
+    let (ev, ev_se) = mean_se(&|s| s.y);
+    let (ee, ee_se) = mean_se(&|s| s.band);
+    let nb = reps[0].bins.len();
+    Reading {
+        illuminance_lx: ev,
+        illuminance_se_lx: ev_se,
+        irradiance_w_m2: ee,
+        irradiance_se_w_m2: ee_se,
+        spectral_w_m2_nm: (0..nb)
+            .map(|b| reps.iter().map(|s| s.bins[b]).sum::<f64>() / (r * per as f64))
+            .collect(),
+        dropped: reps.iter().map(|s| s.dropped).sum(),
+    }
 }
 
 /// Measures every point; `progress` receives the number of (point, replica) jobs done, out of
@@ -84,70 +107,45 @@ pub fn measure(
             message: e.to_string(),
         })?;
     let done = AtomicU64::new(0);
-    let jobs: Vec<(usize, u32)> = (0..points.len())
-        .flat_map(|i| (0..REPLICAS).map(move |k| (i, k)))
-        .collect();
-    let sums: Vec<Sums> = pool.install(|| {
-        jobs.par_iter()
-            .map(|&(i, k)| {
-                let mut out = Sums {
-                    bins: vec![0.0; bins.as_ref().map_or(0, |b| b.count)],
-                    ..Sums::default()
-                };
-                let mp = points[i];
-                for j in 0..per {
-                    if cancel.load(Ordering::Relaxed) {
-                        return out;
-                    }
-                    let mut s = Sampler::new(opts.seed, i as u32, k, j);
-                    let mut w: SampledWavelengths<N_WAVELENGTHS> = lambda.sample(s.get_1d());
-                    let e = meter::irradiance(&integrator, mp.p, mp.n, &mut w, &mut s);
-                    match SampleSums::new(&w, &e, bins.as_ref()) {
-                        Some(ss) => {
-                            out.y += ss.xyz[1];
-                            out.band += ss.band;
-                            for &(b, v) in ss.bins() {
-                                out.bins[b] += v;
-                            }
+    let nb = bins.as_ref().map_or(0, |b| b.count);
+    // one point at a time per thread, its replicas in turn, reduced to its reading at once
+    // (memory per point, not per replica)
+    let readings: Vec<Option<Reading>> = pool.install(|| {
+        points
+            .par_iter()
+            .enumerate()
+            .map(|(i, &mp)| {
+                let mut reps = Vec::with_capacity(REPLICAS as usize);
+                for k in 0..REPLICAS {
+                    let mut out = Sums {
+                        bins: vec![0.0; nb],
+                        ..Sums::default()
+                    };
+                    for j in 0..per {
+                        if cancel.load(Ordering::Relaxed) {
+                            return None;
                         }
-                        None => out.dropped += 1,
+                        let mut s = Sampler::new(opts.seed, i as u32, k, j);
+                        let mut w: SampledWavelengths<N_WAVELENGTHS> = lambda.sample(s.get_1d());
+                        let e = meter::irradiance(&integrator, mp.p, mp.n, &mut w, &mut s);
+                        match SampleSums::new(&w, &e, bins.as_ref()) {
+                            Some(ss) => {
+                                out.y += ss.xyz[1];
+                                out.band += ss.band;
+                                for &(b, v) in ss.bins() {
+                                    out.bins[b] += v;
+                                }
+                            }
+                            None => out.dropped += 1,
+                        }
                     }
+                    progress(done.fetch_add(1, Ordering::Relaxed) + 1);
+                    reps.push(out);
                 }
-                out.complete = true;
-                progress(done.fetch_add(1, Ordering::Relaxed) + 1);
-                out
+                Some(reading(&reps, per))
             })
             .collect()
     });
-    let r = REPLICAS as f64;
-    let readings = sums
-        .chunks(REPLICAS as usize)
-        .map(|reps| {
-            if !reps.iter().all(|s| s.complete) {
-                return None;
-            }
-            let mean_se = |f: &dyn Fn(&Sums) -> f64| {
-                let m: Vec<f64> = reps.iter().map(|s| f(s) / per as f64).collect();
-                let mean = m.iter().sum::<f64>() / r;
-                let var = m.iter().map(|x| (x - mean) * (x - mean)).sum::<f64>() / (r - 1.0);
-                (mean, (var / r).sqrt())
-            };
-            let (ev, ev_se) = mean_se(&|s| s.y);
-            let (ee, ee_se) = mean_se(&|s| s.band);
-            let nb = reps[0].bins.len();
-            let spectral = (0..nb)
-                .map(|b| reps.iter().map(|s| s.bins[b]).sum::<f64>() / (r * per as f64))
-                .collect();
-            Some(Reading {
-                illuminance_lx: ev,
-                illuminance_se_lx: ev_se,
-                irradiance_w_m2: ee,
-                irradiance_se_w_m2: ee_se,
-                spectral_w_m2_nm: spectral,
-                dropped: reps.iter().map(|s| s.dropped).sum(),
-            })
-        })
-        .collect();
     Ok(readings)
 }
 

@@ -29,7 +29,11 @@ use crate::loader::{LoadError, Loc};
 /// Parses LM-63 text read from `path` (for error locations and a tilt file's folder).
 pub fn parse_ies(text: &str, path: &Path) -> Result<Photometry, LoadError> {
     let lines: Vec<&str> = text.split('\n').collect();
-    let first = lines.first().map(|l| l.trim()).unwrap_or("");
+    // a UTF-8 byte-order mark, read byte by byte, is "ï»¿"
+    let first = lines
+        .first()
+        .map(|l| l.trim_start_matches(['\u{feff}', 'ï', '»', '¿']).trim())
+        .unwrap_or("");
     // the 1986 and 1991 formats' second line carries a ballast-lamp factor that scales the
     // data; from 1995 on it is "future use" (1995, 2002) or the file generation type (2019)
     let modern = first.starts_with("IESNA:LM-63-") || first.starts_with("IES:LM-63-");
@@ -111,8 +115,8 @@ pub fn parse_ies(text: &str, path: &Path) -> Result<Photometry, LoadError> {
             format!("expected a positive multiplier, found {multiplier}"),
         ));
     }
-    let (nv, _) = n.count("number of vertical angles", 1, 100_000)?;
-    let (nh, _) = n.count("number of horizontal angles", 1, 100_000)?;
+    let (nv, _) = n.count("number of vertical angles", 1, 10_000)?;
+    let (nh, _) = n.count("number of horizontal angles", 1, 10_000)?;
     let (ptype, p_loc) = n.count("photometric type", 1, 3)?;
     if ptype != 1 {
         let name = if ptype == 2 { "B" } else { "A" };
@@ -252,6 +256,15 @@ mod tests {
         let f = FILE
             .replace("IESNA:LM-63-2002", "IESNA91")
             .replace("0.5 1 40", "1 0.5 40");
+        let p = parse_ies(&f, Path::new("a.ies")).unwrap();
+        assert_eq!(p.candela[0], 100.0);
+    }
+
+    /// A UTF-8 byte-order mark (read as Latin-1) does not hide the version: the 2002 file's
+    /// "future use" field still does not scale the data.
+    #[test]
+    fn a_byte_order_mark_keeps_the_version() {
+        let f = format!("ï»¿{}", FILE.replace("0.5 1 40", "0.5 1.1 40"));
         let p = parse_ies(&f, Path::new("a.ies")).unwrap();
         assert_eq!(p.candela[0], 100.0);
     }

@@ -97,9 +97,9 @@ pub fn parse_ldt(text: &str, path: &Path) -> Result<Photometry, LoadError> {
     l.text("manufacturer")?;
     l.count("type indicator Ityp", 0, 3)?;
     let (isym, _) = l.count("symmetry indicator Isym", 0, 4)?;
-    let (mc, mc_line) = l.count("number of C-planes Mc", 1, 100_000)?;
+    let (mc, mc_line) = l.count("number of C-planes Mc", 1, 10_000)?;
     l.number("C-plane spacing Dc")?;
-    let (ng, _) = l.count("number of intensities per C-plane Ng", 1, 100_000)?;
+    let (ng, _) = l.count("number of intensities per C-plane Ng", 1, 10_000)?;
     l.number("intensity spacing Dg")?;
     for what in [
         "measurement report number",

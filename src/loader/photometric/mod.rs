@@ -112,11 +112,16 @@ fn tokens(text: &str, first_line: u32) -> Vec<Token<'_>> {
     let mut out = Vec::new();
     for (i, line) in text.split('\n').enumerate() {
         let mut col = 0usize;
+        // the character column, kept as the scan advances (not recounted per token)
+        let mut chars = 0usize;
         let bytes = line.as_bytes();
+        let is_sep = |b: u8| b.is_ascii_whitespace() || b == b',' || b == 0x1a;
+        // a character starts at every byte that is not a UTF-8 continuation byte
+        let starts = |s: &[u8]| s.iter().filter(|&&b| b & 0xc0 != 0x80).count();
         while col < bytes.len() {
-            let is_sep = |b: u8| b.is_ascii_whitespace() || b == b',' || b == 0x1a;
             if is_sep(bytes[col]) {
                 col += 1;
+                chars += 1;
                 continue;
             }
             let start = col;
@@ -127,9 +132,10 @@ fn tokens(text: &str, first_line: u32) -> Vec<Token<'_>> {
                 text: &line[start..col],
                 loc: Loc {
                     line: first_line + i as u32,
-                    col: line[..start].chars().count() as u32 + 1,
+                    col: chars as u32 + 1,
                 },
             });
+            chars += starts(&bytes[start..col]);
         }
     }
     out

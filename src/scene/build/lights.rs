@@ -279,14 +279,18 @@ fn luminaire(
     spectrum: &Spectrum,
     r: WavelengthRange,
 ) -> Result<GoniometricLight, String> {
-    let up = (position - target).normalize();
+    let Some(up) = (position - target).try_normalize() else {
+        return Err("the target is too close to the position to aim the luminaire".into());
+    };
     let c0 = match c0 {
         Some(d) => Vec3::new(d[0] as f32, d[1] as f32, d[2] as f32),
         // world +x, or +z when the nadir is within 25° of the x axis
         None if up.x.abs() > 25f32.to_radians().cos() => Vec3::Z,
         None => Vec3::X,
     };
-    let x = (c0 - up * c0.dot(up)).normalize();
+    let Some(x) = (c0 - up * c0.dot(up)).try_normalize() else {
+        return Err("the C0 direction is along the nadir".into());
+    };
     let frame = glam::Mat3::from_cols(x, up.cross(x), up);
     let table = IntensityTable {
         vertical: p.vertical_deg.iter().map(|&a| a as f32).collect(),

@@ -142,7 +142,11 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
 /// A meter's points in metres: a grid's at the centres of its cells.
 fn meter(s: &crate::loader::desc::SensorDesc) -> super::Meter {
     use crate::loader::desc::SensorKind;
-    let unit = |n: &[f64; 3]| Vec3::new(n[0] as f32, n[1] as f32, n[2] as f32).normalize();
+    // normalised in f64, so a tiny but non-zero normal stays a direction
+    let unit = |n: &[f64; 3]| {
+        let l = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        Vec3::new((n[0] / l) as f32, (n[1] / l) as f32, (n[2] / l) as f32)
+    };
     match &s.kind {
         SensorKind::Point { position, normal } => super::Meter {
             name: s.name.clone(),

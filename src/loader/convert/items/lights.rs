@@ -224,7 +224,11 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
                     "north",
                 ],
             )?;
-            let placed = l.time.is_some() || l.sun_elevation.is_some();
+            let placed = l.time.is_some()
+                || l.sun_elevation.is_some()
+                || l.sun_azimuth.is_some()
+                || l.latitude.is_some()
+                || l.longitude.is_some();
             if let (Some(d), true) = (&l.direction, placed) {
                 return Err(cx.err(
                     &d.span(),
@@ -412,7 +416,7 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
                 &ty.span(),
                 format!("{f}.type"),
                 format!(
-                    "unknown light type \"{o}\"; expected point, spot, directional, environment, beam or luminaire"
+                    "unknown light type \"{o}\"; expected point, spot, directional, sun, environment, sky, beam or luminaire"
                 ),
             ));
         }
