@@ -12,6 +12,7 @@
 #[macro_use]
 extern crate uom;
 
+pub mod api;
 pub mod cli;
 pub mod colour;
 pub mod daylight;

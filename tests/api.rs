@@ -1,0 +1,130 @@
+//! The library API (`spectrace::api`) as a user's radiometric test uses it: a closed-form
+//! luminance per pixel, the region mean within its standard error over several seeds, spectral
+//! radiance per bin, and located errors.
+
+mod support;
+
+use std::f64::consts::PI;
+
+use spectrace::api::{Options, Region, Scene, render};
+use spectrace::units::Length;
+use spectrace::units::length::nanometer;
+use spectrace::units::luminance::candela_per_square_meter;
+use spectrace::units::spectral_radiance::watt_per_square_meter_steradian_nanometer;
+
+const K_M: f64 = 683.002;
+const CIE_Y_INTEGRAL: f64 = 106.856895;
+
+#[test]
+fn luminance_of_a_plane_under_a_point_light() {
+    let scene = Scene::from_toml(&support::render::point_over_plane_toml("path")).unwrap();
+    let img = render(
+        &scene,
+        &Options {
+            spp: Some(256),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let inner = scene.inner();
+    for (px, py) in [(16, 16), (4, 16), (20, 27)] {
+        let (r2, cos) = support::render::plane_point(inner, px, py);
+        let l_band = 0.5 / PI * (100.0 / (4.0 * PI)) * cos / r2;
+        let y = l_band * K_M * CIE_Y_INTEGRAL / 470.0;
+        let got = img.luminance(px, py).get::<candela_per_square_meter>();
+        assert!(
+            (got / y - 1.0).abs() < 0.01,
+            "({px},{py}): {got} vs {y} cd/m²"
+        );
+    }
+}
+
+/// A uniform 100 cd/m² field: the region mean lies within 2 standard errors for most seeds,
+/// and the standard error is small (the per-pixel variance of a scrambled Sobol mean is at
+/// most the independent samples' one, so the bound is conservative).
+#[test]
+fn region_mean_and_standard_error() {
+    let scene = Scene::from_toml(
+        r#"
+[camera]
+eye = [0, 0, 0]
+target = [0, 0, 1]
+fov = "40 deg"
+[film]
+width = 8
+height = 8
+[materials.black]
+type = "diffuse"
+reflectance = 0
+[[shapes]]
+type = "sphere"
+radius = 1
+material = "black"
+two_sided = true
+emission = { spectrum = "cie-a", luminance = "100 cd/m^2", two_sided = true }
+"#,
+    )
+    .unwrap();
+    let mut covered = 0;
+    for seed in 0..8 {
+        let img = render(
+            &scene,
+            &Options {
+                spp: Some(16),
+                seed,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let e = img.mean_luminance(Region::all(&img));
+        let (v, se) = (
+            e.value.get::<candela_per_square_meter>(),
+            e.standard_error.get::<candela_per_square_meter>(),
+        );
+        assert!(se > 0.0 && se < 1.0, "se {se}");
+        covered += ((v - 100.0).abs() < 2.0 * se) as usize;
+    }
+    assert!(covered >= 7, "{covered} of 8 within 2 standard errors");
+}
+
+#[test]
+fn spectral_radiance_and_errors() {
+    // the furnace: L = Le/(1 − ρ) = 2/470 W·m⁻²·sr⁻¹·nm⁻¹ at every wavelength
+    let scene = Scene::from_toml(&support::render::furnace_toml("path", 0.5, 64)).unwrap();
+    let img = render(
+        &scene,
+        &Options {
+            spectral_bins: 47,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let at = |nm: f64| {
+        let mut s = 0.0;
+        for y in 0..img.height() {
+            for x in 0..img.width() {
+                s += img
+                    .spectral_radiance(x, y, Length::new::<nanometer>(nm))
+                    .unwrap()
+                    .get::<watt_per_square_meter_steradian_nanometer>();
+            }
+        }
+        s / (img.width() * img.height()) as f64
+    };
+    for nm in [450.0, 555.0, 650.0] {
+        assert!(
+            (at(nm) / (2.0 / 470.0) - 1.0).abs() < 0.02,
+            "{nm} nm: {}",
+            at(nm)
+        );
+    }
+    assert!(
+        img.spectral_radiance(0, 0, Length::new::<nanometer>(900.0))
+            .is_none()
+    );
+    let e = Scene::from_toml("[camera]\neye = [0, 0, 0]\n")
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(e.contains("camera"), "{e}");
+}
