@@ -88,7 +88,7 @@ impl CdfGuide {
         Self { guide }
     }
 
-    /// The cell i < n with cdf[i] ≤ u < cdf[i + 1] (the last cell for u ≥ 1): the cell a binary
+    /// The cell i < n with `cdf[i] ≤ u < cdf[i + 1]` (the last cell for u ≥ 1): the cell a binary
     /// search finds, for u in [0, 1].
     #[inline]
     pub fn cell<T: Copy + Into<f64>>(&self, cdf: &[T], u: f64) -> usize {

@@ -29,7 +29,7 @@ pub enum Command {
     /// Print a named spectrum at wavelengths, summarise it, or list every name.
     ///
     /// With wavelengths, prints one line per wavelength: the value (illuminants: relative SPD;
-    /// reflectances: factor in [0,1]; glasses: index n), or "n k" for metals. Wavelengths take a
+    /// reflectances: factor from 0 to 1; glasses: index n), or "n k" for metals. Wavelengths take a
     /// unit ("587.56nm", "0.55 um"); a bare number is read as nm.
     Spectrum(spectrum::SpectrumArgs),
     /// Render a scene file to EXR and PNG.

@@ -88,7 +88,7 @@ impl LoadError {
 /// Longest quoted value an error message repeats whole, in characters.
 const MAX_QUOTED: usize = 80;
 
-/// `message` with every quoted value ("…") longer than [`MAX_QUOTED`] characters cut to its
+/// `message` with every quoted value ("…") longer than `MAX_QUOTED` characters cut to its
 /// start, an ellipsis and its length: an error about a 1 MB value must not print it.
 pub fn shorten_quoted(message: &str) -> String {
     let mut out = String::with_capacity(message.len().min(4 * MAX_QUOTED + 200));

@@ -21,9 +21,9 @@ pub struct Bsdf<'a, const N: usize> {
     /// A normal or bump map's perturbed frame at the point, in the local shading frame; the
     /// identity for every other material.
     pub perturb: crate::geometry::Frame,
-    /// A [`TexturedLobes`]' roughness (α_u, α_v) at the point; unused otherwise.
+    /// A `TexturedLobes`' roughness (α_u, α_v) at the point; unused otherwise.
     pub alpha: [f32; 2],
-    /// A [`TexturedLobes`]' factors on the reflected and transmitted lobes; 1 otherwise.
+    /// A `TexturedLobes`' factors on the reflected and transmitted lobes; 1 otherwise.
     pub spec_r: SampledSpectrum<N>,
     pub spec_t: SampledSpectrum<N>,
 }

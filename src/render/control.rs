@@ -48,7 +48,7 @@ pub struct Snapshot {
     /// `bdpt`: the sums of the current pass's tiles already done, kept apart because its
     /// splats are complete only when the whole pass is.
     pub pass_film: Option<Film>,
-    /// Index of the pass in progress in [`passes`] (all done: the number of passes).
+    /// Index of the pass in progress in `passes` (all done: the number of passes).
     pub pass: u32,
     /// Tiles of that pass already summed, in the scheduler's tile order.
     pub tiles_done: Vec<bool>,

@@ -86,7 +86,7 @@ pub struct WavelengthSampler {
 }
 
 impl WavelengthSampler {
-    /// Importance sampling for the visible range and beyond (see [`visible_importance`]).
+    /// Importance sampling for the visible range and beyond (see `visible_importance`).
     pub fn visible(range: WavelengthRange) -> Self {
         Self::tabulate(range, visible_importance)
     }

@@ -222,7 +222,7 @@ impl Mesh {
     }
 
     /// Gives a mesh without vertex normals smooth ones computed from its faces
-    /// ([`angle_weighted_normals`], in world space, after the winding was oriented); a mesh
+    /// (`angle_weighted_normals`, in world space, after the winding was oriented); a mesh
     /// with normals is unchanged. Mitsuba 3 does this for every mesh file without normals
     /// unless the shape says `face_normals` (src/render/mesh.cpp, `recompute_vertex_normals`).
     pub fn smooth_if_no_normals(&mut self) {
