@@ -98,14 +98,7 @@ pub fn measure(
         count: opts.spectral_bins as usize,
     });
     let per = opts.samples.div_ceil(REPLICAS).max(1);
-    let threads = opts.threads.unwrap_or(0);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| RenderError::Threads {
-            threads,
-            message: e.to_string(),
-        })?;
+    let pool = super::thread_pool(opts.threads)?;
     let done = AtomicU64::new(0);
     let nb = bins.as_ref().map_or(0, |b| b.count);
     // one point at a time per thread, its replicas in turn, reduced to its reading at once
@@ -164,14 +157,7 @@ pub fn illuminance_image(
     let lambda = WavelengthSampler::visible(scene.wavelengths);
     let filter = crate::film::Filter::from_desc(&scene.film.filter);
     let (w, h) = (scene.film.width, scene.film.height);
-    let threads = opts.threads.unwrap_or(0);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| RenderError::Threads {
-            threads,
-            message: e.to_string(),
-        })?;
+    let pool = super::thread_pool(opts.threads)?;
     let done = AtomicU64::new(0);
     let rows: Vec<Vec<f32>> = pool.install(|| {
         (0..h)

@@ -236,14 +236,7 @@ pub fn render_with(
     if let Some(snap) = &ctl.resume {
         check_resume(snap, &film, tiles.len(), passes.len()).map_err(RenderError::Resume)?;
     }
-    let threads = opts.threads.unwrap_or(0);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .map_err(|e| RenderError::Threads {
-            threads,
-            message: e.to_string(),
-        })?;
+    let pool = thread_pool(opts.threads)?;
     let ctx = Ctx {
         opts,
         integrator: &integrator,
@@ -290,6 +283,18 @@ pub fn render_with(
 /// lens position read the sampler's first dimensions in that order; returns the sampler (for
 /// the integrator's further dimensions), the wavelengths and the camera ray.
 #[inline]
+/// The worker pool: `threads` threads, or every core for None.
+fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, RenderError> {
+    let threads = threads.unwrap_or(0);
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .map_err(|e| RenderError::Threads {
+            threads,
+            message: e.to_string(),
+        })
+}
+
 fn camera_sample(
     scene: &Scene,
     lambda: &WavelengthSampler,
