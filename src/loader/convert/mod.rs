@@ -12,7 +12,7 @@ use super::desc::{Point, SceneDesc};
 use super::error::{LoadError, SourceMap};
 use super::raw::{RawScene, S};
 use crate::units::parse::{Dimension, ParseQuantity, QuantityError, parse_any};
-use crate::units::{Length, length};
+use crate::units::{Angle, Length, angle, length};
 
 pub(crate) use spectra::SpectrumUse;
 
@@ -223,6 +223,26 @@ impl<'a> Cx<'a> {
         Ok(out)
     }
 
+    /// An angle in degrees within [lo, hi]: a number of degrees or a quantity string
+    /// ("30 deg", "0.5 rad"); `what` names it in the message ("a tilt").
+    pub fn degrees_in(&self, v: &S<Value>, field: &str, what: &str, lo: f64, hi: f64) -> R<f64> {
+        let d = match v.get_ref() {
+            Value::String(_) => self.quantity::<Angle>(v, field)?.get::<angle::degree>(),
+            _ => self.number(v, field)?,
+        };
+        if !(lo..=hi).contains(&d) {
+            return Err(self.err(
+                &v.span(),
+                field,
+                format!(
+                    "expected {what} from {lo} to {hi} deg, found {} deg",
+                    round9(d)
+                ),
+            ));
+        }
+        Ok(d)
+    }
+
     /// A point in the scene's length unit.
     pub fn point(&self, v: &S<Value>, field: &str) -> R<Point> {
         Ok(self
@@ -249,6 +269,11 @@ impl<'a> Cx<'a> {
             self.dir.join(p)
         }
     }
+}
+
+/// Rounds away binary noise from unit conversions (29.999999999999996 → 30) for messages.
+pub(crate) fn round9(x: f64) -> f64 {
+    (x * 1e9).round() / 1e9
 }
 
 /// A word for a TOML value's type, for error messages.

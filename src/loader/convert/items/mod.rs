@@ -1,7 +1,9 @@
 //! Sections of the scene file: settings, camera, film, integrator, materials, shapes, lights.
 
 mod camera;
+mod daylight;
 mod lights;
+mod luminaire;
 mod materials;
 mod sensors;
 mod shapes;
@@ -16,7 +18,7 @@ use std::ops::Range;
 
 use toml::Value;
 
-use super::{Cx, R, SpectrumUse, present};
+use super::{Cx, R, SpectrumUse, present, round9};
 use crate::loader::desc::*;
 use crate::loader::raw::*;
 use crate::spectrum::Spectrum;
@@ -157,11 +159,6 @@ fn range_note(range: &[Length; 2]) -> Option<String> {
             "scene.wavelength_range {lo}–{hi} nm lies outside the CIE colour-matching functions (360–830 nm): X, Y, Z, R, G, B and the PNG are black; the L channel and spectral bins (--spectral-bins) hold the radiance"
         )
     })
-}
-
-/// Rounds away binary noise from unit conversions (29.999999999999996 → 30) for messages.
-fn round9(x: f64) -> f64 {
-    (x * 1e9).round() / 1e9
 }
 
 /// `[[groups.NAME.shapes]]` (shapes without emission, in the group's own space) and
