@@ -34,3 +34,7 @@ pub mod scene;
 pub mod spectrum;
 pub mod texture;
 pub mod units;
+
+/// The library API at the crate root: `spectrace::Scene`, `spectrace::render`,
+/// `spectrace::Error`, … (see [`api`]).
+pub use api::*;

@@ -146,6 +146,68 @@ pub fn write_exr(path: &Path, img: &Image, info: &RenderInfo<'_>) -> Result<(), 
     write_exr_state(path, img, info, None)
 }
 
+/// The header attributes of a render's EXR (`spectrace:units`, `samplesPerPixel`, `seed`,
+/// `wavelengthRange`, `integrator`, `scene`, `renderTimeSeconds`, `partial`, the dropped
+/// samples, `stopReason`, `estimatedRelativeErrorY`); the sensor's are added with its channels.
+pub fn header(info: &RenderInfo<'_>) -> Vec<(&'static str, AttrValue)> {
+    let xyz_units = if info.mitsuba_units {
+        "X,Y,Z: CIE 1931 2deg on Mitsuba 3.9.1's scale (cd/m^2 divided by 683.002 x 106.7502594)"
+    } else {
+        "X,Y,Z: CIE 1931 2deg, Y = luminance in cd/m^2"
+    };
+    let units = format!(
+        "{xyz_units}; R,G,B: linear sRGB (Rec.709 primaries, D65) on the same scale; L: radiance over {}-{} nm in W.m^-2.sr^-1{}",
+        info.range.min_nm,
+        info.range.max_nm,
+        if info.moment {
+            "; m2.X,m2.Y,m2.Z: second moments, the mean of the squared sample values of X,Y,Z (their units squared)"
+        } else {
+            ""
+        }
+    );
+    let mut attrs = vec![
+        ("spectrace:units", AttrValue::Text(units)),
+        ("spectrace:samplesPerPixel", AttrValue::Int(info.spp as i32)),
+        ("spectrace:seed", AttrValue::Int(info.seed as i32)),
+        (
+            "spectrace:wavelengthRange",
+            AttrValue::Text(format!(
+                "{} nm to {} nm",
+                info.range.min_nm, info.range.max_nm
+            )),
+        ),
+        (
+            "spectrace:integrator",
+            AttrValue::Text(info.integrator.to_string()),
+        ),
+        (
+            "spectrace:scene",
+            AttrValue::Text(info.scene_file.to_string()),
+        ),
+        (
+            "spectrace:renderTimeSeconds",
+            AttrValue::Double(info.seconds),
+        ),
+        ("spectrace:partial", AttrValue::Int(info.partial as i32)),
+        (
+            "spectrace:droppedNaNSamples",
+            AttrValue::Double(info.nan_samples as f64),
+        ),
+        (
+            "spectrace:droppedInfSamples",
+            AttrValue::Double(info.inf_samples as f64),
+        ),
+        (
+            "spectrace:stopReason",
+            AttrValue::Text(info.stop.to_string()),
+        ),
+    ];
+    if let Some(e) = info.rel_error {
+        attrs.push(("spectrace:estimatedRelativeErrorY", AttrValue::Double(e)));
+    }
+    attrs
+}
+
 /// [`write_exr`], with a film's state beside the image when `state` is given.
 pub fn write_exr_state(
     path: &Path,
@@ -207,61 +269,7 @@ pub fn write_exr_state(
             channels.push(Channel { name, data });
         }
     }
-    let xyz_units = if info.mitsuba_units {
-        "X,Y,Z: CIE 1931 2deg on Mitsuba 3.9.1's scale (cd/m^2 divided by 683.002 x 106.7502594)"
-    } else {
-        "X,Y,Z: CIE 1931 2deg, Y = luminance in cd/m^2"
-    };
-    let units = format!(
-        "{xyz_units}; R,G,B: linear sRGB (Rec.709 primaries, D65) on the same scale; L: radiance over {}-{} nm in W.m^-2.sr^-1{}",
-        info.range.min_nm,
-        info.range.max_nm,
-        if info.moment {
-            "; m2.X,m2.Y,m2.Z: second moments, the mean of the squared sample values of X,Y,Z (their units squared)"
-        } else {
-            ""
-        }
-    );
-    let mut attrs = vec![
-        ("spectrace:units", AttrValue::Text(units)),
-        ("spectrace:samplesPerPixel", AttrValue::Int(info.spp as i32)),
-        ("spectrace:seed", AttrValue::Int(info.seed as i32)),
-        (
-            "spectrace:wavelengthRange",
-            AttrValue::Text(format!(
-                "{} nm to {} nm",
-                info.range.min_nm, info.range.max_nm
-            )),
-        ),
-        (
-            "spectrace:integrator",
-            AttrValue::Text(info.integrator.to_string()),
-        ),
-        (
-            "spectrace:scene",
-            AttrValue::Text(info.scene_file.to_string()),
-        ),
-        (
-            "spectrace:renderTimeSeconds",
-            AttrValue::Double(info.seconds),
-        ),
-        ("spectrace:partial", AttrValue::Int(info.partial as i32)),
-        (
-            "spectrace:droppedNaNSamples",
-            AttrValue::Double(info.nan_samples as f64),
-        ),
-        (
-            "spectrace:droppedInfSamples",
-            AttrValue::Double(info.inf_samples as f64),
-        ),
-        (
-            "spectrace:stopReason",
-            AttrValue::Text(info.stop.to_string()),
-        ),
-    ];
-    if let Some(e) = info.rel_error {
-        attrs.push(("spectrace:estimatedRelativeErrorY", AttrValue::Double(e)));
-    }
+    let mut attrs = header(info);
     if let Some((_, text)) = &sensor {
         attrs.push(("spectrace:sensor", AttrValue::Text(text.clone())));
     }

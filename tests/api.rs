@@ -94,7 +94,7 @@ fn spectral_radiance_and_errors() {
     let img = render(
         &scene,
         &Options {
-            spectral_bins: 47,
+            spectral_bins: Some(47),
             ..Default::default()
         },
     )

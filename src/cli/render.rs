@@ -442,13 +442,7 @@ fn run_desc(
         }
     }
 
-    let integrator = match opts.integrator {
-        IntegratorKind::Path => "path",
-        IntegratorKind::Light => "light",
-        IntegratorKind::Bdpt => "bdpt",
-        IntegratorKind::Whitted => "whitted",
-        IntegratorKind::Direct { .. } => "direct",
-    };
+    let integrator = opts.integrator.name();
     let scene_file = scene_path.display().to_string();
     let base_info = || RenderInfo {
         scene_file: &scene_file,

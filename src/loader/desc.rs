@@ -149,6 +149,19 @@ pub enum IntegratorKind {
     },
 }
 
+impl IntegratorKind {
+    /// The name the scene format, the CLI and EXR headers use.
+    pub fn name(self) -> &'static str {
+        match self {
+            IntegratorKind::Path => "path",
+            IntegratorKind::Light => "light",
+            IntegratorKind::Bdpt => "bdpt",
+            IntegratorKind::Whitted => "whitted",
+            IntegratorKind::Direct { .. } => "direct",
+        }
+    }
+}
+
 #[derive(Clone, Debug)]
 pub struct IntegratorDesc {
     pub kind: IntegratorKind,

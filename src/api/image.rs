@@ -1,174 +1,7 @@
-//! The library API for radiometric tests in users' own code: load a scene, render it, read
-//! values with their units and their standard errors.
-//!
-//! ```
-//! use spectrace::api::{Options, Region, Scene, render};
-//! use spectrace::units::luminance::candela_per_square_meter;
-//!
-//! // a camera inside a closed sphere that emits 100 cd/m² of D65 and reflects nothing
-//! let scene = Scene::from_toml(r#"
-//!     [camera]
-//!     eye = [0, 0, 0]
-//!     target = [0, 0, 1]
-//!     fov = "40 deg"
-//!     [film]
-//!     width = 8
-//!     height = 8
-//!     [materials.black]
-//!     type = "diffuse"
-//!     reflectance = 0
-//!     [[shapes]]
-//!     type = "sphere"
-//!     radius = 1
-//!     material = "black"
-//!     two_sided = true
-//!     emission = { spectrum = "cie-d65", luminance = "100 cd/m^2", two_sided = true }
-//! "#)?;
-//! let image = render(&scene, &Options { spp: Some(64), ..Options::default() })?;
-//! let l = image.mean_luminance(Region::all(&image));
-//! let (v, se) = (l.value.get::<candela_per_square_meter>(), l.standard_error.get::<candela_per_square_meter>());
-//! assert!((v - 100.0).abs() < 4.0 * se + 1e-9, "{v} ± {se}");
-//! # Ok::<(), spectrace::api::Error>(())
-//! ```
-#![warn(missing_docs)]
-
-use std::path::Path;
-use std::sync::atomic::AtomicBool;
+//! A rendered image with typed accessors, and the mean of a region with its standard error.
 
 use crate::units::{Length, Luminance, Radiance, SpectralRadiance};
 use crate::units::{length, luminance, radiance, spectral_radiance};
-
-/// Everything that can go wrong: a scene that does not load or build (file, line, field and
-/// message), or a render that cannot start.
-#[derive(Debug, thiserror::Error)]
-pub enum Error {
-    /// The scene file or text, located.
-    #[error(transparent)]
-    Scene(#[from] crate::loader::LoadError),
-    /// The render could not start (threads, camera kind).
-    #[error(transparent)]
-    Render(#[from] crate::render::RenderError),
-}
-
-/// A render-ready scene.
-pub struct Scene {
-    inner: crate::scene::Scene,
-}
-
-impl Scene {
-    /// A scene from TOML text; relative file names resolve against the current folder.
-    ///
-    /// ```
-    /// let e = spectrace::api::Scene::from_toml("[camera]\nfov = 3").err().unwrap();
-    /// assert!(e.to_string().contains("camera"));
-    /// ```
-    pub fn from_toml(text: &str) -> Result<Scene, Error> {
-        Self::from_toml_in(text, Path::new("."))
-    }
-
-    /// A scene from TOML text whose relative file names resolve against `folder`.
-    ///
-    /// ```no_run
-    /// let s = spectrace::api::Scene::from_toml_in("…", std::path::Path::new("scenes"));
-    /// ```
-    pub fn from_toml_in(text: &str, folder: &Path) -> Result<Scene, Error> {
-        let desc = crate::loader::load_str(text, &folder.join("scene.toml"))?;
-        Ok(Scene {
-            inner: crate::scene::build(&desc)?,
-        })
-    }
-
-    /// A scene file: spectrace TOML, or Mitsuba 3 XML (`.xml`).
-    ///
-    /// ```no_run
-    /// let s = spectrace::api::Scene::load(std::path::Path::new("scenes/cornell.toml"))?;
-    /// # Ok::<(), spectrace::api::Error>(())
-    /// ```
-    pub fn load(path: &Path) -> Result<Scene, Error> {
-        let desc = crate::loader::load_any(path, &[])?;
-        Ok(Scene {
-            inner: crate::scene::build(&desc)?,
-        })
-    }
-
-    /// The scene as the renderer sees it (for what this API does not cover yet).
-    ///
-    /// ```no_run
-    /// # let s = spectrace::api::Scene::load(std::path::Path::new("x.toml"))?;
-    /// let lights = s.inner().lights.len();
-    /// # Ok::<(), spectrace::api::Error>(())
-    /// ```
-    pub fn inner(&self) -> &crate::scene::Scene {
-        &self.inner
-    }
-}
-
-/// Which estimator renders.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Integrator {
-    /// Path tracing with next-event estimation and MIS.
-    Path,
-    /// Light tracing (particles from the lights).
-    Light,
-    /// Bidirectional path tracing.
-    Bdpt,
-}
-
-/// How to render; `None` fields take the scene's settings.
-///
-/// ```
-/// let o = spectrace::api::Options { spp: Some(16), seed: 3, ..Default::default() };
-/// assert_eq!(o.threads, None);
-/// ```
-#[derive(Clone, Debug, Default)]
-pub struct Options {
-    /// Samples per pixel.
-    pub spp: Option<u32>,
-    /// Sampler seed: the image is a function of the scene, the options and this.
-    pub seed: u32,
-    /// The estimator.
-    pub integrator: Option<Integrator>,
-    /// Worker threads (None: every core); the image does not depend on it.
-    pub threads: Option<usize>,
-    /// Spectral bins over the scene's wavelength range (0: none), for
-    /// [`Image::spectral_radiance`].
-    pub spectral_bins: u32,
-}
-
-/// Renders `scene` (Ctrl-C is not watched: the render runs to the end).
-///
-/// ```no_run
-/// # let scene = spectrace::api::Scene::load(std::path::Path::new("x.toml"))?;
-/// let image = spectrace::api::render(&scene, &Default::default())?;
-/// # Ok::<(), spectrace::api::Error>(())
-/// ```
-pub fn render(scene: &Scene, options: &Options) -> Result<Image, Error> {
-    let s = &scene.inner;
-    let mut o = crate::render::RenderOptions::from_scene(s);
-    if let Some(spp) = options.spp {
-        o.spp = spp.max(1);
-    }
-    o.seed = options.seed;
-    o.threads = options.threads;
-    o.spectral_bins = options.spectral_bins;
-    if let Some(i) = options.integrator {
-        o.integrator = match i {
-            Integrator::Path => crate::loader::desc::IntegratorKind::Path,
-            Integrator::Light => crate::loader::desc::IntegratorKind::Light,
-            Integrator::Bdpt => crate::loader::desc::IntegratorKind::Bdpt,
-        };
-    }
-    let cancel = AtomicBool::new(false);
-    let (film, stats) = crate::render::render(s, &o, &cancel, &|_, _| {})?;
-    Ok(Image {
-        inner: film.image(),
-        spp: stats.spp_done,
-        camera_samples: !matches!(
-            o.integrator,
-            crate::loader::desc::IntegratorKind::Light | crate::loader::desc::IntegratorKind::Bdpt
-        ),
-    })
-}
 
 /// A rectangle of pixels: columns `x0 .. x0 + width`, rows `y0 .. y0 + height` (row 0 on top).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -211,16 +44,145 @@ pub struct Estimate<Q> {
 }
 
 /// A rendered image with typed accessors.
+#[derive(Clone, Debug)]
 pub struct Image {
-    inner: crate::film::Image,
+    pub(super) inner: crate::film::Image,
     /// Samples per pixel taken.
-    spp: u32,
+    pub(super) spp: u32,
     /// Whether every pixel's value is a mean of its own camera samples (so its second moment
     /// is known).
-    camera_samples: bool,
+    pub(super) camera_samples: bool,
+    /// Whether every sample was taken.
+    complete: bool,
+    /// The EXR header's attributes, as text.
+    metadata: Vec<(String, String)>,
 }
 
 impl Image {
+    /// The film's image of a render with `o` that ended with `stats`.
+    pub(super) fn new(
+        inner: crate::film::Image,
+        o: &crate::render::RenderOptions,
+        stats: &crate::render::RenderStats,
+        scene: &crate::scene::Scene,
+        source: &str,
+    ) -> Image {
+        use crate::loader::desc::IntegratorKind as K;
+        let splats = matches!(o.integrator, K::Light | K::Bdpt);
+        let info = crate::output::RenderInfo {
+            scene_file: source,
+            integrator: o.integrator.name(),
+            spp: stats.spp_done,
+            seed: o.seed,
+            seconds: stats.elapsed.as_secs_f64(),
+            partial: stats.partial,
+            nan_samples: stats.nan_samples,
+            inf_samples: stats.inf_samples,
+            range: scene.wavelengths,
+            mitsuba_units: false,
+            moment: scene.integrator.moment && !splats,
+            stop: stats.stop.name(),
+            rel_error: stats.rel_error,
+            sensor: None,
+        };
+        let metadata = crate::output::header(&info)
+            .into_iter()
+            .map(|(k, v)| {
+                let v = match v {
+                    crate::image_io::AttrValue::Text(t) => t,
+                    crate::image_io::AttrValue::Float(x) => x.to_string(),
+                    crate::image_io::AttrValue::Double(x) => x.to_string(),
+                    crate::image_io::AttrValue::Int(x) => x.to_string(),
+                };
+                (k.to_string(), v)
+            })
+            .collect();
+        Image {
+            inner,
+            spp: stats.spp_done,
+            camera_samples: !splats,
+            complete: !stats.partial,
+            metadata,
+        }
+    }
+
+    /// Whether every sample was taken (false when the render was cancelled or stopped by a
+    /// time limit or a target error).
+    ///
+    /// ```no_run
+    /// # let image: spectrace::api::Image = unimplemented!();
+    /// assert!(image.complete());
+    /// ```
+    pub fn complete(&self) -> bool {
+        self.complete
+    }
+
+    /// Samples per pixel taken everywhere.
+    ///
+    /// ```no_run
+    /// # let image: spectrace::api::Image = unimplemented!();
+    /// let n = image.samples_per_pixel();
+    /// ```
+    pub fn samples_per_pixel(&self) -> u32 {
+        self.spp
+    }
+
+    /// The attributes `spectrace render` writes to the EXR header (`spectrace:units`,
+    /// `spectrace:samplesPerPixel`, `spectrace:wavelengthRange`, …), as text.
+    ///
+    /// ```no_run
+    /// # let image: spectrace::api::Image = unimplemented!();
+    /// for (name, value) in image.metadata() { println!("{name}: {value}"); }
+    /// ```
+    pub fn metadata(&self) -> &[(String, String)] {
+        &self.metadata
+    }
+
+    /// Every pixel's CIE 1931 X, Y, Z in cd/m² (Y is luminance), rows from the top, as
+    /// plain numbers for bulk use (NumPy, plots).
+    ///
+    /// ```no_run
+    /// # let image: spectrace::api::Image = unimplemented!();
+    /// let y_of_first_pixel = image.xyz_cd_m2()[0][1];
+    /// ```
+    pub fn xyz_cd_m2(&self) -> &[[f32; 3]] {
+        &self.inner.xyz
+    }
+
+    /// Every pixel's radiance over the wavelength range, W·m⁻²·sr⁻¹, rows from the top.
+    ///
+    /// ```no_run
+    /// # let image: spectrace::api::Image = unimplemented!();
+    /// let l = image.radiance_w_m2_sr()[0];
+    /// ```
+    pub fn radiance_w_m2_sr(&self) -> &[f32] {
+        &self.inner.band
+    }
+
+    /// The spectral bins' centres in nm and, per bin, every pixel's mean spectral radiance in
+    /// W·m⁻²·sr⁻¹·nm⁻¹ (rows from the top); None without bins.
+    ///
+    /// ```no_run
+    /// # let image: spectrace::api::Image = unimplemented!();
+    /// if let Some((nm, planes)) = image.spectral_w_m2_sr_nm() { println!("{} bins", nm.len()); }
+    /// ```
+    pub fn spectral_w_m2_sr_nm(&self) -> Option<(Vec<f32>, &[Vec<f32>])> {
+        let bins = self.inner.bins.as_ref()?;
+        Some((
+            (0..bins.count).map(|i| bins.centre(i)).collect(),
+            &self.inner.spectral,
+        ))
+    }
+
+    /// The renderer's own image (RGB, second moments).
+    ///
+    /// ```no_run
+    /// # let image: spectrace::api::Image = unimplemented!();
+    /// let rgb = &image.inner().rgb;
+    /// ```
+    pub fn inner(&self) -> &crate::film::Image {
+        &self.inner
+    }
     /// Width, pixels.
     ///
     /// ```no_run
