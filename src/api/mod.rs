@@ -117,8 +117,20 @@ impl Scene {
     /// let s = spectrace::api::Scene::from_toml_in("…", std::path::Path::new("scenes"));
     /// ```
     pub fn from_toml_in(text: &str, folder: &Path) -> Result<Scene, Error> {
-        let desc = crate::loader::load_str(text, &folder.join("scene.toml"))?;
-        Self::from_desc(desc, "TOML text".into())
+        Self::from_toml_as(text, &folder.join("scene.toml"))
+    }
+
+    /// A scene from TOML text that errors call `name`; relative file names resolve against
+    /// `name`'s folder (for text that stands for a file, or is made by a tool).
+    ///
+    /// ```
+    /// let e = spectrace::Scene::from_toml_as("[camera]\nfov = 3", std::path::Path::new("gen/room.toml"))
+    ///     .unwrap_err();
+    /// assert!(e.to_string().starts_with("gen/room.toml:"), "{e}");
+    /// ```
+    pub fn from_toml_as(text: &str, name: &Path) -> Result<Scene, Error> {
+        let desc = crate::loader::load_str(text, name)?;
+        Self::from_desc(desc, name.display().to_string())
     }
 
     /// A scene file: spectrace TOML, or Mitsuba 3 XML (`.xml`).

@@ -1,0 +1,374 @@
+//! `spectrace._native`: the Python extension over `spectrace::api`. The Python package
+//! (`python/spectrace/__init__.py`) wraps it with NumPy arrays and the scene builder; this
+//! module only moves values across: scenes as TOML (the scene format's own checks and error
+//! locations apply), images as little-endian `f32` bytes, quantities in the units the names
+//! say.
+//!
+//! Rendering runs on a Rust thread with the GIL released; the calling thread wakes every
+//! 50 ms to run Python's signal handlers, so Ctrl-C (KeyboardInterrupt) stops the render
+//! between tiles and is raised in Python.
+
+use std::path::PathBuf;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
+
+use pyo3::exceptions::{PyException, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use spectrace::units::{Length, length::nanometer};
+
+pyo3::create_exception!(
+    _native,
+    SpectraceError,
+    PyException,
+    "A scene that does not load (file:line:col: field: message), an option out of range, or an unknown spectrum."
+);
+
+fn err(e: spectrace::Error) -> PyErr {
+    SpectraceError::new_err(e.to_string())
+}
+
+/// A render-ready scene.
+#[pyclass(frozen, module = "spectrace._native")]
+struct Scene {
+    inner: spectrace::Scene,
+}
+
+#[pymethods]
+impl Scene {
+    /// What the loader noted without refusing the scene.
+    #[getter]
+    fn notes(&self) -> Vec<String> {
+        self.inner.notes().to_vec()
+    }
+
+    fn __repr__(&self) -> String {
+        format!("{:?}", self.inner)
+    }
+}
+
+/// Loads a scene file (TOML, or Mitsuba 3 XML) with Mitsuba `$name` values.
+#[pyfunction]
+#[pyo3(signature = (path, defines = Vec::new()))]
+fn load(py: Python<'_>, path: PathBuf, defines: Vec<(String, String)>) -> PyResult<Scene> {
+    let s = py
+        .detach(|| spectrace::Scene::load_with(&path, &defines))
+        .map_err(err)?;
+    Ok(Scene { inner: s })
+}
+
+/// A scene from TOML text; `name` is what errors call it and where relative files resolve.
+#[pyfunction]
+fn from_toml(py: Python<'_>, text: &str, name: PathBuf) -> PyResult<Scene> {
+    let s = py
+        .detach(|| spectrace::Scene::from_toml_as(text, &name))
+        .map_err(err)?;
+    Ok(Scene { inner: s })
+}
+
+/// One Python value as a TOML value; `at` names it in errors.
+fn to_toml(v: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
+    use toml::Value;
+    if v.is_instance_of::<PyBool>() {
+        return Ok(Value::Boolean(v.extract()?));
+    }
+    if v.is_instance_of::<PyInt>() {
+        return Ok(Value::Integer(v.extract().map_err(|_| {
+            PyValueError::new_err(format!("{at}: integer out of range"))
+        })?));
+    }
+    if v.is_instance_of::<PyFloat>() {
+        return Ok(Value::Float(v.extract()?));
+    }
+    if v.is_instance_of::<PyString>() {
+        return Ok(Value::String(v.extract()?));
+    }
+    if let Ok(d) = v.cast::<PyDict>() {
+        let mut t = toml::Table::new();
+        for (k, x) in d.iter() {
+            let k: String = k
+                .extract()
+                .map_err(|_| PyValueError::new_err(format!("{at}: keys must be strings")))?;
+            let sub = if at.is_empty() {
+                k.clone()
+            } else {
+                format!("{at}.{k}")
+            };
+            t.insert(k, to_toml(&x, &sub)?);
+        }
+        return Ok(Value::Table(t));
+    }
+    if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
+        let mut a = Vec::new();
+        for (i, x) in v.try_iter()?.enumerate() {
+            a.push(to_toml(&x?, &format!("{at}[{i}]"))?);
+        }
+        return Ok(Value::Array(a));
+    }
+    // NumPy scalars and arrays, os.PathLike
+    let py = v.py();
+    if v.hasattr("tolist")? {
+        return to_toml(&v.call_method0("tolist")?, at);
+    }
+    if let Ok(p) = py.import("os")?.call_method1("fspath", (v,)) {
+        return to_toml(&p, at);
+    }
+    Err(PyValueError::new_err(format!(
+        "{at}: a {} cannot be written in a scene (numbers, strings, booleans, lists and dicts can)",
+        v.get_type().name()?
+    )))
+}
+
+/// The scene format's TOML text of a dict of its tables.
+#[pyfunction]
+fn dict_to_toml(d: &Bound<'_, PyDict>) -> PyResult<String> {
+    match to_toml(d.as_any(), "")? {
+        toml::Value::Table(t) => toml::to_string(&t)
+            .map_err(|e| PyValueError::new_err(format!("cannot write the scene as TOML: {e}"))),
+        _ => unreachable!("a dict converts to a table"),
+    }
+}
+
+/// A rendered image.
+#[pyclass(frozen, module = "spectrace._native")]
+struct Image {
+    inner: spectrace::Image,
+}
+
+fn f32_bytes<'py>(py: Python<'py>, v: impl Iterator<Item = f32>) -> Bound<'py, PyBytes> {
+    let b: Vec<u8> = v.flat_map(f32::to_le_bytes).collect();
+    PyBytes::new(py, &b)
+}
+
+#[pymethods]
+impl Image {
+    /// Pixels across.
+    #[getter]
+    fn width(&self) -> usize {
+        self.inner.width()
+    }
+
+    /// Pixels down.
+    #[getter]
+    fn height(&self) -> usize {
+        self.inner.height()
+    }
+
+    /// Samples per pixel taken everywhere.
+    #[getter]
+    fn spp(&self) -> u32 {
+        self.inner.samples_per_pixel()
+    }
+
+    /// Whether every sample was taken.
+    #[getter]
+    fn complete(&self) -> bool {
+        self.inner.complete()
+    }
+
+    /// The EXR header's attributes, as text.
+    #[getter]
+    fn metadata(&self) -> Vec<(String, String)> {
+        self.inner.metadata().to_vec()
+    }
+
+    /// X, Y, Z per pixel (cd/m²), rows from the top: little-endian f32 bytes.
+    fn xyz_bytes<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
+        f32_bytes(py, self.inner.xyz_cd_m2().iter().flatten().copied())
+    }
+
+    /// Radiance over the wavelength range per pixel (W·m⁻²·sr⁻¹): f32 bytes.
+    fn radiance_bytes<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
+        f32_bytes(py, self.inner.radiance_w_m2_sr().iter().copied())
+    }
+
+    /// The bins' centres (nm) and their planes (W·m⁻²·sr⁻¹·nm⁻¹, bin-major f32 bytes), or None.
+    fn spectral_bytes<'py>(&self, py: Python<'py>) -> Option<(Vec<f32>, Bound<'py, PyBytes>)> {
+        let (nm, planes) = self.inner.spectral_w_m2_sr_nm()?;
+        Some((nm, f32_bytes(py, planes.iter().flatten().copied())))
+    }
+
+    /// The mean luminance of the region and its standard error, cd/m².
+    fn mean_luminance(
+        &self,
+        x0: usize,
+        y0: usize,
+        width: usize,
+        height: usize,
+    ) -> PyResult<(f64, f64)> {
+        let (w, h) = (self.inner.width(), self.inner.height());
+        if width == 0
+            || height == 0
+            || x0.saturating_add(width) > w
+            || y0.saturating_add(height) > h
+        {
+            return Err(PyValueError::new_err(format!(
+                "region x0={x0} y0={y0} width={width} height={height} is empty or leaves the {w} × {h} image"
+            )));
+        }
+        let e = self.inner.mean_luminance(spectrace::Region {
+            x0,
+            y0,
+            width,
+            height,
+        });
+        use spectrace::units::luminance::candela_per_square_meter as cd;
+        Ok((e.value.get::<cd>(), e.standard_error.get::<cd>()))
+    }
+}
+
+/// Renders with the GIL released; Ctrl-C stops it and raises KeyboardInterrupt.
+#[pyfunction]
+#[pyo3(signature = (scene, spp = None, seed = 0, integrator = None, threads = None, spectral_bins = None, time_limit = None, target_error = None))]
+#[allow(clippy::too_many_arguments)]
+fn render(
+    py: Python<'_>,
+    scene: &Scene,
+    spp: Option<u32>,
+    seed: u32,
+    integrator: Option<&str>,
+    threads: Option<usize>,
+    spectral_bins: Option<u32>,
+    time_limit: Option<f64>,
+    target_error: Option<f64>,
+) -> PyResult<Image> {
+    use spectrace::api::Integrator as I;
+    let integrator = match integrator {
+        None => None,
+        Some("path") => Some(I::Path),
+        Some("light") => Some(I::Light),
+        Some("bdpt") => Some(I::Bdpt),
+        Some("whitted") => Some(I::Whitted),
+        Some(other) => {
+            return Err(PyValueError::new_err(format!(
+                "integrator {other:?}: expected \"path\", \"light\", \"bdpt\" or \"whitted\""
+            )));
+        }
+    };
+    let time_limit = match time_limit {
+        None => None,
+        Some(t) if t > 0.0 && t.is_finite() => Some(Duration::from_secs_f64(t)),
+        Some(t) => {
+            return Err(PyValueError::new_err(format!(
+                "time_limit {t}: expected a positive number of seconds"
+            )));
+        }
+    };
+    let options = spectrace::Options {
+        spp,
+        seed,
+        integrator,
+        threads,
+        spectral_bins,
+        time_limit,
+        target_error,
+    };
+    let cancel = AtomicBool::new(false);
+    let mut interrupted: Option<PyErr> = None;
+    let result = py.detach(|| {
+        std::thread::scope(|s| {
+            let job =
+                s.spawn(|| spectrace::render_with(&scene.inner, &options, &cancel, &|_, _| {}));
+            while !job.is_finished() {
+                std::thread::sleep(Duration::from_millis(50));
+                if let Err(e) = Python::attach(|py| py.check_signals()) {
+                    interrupted = Some(e);
+                    cancel.store(true, Ordering::Relaxed);
+                    break;
+                }
+            }
+            job.join()
+        })
+    });
+    if let Some(e) = interrupted {
+        return Err(e);
+    }
+    match result {
+        Ok(r) => Ok(Image {
+            inner: r.map_err(err)?,
+        }),
+        Err(_) => Err(SpectraceError::new_err(
+            "the render panicked (a bug: please report it with the scene)",
+        )),
+    }
+}
+
+/// Meter readings: (meter, i, j, x, y, z (m), lx, lx standard error, W/m², W/m² standard error).
+type Reading = (String, u32, u32, f64, f64, f64, f64, f64, f64, f64);
+
+/// Reads the scene's illuminance meters (GIL released).
+#[pyfunction]
+#[pyo3(signature = (scene, samples = 4096, seed = 0, threads = None))]
+fn measure(
+    py: Python<'_>,
+    scene: &Scene,
+    samples: u32,
+    seed: u32,
+    threads: Option<usize>,
+) -> PyResult<Vec<Reading>> {
+    let o = spectrace::MeasureOptions {
+        samples,
+        seed,
+        threads,
+    };
+    let rs = py
+        .detach(|| spectrace::measure(&scene.inner, &o))
+        .map_err(err)?;
+    use spectrace::units::{
+        illuminance::lux, irradiance::watt_per_square_meter as wm2, length::meter,
+    };
+    Ok(rs
+        .into_iter()
+        .map(|r| {
+            let [x, y, z] = r.position.map(|c| c.get::<meter>());
+            (
+                r.meter,
+                r.cell[0],
+                r.cell[1],
+                x,
+                y,
+                z,
+                r.illuminance.value.get::<lux>(),
+                r.illuminance.standard_error.get::<lux>(),
+                r.irradiance.value.get::<wm2>(),
+                r.irradiance.standard_error.get::<wm2>(),
+            )
+        })
+        .collect())
+}
+
+/// A named spectrum at wavelengths in nm: (kind, values, k), k only for conductors.
+#[pyfunction]
+fn spectrum(
+    name: &str,
+    wavelengths_nm: Vec<f64>,
+) -> PyResult<(String, Vec<f64>, Option<Vec<f64>>)> {
+    let l: Vec<Length> = wavelengths_nm
+        .iter()
+        .map(|&w| Length::new::<nanometer>(w))
+        .collect();
+    use spectrace::SpectrumValues as V;
+    Ok(match spectrace::spectrum(name, &l).map_err(err)? {
+        V::Curve { kind, values } => (kind.to_string(), values, None),
+        V::Dielectric(n) => ("refractive index n".to_string(), n, None),
+        V::Conductor(nk) => (
+            "complex refractive index n + ik".to_string(),
+            nk.iter().map(|p| p.0).collect(),
+            Some(nk.iter().map(|p| p.1).collect()),
+        ),
+    })
+}
+
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("SpectraceError", m.py().get_type::<SpectraceError>())?;
+    m.add_class::<Scene>()?;
+    m.add_class::<Image>()?;
+    m.add_function(wrap_pyfunction!(load, m)?)?;
+    m.add_function(wrap_pyfunction!(from_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(dict_to_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(render, m)?)?;
+    m.add_function(wrap_pyfunction!(measure, m)?)?;
+    m.add_function(wrap_pyfunction!(spectrum, m)?)?;
+    Ok(())
+}
