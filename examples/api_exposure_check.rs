@@ -5,7 +5,7 @@
 use spectrace::api::{Options, Region, Scene, render};
 use spectrace::units::luminance::candela_per_square_meter;
 
-fn main() -> Result<(), spectrace::api::Error> {
+fn check() -> Result<(), spectrace::Error> {
     let scene = Scene::from_toml(
         r#"
         [camera]
@@ -41,4 +41,14 @@ fn main() -> Result<(), spectrace::api::Error> {
     println!("mean luminance {v:.4} cd/m² ± {se:.4} (standard error)");
     assert!((v - 100.0).abs() < 3.0 * se + 1e-9, "expected 100 cd/m²");
     Ok(())
+}
+
+fn main() -> Result<(), spectrace::Error> {
+    check()
+}
+
+// `cargo test` runs this example as a test too (`test = true` in Cargo.toml)
+#[test]
+fn example_check_passes() {
+    check().unwrap();
 }
