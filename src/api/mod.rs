@@ -117,7 +117,8 @@ impl Scene {
     /// let s = spectrace::api::Scene::from_toml_in("…", std::path::Path::new("scenes"));
     /// ```
     pub fn from_toml_in(text: &str, folder: &Path) -> Result<Scene, Error> {
-        Self::from_toml_as(text, &folder.join("scene.toml"))
+        let desc = crate::loader::load_str(text, &folder.join("scene.toml"))?;
+        Self::from_desc(desc, "TOML text".into())
     }
 
     /// A scene from TOML text that errors call `name`; relative file names resolve against
@@ -254,7 +255,7 @@ impl Options {
         o.seed = self.seed;
         if let Some(b) = self.spectral_bins {
             if b > 1000 {
-                return Err(Error::Options("spectral bins must be at most 1000".into()));
+                return Err(Error::Options("spectral_bins must be at most 1000".into()));
             }
             o.spectral_bins = b;
         }
@@ -270,7 +271,7 @@ impl Options {
             && !(e > 0.0 && e.is_finite())
         {
             return Err(Error::Options(format!(
-                "target error {e} must be a positive number (e.g. 0.01)"
+                "target_error {e} must be a positive number (e.g. 0.01)"
             )));
         }
         o.time_limit = self.time_limit;

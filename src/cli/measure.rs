@@ -41,11 +41,11 @@ pub struct MeasureArgs {
 }
 
 pub fn run(args: MeasureArgs) -> Result<(), CliError> {
-    let desc = crate::loader::load_any(&args.scene, &[])?;
-    for n in &desc.notes {
+    let loaded = crate::api::Scene::load(&args.scene).map_err(super::render::api_error)?;
+    for n in loaded.notes() {
         eprintln!("note: {n}");
     }
-    let scene = crate::scene::build(&desc)?;
+    let scene = loaded.inner();
     if scene.meters.is_empty() {
         return Err(CliError::Usage(format!(
             "{}: the scene has no [[sensors]] to measure",
@@ -94,13 +94,13 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
         .flat_map(|m| m.points.iter().copied())
         .collect();
     let bar = super::progress::Progress::new(points.len() as u64 * REPLICAS as u64, args.quiet);
-    let readings = measure(&scene, &points, &opts, &super::render::CANCEL, &|d| {
+    let readings = measure(scene, &points, &opts, &super::render::CANCEL, &|d| {
         bar.set(d)
     })
     .map_err(|e| CliError::Usage(e.to_string()))?;
     bar.finish();
     let missing = readings.iter().filter(|r| r.is_none()).count();
-    write_csv(&args.output, &scene, &readings, bins)?;
+    write_csv(&args.output, scene, &readings, bins)?;
     if missing > 0 {
         eprintln!(
             "stopped: {missing} of {} points unfinished are left out of {}",

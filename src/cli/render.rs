@@ -167,6 +167,14 @@ pub(super) fn install_ctrl_c() {
     });
 }
 
+/// A load error as the CLI reports it.
+pub(super) fn api_error(e: crate::api::Error) -> CliError {
+    match e {
+        crate::api::Error::Scene(l) => CliError::Scene(l),
+        other => CliError::Usage(other.to_string()),
+    }
+}
+
 /// Renders the default scene to `spectrace.exr` and `spectrace.png` in the current folder.
 pub fn run_default() -> Result<(), CliError> {
     let args = RenderArgs {
@@ -175,8 +183,8 @@ pub fn run_default() -> Result<(), CliError> {
         ..Default::default()
     };
     let path = PathBuf::from("<built-in>/prism.toml");
-    let desc = crate::loader::load_str(DEFAULT_SCENE, &path)?;
-    run_desc(&args, &path, desc, None)
+    let scene = crate::api::Scene::from_toml_as(DEFAULT_SCENE, &path).map_err(api_error)?;
+    run_scene(&args, &path, scene, None)
 }
 
 pub fn run(args: RenderArgs) -> Result<(), CliError> {
@@ -229,42 +237,41 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         };
         defines.push((k.to_string(), v.to_string()));
     }
-    let desc = crate::loader::load_any(&scene, &defines)?;
-    run_desc(&args, &scene, desc, resume)
+    let loaded = crate::api::Scene::load_with(&scene, &defines).map_err(api_error)?;
+    run_scene(&args, &scene, loaded, resume)
 }
 
-fn run_desc(
+fn run_scene(
     args: &RenderArgs,
     scene_path: &Path,
-    desc: crate::loader::SceneDesc,
+    api_scene: crate::api::Scene,
     resume: Option<super::checkpoint::Checkpoint>,
 ) -> Result<(), CliError> {
-    for n in &desc.notes {
+    for n in api_scene.notes() {
         eprintln!("note: {n}");
     }
-    let scene = crate::scene::build(&desc)?;
-    let mut opts = RenderOptions::from_scene(&scene);
-    if let Some(s) = args.spp {
-        if s == 0 {
-            return Err(CliError::Usage("--spp must be at least 1".into()));
-        }
-        opts.spp = s;
-    }
-    if let Some(t) = args.threads {
-        if t == 0 {
-            return Err(CliError::Usage("--threads must be at least 1".into()));
-        }
-        opts.threads = Some(t);
-    }
-    opts.seed = args.seed;
-    if let Some(i) = args.integrator {
-        opts.integrator = match i {
-            IntegratorArg::Path => IntegratorKind::Path,
-            IntegratorArg::Light => IntegratorKind::Light,
-            IntegratorArg::Bdpt => IntegratorKind::Bdpt,
-            IntegratorArg::Whitted => IntegratorKind::Whitted,
-        };
-    }
+    // the library API resolves and checks the options, as for every user of it
+    let api_opts = crate::api::Options {
+        spp: args.spp,
+        seed: args.seed,
+        threads: args.threads,
+        integrator: args.integrator.map(|i| match i {
+            IntegratorArg::Path => crate::api::Integrator::Path,
+            IntegratorArg::Light => crate::api::Integrator::Light,
+            IntegratorArg::Bdpt => crate::api::Integrator::Bdpt,
+            IntegratorArg::Whitted => crate::api::Integrator::Whitted,
+        }),
+        spectral_bins: args.spectral_bins,
+        // checked below with the flags' own messages
+        time_limit: None,
+        target_error: None,
+    };
+    let mut opts = api_opts.render_options(&api_scene).map_err(|e| match e {
+        // "spectral_bins must be …" → "--spectral-bins must be …"
+        crate::api::Error::Options(m) => CliError::Usage(format!("--{}", m.replacen('_', "-", 1))),
+        other => CliError::Usage(other.to_string()),
+    })?;
+    let scene = api_scene.inner();
     if let Some(st) = &args.bdpt_strategy {
         let parsed = st.split_once(',').and_then(|(a, b)| {
             Some((a.trim().parse::<u32>().ok()?, b.trim().parse::<u32>().ok()?))
@@ -307,14 +314,6 @@ fn run_desc(
         eprintln!(
             "note: light tracing and bdpt write no second moments (m2.*); the scene's moment integrator applies to camera-ray integrators"
         );
-    }
-    if let Some(b) = args.spectral_bins {
-        if b > 1000 {
-            return Err(CliError::Usage(
-                "--spectral-bins must be at most 1000".into(),
-            ));
-        }
-        opts.spectral_bins = b;
     }
     // a camera's sensitivities are integrated over spectral bins: 5 nm unless asked otherwise
     if scene
@@ -513,7 +512,7 @@ fn run_desc(
         checkpoint: every.map(|e| (e, &write_checkpoint as &(dyn Fn(&_) + Sync))),
         resume: snapshot,
     };
-    let (film, stats) = render_with(&scene, &opts, ctl).map_err(|e| {
+    let (film, stats) = render_with(scene, &opts, ctl).map_err(|e| {
         // a render that could not start leaves no checkpoint folder behind
         if let Some(dir) = started {
             super::checkpoint::abandon_checkpoint(dir);
@@ -558,7 +557,7 @@ fn run_desc(
     {
         // the illuminance pass takes the samples the render took (not a time budget's cap)
         let spp = stats.spp_done.clamp(1, opts.spp.max(1));
-        false_colour(args, &scene, &opts, spp, &image, kind, &false_png)?;
+        false_colour(args, scene, &opts, spp, &image, kind, &false_png)?;
     }
     if !args.quiet {
         let secs = stats.elapsed.as_secs_f64();
