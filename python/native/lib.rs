@@ -337,22 +337,45 @@ fn measure(
         .collect())
 }
 
-/// A named spectrum at wavelengths in nm: (kind, values, k), k only for conductors.
+/// A wavelength: a number of nm, or a string: a bare number of nm or a length with its unit
+/// ("0.55 um"), read by the scene format's quantity parser.
+fn wavelength(v: &Bound<'_, PyAny>) -> PyResult<Length> {
+    if let Ok(s) = v.extract::<String>() {
+        if let Ok(nm) = s.trim().parse::<f64>() {
+            return Ok(Length::new::<nanometer>(nm));
+        }
+        return spectrace::units::parse::parse::<Length>(&s)
+            .map_err(|e| PyValueError::new_err(format!("wavelength: {e}")));
+    }
+    let nm: f64 = v.extract().map_err(|_| {
+        PyValueError::new_err(format!(
+            "wavelength {}: expected a number of nm or a string such as \"0.55 um\"",
+            v.repr().map(|r| r.to_string()).unwrap_or_default()
+        ))
+    })?;
+    Ok(Length::new::<nanometer>(nm))
+}
+
+/// A named spectrum at wavelengths: (kind, wavelengths in nm, values, k), k only for
+/// conductors.
 #[pyfunction]
+#[allow(clippy::type_complexity)]
 fn spectrum(
     name: &str,
-    wavelengths_nm: Vec<f64>,
-) -> PyResult<(String, Vec<f64>, Option<Vec<f64>>)> {
-    let l: Vec<Length> = wavelengths_nm
+    wavelengths: Vec<Bound<'_, PyAny>>,
+) -> PyResult<(String, Vec<f64>, Vec<f64>, Option<Vec<f64>>)> {
+    let l = wavelengths
         .iter()
-        .map(|&w| Length::new::<nanometer>(w))
-        .collect();
+        .map(wavelength)
+        .collect::<PyResult<Vec<Length>>>()?;
+    let nm = l.iter().map(|x| x.get::<nanometer>()).collect();
     use spectrace::SpectrumValues as V;
     Ok(match spectrace::spectrum(name, &l).map_err(err)? {
-        V::Curve { kind, values } => (kind.to_string(), values, None),
-        V::Dielectric(n) => ("refractive index n".to_string(), n, None),
+        V::Curve { kind, values } => (kind.to_string(), nm, values, None),
+        V::Dielectric(n) => ("refractive index n".to_string(), nm, n, None),
         V::Conductor(nk) => (
             "complex refractive index n + ik".to_string(),
+            nm,
             nk.iter().map(|p| p.0).collect(),
             Some(nk.iter().map(|p| p.1).collect()),
         ),

@@ -335,23 +335,13 @@ class Spectrum:
         return f"<Spectrum {self.name}: {self.kind} at {len(self.wavelengths)} wavelengths>"
 
 
-def _nm(w: Union[float, str]) -> float:
-    if isinstance(w, str):
-        s = w.strip()
-        for unit, factor in (("nm", 1.0), ("um", 1e3), ("µm", 1e3)):
-            if s.endswith(unit):
-                return float(s[: -len(unit)]) * factor
-        return float(s)
-    return float(w)
-
-
 def spectrum(name: str, wavelengths: Sequence[Union[float, str]]) -> Spectrum:
     """A named spectrum (``"cie-d65"``, ``"glass:N-BK7"``, ``"metal:Au"``,
-    ``"colorchecker:red"``, ``"blackbody:3200K"``) at wavelengths in nm (numbers, or strings
-    such as ``"0.55 um"``). ``np.asarray(result)`` gives the values (complex n + ik for
+    ``"colorchecker:red"``, ``"blackbody:3200K"``) at wavelengths: numbers of nm, or strings
+    with a length unit such as ``"0.55 um"`` (read as in scene files). ``np.asarray(result)`` gives the values (complex n + ik for
     conductors)."""
-    nm = [_nm(w) for w in np.atleast_1d(np.asarray(wavelengths, dtype=object)).tolist()]
-    kind, values, k = _native.spectrum(name, nm)
+    ws = np.atleast_1d(np.asarray(wavelengths, dtype=object)).tolist()
+    kind, nm, values, k = _native.spectrum(name, ws)
     return Spectrum(
         name,
         kind,

@@ -1,6 +1,6 @@
 # Type stubs of the extension module spectrace._native (python/native/lib.rs). The public API is
 # spectrace/__init__.py, which wraps these.
-from typing import List, Optional, Tuple
+from typing import List, Optional, Tuple, Union
 
 class SpectraceError(Exception):
     """A scene that does not load (file:line:col: field: message), an option out of range, or
@@ -42,4 +42,6 @@ def render(
 def measure(
     scene: Scene, samples: int = 4096, seed: int = 0, threads: Optional[int] = None
 ) -> List[Tuple[str, int, int, float, float, float, float, float, float, float]]: ...
-def spectrum(name: str, wavelengths_nm: List[float]) -> Tuple[str, List[float], Optional[List[float]]]: ...
+def spectrum(
+    name: str, wavelengths: List[Union[float, str]]
+) -> Tuple[str, List[float], List[float], Optional[List[float]]]: ...

@@ -129,7 +129,10 @@ def test_spectrum_lookups():
         assert abs(got - want) < 2e-5, (l_nm, got, want)
     assert n.kind == "refractive index n"
     gold = spectrace.spectrum("metal:Au", ["0.55 um"])
+    assert gold.wavelengths[0] == pytest.approx(550.0)
     assert np.iscomplexobj(np.asarray(gold)) and gold.k[0] > 1.0
+    with pytest.raises(ValueError, match="wavelength"):
+        spectrace.spectrum("cie-d65", ["550 W"])
     d65 = spectrace.spectrum("cie-d65", [560.0])
     assert abs(d65.values[0] - 100.0) < 1e-3  # CIE: 100 at 560 nm
     with pytest.raises(spectrace.SpectraceError, match="cie-d65"):
@@ -150,6 +153,10 @@ def test_errors_name_the_field():
         spectrace.render("no_such.toml")
     with pytest.raises(ValueError, match="integrator"):
         spectrace.render(point_over_plane(), spp=1, integrator="photon")
+    with pytest.raises(spectrace.SpectraceError, match="spp must be at least 1"):
+        spectrace.render(point_over_plane(), spp=0)
+    with pytest.raises(spectrace.SpectraceError, match="threads must be at least 1"):
+        spectrace.render(point_over_plane(), spp=1, threads=0)
     image = spectrace.render(point_over_plane(), spp=1)
     with pytest.raises(ValueError, match="leaves"):
         image.mean_luminance((10, 10, 10, 10))
