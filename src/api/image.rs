@@ -249,7 +249,7 @@ impl Image {
     }
 
     /// Spectral radiance of pixel (x, y) in the spectral bin holding `wavelength` (its mean
-    /// over the bin); None without bins ([`Options::spectral_bins`]) or outside the range.
+    /// over the bin); None without bins ([`Options::spectral_bins`](super::Options::spectral_bins)) or outside the range.
     ///
     /// ```no_run
     /// # let image: spectrace::api::Image = unimplemented!();
