@@ -4,6 +4,11 @@ use crate::units::{Length, Luminance, Radiance, SpectralRadiance};
 use crate::units::{length, luminance, radiance, spectral_radiance};
 
 /// A rectangle of pixels: columns `x0 .. x0 + width`, rows `y0 .. y0 + height` (row 0 on top).
+///
+/// ```
+/// let r = spectrace::Region { x0: 2, y0: 2, width: 4, height: 4 };
+/// assert_eq!(r.width * r.height, 16);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Region {
     /// First column.
@@ -34,6 +39,12 @@ impl Region {
 }
 
 /// A value and its standard error, in the same unit.
+///
+/// ```
+/// use spectrace::units::{Luminance, luminance::candela_per_square_meter as cd};
+/// let e = spectrace::Estimate { value: Luminance::new::<cd>(100.0), standard_error: Luminance::new::<cd>(0.1) };
+/// assert!(e.standard_error < e.value);
+/// ```
 #[derive(Clone, Copy, Debug)]
 pub struct Estimate<Q> {
     /// The estimate.
@@ -44,6 +55,13 @@ pub struct Estimate<Q> {
 }
 
 /// A rendered image with typed accessors.
+///
+/// ```
+/// # let scene = spectrace::Scene::from_toml("[camera]\neye = [0, 0, -1]\ntarget = [0, 0, 0]\nfov = \"40 deg\"\n[film]\nwidth = 4\nheight = 3\n[[lights]]\ntype = \"environment\"\nluminance = \"1 cd/m^2\"")?;
+/// let image = spectrace::render(&scene, &spectrace::Options { spp: Some(4), ..Default::default() })?;
+/// assert_eq!((image.width(), image.height()), (4, 3));
+/// # Ok::<(), spectrace::Error>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct Image {
     pub(super) inner: crate::film::Image,

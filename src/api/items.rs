@@ -40,6 +40,12 @@ pub fn degrees(d: f64) -> Angle {
 }
 
 /// A quantity written as the scene format's quantity string (`"800e0 lm"`), exactly.
+///
+/// ```
+/// use spectrace::Radiometric;
+/// use spectrace::units::{LuminousFlux, luminous_flux::lumen};
+/// assert_eq!(LuminousFlux::new::<lumen>(800.0).quantity(), "8e2 lm");
+/// ```
 pub trait Radiometric: Copy {
     /// The quantity string.
     fn quantity(self) -> String;
@@ -80,21 +86,41 @@ radiometric!(
 radiometric!(Luminance, luminance::candela_per_square_meter, "cd/m^2");
 
 /// A light's total output: a radiant power (W) or a luminous flux (lm).
+///
+/// ```
+/// use spectrace::units::{Power, power::watt};
+/// let lamp = spectrace::Light::point(spectrace::metres([0.0; 3]), Power::new::<watt>(60.0));
+/// ```
 pub trait Flux: Radiometric {}
 impl Flux for Power {}
 impl Flux for LuminousFlux {}
 
 /// A point or spot light's intensity: W/sr or cd.
+///
+/// ```
+/// use spectrace::units::{RadiantIntensity, radiant_intensity::watt_per_steradian};
+/// let l = spectrace::Light::point_intensity(spectrace::metres([0.0; 3]), RadiantIntensity::new::<watt_per_steradian>(3.0));
+/// ```
 pub trait Intensity: Radiometric {}
 impl Intensity for RadiantIntensity {}
 impl Intensity for LuminousIntensity {}
 
 /// Light arriving on a plane: an irradiance (W/m²) or an illuminance (lx).
+///
+/// ```
+/// use spectrace::units::{Irradiance, irradiance::watt_per_square_meter};
+/// let sun = spectrace::Light::directional([0.0, -1.0, 0.0], Irradiance::new::<watt_per_square_meter>(1000.0));
+/// ```
 pub trait FluxDensity: Radiometric {}
 impl FluxDensity for Irradiance {}
 impl FluxDensity for Illuminance {}
 
 /// An emitter's radiance (W·m⁻²·sr⁻¹) or luminance (cd/m²).
+///
+/// ```
+/// use spectrace::units::{Radiance, radiance::watt_per_square_meter_steradian};
+/// let sky = spectrace::Light::environment(Radiance::new::<watt_per_square_meter_steradian>(1.0));
+/// ```
 pub trait Brightness: Radiometric {
     /// The scene format's key for it.
     const KEY: &'static str;
@@ -130,6 +156,12 @@ pub(super) fn typed(kind: &str) -> Table {
 
 /// A spectrum as the scene format reads it (README, "Spectra"): a reflectance, the shape of
 /// a light's emission, or an index of refraction's table.
+///
+/// ```
+/// let d65 = spectrace::Spectrum::named("cie-d65")?;
+/// let grey: spectrace::Spectrum = 0.18.into();
+/// # Ok::<(), spectrace::Error>(())
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Spectrum(pub(super) Value);
 
@@ -219,6 +251,11 @@ impl From<f64> for Spectrum {
 }
 
 /// An index of refraction: a constant, a named glass, Sellmeier or Cauchy coefficients.
+///
+/// ```
+/// let bk7 = spectrace::Ior::glass("N-BK7")?;
+/// # Ok::<(), spectrace::Error>(())
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Ior(Value);
 
@@ -278,6 +315,11 @@ impl Ior {
 }
 
 /// A `[materials.NAME]` table.
+///
+/// ```
+/// let m = spectrace::Material::diffuse(spectrace::Spectrum::named("colorchecker:red")?);
+/// # Ok::<(), spectrace::Error>(())
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material(pub(super) Table);
 
@@ -353,6 +395,11 @@ impl Material {
 }
 
 /// A shape's `emission`: a Lambertian area light.
+///
+/// ```
+/// use spectrace::units::{Radiance, radiance::watt_per_square_meter_steradian};
+/// let e = spectrace::Emission::uniform(Radiance::new::<watt_per_square_meter_steradian>(10.0));
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Emission(pub(super) Table);
 

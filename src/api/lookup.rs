@@ -32,6 +32,12 @@ impl Default for MeasureOptions {
 }
 
 /// One meter point's reading.
+///
+/// ```
+/// # let readings: Vec<spectrace::MeterReading> = Vec::new();
+/// use spectrace::units::illuminance::lux;
+/// for r in &readings { println!("{} {:?}: {} lx", r.meter, r.cell, r.illuminance.value.get::<lux>()); }
+/// ```
 #[derive(Clone, Debug)]
 pub struct MeterReading {
     /// The meter's name (`[[sensors]]` `name`, or its index).
@@ -116,6 +122,13 @@ pub fn measure(scene: &Scene, options: &MeasureOptions) -> Result<Vec<MeterReadi
 }
 
 /// A named spectrum's values at given wavelengths; see [`spectrum`].
+///
+/// ```
+/// use spectrace::units::{Length, length::nanometer};
+/// let v = spectrace::spectrum("metal:Au", &[Length::new::<nanometer>(550.0)])?;
+/// assert!(matches!(v, spectrace::SpectrumValues::Conductor(_)));
+/// # Ok::<(), spectrace::Error>(())
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub enum SpectrumValues {
     /// A curve's values as its source tabulates them: relative spectral power (CIE

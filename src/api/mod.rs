@@ -48,6 +48,12 @@ pub use placed::{Camera, Light, Meter, Shape};
 
 /// Everything that can go wrong: a scene that does not load or build (file, line, field and
 /// message), options a render cannot take, a render that cannot start, or an unknown spectrum.
+///
+/// ```
+/// let e = spectrace::Scene::from_toml("[camera]\neye = [0, 0]\ntarget = [0, 0, 1]\nfov = \"40 deg\"").unwrap_err();
+/// assert!(matches!(e, spectrace::Error::Scene(_)));
+/// assert!(e.to_string().contains("camera.eye"), "{e}");
+/// ```
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// The scene file or text, located.
@@ -190,6 +196,10 @@ impl Scene {
 }
 
 /// Which estimator renders.
+///
+/// ```
+/// let o = spectrace::Options { integrator: Some(spectrace::Integrator::Bdpt), ..Default::default() };
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Integrator {
     /// Path tracing with next-event estimation and MIS.

@@ -11,6 +11,11 @@ use super::items::{point, text, typed, vector};
 use crate::units::{Angle, Length};
 
 /// The `[camera]` table.
+///
+/// ```
+/// use spectrace::{Camera, degrees, metres};
+/// let c = Camera::perspective(metres([0.0, 1.6, -3.0]), metres([0.0, 1.0, 0.0]), degrees(50.0));
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Camera(pub(super) Table);
 
@@ -73,6 +78,11 @@ impl Camera {
 }
 
 /// A `[[shapes]]` entry.
+///
+/// ```
+/// use spectrace::{Shape, degrees, metres};
+/// let wall = Shape::rectangle().scale(2.0).rotate([0.0, 1.0, 0.0], degrees(90.0)).translate(metres([3.0, 1.0, 0.0])).material("white");
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Shape(pub(super) Table);
 
@@ -214,6 +224,13 @@ impl Shape {
 }
 
 /// A `[[lights]]` entry.
+///
+/// ```
+/// use spectrace::units::{LuminousFlux, luminous_flux::lumen};
+/// let bulb = spectrace::Light::point(spectrace::metres([0.0, 2.5, 0.0]), LuminousFlux::new::<lumen>(800.0))
+///     .spectrum(spectrace::Spectrum::named("cie-led-b3")?);
+/// # Ok::<(), spectrace::Error>(())
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Light(pub(super) Table);
 
@@ -335,6 +352,10 @@ impl Light {
 }
 
 /// An illuminance meter (`[[sensors]]`), read by [`measure`](super::measure).
+///
+/// ```
+/// let desk = spectrace::Meter::point("desk", spectrace::metres([1.0, 0.75, 1.0]), [0.0, 1.0, 0.0]);
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Meter(pub(super) Table);
 
