@@ -7,7 +7,7 @@ venv="${SPECTRACE_VENV:-$here/target/venv}"
 rm -rf "$venv"
 python3 -m venv "$venv"
 "$venv/bin/python" -m pip install --quiet --upgrade pip
-"$venv/bin/python" -m pip install --quiet "maturin>=1.9,<2" "numpy>=1.21" "pytest>=7"
+"$venv/bin/python" -m pip install --quiet "maturin>=1.9.4,<2" "numpy>=1.21" "pytest>=7"
 rm -rf "$here/target/wheels"
 "$venv/bin/maturin" build --release --manifest-path "$here/Cargo.toml" --out "$here/target/wheels"
 "$venv/bin/python" -m pip install --quiet "$here"/target/wheels/spectrace-*.whl

@@ -4,9 +4,9 @@
 //! locations apply), images as little-endian `f32` bytes, quantities in the units the names
 //! say.
 //!
-//! Rendering runs on a Rust thread with the GIL released; the calling thread wakes every
-//! 50 ms to run Python's signal handlers, so Ctrl-C (KeyboardInterrupt) stops the render
-//! between tiles and is raised in Python.
+//! Rendering and measuring run on a Rust thread with the GIL released; the calling thread
+//! wakes every 50 ms to run Python's signal handlers, so Ctrl-C (KeyboardInterrupt) stops the
+//! work at its next check and is raised in Python ([`interruptible`]).
 
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -66,9 +66,18 @@ fn from_toml(py: Python<'_>, text: &str, name: PathBuf) -> PyResult<Scene> {
     Ok(Scene { inner: s })
 }
 
-/// One Python value as a TOML value; `at` names it in errors.
-fn to_toml(v: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
+/// How deep a scene's dicts and lists may nest (a list that holds itself would not end).
+const MAX_DEPTH: usize = 64;
+
+/// One Python value as a TOML value; `at` names it in errors, `depth` counts the nesting.
+fn to_toml(v: &Bound<'_, PyAny>, at: &str, depth: usize) -> PyResult<toml::Value> {
     use toml::Value;
+    if depth > MAX_DEPTH {
+        let short: String = at.chars().take(40).collect();
+        return Err(PyValueError::new_err(format!(
+            "{short}…: nested more than {MAX_DEPTH} deep (a list or dict that holds itself?)"
+        )));
+    }
     if v.is_instance_of::<PyBool>() {
         return Ok(Value::Boolean(v.extract()?));
     }
@@ -94,24 +103,26 @@ fn to_toml(v: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
             } else {
                 format!("{at}.{k}")
             };
-            t.insert(k, to_toml(&x, &sub)?);
+            t.insert(k, to_toml(&x, &sub, depth + 1)?);
         }
         return Ok(Value::Table(t));
     }
     if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
         let mut a = Vec::new();
         for (i, x) in v.try_iter()?.enumerate() {
-            a.push(to_toml(&x?, &format!("{at}[{i}]"))?);
+            a.push(to_toml(&x?, &format!("{at}[{i}]"), depth + 1)?);
         }
         return Ok(Value::Array(a));
     }
     // NumPy scalars and arrays, os.PathLike
     let py = v.py();
     if v.hasattr("tolist")? {
-        return to_toml(&v.call_method0("tolist")?, at);
+        return to_toml(&v.call_method0("tolist")?, at, depth + 1);
     }
-    if let Ok(p) = py.import("os")?.call_method1("fspath", (v,)) {
-        return to_toml(&p, at);
+    if let Ok(p) = py.import("os")?.call_method1("fspath", (v,))
+        && let Ok(text) = p.extract::<String>()
+    {
+        return Ok(Value::String(text));
     }
     Err(PyValueError::new_err(format!(
         "{at}: a {} cannot be written in a scene (numbers, strings, booleans, lists and dicts can)",
@@ -122,7 +133,7 @@ fn to_toml(v: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
 /// The scene format's TOML text of a dict of its tables.
 #[pyfunction]
 fn dict_to_toml(d: &Bound<'_, PyDict>) -> PyResult<String> {
-    match to_toml(d.as_any(), "")? {
+    match to_toml(d.as_any(), "", 0)? {
         toml::Value::Table(t) => toml::to_string(&t)
             .map_err(|e| PyValueError::new_err(format!("cannot write the scene as TOML: {e}"))),
         _ => unreachable!("a dict converts to a table"),
@@ -164,6 +175,12 @@ impl Image {
     #[getter]
     fn complete(&self) -> bool {
         self.inner.complete()
+    }
+
+    /// Why the render ended: "complete", "time limit", "target error" or "cancelled".
+    #[getter]
+    fn stop_reason(&self) -> &'static str {
+        self.inner.stop_reason()
     }
 
     /// The EXR header's attributes, as text.
@@ -217,7 +234,45 @@ impl Image {
     }
 }
 
-/// Renders with the GIL released; Ctrl-C stops it and raises KeyboardInterrupt.
+/// Runs `job` on a Rust thread with the GIL released while this thread waits for it, waking
+/// every 50 ms to run Python's signal handlers: when one raises (Ctrl-C: KeyboardInterrupt),
+/// `cancel` is set, the job is waited for (it stops at its next check) and the exception is
+/// returned. Signal handlers run only on Python's main thread; from another thread the job
+/// runs to its end.
+fn interruptible<T: Send>(
+    py: Python<'_>,
+    cancel: &AtomicBool,
+    job: impl FnOnce() -> T + Send,
+) -> PyResult<T> {
+    let mut interrupted: Option<PyErr> = None;
+    let result = py.detach(|| {
+        std::thread::scope(|s| {
+            let (done, finished) = std::sync::mpsc::channel::<()>();
+            let worker = s.spawn(move || {
+                let r = job();
+                let _ = done.send(());
+                r
+            });
+            while let Err(std::sync::mpsc::RecvTimeoutError::Timeout) =
+                finished.recv_timeout(Duration::from_millis(50))
+            {
+                if let Err(e) = Python::attach(|py| py.check_signals()) {
+                    interrupted = Some(e);
+                    cancel.store(true, Ordering::Relaxed);
+                    break;
+                }
+            }
+            worker.join()
+        })
+    });
+    if let Some(e) = interrupted {
+        return Err(e);
+    }
+    result.map_err(|_| {
+        SpectraceError::new_err("spectrace panicked (a bug: please report it with the scene)")
+    })
+}
+
 #[pyfunction]
 #[pyo3(signature = (scene, spp = None, seed = 0, integrator = None, threads = None, spectral_bins = None, time_limit = None, target_error = None))]
 #[allow(clippy::too_many_arguments)]
@@ -247,12 +302,11 @@ fn render(
     };
     let time_limit = match time_limit {
         None => None,
-        Some(t) if t > 0.0 && t.is_finite() => Some(Duration::from_secs_f64(t)),
-        Some(t) => {
-            return Err(PyValueError::new_err(format!(
+        Some(t) => Some(Duration::try_from_secs_f64(t).map_err(|_| {
+            PyValueError::new_err(format!(
                 "time_limit {t}: expected a positive number of seconds"
-            )));
-        }
+            ))
+        })?),
     };
     let options = spectrace::Options {
         spp,
@@ -264,39 +318,18 @@ fn render(
         target_error,
     };
     let cancel = AtomicBool::new(false);
-    let mut interrupted: Option<PyErr> = None;
-    let result = py.detach(|| {
-        std::thread::scope(|s| {
-            let job =
-                s.spawn(|| spectrace::render_with(&scene.inner, &options, &cancel, &|_, _| {}));
-            while !job.is_finished() {
-                std::thread::sleep(Duration::from_millis(50));
-                if let Err(e) = Python::attach(|py| py.check_signals()) {
-                    interrupted = Some(e);
-                    cancel.store(true, Ordering::Relaxed);
-                    break;
-                }
-            }
-            job.join()
-        })
-    });
-    if let Some(e) = interrupted {
-        return Err(e);
-    }
-    match result {
-        Ok(r) => Ok(Image {
-            inner: r.map_err(err)?,
-        }),
-        Err(_) => Err(SpectraceError::new_err(
-            "the render panicked (a bug: please report it with the scene)",
-        )),
-    }
+    let image = interruptible(py, &cancel, || {
+        spectrace::render_with(&scene.inner, &options, &cancel, &|_, _| {})
+    })?;
+    Ok(Image {
+        inner: image.map_err(err)?,
+    })
 }
 
 /// Meter readings: (meter, i, j, x, y, z (m), lx, lx standard error, W/m², W/m² standard error).
 type Reading = (String, u32, u32, f64, f64, f64, f64, f64, f64, f64);
 
-/// Reads the scene's illuminance meters (GIL released).
+/// Reads the scene's illuminance meters (GIL released; Ctrl-C stops and raises).
 #[pyfunction]
 #[pyo3(signature = (scene, samples = 4096, seed = 0, threads = None))]
 fn measure(
@@ -311,9 +344,11 @@ fn measure(
         seed,
         threads,
     };
-    let rs = py
-        .detach(|| spectrace::measure(&scene.inner, &o))
-        .map_err(err)?;
+    let cancel = AtomicBool::new(false);
+    let rs = interruptible(py, &cancel, || {
+        spectrace::measure_with(&scene.inner, &o, &cancel)
+    })?
+    .map_err(err)?;
     use spectrace::units::{
         illuminance::lux, irradiance::watt_per_square_meter as wm2, length::meter,
     };

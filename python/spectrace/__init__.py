@@ -62,7 +62,9 @@ class Scene:
     @staticmethod
     def from_toml(text: str, folder: Union[str, os.PathLike] = ".") -> "Scene":
         """A scene from TOML text; relative file names resolve against ``folder``."""
-        return Scene(_native.from_toml(text, os.path.join(os.fspath(folder), "scene.toml")))
+        folder = os.fspath(folder)
+        name = "TOML text" if folder == "." else os.path.join(folder, "TOML text")
+        return Scene(_native.from_toml(text, name))
 
     @staticmethod
     def builder() -> "SceneBuilder":
@@ -171,8 +173,14 @@ class Image:
 
     @property
     def complete(self) -> bool:
-        """Whether every sample was taken (False after a time limit or a target error)."""
+        """Whether every sample asked for was taken (False when a time limit or a target
+        error ended the render first; ``stop_reason`` says which)."""
         return self._native.complete
+
+    @property
+    def stop_reason(self) -> str:
+        """Why the render ended: "complete", "time limit" or "target error"."""
+        return self._native.stop_reason
 
     @property
     def metadata(self) -> Dict[str, str]:
@@ -236,12 +244,10 @@ def _scene(scene: Union[Scene, str, os.PathLike]) -> Scene:
     if isinstance(scene, os.PathLike):
         return Scene.load(scene)
     if isinstance(scene, str):
-        # a path names an existing file or has a scene file's extension and no newline
-        if "\n" not in scene and (
-            os.path.isfile(scene) or scene.lower().endswith((".toml", ".xml"))
-        ):
-            return Scene.load(scene)
-        return Scene.from_toml(scene)
+        # TOML text has a table or a key; anything else is a file's path
+        if "\n" in scene or "=" in scene or scene.lstrip().startswith("["):
+            return Scene.from_toml(scene)
+        return Scene.load(scene)
     raise TypeError(f"expected a Scene, a path or TOML text, not {type(scene).__name__}")
 
 
@@ -260,8 +266,9 @@ def render(
     ``spp`` samples per pixel, ``integrator`` "path", "light", "bdpt" or "whitted", and
     ``spectral_bins`` default to the scene's; ``threads`` to every core (the image does not
     depend on it); ``time_limit`` in seconds and ``target_error`` (relative, of Y) stop early at
-    the end of a pass. The GIL is released; Ctrl-C stops the render and raises
-    KeyboardInterrupt.
+    the end of a pass (without ``spp``, a budget renders until it ends). The GIL is released;
+    Ctrl-C stops the render and raises KeyboardInterrupt (from the main thread, where Python
+    runs signal handlers).
     """
     s = _scene(scene)
     return Image(
@@ -307,7 +314,8 @@ def measure(
     seed: int = 0,
     threads: Optional[int] = None,
 ) -> List[MeterReading]:
-    """Reads every illuminance meter (``[[sensors]]``) of the scene, as ``spectrace measure``."""
+    """Reads every illuminance meter (``[[sensors]]``) of the scene, as ``spectrace measure``.
+    The GIL is released; Ctrl-C stops it and raises KeyboardInterrupt."""
     s = _scene(scene)
     return [MeterReading(r) for r in _native.measure(s._native, samples, seed, threads)]
 

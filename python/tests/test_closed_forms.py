@@ -79,7 +79,15 @@ def test_luminance_calibration():
     assert abs(x - 0.31272) < 0.002 and abs(y - 0.32903) < 0.002, (x, y)
     assert image.metadata["spectrace:samplesPerPixel"] == "64"
     assert "cd/m^2" in image.metadata["spectrace:units"]
-    assert image.complete
+    assert image.complete and image.stop_reason == "complete"
+
+
+def test_target_error_budget():
+    # a budget without spp renders until the estimated relative error of Y is below it
+    image = spectrace.render(point_over_plane(), target_error=0.01)
+    assert image.stop_reason == "target error" and not image.complete
+    value, se = image.mean_luminance()
+    assert se / value < 0.01
 
 
 def test_furnace_spectral_radiance():
@@ -151,6 +159,18 @@ def test_errors_name_the_field():
         builder.build()
     with pytest.raises(spectrace.SpectraceError, match="no_such.toml"):
         spectrace.render("no_such.toml")
+    with pytest.raises(spectrace.SpectraceError, match="scenes/cornel"):
+        spectrace.render("scenes/cornel")
+    with pytest.raises(ValueError, match="holds itself"):
+        loop = []
+        loop.append(loop)
+        spectrace.Scene.builder().light("point", position=loop).build()
+    with pytest.raises(ValueError, match="bytes"):
+        spectrace.Scene.builder().shape("obj", file=b"mesh.obj").build()
+    with pytest.raises(ValueError, match="time_limit"):
+        spectrace.render(point_over_plane(), time_limit=1e300)
+    with pytest.raises(spectrace.SpectraceError, match="target_error"):
+        spectrace.render(point_over_plane(), target_error=2.0)
     with pytest.raises(ValueError, match="integrator"):
         spectrace.render(point_over_plane(), spp=1, integrator="photon")
     with pytest.raises(spectrace.SpectraceError, match="spp must be at least 1"):

@@ -114,6 +114,17 @@ impl SceneBuilder {
         self
     }
 
+    /// The most bounces of a path (default 16; `[integrator] max_depth`).
+    ///
+    /// ```
+    /// let b = spectrace::api::Scene::builder().max_depth(1000);
+    /// ```
+    pub fn max_depth(mut self, bounces: u32) -> Self {
+        self.table("integrator")
+            .insert("max_depth".into(), Value::Integer(bounces as i64));
+        self
+    }
+
     /// The simulated wavelengths (default 360–830 nm); watts count this range only.
     ///
     /// ```

@@ -70,8 +70,8 @@ pub struct Image {
     /// Whether every pixel's value is a mean of its own camera samples (so its second moment
     /// is known).
     pub(super) camera_samples: bool,
-    /// Whether every sample was taken.
-    complete: bool,
+    /// Why the render ended ("complete", "time limit", "target error", "cancelled").
+    stop: &'static str,
     /// The EXR header's attributes, as text.
     metadata: Vec<(String, String)>,
 }
@@ -119,20 +119,35 @@ impl Image {
             inner,
             spp: stats.spp_done,
             camera_samples: !splats,
-            complete: !stats.partial,
+            stop: stats.stop.name(),
             metadata,
         }
     }
 
-    /// Whether every sample was taken (false when the render was cancelled or stopped by a
-    /// time limit or a target error).
+    /// Whether every sample asked for was taken: false when the render was cancelled or a time
+    /// limit or target error ended it first ([`stop_reason`](Self::stop_reason) says which).
     ///
     /// ```no_run
     /// # let image: spectrace::api::Image = unimplemented!();
     /// assert!(image.complete());
     /// ```
     pub fn complete(&self) -> bool {
-        self.complete
+        self.stop == crate::render::StopReason::Complete.name()
+    }
+
+    /// Why the render ended: `"complete"`, `"time limit"`, `"target error"` or `"cancelled"`
+    /// (the EXR header's `spectrace:stopReason`).
+    ///
+    /// ```
+    /// let s = spectrace::Scene::from_toml("[camera]\neye = [0, 0, -1]\ntarget = [0, 0, 0]\nfov = \"40 deg\"\n[film]\nwidth = 4\nheight = 4\n[[lights]]\ntype = \"environment\"\nluminance = \"1 cd/m^2\"")?;
+    /// let o = spectrace::Options { target_error: Some(0.5), ..Default::default() };
+    /// let image = spectrace::render(&s, &o)?;
+    /// assert_eq!(image.stop_reason(), "target error");
+    /// assert!(!image.complete());
+    /// # Ok::<(), spectrace::Error>(())
+    /// ```
+    pub fn stop_reason(&self) -> &'static str {
+        self.stop
     }
 
     /// Samples per pixel taken everywhere.
@@ -298,7 +313,15 @@ impl Image {
     /// let est = image.mean_luminance(spectrace::api::Region { x0: 0, y0: 0, width: 4, height: 4 });
     /// ```
     pub fn mean_luminance(&self, r: Region) -> Estimate<Luminance> {
-        assert!(r.width > 0 && r.height > 0, "empty region");
+        let inside = |start: usize, len: usize, size: usize| {
+            len > 0 && start.checked_add(len).is_some_and(|end| end <= size)
+        };
+        assert!(
+            inside(r.x0, r.width, self.width()) && inside(r.y0, r.height, self.height()),
+            "region {r:?} is empty or leaves the {} × {} image",
+            self.width(),
+            self.height()
+        );
         let (mut sum, mut var) = (0.0f64, 0.0f64);
         for y in r.y0..r.y0 + r.height {
             for x in r.x0..r.x0 + r.width {

@@ -195,7 +195,10 @@ impl Spectrum {
     /// let s = spectrace::api::Spectrum::file(std::path::Path::new("led.csv"));
     /// ```
     pub fn file(path: &Path) -> Spectrum {
-        Spectrum(text(path.display().to_string()))
+        // `{ file = … }`: a bare string without `.csv` or a folder would be read as a name
+        let mut f = Table::new();
+        f.insert("file".into(), text(path.display().to_string()));
+        Spectrum(Value::Table(f))
     }
 
     /// Planck's law at `t`, absolute: W·m⁻²·sr⁻¹·nm⁻¹.

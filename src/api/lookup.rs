@@ -71,6 +71,31 @@ pub struct MeterReading {
 /// # Ok::<(), spectrace::api::Error>(())
 /// ```
 pub fn measure(scene: &Scene, options: &MeasureOptions) -> Result<Vec<MeterReading>, Error> {
+    measure_with(scene, options, &AtomicBool::new(false))
+}
+
+/// [`measure`] until `cancel` is set (checked between samples): the points not finished are
+/// left out.
+///
+/// ```
+/// use std::sync::atomic::AtomicBool;
+/// use spectrace::api::{Light, Meter, MeasureOptions, Scene, measure_with, metres};
+/// use spectrace::units::{Illuminance, illuminance::lux};
+/// let scene = Scene::builder()
+///     .camera(spectrace::api::Camera::perspective(metres([0.0, 1.0, -1.0]), metres([0.0; 3]), spectrace::api::degrees(30.0)))
+///     .light(Light::directional([0.0, -1.0, 0.0], Illuminance::new::<lux>(1000.0)))
+///     .shape(spectrace::Shape::disk().material("m"))
+///     .material("m", spectrace::Material::diffuse(0.5))
+///     .meter(Meter::point("up", metres([0.0, 1.0, 0.0]), [0.0, 1.0, 0.0]))
+///     .build()?;
+/// assert!(measure_with(&scene, &MeasureOptions::default(), &AtomicBool::new(true))?.is_empty());
+/// # Ok::<(), spectrace::api::Error>(())
+/// ```
+pub fn measure_with(
+    scene: &Scene,
+    options: &MeasureOptions,
+    cancel: &AtomicBool,
+) -> Result<Vec<MeterReading>, Error> {
     let s = &scene.inner;
     if options.samples == 0 || options.samples > 1 << 24 {
         return Err(Error::Options("samples must be from 1 to 16777216".into()));
@@ -90,13 +115,14 @@ pub fn measure(scene: &Scene, options: &MeasureOptions) -> Result<Vec<MeterReadi
         .iter()
         .flat_map(|m| m.points.iter().copied())
         .collect();
-    let cancel = AtomicBool::new(false);
-    let readings = crate::render::measure::measure(s, &points, &opts, &cancel, &|_| {})?;
+    let readings = crate::render::measure::measure(s, &points, &opts, cancel, &|_| {})?;
     let mut out = Vec::with_capacity(points.len());
     let mut it = readings.into_iter();
     for m in &s.meters {
         for (k, p) in m.points.iter().enumerate() {
-            let r = it.next().flatten().unwrap_or_default();
+            let Some(r) = it.next().flatten() else {
+                continue;
+            };
             let lx = Illuminance::new::<illuminance::lux>;
             let wm2 = Irradiance::new::<irradiance::watt_per_square_meter>;
             let nu = m.grid[0].max(1) as usize;

@@ -43,7 +43,7 @@ pub use items::{
     Brightness, Emission, Flux, FluxDensity, Intensity, Ior, Material, Radiometric, Spectrum,
     degrees, metres,
 };
-pub use lookup::{MeasureOptions, MeterReading, SpectrumValues, measure, spectrum};
+pub use lookup::{MeasureOptions, MeterReading, SpectrumValues, measure, measure_with, spectrum};
 pub use placed::{Camera, Light, Meter, Shape};
 
 /// Everything that can go wrong: a scene that does not load or build (file, line, field and
@@ -123,7 +123,13 @@ impl Scene {
     /// let s = spectrace::api::Scene::from_toml_in("…", std::path::Path::new("scenes"));
     /// ```
     pub fn from_toml_in(text: &str, folder: &Path) -> Result<Scene, Error> {
-        let desc = crate::loader::load_str(text, &folder.join("scene.toml"))?;
+        // errors call it "TOML text" (there is no file); relative names resolve in `folder`
+        let name = if folder == Path::new(".") {
+            std::path::PathBuf::from("TOML text")
+        } else {
+            folder.join("TOML text")
+        };
+        let desc = crate::loader::load_str(text, &name)?;
         Self::from_desc(desc, "TOML text".into())
     }
 
@@ -195,6 +201,10 @@ impl Scene {
     }
 }
 
+/// The most samples per pixel a render takes (2²⁴), and what a time limit or a target error
+/// without a sample count renders toward.
+pub const MAX_SPP: u32 = 1 << 24;
+
 /// Which estimator renders.
 ///
 /// ```
@@ -220,7 +230,8 @@ pub enum Integrator {
 /// ```
 #[derive(Clone, Debug, Default)]
 pub struct Options {
-    /// Samples per pixel (at least 1).
+    /// Samples per pixel, 1 to [`MAX_SPP`] (None: the scene's, or [`MAX_SPP`] when a time limit
+    /// or a target error is given, which then ends the render).
     pub spp: Option<u32>,
     /// Sampler seed: the image is a function of the scene, the options and this.
     pub seed: u32,
@@ -231,10 +242,11 @@ pub struct Options {
     /// Spectral bins over the scene's wavelength range (None: the scene's; at most 1000), for
     /// [`Image::spectral_radiance`].
     pub spectral_bins: Option<u32>,
-    /// Stop at the end of the pass after which the next would end past this render time.
+    /// Stop at the end of the pass after which the next would end past this render time (more
+    /// than 0 s, less than 10⁹ s).
     pub time_limit: Option<std::time::Duration>,
     /// Stop at the end of the first pass whose estimated relative error of the image's Y is
-    /// below this (dimensionless, e.g. 0.01).
+    /// below this (a fraction between 0 and 1, e.g. 0.01).
     pub target_error: Option<f64>,
 }
 
@@ -256,7 +268,13 @@ impl Options {
             if spp == 0 {
                 return Err(Error::Options("spp must be at least 1".into()));
             }
+            if spp > MAX_SPP {
+                return Err(Error::Options(format!("spp must be at most {MAX_SPP}")));
+            }
             o.spp = spp;
+        } else if self.time_limit.is_some() || self.target_error.is_some() {
+            // a budget without a sample count: samples until the budget ends the render
+            o.spp = MAX_SPP;
         }
         if self.threads == Some(0) {
             return Err(Error::Options("threads must be at least 1".into()));
@@ -277,11 +295,18 @@ impl Options {
                 Integrator::Whitted => K::Whitted,
             };
         }
-        if let Some(e) = self.target_error
-            && !(e > 0.0 && e.is_finite())
+        if let Some(t) = self.time_limit
+            && (t.is_zero() || t.as_secs_f64() >= 1e9)
         {
             return Err(Error::Options(format!(
-                "target_error {e} must be a positive number (e.g. 0.01)"
+                "time_limit {t:?}: expected more than 0 s and less than 10⁹ s"
+            )));
+        }
+        if let Some(e) = self.target_error
+            && !(e > 0.0 && e < 1.0)
+        {
+            return Err(Error::Options(format!(
+                "target_error {e}: expected a fraction between 0 and 1, such as 0.01"
             )));
         }
         o.time_limit = self.time_limit;

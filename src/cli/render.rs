@@ -150,9 +150,6 @@ pub struct RenderArgs {
     pub target_error: Option<f64>,
 }
 
-/// Samples per pixel a render may take at most (as the scene loaders' limit).
-const MAX_SPP: u32 = 1 << 24;
-
 pub(super) static CANCEL: AtomicBool = AtomicBool::new(false);
 
 pub(super) fn install_ctrl_c() {
@@ -262,9 +259,11 @@ fn run_scene(
             IntegratorArg::Whitted => crate::api::Integrator::Whitted,
         }),
         spectral_bins: args.spectral_bins,
-        // checked below with the flags' own messages
-        time_limit: None,
-        target_error: None,
+        time_limit: match &args.time {
+            Some(t) => Some(super::farm::parse_duration(t, "--time")?),
+            None => None,
+        },
+        target_error: args.target_error,
     };
     let mut opts = api_opts.render_options(&api_scene).map_err(|e| match e {
         // "spectral_bins must be …" → "--spectral-bins must be …"
@@ -354,20 +353,6 @@ fn run_scene(
             .collect()
     });
     let budgets = args.time.is_some() || args.target_error.is_some();
-    if budgets && args.spp.is_none() {
-        opts.spp = MAX_SPP;
-    }
-    if let Some(t) = &args.time {
-        opts.time_limit = Some(super::farm::parse_duration(t, "--time")?);
-    }
-    if let Some(e) = args.target_error {
-        if !(e > 0.0 && e < 1.0) {
-            return Err(CliError::Usage(format!(
-                "--target-error {e}: expected a fraction between 0 and 1, such as 0.01"
-            )));
-        }
-        opts.target_error = Some(e);
-    }
     if let Some(p) = &args.part {
         if budgets {
             return Err(CliError::Usage(
