@@ -21,11 +21,35 @@ pyo3::create_exception!(
     _native,
     SpectraceError,
     PyException,
-    "A scene that does not load (file:line:col: field: message), an option out of range, or an unknown spectrum."
+    "A scene that does not load (file:line:col: field: message; also as the attributes file, line, column and field), an option out of range, or an unknown spectrum."
 );
 
+/// A SpectraceError with the message, and where the scene was wrong as attributes `file`,
+/// `line`, `column` and `field` (None when the error is not in a scene).
 fn err(e: spectrace::Error) -> PyErr {
-    SpectraceError::new_err(e.to_string())
+    let py_err = SpectraceError::new_err(e.to_string());
+    let at = match &e {
+        spectrace::Error::Scene(l) => Some((
+            l.file.display().to_string(),
+            l.loc.line,
+            l.loc.col,
+            l.field.clone(),
+        )),
+        _ => None,
+    };
+    Python::attach(|py| {
+        let v = py_err.value(py);
+        let (file, line, column, field) = match at {
+            Some((f, l, c, d)) => (Some(f), Some(l), Some(c), (!d.is_empty()).then_some(d)),
+            None => (None, None, None, None),
+        };
+        // setting attributes on a fresh exception object cannot fail but for memory
+        let _ = v.setattr("file", file);
+        let _ = v.setattr("line", line);
+        let _ = v.setattr("column", column);
+        let _ = v.setattr("field", field);
+    });
+    py_err
 }
 
 /// A render-ready scene.

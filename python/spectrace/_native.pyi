@@ -4,7 +4,12 @@ from typing import List, Optional, Tuple, Union
 
 class SpectraceError(Exception):
     """A scene that does not load (file:line:col: field: message), an option out of range, or
-    an unknown spectrum."""
+    an unknown spectrum. Where a scene was wrong is also in the attributes (None otherwise)."""
+
+    file: Optional[str]
+    line: Optional[int]
+    column: Optional[int]
+    field: Optional[str]
 
 class Scene:
     @property

@@ -155,8 +155,11 @@ def test_errors_name_the_field():
         .shape("sphere", radius=1, material="grey")
         .light("point", position=[0, 2, 0], power="100 nm")
     )
-    with pytest.raises(spectrace.SpectraceError, match=r"lights\[0\]\.power.*length"):
+    with pytest.raises(spectrace.SpectraceError, match=r"lights\[0\]\.power.*length") as e:
         builder.build()
+    assert e.value.field == "lights[0].power" and e.value.file == "scene builder"
+    text = builder.to_toml().splitlines()
+    assert "100 nm" in text[e.value.line - 1], (e.value.line, text)
     with pytest.raises(spectrace.SpectraceError, match="no_such.toml"):
         spectrace.render("no_such.toml")
     with pytest.raises(spectrace.SpectraceError, match="scenes/cornel"):
@@ -173,8 +176,9 @@ def test_errors_name_the_field():
         spectrace.render(point_over_plane(), target_error=2.0)
     with pytest.raises(ValueError, match="integrator"):
         spectrace.render(point_over_plane(), spp=1, integrator="photon")
-    with pytest.raises(spectrace.SpectraceError, match="spp must be at least 1"):
+    with pytest.raises(spectrace.SpectraceError, match="spp must be at least 1") as e:
         spectrace.render(point_over_plane(), spp=0)
+    assert e.value.field is None and e.value.line is None
     with pytest.raises(spectrace.SpectraceError, match="threads must be at least 1"):
         spectrace.render(point_over_plane(), spp=1, threads=0)
     image = spectrace.render(point_over_plane(), spp=1)
