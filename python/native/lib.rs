@@ -12,9 +12,13 @@ use std::path::PathBuf;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
+mod convert;
+mod image;
+
+use image::Image;
 use pyo3::exceptions::{PyException, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use pyo3::types::PyDict;
 use spectrace::units::{Length, length::nanometer};
 
 pyo3::create_exception!(
@@ -90,171 +94,13 @@ fn from_toml(py: Python<'_>, text: &str, name: PathBuf) -> PyResult<Scene> {
     Ok(Scene { inner: s })
 }
 
-/// How deep a scene's dicts and lists may nest (a list that holds itself would not end).
-const MAX_DEPTH: usize = 64;
-
-/// One Python value as a TOML value; `at` names it in errors, `depth` counts the nesting.
-fn to_toml(v: &Bound<'_, PyAny>, at: &str, depth: usize) -> PyResult<toml::Value> {
-    use toml::Value;
-    if depth > MAX_DEPTH {
-        let short: String = at.chars().take(40).collect();
-        return Err(PyValueError::new_err(format!(
-            "{short}…: nested more than {MAX_DEPTH} deep (a list or dict that holds itself?)"
-        )));
-    }
-    if v.is_instance_of::<PyBool>() {
-        return Ok(Value::Boolean(v.extract()?));
-    }
-    if v.is_instance_of::<PyInt>() {
-        return Ok(Value::Integer(v.extract().map_err(|_| {
-            PyValueError::new_err(format!("{at}: integer out of range"))
-        })?));
-    }
-    if v.is_instance_of::<PyFloat>() {
-        return Ok(Value::Float(v.extract()?));
-    }
-    if v.is_instance_of::<PyString>() {
-        return Ok(Value::String(v.extract()?));
-    }
-    if let Ok(d) = v.cast::<PyDict>() {
-        let mut t = toml::Table::new();
-        for (k, x) in d.iter() {
-            let k: String = k
-                .extract()
-                .map_err(|_| PyValueError::new_err(format!("{at}: keys must be strings")))?;
-            let sub = if at.is_empty() {
-                k.clone()
-            } else {
-                format!("{at}.{k}")
-            };
-            t.insert(k, to_toml(&x, &sub, depth + 1)?);
-        }
-        return Ok(Value::Table(t));
-    }
-    if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
-        let mut a = Vec::new();
-        for (i, x) in v.try_iter()?.enumerate() {
-            a.push(to_toml(&x?, &format!("{at}[{i}]"), depth + 1)?);
-        }
-        return Ok(Value::Array(a));
-    }
-    // NumPy scalars and arrays, os.PathLike
-    let py = v.py();
-    if v.hasattr("tolist")? {
-        return to_toml(&v.call_method0("tolist")?, at, depth + 1);
-    }
-    if let Ok(p) = py.import("os")?.call_method1("fspath", (v,))
-        && let Ok(text) = p.extract::<String>()
-    {
-        return Ok(Value::String(text));
-    }
-    Err(PyValueError::new_err(format!(
-        "{at}: a {} cannot be written in a scene (numbers, strings, booleans, lists and dicts can)",
-        v.get_type().name()?
-    )))
-}
-
 /// The scene format's TOML text of a dict of its tables.
 #[pyfunction]
 fn dict_to_toml(d: &Bound<'_, PyDict>) -> PyResult<String> {
-    match to_toml(d.as_any(), "", 0)? {
+    match convert::to_toml(d.as_any(), "", 0)? {
         toml::Value::Table(t) => toml::to_string(&t)
             .map_err(|e| PyValueError::new_err(format!("cannot write the scene as TOML: {e}"))),
         _ => unreachable!("a dict converts to a table"),
-    }
-}
-
-/// A rendered image.
-#[pyclass(frozen, module = "spectrace._native")]
-struct Image {
-    inner: spectrace::Image,
-}
-
-fn f32_bytes<'py>(py: Python<'py>, v: impl Iterator<Item = f32>) -> Bound<'py, PyBytes> {
-    let b: Vec<u8> = v.flat_map(f32::to_le_bytes).collect();
-    PyBytes::new(py, &b)
-}
-
-#[pymethods]
-impl Image {
-    /// Pixels across.
-    #[getter]
-    fn width(&self) -> usize {
-        self.inner.width()
-    }
-
-    /// Pixels down.
-    #[getter]
-    fn height(&self) -> usize {
-        self.inner.height()
-    }
-
-    /// Samples per pixel taken everywhere.
-    #[getter]
-    fn spp(&self) -> u32 {
-        self.inner.samples_per_pixel()
-    }
-
-    /// Whether every sample was taken.
-    #[getter]
-    fn complete(&self) -> bool {
-        self.inner.complete()
-    }
-
-    /// Why the render ended: "complete", "time limit", "target error" or "cancelled".
-    #[getter]
-    fn stop_reason(&self) -> &'static str {
-        self.inner.stop_reason()
-    }
-
-    /// The EXR header's attributes, as text.
-    #[getter]
-    fn metadata(&self) -> Vec<(String, String)> {
-        self.inner.metadata().to_vec()
-    }
-
-    /// X, Y, Z per pixel (cd/m²), rows from the top: little-endian f32 bytes.
-    fn xyz_bytes<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
-        f32_bytes(py, self.inner.xyz_cd_m2().iter().flatten().copied())
-    }
-
-    /// Radiance over the wavelength range per pixel (W·m⁻²·sr⁻¹): f32 bytes.
-    fn radiance_bytes<'py>(&self, py: Python<'py>) -> Bound<'py, PyBytes> {
-        f32_bytes(py, self.inner.radiance_w_m2_sr().iter().copied())
-    }
-
-    /// The bins' centres (nm) and their planes (W·m⁻²·sr⁻¹·nm⁻¹, bin-major f32 bytes), or None.
-    fn spectral_bytes<'py>(&self, py: Python<'py>) -> Option<(Vec<f32>, Bound<'py, PyBytes>)> {
-        let (nm, planes) = self.inner.spectral_w_m2_sr_nm()?;
-        Some((nm, f32_bytes(py, planes.iter().flatten().copied())))
-    }
-
-    /// The mean luminance of the region and its standard error, cd/m².
-    fn mean_luminance(
-        &self,
-        x0: usize,
-        y0: usize,
-        width: usize,
-        height: usize,
-    ) -> PyResult<(f64, f64)> {
-        let (w, h) = (self.inner.width(), self.inner.height());
-        if width == 0
-            || height == 0
-            || x0.saturating_add(width) > w
-            || y0.saturating_add(height) > h
-        {
-            return Err(PyValueError::new_err(format!(
-                "region x0={x0} y0={y0} width={width} height={height} is empty or leaves the {w} × {h} image"
-            )));
-        }
-        let e = self.inner.mean_luminance(spectrace::Region {
-            x0,
-            y0,
-            width,
-            height,
-        });
-        use spectrace::units::luminance::candela_per_square_meter as cd;
-        Ok((e.value.get::<cd>(), e.standard_error.get::<cd>()))
     }
 }
 
@@ -396,25 +242,6 @@ fn measure(
         .collect())
 }
 
-/// A wavelength: a number of nm, or a string: a bare number of nm or a length with its unit
-/// ("0.55 um"), read by the scene format's quantity parser.
-fn wavelength(v: &Bound<'_, PyAny>) -> PyResult<Length> {
-    if let Ok(s) = v.extract::<String>() {
-        if let Ok(nm) = s.trim().parse::<f64>() {
-            return Ok(Length::new::<nanometer>(nm));
-        }
-        return spectrace::units::parse::parse::<Length>(&s)
-            .map_err(|e| PyValueError::new_err(format!("wavelength: {e}")));
-    }
-    let nm: f64 = v.extract().map_err(|_| {
-        PyValueError::new_err(format!(
-            "wavelength {}: expected a number of nm or a string such as \"0.55 um\"",
-            v.repr().map(|r| r.to_string()).unwrap_or_default()
-        ))
-    })?;
-    Ok(Length::new::<nanometer>(nm))
-}
-
 /// A named spectrum at wavelengths: (kind, wavelengths in nm, values, k), k only for
 /// conductors.
 #[pyfunction]
@@ -425,7 +252,7 @@ fn spectrum(
 ) -> PyResult<(String, Vec<f64>, Vec<f64>, Option<Vec<f64>>)> {
     let l = wavelengths
         .iter()
-        .map(wavelength)
+        .map(convert::wavelength)
         .collect::<PyResult<Vec<Length>>>()?;
     let nm = l.iter().map(|x| x.get::<nanometer>()).collect();
     use spectrace::SpectrumValues as V;

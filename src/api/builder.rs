@@ -6,8 +6,9 @@ use std::path::{Path, PathBuf};
 
 use toml::{Table, Value};
 
-use super::items::{Material, Radiometric, text};
+use super::items::Material;
 use super::placed::{Camera, Light, Meter, Shape};
+use super::quantity::{Radiometric, text};
 use super::{Error, Scene};
 use crate::units::Length;
 

@@ -36,15 +36,14 @@ mod image;
 mod items;
 mod lookup;
 mod placed;
+mod quantity;
 
 pub use builder::SceneBuilder;
 pub use image::{Estimate, Image, Region};
-pub use items::{
-    Brightness, Emission, Flux, FluxDensity, Intensity, Ior, Material, Radiometric, Spectrum,
-    degrees, metres,
-};
+pub use items::{Emission, Ior, Material, Spectrum};
 pub use lookup::{MeasureOptions, MeterReading, SpectrumValues, measure, measure_with, spectrum};
 pub use placed::{Camera, Light, Meter, Shape};
+pub use quantity::{Brightness, Flux, FluxDensity, Intensity, Radiometric, degrees, metres};
 
 /// Everything that can go wrong: a scene that does not load or build (file, line, field and
 /// message), options a render cannot take, a render that cannot start, or an unknown spectrum.

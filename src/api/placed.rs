@@ -6,8 +6,9 @@ use std::path::Path;
 
 use toml::{Table, Value};
 
-use super::items::{Brightness, Emission, Flux, FluxDensity, Intensity, Radiometric, Spectrum};
-use super::items::{point, text, typed, vector};
+use super::items::{Emission, Spectrum};
+use super::quantity::{Brightness, Flux, FluxDensity, Intensity, Radiometric};
+use super::quantity::{point, text, typed, vector};
 use crate::units::{Angle, Length};
 
 /// The `[camera]` table.
