@@ -24,7 +24,6 @@ Rendering releases the GIL; Ctrl-C stops it and raises KeyboardInterrupt.
 from __future__ import annotations
 
 import os
-from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
