@@ -279,10 +279,6 @@ pub fn render_with(
     }
 }
 
-/// Camera sample `i` of pixel (x, y) under `seed`: the wavelengths, the filter offset and the
-/// lens position read the sampler's first dimensions in that order; returns the sampler (for
-/// the integrator's further dimensions), the wavelengths and the camera ray.
-#[inline]
 /// The worker pool: `threads` threads, or every core for None.
 fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, RenderError> {
     let threads = threads.unwrap_or(0);
@@ -295,6 +291,10 @@ fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, RenderError>
         })
 }
 
+/// Camera sample `i` of pixel (x, y) under `seed`: the wavelengths, the filter offset and the
+/// lens position read the sampler's first dimensions in that order; returns the sampler (for
+/// the integrator's further dimensions), the wavelengths and the camera ray.
+#[inline]
 fn camera_sample(
     scene: &Scene,
     lambda: &WavelengthSampler,
