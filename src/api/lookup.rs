@@ -110,11 +110,7 @@ pub fn measure_with(
         max_depth: s.integrator.max_depth,
         spectral_bins: 0,
     };
-    let points: Vec<_> = s
-        .meters
-        .iter()
-        .flat_map(|m| m.points.iter().copied())
-        .collect();
+    let points = s.meter_points();
     let readings = crate::render::measure::measure(s, &points, &opts, cancel, &|_| {})?;
     let mut out = Vec::with_capacity(points.len());
     let mut it = readings.into_iter();
@@ -125,10 +121,9 @@ pub fn measure_with(
             };
             let lx = Illuminance::new::<illuminance::lux>;
             let wm2 = Irradiance::new::<irradiance::watt_per_square_meter>;
-            let nu = m.grid[0].max(1) as usize;
             out.push(MeterReading {
                 meter: m.name.clone(),
-                cell: [(k % nu) as u32, (k / nu) as u32],
+                cell: m.cell(k),
                 position: p
                     .p
                     .to_array()
@@ -184,7 +179,7 @@ pub enum SpectrumValues {
 /// # Ok::<(), spectrace::api::Error>(())
 /// ```
 pub fn spectrum(name: &str, wavelengths: &[Length]) -> Result<SpectrumValues, Error> {
-    use crate::spectrum::named::{CurveKind, Named, lookup};
+    use crate::spectrum::named::{Named, lookup};
     let nm: Vec<f32> = wavelengths
         .iter()
         .map(|l| l.get::<length::nanometer>() as f32)
@@ -196,12 +191,7 @@ pub fn spectrum(name: &str, wavelengths: &[Length]) -> Result<SpectrumValues, Er
     }
     Ok(match lookup(name)? {
         Named::Curve { spectrum, kind, .. } => SpectrumValues::Curve {
-            kind: match kind {
-                CurveKind::Illuminant => "relative spectral power",
-                CurveKind::Reflectance => "reflectance factor",
-                CurveKind::ColourMatching => "colour-matching function",
-                CurveKind::Blackbody => "relative spectral radiance (peak 1)",
-            },
+            kind: kind.quantity(),
             values: nm.iter().map(|&l| spectrum.eval(l) as f64).collect(),
         },
         Named::Dielectric(g) => {

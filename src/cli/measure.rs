@@ -88,11 +88,7 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
         )));
     }
     super::render::install_ctrl_c();
-    let points: Vec<_> = scene
-        .meters
-        .iter()
-        .flat_map(|m| m.points.iter().copied())
-        .collect();
+    let points = scene.meter_points();
     let bar = super::progress::Progress::new(points.len() as u64 * REPLICAS as u64, args.quiet);
     let readings = measure(scene, &points, &opts, &super::render::CANCEL, &|d| {
         bar.set(d)
@@ -169,7 +165,7 @@ fn write_csv(
             for (k, p) in m.points.iter().enumerate() {
                 let reading = &readings[at + k];
                 let Some(x) = reading else { continue };
-                let (i, j) = (k as u32 % m.grid[0], k as u32 / m.grid[0]);
+                let [i, j] = m.cell(k);
                 write!(
                     w,
                     "{},{i},{j},{},{},{},{},{},{},{:e},{:e},{:e},{:e}",

@@ -112,12 +112,10 @@ fn plot(name: &str, named: &Named, is_file: bool, path: &std::path::Path) -> Res
                 crate::spectrum::Spectrum::Piecewise(t) => t.domain(),
                 _ => (360.0, 830.0),
             };
-            let label = match (is_file, kind) {
-                (true, _) => "value (as in the file)",
-                (_, CurveKind::Illuminant) => "relative spectral power",
-                (_, CurveKind::Reflectance) => "reflectance factor",
-                (_, CurveKind::ColourMatching) => "tristimulus value (ȳ(555 nm) = 1)",
-                (_, CurveKind::Blackbody) => "relative spectral radiance (peak 1)",
+            let label = if is_file {
+                "value (as in the file)"
+            } else {
+                kind.quantity()
             };
             let pts = range(lo, hi)
                 .map(|l| (l as f64, spectrum.eval(l) as f64))

@@ -100,7 +100,23 @@ pub struct Meter {
     pub points: Vec<MeterPoint>,
 }
 
+impl Meter {
+    /// The grid cell (i along the first edge, j along the second) of point `k`.
+    pub fn cell(&self, k: usize) -> [u32; 2] {
+        let nu = self.grid[0].max(1) as usize;
+        [(k % nu) as u32, (k / nu) as u32]
+    }
+}
+
 impl Scene {
+    /// Every meter's points, meter after meter (a grid's row by row), as `measure` reads them.
+    pub fn meter_points(&self) -> Vec<MeterPoint> {
+        self.meters
+            .iter()
+            .flat_map(|m| m.points.iter().copied())
+            .collect()
+    }
+
     /// Centre and radius (m) of a sphere bounding every shape.
     pub fn bounding_sphere(&self) -> (Vec3, f32) {
         let (lo, hi) = self.bounds;

@@ -24,6 +24,18 @@ pub enum CurveKind {
     Blackbody,
 }
 
+impl CurveKind {
+    /// What a curve's values are, with their scale (plot axes, the library's lookups).
+    pub fn quantity(self) -> &'static str {
+        match self {
+            CurveKind::Illuminant => "relative spectral power",
+            CurveKind::Reflectance => "reflectance factor",
+            CurveKind::ColourMatching => "tristimulus value (ȳ(555 nm) = 1)",
+            CurveKind::Blackbody => "relative spectral radiance (peak 1)",
+        }
+    }
+}
+
 /// A dielectric from `spectra/glass/sellmeier.toml`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Glass {
