@@ -213,3 +213,86 @@ fn builder_errors_name_the_field() {
     let e = spectrace::Spectrum::named("colorchecker:rde").unwrap_err();
     assert!(e.to_string().contains("colorchecker:red"), "{e}");
 }
+
+#[test]
+fn out_of_range_options_and_lookups_are_errors() {
+    use spectrace::api::{Error, Ior, MeasureOptions, measure, spectrum};
+    use std::time::Duration;
+    let scene = Scene::from_toml(&support::render::furnace_toml("path", 0.5, 1)).unwrap();
+    let bad = [
+        (
+            Options {
+                spp: Some(0),
+                ..Default::default()
+            },
+            "spp must be at least 1",
+        ),
+        (
+            Options {
+                spp: Some((1 << 24) + 1),
+                ..Default::default()
+            },
+            "spp must be at most",
+        ),
+        (
+            Options {
+                threads: Some(0),
+                ..Default::default()
+            },
+            "threads must be at least 1",
+        ),
+        (
+            Options {
+                spectral_bins: Some(1001),
+                ..Default::default()
+            },
+            "spectral_bins must be at most 1000",
+        ),
+        (
+            Options {
+                time_limit: Some(Duration::ZERO),
+                ..Default::default()
+            },
+            "time_limit",
+        ),
+        (
+            Options {
+                target_error: Some(1.0),
+                ..Default::default()
+            },
+            "target_error 1",
+        ),
+        (
+            Options {
+                target_error: Some(f64::NAN),
+                ..Default::default()
+            },
+            "target_error NaN",
+        ),
+    ];
+    for (o, want) in bad {
+        match render(&scene, &o) {
+            Err(Error::Options(m)) => assert!(m.contains(want), "{m} (expected {want})"),
+            other => panic!("{o:?}: {:?}", other.map(|_| ())),
+        }
+    }
+    for o in [
+        MeasureOptions {
+            samples: 0,
+            ..Default::default()
+        },
+        MeasureOptions {
+            threads: Some(0),
+            ..Default::default()
+        },
+    ] {
+        assert!(
+            matches!(measure(&scene, &o), Err(Error::Options(_))),
+            "{o:?}"
+        );
+    }
+    let e = Ior::glass("N-BK8").unwrap_err().to_string();
+    assert!(e.contains("N-BK7"), "{e}");
+    let e = spectrum("cie-d65", &[Length::new::<nanometer>(-5.0)]).unwrap_err();
+    assert!(matches!(e, Error::Options(_)), "{e}");
+}
