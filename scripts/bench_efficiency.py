@@ -15,7 +15,8 @@ How to run (from the repository root):
 
 Options: --scenes PATH[@WxH],... (default: the spectral Cornell box
 tests/reference/cornell/scene.xml at 256×256, and benchmarks/scenes/heightfield.xml at its own
-256×256; the PLY is made with scripts/gen_heightfield.py if missing), --spp 16, --threads 2
+256×256; the PLY is made with scripts/gen_heightfield.py if missing), --spp 64 (or a list such
+as 64,256: each count is measured in turn and the summary has a column per count), --threads 2
 (for both renderers; Mitsuba through dr.set_thread_count), --repeats 1, --res N or WxH (film
 size for every scene), --configs (a subset of spectrace, scalar_spectral/independent,
 scalar_spectral/ldsampler, llvm_ad_spectral/independent, llvm_ad_spectral/ldsampler; a bare
@@ -375,7 +376,12 @@ def main() -> int:
         help="comma-separated Mitsuba XML files, each optionally PATH@WxH to set its film size "
         f"(default: {DEFAULT_SCENES})",
     )
-    ap.add_argument("--spp", type=int, default=16, help="samples per pixel of each render")
+    ap.add_argument(
+        "--spp",
+        default="64",
+        help="samples per pixel of each render; a comma-separated list (e.g. 64,256) measures "
+        "each count in turn and prints a row per scene, configuration and count",
+    )
     ap.add_argument("--threads", type=int, default=2, help="threads for both renderers")
     ap.add_argument("--repeats", type=int, default=1, help="interleaved repeats (median time)")
     ap.add_argument(
@@ -395,6 +401,12 @@ def main() -> int:
     # SIGTERM unwinds like Ctrl-C, so that the temporary XML files are removed.
     signal.signal(signal.SIGTERM, on_sigterm)
     configs = select_configs(args.configs)
+    try:
+        spps = [int(t) for t in str(args.spp).split(",") if t.strip()]
+    except ValueError:
+        ap.error(f"--spp {args.spp}: expected counts separated by commas, e.g. 64,256")
+    if not spps or min(spps) < 1:
+        ap.error(f"--spp {args.spp}: every count must be at least 1")
     if args.skip_spectrace and "spectrace" in configs:
         configs.remove("spectrace")
     res_all = parse_res(args.res) if args.res else None
@@ -495,86 +507,87 @@ def main() -> int:
                     tmp[s] = p
                 w_px, h_px = film_size(tmp["independent"].read_text())
                 sc["width"], sc["height"] = w_px, h_px
-                log(f"scene {sc['name']}: {w_px}×{h_px}, {args.spp} spp")
-                active = []
-                rows = {}
-                for c in configs:
-                    rows[c] = {"scene": sc["name"], "config": c, "runs": []}
-                    if c == "spectrace":
-                        active.append(c)
-                        continue
-                    s = c.split("/")[1]
-                    rep = workers[c].ask(cmd="load", path=str(tmp[s]), spp=args.spp)
-                    if not rep.get("ok"):
-                        notes.append(f"{c} could not load {sc['name']}, skipped: {rep.get('error')}")
-                        continue
-                    rows[c]["load_seconds"] = rep["load_seconds"]
-                    rows[c]["warmup_seconds"] = rep["warmup_seconds"]
-                    log(
-                        f"  {c:30s} loaded in {rep['load_seconds']:.2f} s, "
-                        f"warm-up {rep['warmup_seconds']:.2f} s"
-                    )
-                    active.append(c)
-                for r in range(args.repeats):
-                    seeds = (SEED_BASE + 2 * r, SEED_BASE + 2 * r + 1)
-                    for c in list(active):
-                        run = {"seeds": list(seeds), "seconds": [], "load1": []}
-                        ys = []
-                        try:
-                            for seed in seeds:
-                                tag = c.replace("/", "_")
-                                run["load1"].append(loadavg())
-                                if c == "spectrace":
-                                    out = WORK / f"{tag}_{seed}.exr"
-                                    secs, y = spectrace_render(
-                                        tmp["independent"], args.spp, seed, args.threads, out
-                                    )
-                                    spp = args.spp
-                                else:
-                                    out = WORK / f"{tag}_{seed}.npy"
-                                    rep = workers[c].ask(
-                                        cmd="render", spp=args.spp, seed=seed, out=str(out)
-                                    )
-                                    if not rep.get("ok"):
-                                        raise RuntimeError(rep.get("error"))
-                                    secs, spp = rep["seconds"], rep["spp"]
-                                    rows[c]["mitsuba_channels"] = rep["channels"]
-                                    y = np.load(out).astype(np.float64)
-                                run["seconds"].append(secs)
-                                ys.append(y)
-                                log(
-                                    f"  {c:30s} seed {seed:3d}: {spp} spp, {secs:8.3f} s "
-                                    f"(load {run['load1'][-1]:.2f})"
-                                )
-                        except RuntimeError as e:
-                            notes.append(f"{c} failed on {sc['name']}, skipped: {e}")
-                            active.remove(c)
-                            rows[c]["failed"] = True
+                for spp_req in spps:
+                    log(f"scene {sc['name']}: {w_px}×{h_px}, {spp_req} spp")
+                    active = []
+                    rows = {}
+                    for c in configs:
+                        rows[c] = {"scene": sc["name"], "config": c, "spp": spp_req, "runs": []}
+                        if c == "spectrace":
+                            active.append(c)
                             continue
-                        if spp != args.spp:
-                            msg = f"{c} used {spp} spp instead of {args.spp} (counted as {spp})"
-                            if msg not in remarks:
-                                remarks.append(msg)
-                        run["spp"] = spp
-                        run["time_per_sample"] = float(np.mean(run["seconds"])) / (
-                            w_px * h_px * spp
+                        s = c.split("/")[1]
+                        rep = workers[c].ask(cmd="load", path=str(tmp[s]), spp=spp_req)
+                        if not rep.get("ok"):
+                            notes.append(f"{c} could not load {sc['name']}, skipped: {rep.get('error')}")
+                            continue
+                        rows[c]["load_seconds"] = rep["load_seconds"]
+                        rows[c]["warmup_seconds"] = rep["warmup_seconds"]
+                        log(
+                            f"  {c:30s} loaded in {rep['load_seconds']:.2f} s, "
+                            f"warm-up {rep['warmup_seconds']:.2f} s"
                         )
-                        run["rel_var_per_sample"] = rel_var_per_sample(ys[0], ys[1], spp)
-                        run["mean_y"] = float(np.mean(0.5 * (ys[0] + ys[1])))
-                        rows[c]["runs"].append(run)
-                for c in configs:
-                    row = rows[c]
-                    if not row["runs"] or row.get("failed"):
-                        continue
-                    tps = statistics.median(run["time_per_sample"] for run in row["runs"])
-                    rv = float(np.mean([run["rel_var_per_sample"] for run in row["runs"]]))
-                    row["time_per_sample"] = tps
-                    row["samples_per_second"] = 1.0 / tps
-                    row["rel_var_per_sample"] = rv
-                    row["efficiency"] = 1.0 / (rv * tps)
-                    results.append(row)
-                for w in workers.values():
-                    w.ask(cmd="drop")
+                        active.append(c)
+                    for r in range(args.repeats):
+                        seeds = (SEED_BASE + 2 * r, SEED_BASE + 2 * r + 1)
+                        for c in list(active):
+                            run = {"seeds": list(seeds), "seconds": [], "load1": []}
+                            ys = []
+                            try:
+                                for seed in seeds:
+                                    tag = c.replace("/", "_")
+                                    run["load1"].append(loadavg())
+                                    if c == "spectrace":
+                                        out = WORK / f"{tag}_{seed}.exr"
+                                        secs, y = spectrace_render(
+                                            tmp["independent"], spp_req, seed, args.threads, out
+                                        )
+                                        spp = spp_req
+                                    else:
+                                        out = WORK / f"{tag}_{seed}.npy"
+                                        rep = workers[c].ask(
+                                            cmd="render", spp=spp_req, seed=seed, out=str(out)
+                                        )
+                                        if not rep.get("ok"):
+                                            raise RuntimeError(rep.get("error"))
+                                        secs, spp = rep["seconds"], rep["spp"]
+                                        rows[c]["mitsuba_channels"] = rep["channels"]
+                                        y = np.load(out).astype(np.float64)
+                                    run["seconds"].append(secs)
+                                    ys.append(y)
+                                    log(
+                                        f"  {c:30s} seed {seed:3d}: {spp} spp, {secs:8.3f} s "
+                                        f"(load {run['load1'][-1]:.2f})"
+                                    )
+                            except RuntimeError as e:
+                                notes.append(f"{c} failed on {sc['name']}, skipped: {e}")
+                                active.remove(c)
+                                rows[c]["failed"] = True
+                                continue
+                            if spp != spp_req:
+                                msg = f"{c} used {spp} spp instead of {spp_req} (counted as {spp})"
+                                if msg not in remarks:
+                                    remarks.append(msg)
+                            run["spp"] = spp
+                            run["time_per_sample"] = float(np.mean(run["seconds"])) / (
+                                w_px * h_px * spp
+                            )
+                            run["rel_var_per_sample"] = rel_var_per_sample(ys[0], ys[1], spp)
+                            run["mean_y"] = float(np.mean(0.5 * (ys[0] + ys[1])))
+                            rows[c]["runs"].append(run)
+                    for c in configs:
+                        row = rows[c]
+                        if not row["runs"] or row.get("failed"):
+                            continue
+                        tps = statistics.median(run["time_per_sample"] for run in row["runs"])
+                        rv = float(np.mean([run["rel_var_per_sample"] for run in row["runs"]]))
+                        row["time_per_sample"] = tps
+                        row["samples_per_second"] = 1.0 / tps
+                        row["rel_var_per_sample"] = rv
+                        row["efficiency"] = 1.0 / (rv * tps)
+                        results.append(row)
+                    for w in workers.values():
+                        w.ask(cmd="drop")
             finally:
                 for p in tmp.values():
                     p.unlink(missing_ok=True)
@@ -592,7 +605,9 @@ def main() -> int:
             (
                 x
                 for x in results
-                if x["scene"] == row["scene"] and x["config"] == "spectrace"
+                if x["scene"] == row["scene"]
+                and x["spp"] == row["spp"]
+                and x["config"] == "spectrace"
             ),
             None,
         )
@@ -602,17 +617,44 @@ def main() -> int:
         return "spectrace (path)" if c == "spectrace" else f"Mitsuba {c}"
 
     lines = [
-        "| scene | configuration | samples/s (M) | relative variance per sample | efficiency (1/s) "
-        "| spectrace ÷ this |",
-        "| --- | --- | ---: | ---: | ---: | ---: |",
+        "| scene | spp | configuration | samples/s (M) | relative variance per sample "
+        "| efficiency (1/s) | spectrace ÷ this |",
+        "| --- | ---: | --- | ---: | ---: | ---: | ---: |",
     ]
     for row in results:
         ratio = "n/a" if row["spectrace_ratio"] is None else f"{row['spectrace_ratio']:.2f}"
         lines.append(
-            f"| {row['scene']} ({row_size(scenes, row['scene'])}) | {label(row['config'])} "
+            f"| {row['scene']} ({row_size(scenes, row['scene'])}) | {row['spp']} "
+            f"| {label(row['config'])} "
             f"| {row['samples_per_second'] / 1e6:.3f} | {row['rel_var_per_sample']:.3e} "
             f"| {row['efficiency']:.3e} | {ratio} |"
         )
+    # the summary: spectrace's efficiency ratio against each Mitsuba configuration, one column
+    # per sample count
+    mi_configs = [c for c in configs if c != "spectrace"]
+    if mi_configs and any(r["config"] == "spectrace" for r in results):
+        lines += [
+            "",
+            "| scene | spectrace ÷ "
+            + " | spectrace ÷ ".join(f"{c} at {n} spp" for c in mi_configs for n in spps)
+            + " |",
+            "| --- |" + " ---: |" * (len(mi_configs) * len(spps)),
+        ]
+        for sc in scenes:
+            cells = []
+            for c in mi_configs:
+                for n in spps:
+                    r = next(
+                        (
+                            x
+                            for x in results
+                            if x["scene"] == sc["name"] and x["config"] == c and x["spp"] == n
+                        ),
+                        None,
+                    )
+                    ok = r is not None and r["spectrace_ratio"] is not None
+                    cells.append(f"{r['spectrace_ratio']:.2f}" if ok else "n/a")
+            lines.append(f"| {sc['name']} | " + " | ".join(cells) + " |")
 
     head = [
         f"Date: {datetime.datetime.now().isoformat(timespec='seconds')}",
@@ -622,7 +664,7 @@ def main() -> int:
         f"{st_version or 'spectrace n/a'} (git {git_head()}"
         + (f", binary built {st_binary['mtime']}" if st_binary else "")
         + f"), Python {platform.python_version()}",
-        f"Settings: {args.spp} spp per image, two images (seeds A, B) per configuration and "
+        f"Settings: {', '.join(map(str, spps))} spp per image, two images (seeds A, B) per configuration and "
         f"repeat, {args.repeats} repeat(s), {args.threads} threads"
         + (f" (Mitsuba reports {mi_threads})" if mi_threads else ""),
     ]
@@ -654,7 +696,7 @@ def main() -> int:
                 | {"spectrace": st_version, "git": git_head(), "python": platform.python_version()},
                 "spectrace_binary": st_binary,
                 "settings": {
-                    "spp": args.spp,
+                    "spp": spps,
                     "threads": args.threads,
                     "mitsuba_threads": mi_threads,
                     "repeats": args.repeats,
