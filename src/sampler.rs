@@ -40,15 +40,17 @@ fn lk_permutation(mut x: u32, seed: u32) -> u32 {
     x
 }
 
-/// Owen scramble of a 32-bit fixed-point value in [0, 1).
-#[inline]
+/// Owen scramble of a 32-bit fixed-point value in [0, 1). The sampler applies it written out
+/// (see [`Sampler::get_2d`]); the tests check that against this form.
+#[cfg(test)]
 fn nested_uniform_scramble(x: u32, seed: u32) -> u32 {
     lk_permutation(x.reverse_bits(), seed).reverse_bits()
 }
 
-/// Second Sobol dimension (primitive polynomial x + 1): v₁ = 2³¹, vₖ = vₖ₋₁ ⊕ (vₖ₋₁ >> 1).
-#[inline]
-fn sobol_dim1(mut index: u32) -> u32 {
+/// Second Sobol dimension (primitive polynomial x + 1): v₁ = 2³¹, vₖ = vₖ₋₁ ⊕ (vₖ₋₁ >> 1), the
+/// result the XOR of vₖ over the set bits k − 1 of `index`. The definition, one step per bit;
+/// [`sobol_dim1_rev`] is what sampling uses.
+const fn sobol_dim1(mut index: u32) -> u32 {
     let mut v = 1u32 << 31;
     let mut r = 0;
     while index != 0 {
@@ -61,6 +63,36 @@ fn sobol_dim1(mut index: u32) -> u32 {
     r
 }
 
+/// `sobol_dim1(r.reverse_bits()).reverse_bits()` by bytes: the map is linear over GF(2), so it
+/// is the XOR of one 256-entry table per byte of `r`, the tables built at compile time from
+/// [`sobol_dim1`] itself. The bit-reversed domain is where the Owen scramble works (Burley §3),
+/// so sampling reads the scrambled index this way without reversing it twice.
+#[inline]
+fn sobol_dim1_rev(r: u32) -> u32 {
+    SOBOL1_REV[0][(r & 0xff) as usize]
+        ^ SOBOL1_REV[1][((r >> 8) & 0xff) as usize]
+        ^ SOBOL1_REV[2][((r >> 16) & 0xff) as usize]
+        ^ SOBOL1_REV[3][(r >> 24) as usize]
+}
+
+/// `SOBOL1_REV[k][b]`: [`sobol_dim1_rev`] of byte `b` placed at byte `k` (4 KiB).
+static SOBOL1_REV: [[u32; 256]; 4] = sobol1_rev_tables();
+
+const fn sobol1_rev_tables() -> [[u32; 256]; 4] {
+    let mut t = [[0u32; 256]; 4];
+    let mut k = 0;
+    while k < 4 {
+        let mut b = 0;
+        while b < 256 {
+            let r = (b as u32) << (8 * k);
+            t[k][b] = sobol_dim1(r.reverse_bits()).reverse_bits();
+            b += 1;
+        }
+        k += 1;
+    }
+    t
+}
+
 #[inline]
 fn to_unit(x: u32) -> f32 {
     // 24 significant bits so that the result is < 1 in f32
@@ -71,7 +103,8 @@ fn to_unit(x: u32) -> f32 {
 #[derive(Clone, Debug)]
 pub struct Sampler {
     pixel_seed: u32,
-    index: u32,
+    /// The sample index with its bits reversed (the domain of the scramble).
+    index_rev: u32,
     dim: u32,
 }
 
@@ -81,7 +114,7 @@ impl Sampler {
     pub fn new(seed: u32, x: u32, y: u32, index: u32) -> Self {
         Self {
             pixel_seed: hash_combine(hash_combine(hash_u32(seed), x), y),
-            index,
+            index_rev: index.reverse_bits(),
             dim: 0,
         }
     }
@@ -104,9 +137,14 @@ impl Sampler {
     pub fn get_2d(&mut self) -> Vec2 {
         let seed = hash_combine(self.pixel_seed, self.dim);
         self.dim += 2;
-        let i = nested_uniform_scramble(self.index, seed);
-        let x = nested_uniform_scramble(i.reverse_bits(), hash_u32(seed ^ 0xa511_e9b3));
-        let y = nested_uniform_scramble(sobol_dim1(i), hash_u32(seed ^ 0x63d8_3595));
+        // The shuffled index i = nested_uniform_scramble(index) = r reversed, then each
+        // coordinate's Owen scramble: x = nested_uniform_scramble(i reversed) (the van der
+        // Corput point of i), y = nested_uniform_scramble(sobol_dim1(i)). Written out, the
+        // reversals that cancel are left out: 3 reversals instead of 8, and the second
+        // dimension by table ([`sobol_dim1_rev`]) instead of one step per bit of i.
+        let r = lk_permutation(self.index_rev, seed);
+        let x = lk_permutation(r.reverse_bits(), hash_u32(seed ^ 0xa511_e9b3)).reverse_bits();
+        let y = lk_permutation(sobol_dim1_rev(r), hash_u32(seed ^ 0x63d8_3595)).reverse_bits();
         Vec2::new(to_unit(x), to_unit(y))
     }
 
@@ -116,11 +154,8 @@ impl Sampler {
     pub fn get_1d(&mut self) -> f32 {
         let seed = hash_combine(self.pixel_seed, self.dim);
         self.dim += 2;
-        let i = nested_uniform_scramble(self.index, seed);
-        to_unit(nested_uniform_scramble(
-            i.reverse_bits(),
-            hash_u32(seed ^ 0xa511_e9b3),
-        ))
+        let r = lk_permutation(self.index_rev, seed);
+        to_unit(lk_permutation(r.reverse_bits(), hash_u32(seed ^ 0xa511_e9b3)).reverse_bits())
     }
 }
 
@@ -135,6 +170,51 @@ mod tests {
         let want = [0.0, 0.5, 0.75, 0.25, 0.625, 0.125, 0.375, 0.875];
         for (i, w) in want.iter().enumerate() {
             assert_eq!(sobol_dim1(i as u32) as f64 / 2f64.powi(32), *w, "index {i}");
+        }
+    }
+
+    /// The sampler as first written (Burley 2020, listing 2 with the pair of Sobol dimensions):
+    /// three nested uniform scrambles and the second dimension one step per bit.
+    fn reference_get_2d(seed: u32, x: u32, y: u32, index: u32, dim: u32) -> (u32, u32) {
+        let pixel_seed = hash_combine(hash_combine(hash_u32(seed), x), y);
+        let seed = hash_combine(pixel_seed, dim);
+        let i = nested_uniform_scramble(index, seed);
+        let x = nested_uniform_scramble(i.reverse_bits(), hash_u32(seed ^ 0xa511_e9b3));
+        let y = nested_uniform_scramble(sobol_dim1(i), hash_u32(seed ^ 0x63d8_3595));
+        (x, y)
+    }
+
+    #[test]
+    fn tables_give_the_bits_of_the_definition() {
+        // the byte tables against the bit-serial definition, on random and edge words
+        let mut h = 1u32;
+        let mut words = vec![0, 1, u32::MAX, 1 << 31, 0xff, 0xff00_0000];
+        for _ in 0..20_000 {
+            h = hash_u32(h.wrapping_add(0x9e37_79b9));
+            words.push(h);
+        }
+        for r in words {
+            assert_eq!(
+                sobol_dim1_rev(r),
+                sobol_dim1(r.reverse_bits()).reverse_bits(),
+                "r = {r:#010x}"
+            );
+        }
+        // and whole points against the sampler as first written, in every 1D and 2D read
+        for (seed, px, py) in [
+            (0u32, 0u32, 0u32),
+            (7, 3, 4),
+            (123, 511, 77),
+            (9, 65_535, 1),
+        ] {
+            for index in (0..300).chain([1 << 20, u32::MAX - 1]) {
+                for dim in (0..24).step_by(2) {
+                    let (x, y) = reference_get_2d(seed, px, py, index, dim);
+                    let s = Sampler::new(seed, px, py, index).at_dimension(dim);
+                    assert_eq!(s.clone().get_2d(), Vec2::new(to_unit(x), to_unit(y)));
+                    assert_eq!(s.clone().get_1d(), to_unit(x));
+                }
+            }
         }
     }
 
