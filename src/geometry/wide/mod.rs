@@ -255,57 +255,68 @@ impl<const W: usize> Wide<W> {
         any_hit: bool,
         mut leaf: impl FnMut(usize, f32) -> f32,
     ) -> f32 {
-        stack[0] = MaybeUninit::new((0, 0, 0.0));
-        let mut sp = 1;
+        // The entry visited now: the root, then the nearest child hit of each inner node
+        // (taken without a trip through the stack), else the top of the stack. The order of
+        // visits is that of pushing every child hit farthest first and popping.
+        let mut cur: Entry = (0, 0, 0.0);
+        let mut sp = 0;
         let (o, inv) = (o.to_array(), inv_d.to_array());
-        while sp > 0 {
+        loop {
+            let (code, count, near) = cur;
+            if near < t_max {
+                if count > 0 {
+                    for id in code..code + count {
+                        let t = leaf(id as usize, t_max);
+                        if t < t_max {
+                            t_max = t;
+                            if any_hit {
+                                return t_max;
+                            }
+                        }
+                    }
+                } else {
+                    let n = &self.nodes[code as usize];
+                    let (mask, t_near) = slab(n, o, inv, t_max);
+                    let mut hits = [(0f32, 0usize); W];
+                    let mut nh = 0;
+                    let mut m = mask;
+                    while m != 0 {
+                        let l = m.trailing_zeros() as usize;
+                        m &= m - 1;
+                        if n.child[l] != EMPTY {
+                            hits[nh] = (t_near[l], l);
+                            nh += 1;
+                        }
+                    }
+                    let hits = &mut hits[..nh];
+                    // farthest first, by insertion (at most W entries; the distances are not
+                    // NaN, since the reciprocals are finite and a NaN entry fails the tests
+                    // above)
+                    for a in 1..nh {
+                        let mut b = a;
+                        while b > 0 && hits[b - 1].0 < hits[b].0 {
+                            hits.swap(b - 1, b);
+                            b -= 1;
+                        }
+                    }
+                    if let Some((&(tn, l), rest)) = hits.split_last() {
+                        // the others on the stack, farthest first; the nearest is next
+                        for &(tf, lf) in rest {
+                            stack[sp] = MaybeUninit::new((n.child[lf], n.count[lf], tf));
+                            sp += 1;
+                        }
+                        cur = (n.child[l], n.count[l], tn);
+                        continue;
+                    }
+                }
+            }
+            if sp == 0 {
+                break;
+            }
             sp -= 1;
             // SAFETY: entries 0..sp were all written (each push writes stack[sp] before sp
             // grows), so stack[sp] is initialised.
-            let (code, count, near) = unsafe { stack[sp].assume_init() };
-            if near >= t_max {
-                continue;
-            }
-            if count > 0 {
-                for id in code..code + count {
-                    let t = leaf(id as usize, t_max);
-                    if t < t_max {
-                        t_max = t;
-                        if any_hit {
-                            return t_max;
-                        }
-                    }
-                }
-                continue;
-            }
-            let n = &self.nodes[code as usize];
-            let (mask, t_near) = slab(n, o, inv, t_max);
-            // Push the lanes hit, farthest first, so the nearest is visited next.
-            let mut hits = [(0f32, 0usize); W];
-            let mut nh = 0;
-            let mut m = mask;
-            while m != 0 {
-                let l = m.trailing_zeros() as usize;
-                m &= m - 1;
-                if n.child[l] != EMPTY {
-                    hits[nh] = (t_near[l], l);
-                    nh += 1;
-                }
-            }
-            let hits = &mut hits[..nh];
-            // farthest first, by insertion (at most W entries; the distances are not NaN,
-            // since the reciprocals are finite and a NaN entry fails the tests above)
-            for a in 1..nh {
-                let mut b = a;
-                while b > 0 && hits[b - 1].0 < hits[b].0 {
-                    hits.swap(b - 1, b);
-                    b -= 1;
-                }
-            }
-            for &(tn, l) in hits.iter() {
-                stack[sp] = MaybeUninit::new((n.child[l], n.count[l], tn));
-                sp += 1;
-            }
+            cur = unsafe { stack[sp].assume_init() };
         }
         t_max
     }
