@@ -20,8 +20,8 @@ use glam::Vec3;
 /// Computed once per ray and shared by every triangle the ray is tested against.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct WatertightRay {
-    kx: usize,
-    ky: usize,
+    /// The axis of the largest |d| component, which becomes z; x and y are the next two axes
+    /// in cyclic order (kz + 1, kz + 2 mod 3).
     kz: usize,
     shear_x: f32,
     shear_y: f32,
@@ -36,8 +36,6 @@ impl WatertightRay {
         let ky = if kx == 2 { 0 } else { kx + 1 };
         let (dx, dy, dz) = (ray.d[kx], ray.d[ky], ray.d[kz]);
         Self {
-            kx,
-            ky,
             kz,
             shear_x: -dx / dz,
             shear_y: -dy / dz,
@@ -55,6 +53,10 @@ pub(crate) fn intersect_triangle(p: [Vec3; 3], ray: &Ray) -> Option<(f32, [f32; 
 
 /// [`intersect_triangle`] with the per-ray part precomputed (`w` must come from `ray`) and the
 /// distance limit `t_max` in place of `ray.t_max` (a traversal's closest hit so far).
+///
+/// The test is compiled once per permutation (the ray's z axis), so that the permutation is a
+/// choice of registers rather than indexing through memory; the branch between them takes the
+/// same way for every triangle a ray meets.
 #[inline]
 pub(crate) fn intersect_triangle_with(
     p: [Vec3; 3],
@@ -62,14 +64,38 @@ pub(crate) fn intersect_triangle_with(
     w: &WatertightRay,
     t_max: f32,
 ) -> Option<(f32, [f32; 3])> {
-    let (kx, ky, kz) = (w.kx, w.ky, w.kz);
+    match w.kz {
+        0 => intersect_permuted::<1, 2, 0>(p, ray, w, t_max),
+        1 => intersect_permuted::<2, 0, 1>(p, ray, w, t_max),
+        _ => intersect_permuted::<0, 1, 2>(p, ray, w, t_max),
+    }
+}
+
+/// Component `K` (0 = x, 1 = y, 2 = z) of `v`.
+#[inline(always)]
+fn component<const K: usize>(v: Vec3) -> f32 {
+    match K {
+        0 => v.x,
+        1 => v.y,
+        _ => v.z,
+    }
+}
+
+/// [`intersect_triangle_with`] for the permutation (KX, KY, KZ) of `w`.
+#[inline(always)]
+fn intersect_permuted<const KX: usize, const KY: usize, const KZ: usize>(
+    p: [Vec3; 3],
+    ray: &Ray,
+    w: &WatertightRay,
+    t_max: f32,
+) -> Option<(f32, [f32; 3])> {
     let (shear_x, shear_y, scale_z) = (w.shear_x, w.shear_y, w.scale_z);
 
     // Vertices relative to the origin, permuted, then sheared in x and y. (Written out: the
     // closures of `[T; 3]::map` were not inlined and cost a fifth of the test.)
     let permute = |v: Vec3| {
-        let a = (v - ray.o).to_array();
-        Vec3::new(a[kx], a[ky], a[kz])
+        let a = v - ray.o;
+        Vec3::new(component::<KX>(a), component::<KY>(a), component::<KZ>(a))
     };
     let rel = [permute(p[0]), permute(p[1]), permute(p[2])];
     let shear = |v: Vec3| Vec3::new(v.x + shear_x * v.z, v.y + shear_y * v.z, v.z);
