@@ -12,15 +12,23 @@ use super::sampled::{SampledSpectrum, SampledWavelengths};
 pub struct PiecewiseLinear {
     lambda: Vec<f32>,
     value: Vec<f32>,
-    /// `Some(step)` when the λ_i are uniformly spaced by `step` nm.
+    /// `Some(step)` when the table is evaluated on a uniform grid of `step` nm from λ_0: the
+    /// λ_i are uniformly spaced, or all lie on such a grid (see [`PiecewiseLinear::new`]).
     uniform_step: Option<f32>,
     /// 1/step in nm⁻¹ for uniform tables; for others, cells of the guide table per nm.
     inv_step: f32,
+    /// Uniform tables: the values at the grid points λ_0 + k·step (the samples themselves when
+    /// they are uniformly spaced). Empty otherwise.
+    grid: Vec<f32>,
     /// Non-uniform tables: `guide[c]` is the last sample i with λ_i ≤ the start of guide cell
     /// c (cells of 1/`inv_step` nm from λ_0), so a lookup starts there and walks forward a few
     /// samples instead of a binary search. Empty for uniform tables.
     guide: Vec<u32>,
 }
+
+/// Most grid points a table whose samples lie on a uniform grid is expanded to (see
+/// [`PiecewiseLinear::new`]): 64 KiB of values.
+const MAX_GRID: usize = 16_384;
 
 /// Why a table of samples is not a valid piecewise-linear spectrum.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -68,9 +76,17 @@ impl PiecewiseLinear {
             .iter()
             .enumerate()
             .all(|(i, &l)| (l - (lambda[0] + i as f32 * step)).abs() <= 1e-4 * step.max(1.0));
-        let (inv_step, guide) = if uniform {
-            (1.0 / step, Vec::new())
-        } else {
+        if uniform {
+            return Ok(Self {
+                grid: value.clone(),
+                lambda,
+                value,
+                uniform_step: Some(step),
+                inv_step: 1.0 / step,
+                guide: Vec::new(),
+            });
+        }
+        let guided = {
             // four cells per sample on average: about one step of walking per lookup for
             // roughly even spacing, a few more where samples crowd
             let cells = 4 * lambda.len();
@@ -82,14 +98,53 @@ impl PiecewiseLinear {
                     i.min(lambda.len() - 2) as u32
                 })
                 .collect();
-            (inv, guide)
+            Self {
+                lambda,
+                value,
+                uniform_step: None,
+                inv_step: inv,
+                grid: Vec::new(),
+                guide,
+            }
         };
-        Ok(Self {
-            lambda,
-            value,
-            uniform_step: uniform.then_some(step),
-            inv_step,
-            guide,
+        Ok(guided.on_grid().unwrap_or(guided))
+    }
+
+    /// Tables whose samples all lie on one uniform grid (multiples of the smallest spacing from
+    /// λ_0, within 10⁻³ of it, at most [`MAX_GRID`] points), such as measured reflectances at
+    /// 5 nm with a first sample 20 nm before the rest: the same function, its values at the grid
+    /// points computed once, so that the render loop takes the O(1) lookup of uniform tables
+    /// (one multiply instead of a guide table, a walk and a division). Between samples the
+    /// values differ from the guided lookup's only by rounding (a few ulp). `None` otherwise.
+    fn on_grid(&self) -> Option<Self> {
+        let (l0, n) = (self.lambda[0] as f64, self.lambda.len());
+        let d = self
+            .lambda
+            .windows(2)
+            .map(|w| (w[1] - w[0]) as f64)
+            .fold(f64::INFINITY, f64::min);
+        let last = (self.lambda[n - 1] as f64 - l0) / d;
+        if !(d > 0.0 && last.round() < MAX_GRID as f64) {
+            return None;
+        }
+        let aligned = self.lambda.iter().all(|&l| {
+            let k = (l as f64 - l0) / d;
+            (k - k.round()).abs() <= 1e-3
+        });
+        if !aligned {
+            return None;
+        }
+        let count = last.round() as usize + 1;
+        let step = (self.lambda[n - 1] - self.lambda[0]) / (count - 1) as f32;
+        let grid = (0..count)
+            .map(|k| self.eval_guided((self.lambda[0] + k as f32 * step).min(self.lambda[n - 1])))
+            .collect();
+        Some(Self {
+            uniform_step: Some(step),
+            inv_step: 1.0 / step,
+            grid,
+            guide: Vec::new(),
+            ..self.clone()
         })
     }
 
@@ -114,11 +169,24 @@ impl PiecewiseLinear {
         }
         if self.uniform_step.is_some() {
             // O(1): the bin and the fraction from one multiply by the precomputed 1/step
+            let g = &self.grid;
             let x = (lambda_nm - lo) * self.inv_step;
-            let i = (x as usize).min(n - 2);
+            // 0 ≤ x ≤ (λ_last − λ_0)/step·(1 + ε) ≈ g.len() − 1: λ is inside the domain (not
+            // NaN), and 1/step is finite and positive
+            debug_assert!((0.0..=g.len() as f32).contains(&x), "{x}");
+            // SAFETY: x is finite, not negative and at most about the grid's length, far below
+            // 2³² (a grid that long would not fit in memory), so the truncation is defined.
+            let i = (unsafe { x.to_int_unchecked::<u32>() } as usize).min(g.len() - 2);
             let t = (x - i as f32).clamp(0.0, 1.0);
-            return self.value[i] + t * (self.value[i + 1] - self.value[i]);
+            return g[i] + t * (g[i + 1] - g[i]);
         }
+        self.eval_guided(lambda_nm)
+    }
+
+    /// Linear interpolation between the samples around `lambda_nm` (inside the domain), found
+    /// through the guide table.
+    fn eval_guided(&self, lambda_nm: f32) -> f32 {
+        let (n, lo) = (self.lambda.len(), self.lambda[0]);
         // the last sample i ≤ n − 2 with λ_i ≤ λ, as a binary search would find it
         let c = (((lambda_nm - lo) * self.inv_step) as usize).min(self.guide.len() - 1);
         let mut i = self.guide[c] as usize;
@@ -134,6 +202,7 @@ impl PiecewiseLinear {
     pub fn scaled(&self, k: f32) -> Self {
         Self {
             value: self.value.iter().map(|v| v * k).collect(),
+            grid: self.grid.iter().map(|v| v * k).collect(),
             ..self.clone()
         }
     }
@@ -188,7 +257,13 @@ impl Spectrum {
     /// Values at the sampled wavelengths.
     #[inline]
     pub fn sample<const N: usize>(&self, w: &SampledWavelengths<N>) -> SampledSpectrum<N> {
-        SampledSpectrum(w.lambda.map(|l| self.eval(l)))
+        // the kind chosen once for all N wavelengths (the render loop's most frequent case:
+        // reflectances and emitters given as tables)
+        SampledSpectrum(match self {
+            Spectrum::Constant(c) => [*c; N],
+            Spectrum::Piecewise(t) => w.lambda.map(|l| t.eval(l)),
+            _ => w.lambda.map(|l| self.eval(l)),
+        })
     }
 
     /// This curve multiplied by `k`.
@@ -317,6 +392,56 @@ mod tests {
         for x in probes {
             assert_eq!(t.eval(x), binary(x), "λ = {x}");
         }
+    }
+
+    /// A table sampled at 5 nm with a first sample 20 nm before the rest (as measured
+    /// reflectances are given) is evaluated on the 5 nm grid: the same function as the f64
+    /// interpolation of its samples, within rounding, and its samples exactly.
+    #[test]
+    fn tables_on_a_grid_are_evaluated_on_the_grid() {
+        let mut lambda = vec![360.0f32];
+        lambda.extend((0..71).map(|k| 380.0 + 5.0 * k as f32));
+        let value: Vec<f32> = (0..lambda.len())
+            .map(|i| 0.05 + 0.9 * (0.5 + 0.5 * (i as f32 * 0.41).sin()))
+            .collect();
+        let t = PiecewiseLinear::new(lambda.clone(), value.clone()).unwrap();
+        assert_eq!(t.uniform_step, Some(5.0));
+        assert_eq!(t.grid.len(), 75);
+        assert_eq!((t.wavelengths(), t.values()), (&lambda[..], &value[..]));
+        let exact = |x: f64| {
+            let i = lambda
+                .partition_point(|&l| l as f64 <= x)
+                .clamp(1, lambda.len() - 1)
+                - 1;
+            let (l0, l1) = (lambda[i] as f64, lambda[i + 1] as f64);
+            let (v0, v1) = (value[i] as f64, value[i + 1] as f64);
+            v0 + (x - l0) / (l1 - l0) * (v1 - v0)
+        };
+        for (l, v) in lambda.iter().zip(&value) {
+            assert_eq!(t.eval(*l), *v, "λ = {l}");
+        }
+        // The uniform lookup finds its place x = (λ − λ₀)/step (up to 74 grid cells) to a few
+        // ulp of x, so it may be off by 4·74·ε cells, times the largest change of value per
+        // cell, plus the rounding of the interpolation itself.
+        let max_change = t
+            .grid
+            .windows(2)
+            .map(|w| (w[1] - w[0]).abs())
+            .fold(0.0, f32::max);
+        let bound = (4.0 * 74.0 * max_change + 4.0) as f64 * f32::EPSILON as f64;
+        for j in 0..=37_000 {
+            let x = 360.0 + j as f32 * 0.01;
+            let err = (t.eval(x) as f64 - exact(x as f64)).abs();
+            assert!(err <= bound, "λ = {x}: {err:e} > {bound:e}");
+        }
+        assert_eq!(t.eval(359.99), 0.0);
+        assert_eq!(t.eval(735.01), 0.0);
+        // scaled tables scale the grid too
+        assert_eq!(t.scaled(2.0).eval(382.5), 2.0 * t.eval(382.5));
+        // samples off any grid of their smallest spacing keep the guided lookup
+        let off = PiecewiseLinear::new(vec![400.0, 403.3, 410.0], vec![1.0, 2.0, 0.0]).unwrap();
+        assert!(off.uniform_step.is_none());
+        assert!((off.eval(403.3) - 2.0).abs() < 1e-6);
     }
 
     #[test]
