@@ -159,8 +159,9 @@ impl PiecewiseLinear {
         (self.lambda[0], self.lambda[self.lambda.len() - 1])
     }
 
-    /// Linear interpolation at `lambda_nm`; 0 outside the tabulated domain.
-    #[inline]
+    /// Linear interpolation at `lambda_nm`; 0 outside the tabulated domain. (Inlined: the
+    /// uniform lookup is a few instructions; the guided one is out of line.)
+    #[inline(always)]
     pub fn eval(&self, lambda_nm: f32) -> f32 {
         let n = self.lambda.len();
         let (lo, hi) = (self.lambda[0], self.lambda[n - 1]);
@@ -185,6 +186,7 @@ impl PiecewiseLinear {
 
     /// Linear interpolation between the samples around `lambda_nm` (inside the domain), found
     /// through the guide table.
+    #[inline(never)]
     fn eval_guided(&self, lambda_nm: f32) -> f32 {
         let (n, lo) = (self.lambda.len(), self.lambda[0]);
         // the last sample i ≤ n − 2 with λ_i ≤ λ, as a binary search would find it
@@ -259,11 +261,22 @@ impl Spectrum {
     pub fn sample<const N: usize>(&self, w: &SampledWavelengths<N>) -> SampledSpectrum<N> {
         // the kind chosen once for all N wavelengths (the render loop's most frequent case:
         // reflectances and emitters given as tables)
-        SampledSpectrum(match self {
-            Spectrum::Constant(c) => [*c; N],
-            Spectrum::Piecewise(t) => w.lambda.map(|l| t.eval(l)),
-            _ => w.lambda.map(|l| self.eval(l)),
-        })
+        // (A loop, not `array::map`, whose closure was compiled out of line.)
+        let mut out = [0.0; N];
+        match self {
+            Spectrum::Constant(c) => out = [*c; N],
+            Spectrum::Piecewise(t) => {
+                for (o, &l) in out.iter_mut().zip(&w.lambda) {
+                    *o = t.eval(l);
+                }
+            }
+            _ => {
+                for (o, &l) in out.iter_mut().zip(&w.lambda) {
+                    *o = self.eval(l);
+                }
+            }
+        }
+        SampledSpectrum(out)
     }
 
     /// This curve multiplied by `k`.
