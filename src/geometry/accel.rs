@@ -18,7 +18,7 @@
 
 use super::instance::Instance;
 use super::ray::Ray;
-use super::shape::{Intersection, PrimHit, Shape, WatertightRay, intersect_triangle_with};
+use super::shape::{Intersection, PrimHit, Shape, Tri4, WatertightRay, intersect_triangle_with};
 use super::wide::{BinaryNode, WideBvh};
 use glam::Vec3;
 use obvhs::BvhBuildParams;
@@ -39,6 +39,17 @@ struct PrimRef {
 
 /// The flag of [`PrimRef::shape`] that marks an instance.
 const INSTANCE: u32 = 1 << 31;
+
+/// Primitives per [`Tri4`] block: leaves start at multiples of it, so that each block
+/// belongs to one leaf and its triangles are tested together.
+const BLOCK: usize = 4;
+
+/// Most primitives in a leaf (two blocks).
+const LEAF: u32 = 8;
+
+/// A slot of the padded primitive order that holds nothing (leaves start at multiples of
+/// [`BLOCK`]).
+const PAD: u32 = u32::MAX;
 
 /// A hit inside instance `i`, found along the object-space ray of scale `k`.
 struct Closest {
@@ -61,11 +72,16 @@ pub struct Accel {
     /// traverse.
     wide: WideBvh,
     /// Indexed by the BVH's primitive ids (already permuted, so no indirection at query time).
+    /// Each leaf starts at a multiple of [`BLOCK`]; the slots after its primitives up to the
+    /// next multiple are padding that no leaf covers.
     prims: Vec<PrimRef>,
-    /// Triangle corners (m) by BVH primitive id, copied from the meshes so that a leaf test reads
-    /// one contiguous record instead of shape → index → position, and not `prims` at all; NaN
-    /// for other primitives (mesh vertices are finite, so NaN marks "not a triangle").
-    tris: Vec<[Vec3; 3]>,
+    /// Triangle corners (m) by BVH primitive id, four ids per block (id / 4, lane id % 4),
+    /// copied from the meshes so that a leaf's triangles are one contiguous record tested
+    /// together (see `shape/triangle4.rs`); NaN lanes for padding and other primitives (mesh
+    /// vertices are finite, so NaN marks "not a triangle").
+    blocks: Vec<Tri4>,
+    /// Primitives indexed (padding not counted).
+    count: usize,
     /// The instances whose boxes are primitives here.
     instances: Vec<Instance>,
 }
@@ -141,19 +157,36 @@ impl Accel {
                 root_bounds: None,
                 wide: WideBvh::default(),
                 prims: Vec::new(),
-                tris: Vec::new(),
+                blocks: Vec::new(),
+                count: 0,
                 instances,
             };
         }
-        let (binary, order) = build_binary(&boxes, part.max(1));
+        let (mut binary, order) = build_binary(&boxes, part.max(1));
         drop(boxes);
-        let prims: Vec<PrimRef> = order.iter().map(|&i| refs[i as usize]).collect();
-        drop((refs, order));
-        let tris = prims
+        let order = pad_leaves(&mut binary, &order);
+        let count = refs.len();
+        let prims: Vec<PrimRef> = order
             .iter()
-            .map(|pr| match shapes.get(pr.shape as usize) {
-                Some(Shape::Mesh(m)) => m.vertices(pr.prim as usize),
-                _ => [Vec3::NAN; 3],
+            .map(|&i| match i {
+                PAD => PrimRef {
+                    shape: PAD,
+                    prim: 0,
+                },
+                _ => refs[i as usize],
+            })
+            .collect();
+        drop((refs, order));
+        let blocks = prims
+            .chunks(BLOCK)
+            .map(|c| {
+                Tri4::new(std::array::from_fn(|l| {
+                    let pr = c.get(l)?;
+                    match shapes.get(pr.shape as usize) {
+                        Some(Shape::Mesh(m)) => Some(m.vertices(pr.prim as usize)),
+                        _ => None,
+                    }
+                }))
             })
             .collect();
         let root_bounds = binary.first().map(|n| (n.min, n.max));
@@ -161,14 +194,15 @@ impl Accel {
             wide: WideBvh::collapse(&binary, max_width),
             root_bounds,
             prims,
-            tris,
+            blocks,
+            count,
             instances,
         }
     }
 
     /// Number of primitives indexed.
     pub fn primitive_count(&self) -> usize {
-        self.prims.len()
+        self.count
     }
 
     /// World bounds (min, max) of everything indexed, m (slightly padded), or `None` if empty.
@@ -185,24 +219,27 @@ impl Accel {
         let mut best: Option<(PrimRef, f32, PrimHit)> = None;
         let mut inst: Option<Closest> = None;
         let mut in_instance = false;
+        let mut test = |id: usize, tri: Option<[Vec3; 3]>, t_max: f32| {
+            if let Some((t, h)) = self.intersect_prim(shapes, id, tri, ray, &wt, t_max) {
+                best = Some((self.prims[id], t, h));
+                in_instance = false;
+                return t;
+            }
+            let Some(i) = self.instance_at(id, tri) else {
+                return f32::INFINITY;
+            };
+            match self.closest_in_instance(i, ray, t_max) {
+                Some((t, c)) => {
+                    inst = Some(c);
+                    in_instance = true;
+                    t
+                }
+                None => f32::INFINITY,
+            }
+        };
         self.wide
-            .traverse(ray.o, inv_d, ray.t_max, false, |id, t_max| {
-                if let Some((t, h)) = self.intersect_prim(shapes, id, ray, &wt, t_max) {
-                    best = Some((self.prims[id], t, h));
-                    in_instance = false;
-                    return t;
-                }
-                let Some(i) = self.instance_at(id) else {
-                    return f32::INFINITY;
-                };
-                match self.closest_in_instance(i, ray, t_max) {
-                    Some((t, c)) => {
-                        inst = Some(c);
-                        in_instance = true;
-                        t
-                    }
-                    None => f32::INFINITY,
-                }
+            .traverse(ray.o, inv_d, ray.t_max, false, |first, count, t_max| {
+                self.visit_leaf(first, count, ray, &wt, t_max, false, &mut test)
             });
         if in_instance {
             let Closest {
@@ -258,15 +295,18 @@ impl Accel {
         let inv_d = inv_direction(ray)?;
         let wt = WatertightRay::new(ray);
         let mut best = None;
+        let mut test = |id: usize, tri: Option<[Vec3; 3]>, t_max: f32| match self
+            .intersect_prim(shapes, id, tri, ray, &wt, t_max)
+        {
+            Some((t, h)) => {
+                best = Some((self.prims[id], t, h));
+                t
+            }
+            None => f32::INFINITY,
+        };
         self.wide
-            .traverse(ray.o, inv_d, ray.t_max, false, |id, t_max| {
-                match self.intersect_prim(shapes, id, ray, &wt, t_max) {
-                    Some((t, h)) => {
-                        best = Some((self.prims[id], t, h));
-                        t
-                    }
-                    None => f32::INFINITY,
-                }
+            .traverse(ray.o, inv_d, ray.t_max, false, |first, count, t_max| {
+                self.visit_leaf(first, count, ray, &wt, t_max, false, &mut test)
             });
         best
     }
@@ -280,39 +320,91 @@ impl Accel {
         let wt = WatertightRay::new(ray);
         let t = self
             .wide
-            .traverse(ray.o, inv_d, ray.t_max, true, |id, t_max| {
-                self.occluded_leaf(shapes, id, ray, &wt, t_max)
+            .traverse(ray.o, inv_d, ray.t_max, true, |first, count, t_max| {
+                let mut test = |id: usize, tri: Option<[Vec3; 3]>, t_max: f32| {
+                    self.occluded_prim(shapes, id, tri, ray, &wt, t_max)
+                };
+                self.visit_leaf(first, count, ray, &wt, t_max, true, &mut test)
             });
         t < ray.t_max
     }
 
-    /// The instance BVH primitive `id` stands for, if any. A triangle's corners are not NaN,
-    /// so a missed triangle is answered from the record already loaded, without `prims`.
+    /// Tests the primitives `first..first + count` of a leaf in order, each with
+    /// `test(id, corners if a triangle, limit)` (a hit distance, or ∞), the limit lowered by
+    /// each hit, after the block prefilter ([`Tri4::candidates`]) has set aside the triangles
+    /// that cannot be hit below the limit at the leaf's start. Returns the smallest distance
+    /// found below `t_max` (∞ if none); with `any_hit`, the first.
     #[inline(always)]
-    fn instance_at(&self, id: usize) -> Option<u32> {
-        if !self.tris[id][0].x.is_nan() {
+    #[allow(clippy::too_many_arguments)]
+    fn visit_leaf(
+        &self,
+        first: usize,
+        count: usize,
+        ray: &Ray,
+        wt: &WatertightRay,
+        mut t_max: f32,
+        any_hit: bool,
+        test: &mut impl FnMut(usize, Option<[Vec3; 3]>, f32) -> f32,
+    ) -> f32 {
+        let mut found = f32::INFINITY;
+        let end = first + count;
+        let mut base = first - first % BLOCK;
+        while base < end {
+            let block = &self.blocks[base / BLOCK];
+            // the lanes of this leaf: triangles the prefilter keeps, and other primitives
+            let (lo, hi) = (first.max(base) - base, (end - base).min(BLOCK));
+            let leaf_lanes = ((1u32 << hi) - 1) & !((1u32 << lo) - 1);
+            let tris = block.triangle_lanes();
+            let mut lanes = (block.candidates(ray, wt, t_max) | !tris) & leaf_lanes;
+            while lanes != 0 {
+                let l = lanes.trailing_zeros() as usize;
+                lanes &= lanes - 1;
+                let tri = if tris & (1 << l) != 0 {
+                    block.triangle(l)
+                } else {
+                    None
+                };
+                let t = test(base + l, tri, t_max);
+                if t < t_max {
+                    (t_max, found) = (t, t);
+                    if any_hit {
+                        return found;
+                    }
+                }
+            }
+            base += BLOCK;
+        }
+        found
+    }
+
+    /// The instance BVH primitive `id` stands for, if any (`tri`: its corners if it is a
+    /// triangle, so a missed triangle is answered without reading `prims`).
+    #[inline(always)]
+    fn instance_at(&self, id: usize, tri: Option<[Vec3; 3]>) -> Option<u32> {
+        if tri.is_some() {
             return None;
         }
         let shape = self.prims[id].shape;
-        (shape & INSTANCE != 0).then_some(shape & !INSTANCE)
+        (shape & INSTANCE != 0 && shape != PAD).then_some(shape & !INSTANCE)
     }
 
-    /// The any-hit leaf test of BVH primitive `id`: a distance inside the interval for a hit,
-    /// else ∞ (instances through their group's tree).
+    /// The any-hit test of BVH primitive `id` (`tri`: its corners if a triangle): a distance
+    /// inside the interval for a hit, else ∞ (instances through their group's tree).
     #[inline(always)]
-    fn occluded_leaf(
+    fn occluded_prim(
         &self,
         shapes: &[Shape],
         id: usize,
+        tri: Option<[Vec3; 3]>,
         ray: &Ray,
         wt: &WatertightRay,
         t_max: f32,
     ) -> f32 {
-        if let Some((t, _)) = self.intersect_prim(shapes, id, ray, wt, t_max) {
+        if let Some((t, _)) = self.intersect_prim(shapes, id, tri, ray, wt, t_max) {
             return t;
         }
         if self
-            .instance_at(id)
+            .instance_at(id, tri)
             .is_some_and(|i| self.instance_occludes(i, ray, t_max))
         {
             // any hit will do: report one inside the interval
@@ -322,19 +414,19 @@ impl Accel {
         }
     }
 
-    /// The leaf test of BVH primitive `id`: triangles from their copied corners with the ray's
+    /// The test of BVH primitive `id`: a triangle from its copied corners `tri` with the ray's
     /// precomputed watertight setup `wt`, other shapes through [`Shape::intersect_primitive`].
     #[inline]
     fn intersect_prim(
         &self,
         shapes: &[Shape],
         id: usize,
+        tri: Option<[Vec3; 3]>,
         ray: &Ray,
         wt: &WatertightRay,
         t_max: f32,
     ) -> Option<(f32, PrimHit)> {
-        let tri = self.tris[id];
-        if !tri[0].x.is_nan() {
+        if let Some(tri) = tri {
             return intersect_triangle_with(tri, ray, wt, t_max)
                 .map(|(t, b)| (t, PrimHit::Triangle { b }));
         }
@@ -360,12 +452,13 @@ const PART: usize = 1 << 19;
 /// cells of the curve, so the top levels are nearly what a single build would make; within a
 /// part the tree is obvhs's own.
 fn build_binary(boxes: &[Aabb], part: usize) -> (Vec<BinaryNode>, Vec<u32>) {
-    // Leaves of at most two primitives: the leaf test is scalar (one watertight test per
-    // triangle), so a deeper tree of 4-wide nodes tested four boxes at a time costs less than
-    // obvhs's default leaves of up to eight (measured: 18 % fewer instructions on the height
-    // field, 15 % less time on the Cornell box; BENCHMARKS.md).
+    // Leaves of at most eight primitives, in blocks of four whose triangles the prefilter tests
+    // together (`shape/triangle4.rs`). With a scalar leaf test, leaves of two had cost less
+    // than obvhs's default of eight (18 % fewer instructions on the height field); with the
+    // prefilter, leaves of four took about 10 % less time than two on both benchmark scenes,
+    // and eight 3–4 % less again on the height field (BENCHMARKS.md, issue 24).
     let params = BvhBuildParams {
-        max_prims_per_leaf: 2,
+        max_prims_per_leaf: LEAF,
         ..BvhBuildParams::medium_build()
     };
     let one = |boxes: &[Aabb], params: BvhBuildParams| {
@@ -452,6 +545,27 @@ fn build_binary(boxes: &[Aabb], part: usize) -> (Vec<BinaryNode>, Vec<u32>) {
         out.extend(nodes.iter().map(shift));
     }
     (out, order)
+}
+
+/// Gives each leaf reachable from the root of `binary` a run of slots starting at a multiple of
+/// [`BLOCK`] (its primitives, then [`PAD`] up to the next multiple), so that each [`Tri4`]
+/// block belongs to one leaf; rewrites the leaves' `first` to their slots and
+/// returns the padded order (indices into the boxes, or [`PAD`]).
+fn pad_leaves(binary: &mut [BinaryNode], order: &[u32]) -> Vec<u32> {
+    let mut padded = Vec::with_capacity(order.len() + order.len() / 2);
+    let mut stack = vec![0usize];
+    while let Some(i) = stack.pop() {
+        let n = binary[i];
+        if n.count == 0 {
+            stack.extend([n.first as usize, n.first as usize + 1]);
+            continue;
+        }
+        let start = padded.len();
+        padded.extend_from_slice(&order[n.first as usize..(n.first + n.count) as usize]);
+        padded.resize(padded.len().next_multiple_of(BLOCK), PAD);
+        binary[i].first = start as u32;
+    }
+    padded
 }
 
 /// Exact reciprocal directions for the slab test (±f32::MAX for zero components, so no 0·∞

@@ -18,12 +18,14 @@ mod ply;
 mod serialized;
 mod sphere;
 mod triangle;
+mod triangle4;
 
 pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use mesh::Mesh;
 pub use sphere::Sphere;
 pub(crate) use triangle::{WatertightRay, intersect_triangle_with};
+pub(crate) use triangle4::Tri4;
 
 use super::ray::Ray;
 use glam::{Vec2, Vec3};

@@ -22,10 +22,10 @@ use glam::Vec3;
 pub(crate) struct WatertightRay {
     /// The axis of the largest |d| component, which becomes z; x and y are the next two axes
     /// in cyclic order (kz + 1, kz + 2 mod 3).
-    kz: usize,
-    shear_x: f32,
-    shear_y: f32,
-    scale_z: f32,
+    pub(super) kz: usize,
+    pub(super) shear_x: f32,
+    pub(super) shear_y: f32,
+    pub(super) scale_z: f32,
 }
 
 impl WatertightRay {
@@ -73,7 +73,7 @@ pub(crate) fn intersect_triangle_with(
 
 /// Component `K` (0 = x, 1 = y, 2 = z) of `v`.
 #[inline(always)]
-fn component<const K: usize>(v: Vec3) -> f32 {
+pub(super) fn component<const K: usize>(v: Vec3) -> f32 {
     match K {
         0 => v.x,
         1 => v.y,

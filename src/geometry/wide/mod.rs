@@ -120,7 +120,7 @@ impl WideBvh {
         inv_d: Vec3,
         t_max: f32,
         any_hit: bool,
-        leaf: impl FnMut(usize, f32) -> f32,
+        leaf: impl FnMut(usize, usize, f32) -> f32,
     ) -> f32 {
         match self {
             WideBvh::Four(t) => t.traverse(o, inv_d, t_max, any_hit, leaf),
@@ -215,9 +215,10 @@ impl<const W: usize> Wide<W> {
     }
 
     /// Visits the leaves whose boxes the ray `o + t·d` (with `inv_d` = 1/d, exact, ±f32::MAX
-    /// for zero components) enters at t < the current limit, nearest box first. `leaf(id,
-    /// t_max)` tests primitive `id` and returns the hit distance or ∞; a distance below the
-    /// limit becomes the new limit. With `any_hit`, returns at the first hit. Returns the final
+    /// for zero components) enters at t < the current limit, nearest box first. `leaf(first,
+    /// count, t_max)` tests the leaf's primitives `first..first + count` and returns the
+    /// smallest hit distance below `t_max` (∞ or anything not below it if none); a distance
+    /// below the limit becomes the new limit. With `any_hit`, returns at the first hit. Returns the final
     /// limit (`t_max` if nothing was hit).
     #[inline]
     pub(crate) fn traverse(
@@ -226,7 +227,7 @@ impl<const W: usize> Wide<W> {
         inv_d: Vec3,
         t_max: f32,
         any_hit: bool,
-        leaf: impl FnMut(usize, f32) -> f32,
+        leaf: impl FnMut(usize, usize, f32) -> f32,
     ) -> f32 {
         if self.nodes.is_empty() {
             return t_max;
@@ -252,7 +253,7 @@ impl<const W: usize> Wide<W> {
         inv_d: Vec3,
         t_max: f32,
         any_hit: bool,
-        leaf: impl FnMut(usize, f32) -> f32,
+        leaf: impl FnMut(usize, usize, f32) -> f32,
     ) -> f32 {
         #[cfg(target_arch = "x86_64")]
         if W == 8 {
@@ -270,7 +271,7 @@ impl<const W: usize> Wide<W> {
         inv_d: Vec3,
         mut t_max: f32,
         any_hit: bool,
-        mut leaf: impl FnMut(usize, f32) -> f32,
+        mut leaf: impl FnMut(usize, usize, f32) -> f32,
     ) -> f32 {
         // The entry visited now: the root, then the nearest child hit of each inner node
         // (taken without a trip through the stack), else the top of the stack. The order of
@@ -282,13 +283,11 @@ impl<const W: usize> Wide<W> {
             let (code, count, near) = cur;
             if near < t_max {
                 if count > 0 {
-                    for id in code..code + count {
-                        let t = leaf(id as usize, t_max);
-                        if t < t_max {
-                            t_max = t;
-                            if any_hit {
-                                return t_max;
-                            }
+                    let t = leaf(code as usize, count as usize, t_max);
+                    if t < t_max {
+                        t_max = t;
+                        if any_hit {
+                            return t_max;
                         }
                     }
                 } else {
@@ -355,7 +354,7 @@ unsafe fn traverse_avx<const W: usize>(
     inv_d: Vec3,
     t_max: f32,
     any_hit: bool,
-    leaf: impl FnMut(usize, f32) -> f32,
+    leaf: impl FnMut(usize, usize, f32) -> f32,
 ) -> f32 {
     t.traverse_with(stack, o, inv_d, t_max, any_hit, leaf)
 }
@@ -363,6 +362,20 @@ unsafe fn traverse_avx<const W: usize>(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A leaf test from a test of one primitive: each in turn, the limit lowered by hits.
+    fn each(mut f: impl FnMut(usize, f32) -> f32) -> impl FnMut(usize, usize, f32) -> f32 {
+        move |first, count, mut t_max| {
+            let mut best = f32::INFINITY;
+            for id in first..first + count {
+                let t = f(id, t_max);
+                if t < t_max {
+                    (t_max, best) = (t, t);
+                }
+            }
+            best
+        }
+    }
 
     /// A binary tree over unit boxes at x = 0, 2, 4, …: leaves of one primitive each.
     fn chain(n: usize) -> Vec<BinaryNode> {
@@ -419,10 +432,10 @@ mod tests {
                 Vec3::new(1.0, f32::MAX, f32::MAX),
                 f32::INFINITY,
                 false,
-                |id, _| {
+                each(|id, _| {
                     seen.push(id);
                     1.0 + 2.0 * id as f32
-                },
+                }),
             );
             assert_eq!(t, 1.0, "n = {n}");
             assert_eq!(seen.first(), Some(&0), "n = {n}: nearest leaf first");
@@ -433,10 +446,10 @@ mod tests {
                 Vec3::new(1.0, f32::MAX, f32::MAX),
                 f32::INFINITY,
                 false,
-                |_, _| {
+                each(|_, _| {
                     none += 1;
                     f32::INFINITY
-                },
+                }),
             );
             assert_eq!(none, 0);
             // without hits, every leaf on the ray is visited exactly once
@@ -446,10 +459,10 @@ mod tests {
                 Vec3::new(1.0, f32::MAX, f32::MAX),
                 f32::INFINITY,
                 false,
-                |id, _| {
+                each(|id, _| {
                     all.push(id);
                     f32::INFINITY
-                },
+                }),
             );
             all.sort_unstable();
             assert_eq!(all, (0..n).collect::<Vec<_>>());
