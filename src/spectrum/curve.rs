@@ -12,6 +12,8 @@ use super::sampled::{SampledSpectrum, SampledWavelengths};
 pub struct PiecewiseLinear {
     lambda: Vec<f32>,
     value: Vec<f32>,
+    /// (λ_0, λ_last), nm: the domain, kept apart for the render loop's range test.
+    domain: (f32, f32),
     /// `Some(step)` when the table is evaluated on a uniform grid of `step` nm from λ_0: the
     /// λ_i are uniformly spaced, or all lie on such a grid (see [`PiecewiseLinear::new`]).
     uniform_step: Option<f32>,
@@ -79,6 +81,7 @@ impl PiecewiseLinear {
         if uniform {
             return Ok(Self {
                 grid: value.clone(),
+                domain: (lambda[0], lambda[lambda.len() - 1]),
                 lambda,
                 value,
                 uniform_step: Some(step),
@@ -99,6 +102,7 @@ impl PiecewiseLinear {
                 })
                 .collect();
             Self {
+                domain: (lambda[0], lambda[lambda.len() - 1]),
                 lambda,
                 value,
                 uniform_step: None,
@@ -156,15 +160,14 @@ impl PiecewiseLinear {
     }
     /// (first, last) tabulated wavelength in nm.
     pub fn domain(&self) -> (f32, f32) {
-        (self.lambda[0], self.lambda[self.lambda.len() - 1])
+        self.domain
     }
 
     /// Linear interpolation at `lambda_nm`; 0 outside the tabulated domain. (Inlined: the
     /// uniform lookup is a few instructions; the guided one is out of line.)
     #[inline(always)]
     pub fn eval(&self, lambda_nm: f32) -> f32 {
-        let n = self.lambda.len();
-        let (lo, hi) = (self.lambda[0], self.lambda[n - 1]);
+        let (lo, hi) = self.domain;
         if !(lambda_nm >= lo && lambda_nm <= hi) {
             return 0.0;
         }
@@ -179,7 +182,11 @@ impl PiecewiseLinear {
             // 2³² (a grid that long would not fit in memory), so the truncation is defined.
             let i = (unsafe { x.to_int_unchecked::<u32>() } as usize).min(g.len() - 2);
             let t = (x - i as f32).clamp(0.0, 1.0);
-            return g[i] + t * (g[i + 1] - g[i]);
+            // (one bounds check for both samples; i ≤ len − 2 holds, so never 0)
+            return match g.get(i..i + 2) {
+                Some(&[a, b]) => a + t * (b - a),
+                _ => 0.0,
+            };
         }
         self.eval_guided(lambda_nm)
     }
