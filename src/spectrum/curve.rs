@@ -78,7 +78,9 @@ impl PiecewiseLinear {
             .iter()
             .enumerate()
             .all(|(i, &l)| (l - (lambda[0] + i as f32 * step)).abs() <= 1e-4 * step.max(1.0));
-        if uniform {
+        // (the O(1) lookup needs a finite 1/step: samples closer than about 3·10⁻³⁹ nm are
+        // looked up through the guide table instead)
+        if uniform && (1.0 / step).is_finite() {
             return Ok(Self {
                 grid: value.clone(),
                 domain: (lambda[0], lambda[lambda.len() - 1]),
@@ -140,6 +142,9 @@ impl PiecewiseLinear {
         }
         let count = last.round() as usize + 1;
         let step = (self.lambda[n - 1] - self.lambda[0]) / (count - 1) as f32;
+        if !(1.0 / step).is_finite() {
+            return None;
+        }
         let grid = (0..count)
             .map(|k| self.eval_guided((self.lambda[0] + k as f32 * step).min(self.lambda[n - 1])))
             .collect();
@@ -458,6 +463,13 @@ mod tests {
         assert_eq!(t.eval(735.01), 0.0);
         // scaled tables scale the grid too
         assert_eq!(t.scaled(2.0).eval(382.5), 2.0 * t.eval(382.5));
+        // samples so close that 1/step overflows keep the guided lookup, uniform or not
+        let sub = f32::from_bits; // subnormal wavelengths, 1.4·10⁻⁴⁵ nm apart
+        for lambda in [vec![0.0, sub(1), sub(2)], vec![0.0, sub(1), sub(3)]] {
+            let tiny = PiecewiseLinear::new(lambda, vec![1.0, 2.0, 3.0]).unwrap();
+            assert!(tiny.uniform_step.is_none());
+            assert_eq!(tiny.eval(sub(1)), 2.0);
+        }
         // samples off any grid of their smallest spacing keep the guided lookup
         let off = PiecewiseLinear::new(vec![400.0, 403.3, 410.0], vec![1.0, 2.0, 0.0]).unwrap();
         assert!(off.uniform_step.is_none());
