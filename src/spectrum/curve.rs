@@ -28,6 +28,16 @@ pub struct PiecewiseLinear {
     guide: Vec<u32>,
 }
 
+/// Whether the O(1) lookup may serve the domain [`lo`, `hi`] with grid `step`: the span, the
+/// step and 1/step finite and positive, so that its position (λ − λ_0)/step is finite and at
+/// most about the grid's length for every λ of the domain (the lookup's unchecked conversion
+/// relies on it). Samples closer than about 3·10⁻³⁹ nm, or a span beyond f32, are looked up
+/// through the guide table instead.
+fn lookup_step_ok(lo: f32, hi: f32, step: f32) -> bool {
+    let inv = 1.0 / step;
+    (hi - lo).is_finite() && step.is_finite() && step > 0.0 && inv.is_finite() && inv > 0.0
+}
+
 /// Most grid points a table whose samples lie on a uniform grid is expanded to (see
 /// [`PiecewiseLinear::new`]): 64 KiB of values.
 const MAX_GRID: usize = 16_384;
@@ -78,9 +88,7 @@ impl PiecewiseLinear {
             .iter()
             .enumerate()
             .all(|(i, &l)| (l - (lambda[0] + i as f32 * step)).abs() <= 1e-4 * step.max(1.0));
-        // (the O(1) lookup needs a finite 1/step: samples closer than about 3·10⁻³⁹ nm are
-        // looked up through the guide table instead)
-        if uniform && (1.0 / step).is_finite() {
+        if uniform && lookup_step_ok(lambda[0], lambda[lambda.len() - 1], step) {
             return Ok(Self {
                 grid: value.clone(),
                 domain: (lambda[0], lambda[lambda.len() - 1]),
@@ -116,8 +124,8 @@ impl PiecewiseLinear {
         Ok(guided.on_grid().unwrap_or(guided))
     }
 
-    /// Tables whose samples all lie on one uniform grid (multiples of the smallest spacing from
-    /// λ_0, within 10⁻³ of it, at most [`MAX_GRID`] points), such as measured reflectances at
+    /// Tables whose samples all lie exactly on one uniform grid (λ_0 + k·step in f32 for
+    /// integers k, the step the smallest spacing, at most [`MAX_GRID`] points), such as measured reflectances at
     /// 5 nm with a first sample 20 nm before the rest: the same function, its values at the grid
     /// points computed once, so that the render loop takes the O(1) lookup of uniform tables
     /// (one multiply instead of a guide table, a walk and a division). Between samples the
@@ -133,16 +141,21 @@ impl PiecewiseLinear {
         if !(d > 0.0 && last.round() < MAX_GRID as f64) {
             return None;
         }
-        let aligned = self.lambda.iter().all(|&l| {
-            let k = (l as f64 - l0) / d;
-            (k - k.round()).abs() <= 1e-3
-        });
-        if !aligned {
+        let count = last.round() as usize + 1;
+        if count < 2 {
             return None;
         }
-        let count = last.round() as usize + 1;
         let step = (self.lambda[n - 1] - self.lambda[0]) / (count - 1) as f32;
-        if !(1.0 / step).is_finite() {
+        if !lookup_step_ok(self.lambda[0], self.lambda[n - 1], step) {
+            return None;
+        }
+        // every sample exactly on a grid point as the lookup computes them, so that the kinks
+        // of the function stay where they are
+        let aligned = self.lambda.iter().all(|&l| {
+            let k = ((l as f64 - l0) / d).round() as f32;
+            self.lambda[0] + k * step == l
+        });
+        if !aligned {
             return None;
         }
         let grid = (0..count)
@@ -181,7 +194,8 @@ impl PiecewiseLinear {
             let g = &self.grid;
             let x = (lambda_nm - lo) * self.inv_step;
             // 0 ≤ x ≤ (λ_last − λ_0)/step·(1 + ε) ≈ g.len() − 1: λ is inside the domain (not
-            // NaN), and 1/step is finite and positive
+            // NaN), and the span and 1/step are finite and positive (`lookup_step_ok`, checked
+            // wherever a table is made uniform)
             debug_assert!((0.0..=g.len() as f32).contains(&x), "{x}");
             // SAFETY: x is finite, not negative and at most about the grid's length, far below
             // 2³² (a grid that long would not fit in memory), so the truncation is defined.
@@ -470,6 +484,16 @@ mod tests {
             assert!(tiny.uniform_step.is_none());
             assert_eq!(tiny.eval(sub(1)), 2.0);
         }
+        // spans beyond f32 keep the guided lookup (their step or position would not be finite)
+        let wide = PiecewiseLinear::new(vec![-3e38, 0.0, 3e38], vec![1.0, 2.0, 3.0]).unwrap();
+        assert!(wide.uniform_step.is_none());
+        assert_eq!(wide.eval(3e38), 3.0);
+        let wider = PiecewiseLinear::new(vec![-3e38, 3e38], vec![1.0, 3.0]).unwrap();
+        assert!(wider.uniform_step.is_none());
+        // samples near a grid but not on it keep the guided lookup, and their kinks
+        let near = PiecewiseLinear::new(vec![400.0, 405.002, 410.0], vec![0.0, 1.0, 0.0]).unwrap();
+        assert!(near.uniform_step.is_none());
+        assert_eq!(near.eval(405.002), 1.0);
         // samples off any grid of their smallest spacing keep the guided lookup
         let off = PiecewiseLinear::new(vec![400.0, 403.3, 410.0], vec![1.0, 2.0, 0.0]).unwrap();
         assert!(off.uniform_step.is_none());

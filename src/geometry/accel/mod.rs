@@ -89,7 +89,7 @@ pub struct Accel {
 impl std::fmt::Debug for Accel {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Accel")
-            .field("primitives", &self.prims.len())
+            .field("primitives", &self.count)
             .field("width", &self.wide.width())
             .field("nodes", &self.wide.node_count())
             .finish()
