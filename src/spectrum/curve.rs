@@ -14,13 +14,12 @@ pub struct PiecewiseLinear {
     value: Vec<f32>,
     /// (λ_0, λ_last), nm: the domain, kept apart for the render loop's range test.
     domain: (f32, f32),
-    /// `Some(step)` when the table is evaluated on a uniform grid of `step` nm from λ_0: the
-    /// λ_i are uniformly spaced, or all lie on such a grid (see [`PiecewiseLinear::new`]).
-    uniform_step: Option<f32>,
     /// 1/step in nm⁻¹ for uniform tables; for others, cells of the guide table per nm.
     inv_step: f32,
-    /// Uniform tables: the values at the grid points λ_0 + k·step (the samples themselves when
-    /// they are uniformly spaced). Empty otherwise.
+    /// Uniform tables, evaluated on a grid of step (λ_last − λ_0)/(len − 1) nm from λ_0 (the
+    /// λ_i are uniformly spaced, or all lie on such a grid, see [`PiecewiseLinear::new`]): the
+    /// values at the grid points (the samples themselves when uniformly spaced). Empty for
+    /// the others.
     grid: Vec<f32>,
     /// Non-uniform tables: `guide[c]` is the last sample i with λ_i ≤ the start of guide cell
     /// c (cells of 1/`inv_step` nm from λ_0), so a lookup starts there and walks forward a few
@@ -34,8 +33,7 @@ pub struct PiecewiseLinear {
 /// relies on it). Samples closer than about 3·10⁻³⁹ nm, or a span beyond f32, are looked up
 /// through the guide table instead.
 fn lookup_step_ok(lo: f32, hi: f32, step: f32) -> bool {
-    let inv = 1.0 / step;
-    (hi - lo).is_finite() && step.is_finite() && step > 0.0 && inv.is_finite() && inv > 0.0
+    (hi - lo).is_finite() && step.is_finite() && step > 0.0 && (1.0 / step).is_finite()
 }
 
 /// Most grid points a table whose samples lie on a uniform grid is expanded to (see
@@ -94,7 +92,6 @@ impl PiecewiseLinear {
                 domain: (lambda[0], lambda[lambda.len() - 1]),
                 lambda,
                 value,
-                uniform_step: Some(step),
                 inv_step: 1.0 / step,
                 guide: Vec::new(),
             });
@@ -115,7 +112,6 @@ impl PiecewiseLinear {
                 domain: (lambda[0], lambda[lambda.len() - 1]),
                 lambda,
                 value,
-                uniform_step: None,
                 inv_step: inv,
                 grid: Vec::new(),
                 guide,
@@ -125,11 +121,12 @@ impl PiecewiseLinear {
     }
 
     /// Tables whose samples all lie exactly on one uniform grid (λ_0 + k·step in f32 for
-    /// integers k, the step the smallest spacing, at most [`MAX_GRID`] points), such as measured reflectances at
-    /// 5 nm with a first sample 20 nm before the rest: the same function, its values at the grid
-    /// points computed once, so that the render loop takes the O(1) lookup of uniform tables
-    /// (one multiply instead of a guide table, a walk and a division). Between samples the
-    /// values differ from the guided lookup's only by rounding (a few ulp). `None` otherwise.
+    /// integers k, the step the smallest spacing, at most [`MAX_GRID`] points), such as
+    /// measured reflectances at 5 nm with a first sample 20 nm before the rest: the same
+    /// function, its values at the grid points computed once, so that the render loop takes
+    /// the O(1) lookup of uniform tables (one multiply instead of a guide table, a walk and a
+    /// division). Between samples the values differ from the guided lookup's only by rounding
+    /// (a few ulp). `None` otherwise.
     fn on_grid(&self) -> Option<Self> {
         let (l0, n) = (self.lambda[0] as f64, self.lambda.len());
         let d = self
@@ -162,7 +159,6 @@ impl PiecewiseLinear {
             .map(|k| self.eval_guided((self.lambda[0] + k as f32 * step).min(self.lambda[n - 1])))
             .collect();
         Some(Self {
-            uniform_step: Some(step),
             inv_step: 1.0 / step,
             grid,
             guide: Vec::new(),
@@ -176,6 +172,13 @@ impl PiecewiseLinear {
     pub fn values(&self) -> &[f32] {
         &self.value
     }
+    /// The step of the grid a uniform table is evaluated on, nm (None for the others).
+    #[cfg(test)]
+    fn uniform_step(&self) -> Option<f32> {
+        let (lo, hi) = self.domain;
+        (!self.grid.is_empty()).then(|| (hi - lo) / (self.grid.len() - 1) as f32)
+    }
+
     /// (first, last) tabulated wavelength in nm.
     pub fn domain(&self) -> (f32, f32) {
         self.domain
@@ -189,7 +192,7 @@ impl PiecewiseLinear {
         if !(lambda_nm >= lo && lambda_nm <= hi) {
             return 0.0;
         }
-        if self.uniform_step.is_some() {
+        if !self.grid.is_empty() {
             // O(1): the bin and the fraction from one multiply by the precomputed 1/step
             let g = &self.grid;
             let x = (lambda_nm - lo) * self.inv_step;
@@ -411,7 +414,7 @@ mod tests {
         }
         let value: Vec<f32> = (0..lambda.len()).map(|i| (i as f32 * 0.37).sin()).collect();
         let t = PiecewiseLinear::new(lambda.clone(), value.clone()).unwrap();
-        assert!(t.uniform_step.is_none());
+        assert!(t.uniform_step().is_none());
         let binary = |x: f32| {
             let n = lambda.len();
             if !(x >= lambda[0] && x <= lambda[n - 1]) {
@@ -444,7 +447,7 @@ mod tests {
             .map(|i| 0.05 + 0.9 * (0.5 + 0.5 * (i as f32 * 0.41).sin()))
             .collect();
         let t = PiecewiseLinear::new(lambda.clone(), value.clone()).unwrap();
-        assert_eq!(t.uniform_step, Some(5.0));
+        assert_eq!(t.uniform_step(), Some(5.0));
         assert_eq!(t.grid.len(), 75);
         assert_eq!((t.wavelengths(), t.values()), (&lambda[..], &value[..]));
         let exact = |x: f64| {
@@ -481,22 +484,22 @@ mod tests {
         let sub = f32::from_bits; // subnormal wavelengths, 1.4·10⁻⁴⁵ nm apart
         for lambda in [vec![0.0, sub(1), sub(2)], vec![0.0, sub(1), sub(3)]] {
             let tiny = PiecewiseLinear::new(lambda, vec![1.0, 2.0, 3.0]).unwrap();
-            assert!(tiny.uniform_step.is_none());
+            assert!(tiny.uniform_step().is_none());
             assert_eq!(tiny.eval(sub(1)), 2.0);
         }
         // spans beyond f32 keep the guided lookup (their step or position would not be finite)
         let wide = PiecewiseLinear::new(vec![-3e38, 0.0, 3e38], vec![1.0, 2.0, 3.0]).unwrap();
-        assert!(wide.uniform_step.is_none());
+        assert!(wide.uniform_step().is_none());
         assert_eq!(wide.eval(3e38), 3.0);
         let wider = PiecewiseLinear::new(vec![-3e38, 3e38], vec![1.0, 3.0]).unwrap();
-        assert!(wider.uniform_step.is_none());
+        assert!(wider.uniform_step().is_none());
         // samples near a grid but not on it keep the guided lookup, and their kinks
         let near = PiecewiseLinear::new(vec![400.0, 405.002, 410.0], vec![0.0, 1.0, 0.0]).unwrap();
-        assert!(near.uniform_step.is_none());
+        assert!(near.uniform_step().is_none());
         assert_eq!(near.eval(405.002), 1.0);
         // samples off any grid of their smallest spacing keep the guided lookup
         let off = PiecewiseLinear::new(vec![400.0, 403.3, 410.0], vec![1.0, 2.0, 0.0]).unwrap();
-        assert!(off.uniform_step.is_none());
+        assert!(off.uniform_step().is_none());
         assert!((off.eval(403.3) - 2.0).abs() < 1e-6);
     }
 

@@ -2,7 +2,7 @@
 //! leaves padded to blocks of four, the triangle corners copied into [`Tri4`] blocks, and the
 //! collapse into the wide tree that queries traverse.
 
-use super::{Accel, BLOCK, BOX_PAD, INSTANCE, LEAF, PAD, PrimRef};
+use super::{Accel, BLOCK, BOX_PAD, INSTANCE, LEAF, PAD, PAD_REF, PrimRef};
 use crate::geometry::instance::Instance;
 use crate::geometry::shape::{Shape, Tri4};
 use crate::geometry::wide::{BinaryNode, WideBvh};
@@ -66,13 +66,7 @@ impl Accel {
         let count = refs.len();
         let prims: Vec<PrimRef> = order
             .iter()
-            .map(|&i| match i {
-                PAD => PrimRef {
-                    shape: PAD,
-                    prim: 0,
-                },
-                _ => refs[i as usize],
-            })
+            .map(|&i| if i == PAD { PAD_REF } else { refs[i as usize] })
             .collect();
         drop((refs, order));
         let blocks = prims

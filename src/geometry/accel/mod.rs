@@ -48,8 +48,14 @@ const BLOCK: usize = 4;
 const LEAF: u32 = 8;
 
 /// A slot of the padded primitive order that holds nothing (leaves start at multiples of
-/// [`BLOCK`]).
+/// [`BLOCK`]); no leaf covers it, so it is never tested.
 const PAD: u32 = u32::MAX;
+
+/// The primitive of a [`PAD`] slot: no shape, and not an instance.
+const PAD_REF: PrimRef = PrimRef {
+    shape: !INSTANCE,
+    prim: 0,
+};
 
 /// A hit inside instance `i`, found along the object-space ray of scale `k`.
 struct Closest {
@@ -237,8 +243,18 @@ impl Accel {
         let t = self
             .wide
             .traverse(ray.o, inv_d, ray.t_max, true, |first, count, t_max| {
+                // any hit will do: a distance inside the interval for a hit, else ∞
+                // (instances through their group's tree)
                 let mut test = |id: usize, tri: Option<[Vec3; 3]>, t_max: f32| {
-                    self.occluded_prim(shapes, id, tri, ray, &wt, t_max)
+                    if let Some((t, _)) = self.intersect_prim(shapes, id, tri, ray, &wt, t_max) {
+                        return t;
+                    }
+                    match self.instance_at(id, tri) {
+                        Some(i) if self.instance_occludes(i, ray, t_max) => {
+                            0.5 * t_max.min(f32::MAX)
+                        }
+                        _ => f32::INFINITY,
+                    }
                 };
                 self.visit_leaf(first, count, ray, &wt, t_max, true, &mut test)
             });
@@ -275,11 +291,7 @@ impl Accel {
             while lanes != 0 {
                 let l = lanes.trailing_zeros() as usize;
                 lanes &= lanes - 1;
-                let tri = if tris & (1 << l) != 0 {
-                    block.triangle(l)
-                } else {
-                    None
-                };
+                let tri = (tris & (1 << l) != 0).then(|| block.corners(l));
                 let t = test(base + l, tri, t_max);
                 if t < t_max {
                     (t_max, found) = (t, t);
@@ -301,33 +313,7 @@ impl Accel {
             return None;
         }
         let shape = self.prims[id].shape;
-        (shape & INSTANCE != 0 && shape != PAD).then_some(shape & !INSTANCE)
-    }
-
-    /// The any-hit test of BVH primitive `id` (`tri`: its corners if a triangle): a distance
-    /// inside the interval for a hit, else ∞ (instances through their group's tree).
-    #[inline(always)]
-    fn occluded_prim(
-        &self,
-        shapes: &[Shape],
-        id: usize,
-        tri: Option<[Vec3; 3]>,
-        ray: &Ray,
-        wt: &WatertightRay,
-        t_max: f32,
-    ) -> f32 {
-        if let Some((t, _)) = self.intersect_prim(shapes, id, tri, ray, wt, t_max) {
-            return t;
-        }
-        if self
-            .instance_at(id, tri)
-            .is_some_and(|i| self.instance_occludes(i, ray, t_max))
-        {
-            // any hit will do: report one inside the interval
-            0.5 * t_max.min(f32::MAX)
-        } else {
-            f32::INFINITY
-        }
+        (shape & INSTANCE != 0).then_some(shape & !INSTANCE)
     }
 
     /// The test of BVH primitive `id`: a triangle from its copied corners `tri` with the ray's

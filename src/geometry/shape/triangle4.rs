@@ -44,12 +44,12 @@ impl Tri4 {
         Tri4 { p }
     }
 
-    /// The corners of lane `l`, or `None` if it holds no triangle.
+    /// The corners of lane `l` (NaN if it holds no triangle, see [`Tri4::triangle_lanes`]).
     #[inline(always)]
-    pub(crate) fn triangle(&self, l: usize) -> Option<[Vec3; 3]> {
+    pub(crate) fn corners(&self, l: usize) -> [Vec3; 3] {
         let p = &self.p;
         let corner = |c: usize| Vec3::new(p[c][0][l], p[c][1][l], p[c][2][l]);
-        (!p[0][0][l].is_nan()).then(|| [corner(0), corner(1), corner(2)])
+        [corner(0), corner(1), corner(2)]
     }
 
     /// Bit l is set for each lane that holds a triangle.
@@ -234,7 +234,7 @@ mod tests {
             assert_eq!(block.triangle_lanes(), 0b0111);
             assert_eq!(mask & 0b1000, 0, "an empty lane was kept");
             for (l, tri) in tris.iter().take(3).enumerate() {
-                assert_eq!(block.triangle(l), Some(*tri));
+                assert_eq!(block.corners(l), *tri);
                 let full = intersect_triangle_with(*tri, &ray, &w, t_max);
                 if full.is_some() {
                     hits += 1;
@@ -248,7 +248,7 @@ mod tests {
                 }
             }
         }
-        assert_eq!(block_empty().triangle(0), None);
+        assert_eq!(block_empty().triangle_lanes(), 0);
         // the test means something: many hits, and most misses filtered out
         assert!(hits > 5_000, "{hits} hits");
         assert!(dropped_misses > 20_000, "{dropped_misses} misses filtered");

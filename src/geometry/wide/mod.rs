@@ -197,6 +197,53 @@ impl<const W: usize> Wide<W> {
         Self { nodes, depth }
     }
 
+    /// Tests the boxes of node `code` below `t_max`: pushes the children hit but the nearest
+    /// on `stack` (at `sp`), farthest first, prefetching the nodes among them, and returns the
+    /// nearest (None if no box is hit).
+    #[inline(always)]
+    fn open(
+        &self,
+        code: u32,
+        o: [f32; 3],
+        inv: [f32; 3],
+        t_max: f32,
+        stack: &mut [MaybeUninit<Entry>],
+        sp: &mut usize,
+    ) -> Option<Entry> {
+        let n = &self.nodes[code as usize];
+        let (mask, t_near) = slab(n, o, inv, t_max);
+        let mut hits = [(0f32, 0usize); W];
+        let mut nh = 0;
+        let mut m = mask;
+        while m != 0 {
+            let l = m.trailing_zeros() as usize;
+            m &= m - 1;
+            if n.child[l] != EMPTY {
+                hits[nh] = (t_near[l], l);
+                nh += 1;
+            }
+        }
+        let hits = &mut hits[..nh];
+        // farthest first, by insertion (at most W entries; the distances are not NaN, since
+        // the reciprocals are finite and a NaN entry fails the tests above)
+        for a in 1..nh {
+            let mut b = a;
+            while b > 0 && hits[b - 1].0 < hits[b].0 {
+                hits.swap(b - 1, b);
+                b -= 1;
+            }
+        }
+        let (&(tn, l), rest) = hits.split_last()?;
+        for &(tf, lf) in rest {
+            if n.count[lf] == 0 {
+                self.prefetch(n.child[lf]);
+            }
+            stack[*sp] = MaybeUninit::new((n.child[lf], n.count[lf], tf));
+            *sp += 1;
+        }
+        Some((n.child[l], n.count[l], tn))
+    }
+
     /// Asks the CPU to bring node `i` into the cache (a hint: no effect on results), for a
     /// sibling pushed on the stack, so that its loads overlap the descent into the nearest.
     #[inline(always)]
@@ -218,8 +265,8 @@ impl<const W: usize> Wide<W> {
     /// for zero components) enters at t < the current limit, nearest box first. `leaf(first,
     /// count, t_max)` tests the leaf's primitives `first..first + count` and returns the
     /// smallest hit distance below `t_max` (∞ or anything not below it if none); a distance
-    /// below the limit becomes the new limit. With `any_hit`, returns at the first hit. Returns the final
-    /// limit (`t_max` if nothing was hit).
+    /// below the limit becomes the new limit. With `any_hit`, returns at the first hit.
+    /// Returns the final limit (`t_max` if nothing was hit).
     #[inline]
     pub(crate) fn traverse(
         &self,
@@ -281,61 +328,30 @@ impl<const W: usize> Wide<W> {
         let (o, inv) = (o.to_array(), inv_d.to_array());
         loop {
             let (code, count, near) = cur;
-            if near < t_max {
-                if count > 0 {
-                    let t = leaf(code as usize, count as usize, t_max);
-                    if t < t_max {
-                        t_max = t;
-                        if any_hit {
-                            return t_max;
-                        }
-                    }
-                } else {
-                    let n = &self.nodes[code as usize];
-                    let (mask, t_near) = slab(n, o, inv, t_max);
-                    let mut hits = [(0f32, 0usize); W];
-                    let mut nh = 0;
-                    let mut m = mask;
-                    while m != 0 {
-                        let l = m.trailing_zeros() as usize;
-                        m &= m - 1;
-                        if n.child[l] != EMPTY {
-                            hits[nh] = (t_near[l], l);
-                            nh += 1;
-                        }
-                    }
-                    let hits = &mut hits[..nh];
-                    // farthest first, by insertion (at most W entries; the distances are not
-                    // NaN, since the reciprocals are finite and a NaN entry fails the tests
-                    // above)
-                    for a in 1..nh {
-                        let mut b = a;
-                        while b > 0 && hits[b - 1].0 < hits[b].0 {
-                            hits.swap(b - 1, b);
-                            b -= 1;
-                        }
-                    }
-                    if let Some((&(tn, l), rest)) = hits.split_last() {
-                        // the others on the stack, farthest first; the nearest is next
-                        for &(tf, lf) in rest {
-                            if n.count[lf] == 0 {
-                                self.prefetch(n.child[lf]);
-                            }
-                            stack[sp] = MaybeUninit::new((n.child[lf], n.count[lf], tf));
-                            sp += 1;
-                        }
-                        cur = (n.child[l], n.count[l], tn);
-                        continue;
+            let next = if near >= t_max {
+                None
+            } else if count > 0 {
+                let t = leaf(code as usize, count as usize, t_max);
+                if t < t_max {
+                    t_max = t;
+                    if any_hit {
+                        return t_max;
                     }
                 }
-            }
-            if sp == 0 {
-                break;
-            }
-            sp -= 1;
-            // SAFETY: entries 0..sp were all written (each push writes stack[sp] before sp
-            // grows), so stack[sp] is initialised.
-            cur = unsafe { stack[sp].assume_init() };
+                None
+            } else {
+                self.open(code, o, inv, t_max, stack, &mut sp)
+            };
+            cur = match next {
+                Some(e) => e,
+                None if sp == 0 => break,
+                None => {
+                    sp -= 1;
+                    // SAFETY: entries 0..sp were all written (each push writes stack[sp]
+                    // before sp grows), so stack[sp] is initialised.
+                    unsafe { stack[sp].assume_init() }
+                }
+            };
         }
         t_max
     }
