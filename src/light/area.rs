@@ -51,8 +51,8 @@ impl AreaLight {
         }
     }
 
-    /// Samples a point uniformly by area and converts its density to solid angle at `p`:
-    /// pdf_ω = pdf_A · r² / |cos θ_light| (Veach 1997, eq. 8.10).
+    /// Samples a point of the shape seen from `p` ([`Shape::sample_solid_angle`]: the cone a
+    /// sphere subtends, else uniform by area converted to solid angle). `pdf` is per sr.
     pub fn sample_li<const N: usize>(
         &self,
         shapes: &[Shape],
@@ -60,20 +60,12 @@ impl AreaLight {
         w: &SampledWavelengths<N>,
         u: Vec2,
     ) -> Option<LightSample<N>> {
-        let s = shapes[self.shape as usize].sample_area(u);
+        let (s, pdf) = shapes[self.shape as usize].sample_solid_angle(p, u)?;
         let d = s.p - p;
-        let r2 = d.length_squared();
-        if r2 == 0.0 || s.pdf_area <= 0.0 {
-            return None;
-        }
-        let r = r2.sqrt();
+        let r = d.length();
         let wi = d / r;
         let cos_l = s.n.dot(-wi);
-        if cos_l == 0.0 || (!self.two_sided && cos_l < 0.0) {
-            return None;
-        }
-        let pdf = s.pdf_area * r2 / cos_l.abs();
-        if !pdf.is_finite() {
+        if cos_l == 0.0 || (!self.two_sided && cos_l < 0.0) || !wi.is_finite() {
             return None;
         }
         Some(LightSample {
@@ -88,15 +80,10 @@ impl AreaLight {
         })
     }
 
-    /// Solid-angle density of reaching `p_light` (normal `n_light`) from `p` along `wi`, for a
-    /// uniform-by-area sample: r² / (|cos θ_light| · A).
-    pub fn pdf_li(&self, p: Vec3, wi: Vec3, p_light: Vec3, n_light: Vec3, area: f32) -> f32 {
-        let r2 = (p_light - p).length_squared();
-        let cos_l = n_light.dot(-wi).abs();
-        if cos_l == 0.0 || area <= 0.0 {
-            return 0.0;
-        }
-        r2 / (cos_l * area)
+    /// Solid-angle density, sr⁻¹, of [`AreaLight::sample_li`] from `p` reaching `p_light`
+    /// (normal `n_light`) on `shape` (this light's) along `wi` ([`Shape::pdf_solid_angle`]).
+    pub fn pdf_li(&self, shape: &Shape, p: Vec3, wi: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
+        shape.pdf_solid_angle(p, wi, p_light, n_light)
     }
 
     /// A particle (light tracing, `bdpt`): a point uniform by area on `shape` (this light's)

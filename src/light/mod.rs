@@ -226,7 +226,7 @@ impl Light {
     /// lights; ignored otherwise). 0 for delta lights.
     pub fn pdf_li(&self, shapes: &[Shape], p: Vec3, wi: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
         match self {
-            Light::Area(l) => l.pdf_li(p, wi, p_light, n_light, shapes[l.shape as usize].area()),
+            Light::Area(l) => l.pdf_li(&shapes[l.shape as usize], p, wi, p_light, n_light),
             Light::Directional(l) => l.pdf_li(wi),
             Light::Environment(_) => crate::sampling::UNIFORM_SPHERE_PDF,
             Light::EnvMap(l) => l.pdf_li(wi),

@@ -122,6 +122,49 @@ impl Shape {
         }
     }
 
+    /// A point of the shape seen from `p`, for next-event estimation, and its density with
+    /// respect to solid angle at `p`, sr⁻¹. Spheres seen from outside sample the cone of
+    /// directions they subtend ([`Sphere::sample_cone`]), so no sample falls on the far side;
+    /// every other case samples by area ([`Shape::sample_area`]) and converts, pdf_ω = pdf_A ·
+    /// r² / |cos θ_light| (Veach 1997, eq. 8.10). The density is the one
+    /// [`Shape::pdf_solid_angle`] gives. None for a degenerate sample (the point at `p`, a
+    /// direction along the surface, a non-finite density).
+    #[inline]
+    pub fn sample_solid_angle(&self, p: Vec3, u: Vec2) -> Option<(SurfaceSample, f32)> {
+        if let Shape::Sphere(s) = self
+            && let Some(found) = s.sample_cone(p, u)
+        {
+            return Some(found);
+        }
+        let s = self.sample_area(u);
+        let d = s.p - p;
+        let r2 = d.length_squared();
+        if r2 == 0.0 || s.pdf_area <= 0.0 {
+            return None;
+        }
+        let cos_l = s.n.dot(-(d / r2.sqrt()));
+        let pdf = s.pdf_area * r2 / cos_l.abs();
+        pdf.is_finite().then_some((s, pdf))
+    }
+
+    /// The solid-angle density, sr⁻¹, with which [`Shape::sample_solid_angle`] from `p` picks
+    /// the direction `wi` (unit) toward the point `p_light` of normal `n_light` on this shape.
+    /// Zero for a direction along the surface.
+    pub fn pdf_solid_angle(&self, p: Vec3, wi: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
+        if let Shape::Sphere(s) = self
+            && let Some(pdf) = s.pdf_cone(p)
+        {
+            return pdf;
+        }
+        let area = self.area();
+        let r2 = (p_light - p).length_squared();
+        let cos_l = n_light.dot(-wi).abs();
+        if cos_l == 0.0 || area <= 0.0 {
+            return 0.0;
+        }
+        r2 / (cos_l * area)
+    }
+
     /// Number of primitives the BVH indexes: 1 for spheres and disks, triangles for meshes.
     pub fn primitive_count(&self) -> usize {
         match self {
