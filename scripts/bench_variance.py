@@ -12,8 +12,9 @@ How to run (from the repository root):
     python3 scripts/bench_variance.py               # --spp 64 --threads 2 --repeats 1
 
 Options: --scene PATH (default benchmarks/scenes/glass_sphere_lamp.xml; Cycles only knows this
-one), --spp N, --threads T, --repeats R, --configs spectrace,mitsuba,cycles (any subset;
-`mitsuba` is scalar_spectral with ldsampler), --save DIR (keep the images), --blender-python
+one), --spp N, --threads T, --repeats R, --configs spectrace,mitsuba,cycles (any subset, also
+spectrace-power and spectrace-uniform: the scene with `light_selection` set so, TOML scenes
+only; `mitsuba` is scalar_spectral with ldsampler), --save DIR (keep the images), --blender-python
 PATH (the Python that imports bpy; default /opt/bpyenv/bin/python, else this one).
 
 Definitions (as scripts/bench_efficiency.py; Y is luminance):
@@ -220,6 +221,19 @@ def cycles_version() -> str:
     return r.stdout.strip().splitlines()[-1] if r.returncode == 0 and r.stdout.strip() else ""
 
 
+def with_selection(scene: Path, kind: str) -> Path:
+    """A copy of the TOML `scene` beside it with `[integrator] light_selection = kind`."""
+    if scene.suffix != ".toml":
+        raise SystemExit("spectrace-power and spectrace-uniform need a TOML scene")
+    text = scene.read_text()
+    if "light_selection" in text:
+        raise SystemExit(f"{scene} sets light_selection already")
+    text = text.replace("[integrator]", f'[integrator]\nlight_selection = "{kind}"', 1)
+    out = scene.parent / f".{scene.stem}.{kind}.toml"
+    out.write_text(text)
+    return out
+
+
 # --------------------------------------------------------------------------- driver
 
 
@@ -238,7 +252,7 @@ def main() -> int:
         BLENDER_PY = a.blender_python
     configs = [c.strip() for c in a.configs.split(",") if c.strip()]
     for c in configs:
-        if c not in ("spectrace", "mitsuba", "cycles"):
+        if c not in ("spectrace", "spectrace-power", "spectrace-uniform", "mitsuba", "cycles"):
             raise SystemExit(f"unknown configuration {c!r}")
     scene = a.scene.resolve()
     text = scene.read_text()
@@ -271,10 +285,17 @@ def main() -> int:
                 seeds = [SEED_BASE + 2 * rep, SEED_BASE + 2 * rep + 1]
                 for c in configs:
                     imgs = []
-                    if c == "spectrace":
-                        for s in seeds:
-                            t, y = be.spectrace_render(scene, a.spp, s, a.threads, tmp / f"s{s}.exr")
-                            imgs.append({"seconds": t, "y": y, "spp": a.spp})
+                    if c.startswith("spectrace"):
+                        path = scene
+                        if c != "spectrace":
+                            path = with_selection(scene, c.split("-")[1])
+                        try:
+                            for s in seeds:
+                                t, y = be.spectrace_render(path, a.spp, s, a.threads, tmp / f"s{s}.exr")
+                                imgs.append({"seconds": t, "y": y, "spp": a.spp})
+                        finally:
+                            if path != scene:
+                                path.unlink()
                     elif c == "mitsuba":
                         for s in seeds:
                             out = tmp / f"m{s}.npy"

@@ -277,9 +277,10 @@ fn max_depth_is_path_length() {
     };
     assert_eq!(load(&rr("5")).integrator.max_depth, 2);
     assert_eq!(load(&rr("2")).integrator.rr_depth, 2);
-    // emitters are chosen in proportion to sampling_weight (Mitsuba's Emitter, default 1)
+    // emitters: the light tree unless one sets sampling_weight (Mitsuba's Emitter, default
+    // 1), which keeps Mitsuba's rule, selection in proportion to it
     let desc = load(&env_scene(3, radiance, rect));
-    assert_eq!(desc.integrator.light_selection, LightSelection::Uniform);
+    assert_eq!(desc.integrator.light_selection, LightSelection::Tree);
     assert!(desc.lights.iter().all(|l| l.sampling_weight == 1.0));
     let weighted = env_scene(3, radiance, rect).replacen(
         "</emitter>",
@@ -287,6 +288,10 @@ fn max_depth_is_path_length() {
         1,
     );
     assert_eq!(load(&weighted).lights[0].sampling_weight, 2.5);
+    assert_eq!(
+        load(&weighted).integrator.light_selection,
+        LightSelection::Uniform
+    );
     let negative = weighted.replace("2.5", "-1");
     assert!(
         err(&negative).contains("sampling_weight"),

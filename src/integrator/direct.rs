@@ -63,7 +63,7 @@ pub(super) fn radiance<const N: usize>(
         if sh.bsdf.is_specular() {
             continue;
         }
-        let Some((li, p_sel, ux)) = it.lights.pick_reuse(u.x) else {
+        let Some((li, p_sel, ux)) = it.pick_light(hit.p, sh.frame.n, u.x) else {
             continue;
         };
         let light = &scene.lights[li];
@@ -93,7 +93,8 @@ pub(super) fn radiance<const N: usize>(
         };
         // the density of reaching the same point by light sampling, times the light count
         let pl = |li: usize, p: Vec3, n: Vec3| {
-            it.lights.prob(li) * scene.lights[li].pdf_li(&scene.shapes, hit.p, next.d, p, n)
+            it.light_prob(hit.p, sh.frame.n, li)
+                * scene.lights[li].pdf_li(&scene.shapes, hit.p, next.d, p, n)
         };
         match scene.accel.intersect(&scene.shapes, &next) {
             Some(h2) => {

@@ -36,7 +36,7 @@ pub fn irradiance<const N: usize>(
 
     // 1. Next-event estimation.
     let u = s.get_2d();
-    if let Some((li, p_sel, ux)) = it.lights.pick_reuse(u.x) {
+    if let Some((li, p_sel, ux)) = it.pick_light(p, n, u.x) {
         let light = &scene.lights[li];
         if let Some(ls) = light.sample_li(&scene.shapes, p, w, Vec2::new(ux, u.y)) {
             let cos = ls.wi.dot(n);
@@ -65,7 +65,7 @@ pub fn irradiance<const N: usize>(
     if pdf > 0.0 {
         let d = Frame::from_normal(n).to_world(local);
         let ray = spawn_ray(p, p_error, n, d);
-        let l = super::path::radiance_after_sample(it, ray, pdf, w, s);
+        let l = super::path::radiance_after_sample(it, ray, pdf, n, w, s);
         e += l * std::f32::consts::PI;
     }
     e

@@ -82,10 +82,16 @@ impl LightSelector {
     }
 }
 
-/// Everything an integrator reads: the scene and its light selector.
+/// Everything an integrator reads: the scene and its light selectors.
 pub struct Integrator<'a> {
     pub scene: &'a Scene,
+    /// Light choice independent of position (by power, uniformly, or under the tree by
+    /// [`crate::light::LightTree::position_free`]): emission sampling (`light`, `bdpt`), and
+    /// next-event estimation when the scene does not select by the tree.
     pub lights: LightSelector,
+    /// The scene's light tree when it selects by the tree ([`LightSelection::Tree`]): next-event
+    /// estimation in `path` and `direct` ([`Integrator::pick_light`]).
+    pub tree: Option<&'a crate::light::LightTree>,
     pub kind: IntegratorKind,
     pub max_depth: u32,
     /// Surface hits a camera path keeps before Russian roulette may end it (path tracer): the
@@ -101,6 +107,7 @@ impl<'a> Integrator<'a> {
             scene,
             lights: LightSelector::new(&match scene.integrator.light_selection {
                 LightSelection::Power => scene.light_power.clone(),
+                LightSelection::Tree => scene.light_tree.position_free().to_vec(),
                 // every light that emits anything, in proportion to its sampling weight
                 LightSelection::Uniform => scene
                     .light_power
@@ -109,10 +116,33 @@ impl<'a> Integrator<'a> {
                     .map(|(&p, &w)| if p > 0.0 { w } else { 0.0 })
                     .collect(),
             }),
+            tree: (scene.integrator.light_selection == LightSelection::Tree)
+                .then_some(&scene.light_tree),
             kind,
             max_depth,
             rr_depth: scene.integrator.rr_depth,
             strategy: None,
+        }
+    }
+
+    /// A light for next-event estimation at the shading point `p` with shading normal `n`
+    /// (zero: none), its probability, and `u` rescaled to a fresh uniform number in [0, 1)
+    /// for sampling the light: by the light tree if the scene selects by it, else by
+    /// [`LightSelector::pick_reuse`]. None if no light can contribute.
+    #[inline]
+    pub fn pick_light(&self, p: Vec3, n: Vec3, u: f32) -> Option<(usize, f32, f32)> {
+        match self.tree {
+            Some(t) => t.pick(p, n, u),
+            None => self.lights.pick_reuse(u),
+        }
+    }
+
+    /// The probability with which [`Integrator::pick_light`] at `p`, `n` picks light `i`.
+    #[inline]
+    pub fn light_prob(&self, p: Vec3, n: Vec3, i: usize) -> f32 {
+        match self.tree {
+            Some(t) => t.pmf(p, n, i),
+            None => self.lights.prob(i),
         }
     }
 

@@ -23,37 +23,40 @@ pub(super) fn radiance<const N: usize>(
     trace(it, ray, w, s, None)
 }
 
-/// Radiance along `ray`, which a sampling step at `ray.o` chose with density `pdf` per sr
-/// against which light sampling there is weighted (an irradiance meter's cosine-weighted
-/// direction): emission at the first hit is MIS-weighted as after a BSDF sample.
+/// Radiance along `ray`, which a sampling step at `ray.o` (normal `n`) chose with density
+/// `pdf` per sr against which light sampling there ([`Integrator::pick_light`] at `ray.o`,
+/// `n`) is weighted (an irradiance meter's cosine-weighted direction): emission at the first
+/// hit is MIS-weighted as after a BSDF sample.
 pub(super) fn radiance_after_sample<const N: usize>(
     it: &Integrator<'_>,
     ray: Ray,
     pdf: f32,
+    n: Vec3,
     w: &mut SampledWavelengths<N>,
     s: &mut Sampler,
 ) -> SampledSpectrum<N> {
-    trace(it, ray, w, s, Some(pdf))
+    trace(it, ray, w, s, Some((pdf, n)))
 }
 
-/// The path tracer; `first_pdf` is the density of the first direction when it was sampled
-/// against light sampling (None: a camera ray, weighted 1).
+/// The path tracer; `first` is the density of the first direction and the normal at its
+/// origin when it was sampled against light sampling (None: a camera ray, weighted 1).
 #[inline(always)]
 fn trace<const N: usize>(
     it: &Integrator<'_>,
     mut ray: Ray,
     w: &mut SampledWavelengths<N>,
     s: &mut Sampler,
-    first_pdf: Option<f32>,
+    first: Option<(f32, Vec3)>,
 ) -> SampledSpectrum<N> {
     let scene = it.scene;
     let mut l = SampledSpectrum::<N>::zero();
     let mut beta = SampledSpectrum::<N>::splat(1.0);
-    // the previous vertex, for MIS of emitters hit by BSDF sampling
+    // the previous vertex (point, shading normal, the BSDF sample's density), for MIS of
+    // emitters hit by BSDF sampling
     let mut prev_p = ray.o;
-    let mut prev_pdf = first_pdf.unwrap_or(0.0);
+    let (mut prev_pdf, mut prev_n) = first.unwrap_or((0.0, Vec3::ZERO));
     // the camera ray counts as "specular": no MIS
-    let mut specular_bounce = first_pdf.is_none();
+    let mut specular_bounce = first.is_none();
     let mut eta_scale = 1.0f32;
     let mut depth = 0u32;
     // Every bounce reads the same dimensions whatever happened before (pbrt-v4 §8.3: a fixed
@@ -76,7 +79,7 @@ fn trace<const N: usize>(
                 let wgt = if specular_bounce {
                     1.0
                 } else {
-                    let pl = it.lights.prob(i)
+                    let pl = it.light_prob(prev_p, prev_n, i)
                         * light.pdf_li(&scene.shapes, prev_p, ray.d, Vec3::ZERO, Vec3::ZERO);
                     power_heuristic(1.0, prev_pdf, 1.0, pl)
                 };
@@ -93,7 +96,7 @@ fn trace<const N: usize>(
                 let wgt = if specular_bounce {
                     1.0
                 } else {
-                    let pl = it.lights.prob(li as usize)
+                    let pl = it.light_prob(prev_p, prev_n, li as usize)
                         * light.pdf_li(&scene.shapes, prev_p, ray.d, hit.p, hit.n_geom);
                     power_heuristic(1.0, prev_pdf, 1.0, pl)
                 };
@@ -125,7 +128,7 @@ fn trace<const N: usize>(
         // Next-event estimation.
         if !sh.bsdf.is_specular() {
             let u = s.get_2d();
-            if let Some((li, p_sel, ux)) = it.lights.pick_reuse(u.x) {
+            if let Some((li, p_sel, ux)) = it.pick_light(hit.p, sh.frame.n, u.x) {
                 let light = &scene.lights[li];
                 let u = glam::Vec2::new(ux, u.y);
                 if let Some(ls) = light.sample_li(&scene.shapes, hit.p, w, u) {
@@ -162,6 +165,7 @@ fn trace<const N: usize>(
         specular_bounce = bs.specular;
         prev_pdf = bs.pdf;
         prev_p = hit.p;
+        prev_n = sh.frame.n;
         ray = next;
 
         // Russian roulette on the throughput, corrected for radiance scaling by η²

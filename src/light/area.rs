@@ -2,6 +2,7 @@
 
 use glam::{Vec2, Vec3};
 
+use super::bounds::{DirectionCone, LightBounds};
 use super::{EmissionPdf, EmissionSample, LightSample};
 use crate::geometry::Frame;
 use crate::geometry::shape::Shape;
@@ -23,6 +24,47 @@ pub struct AreaLight {
 }
 
 impl AreaLight {
+    /// Bounds for the light tree: the box of `shape` (this light's), the cone of its front-face
+    /// normals (every direction for spheres and cylinders; a mesh with vertex normals, whose
+    /// front face follows them, counts as two-sided), Lambertian emission (θe = π/2), power
+    /// `phi` (W).
+    pub fn bounds(&self, shape: &Shape, phi: f32) -> LightBounds {
+        let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+        for i in 0..shape.primitive_count() {
+            let (a, b) = shape.primitive_aabb(i);
+            (lo, hi) = (lo.min(a), hi.max(b));
+        }
+        let (normals, flips) = match shape {
+            Shape::Sphere(_) | Shape::Cylinder(_) => (DirectionCone::ALL, false),
+            Shape::Disk(d) => (DirectionCone::of(d.normal()), false),
+            Shape::Mesh(m) => {
+                let p = m.positions();
+                let mut cone: Option<DirectionCone> = None;
+                for t in m.indices() {
+                    let [a, b, c] = t.map(|v| p[v as usize]);
+                    let n = (b - a).cross(c - a).normalize_or_zero();
+                    if n == Vec3::ZERO {
+                        continue;
+                    }
+                    let one = DirectionCone::of(n);
+                    cone = Some(cone.map_or(one, |k| DirectionCone::union(k, one)));
+                    if cone.is_some_and(|k| k.cos_theta <= -1.0) {
+                        break;
+                    }
+                }
+                (cone.unwrap_or(DirectionCone::ALL), m.has_normals())
+            }
+        };
+        LightBounds {
+            lo,
+            hi,
+            phi,
+            normals,
+            cos_e: 0.0,
+            two_sided: self.two_sided || flips,
+        }
+    }
+
     /// Radiance leaving the surface (normal `n`, surface coordinates `uv`) toward `w_out`.
     pub fn emitted<const N: usize>(
         &self,

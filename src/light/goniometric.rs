@@ -16,6 +16,7 @@
 //! direction is uniform in solid angle within its cell. The bound is positive wherever I_v is,
 //! so the estimator is unbiased; the weights follow I_v to within its variation over a cell.
 
+use super::bounds::LightBounds;
 use glam::{Mat3, Vec2, Vec3};
 
 use super::distribution2d::Distribution2D;
@@ -211,6 +212,12 @@ pub struct GoniometricLight {
 }
 
 impl GoniometricLight {
+    /// Bounds for the light tree: an emitter of power `phi` (W) at its position, taken as
+    /// isotropic (conservative: its distribution is not bounded more tightly).
+    pub fn bounds(&self, phi: f32) -> LightBounds {
+        LightBounds::point(self.position, phi)
+    }
+
     /// None if the table is zero everywhere.
     pub fn new(
         position: Vec3,

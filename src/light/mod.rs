@@ -16,6 +16,7 @@
 
 mod area;
 mod beam;
+mod bounds;
 mod directional;
 mod distribution2d;
 mod environment;
@@ -24,9 +25,11 @@ mod goniometric;
 mod point;
 mod projector;
 mod spot;
+mod tree;
 
 pub use area::AreaLight;
 pub use beam::BeamLight;
+pub use bounds::{DirectionCone, Importance, LightBounds};
 pub use directional::DirectionalLight;
 pub use environment::EnvironmentLight;
 pub use envmap::EnvMapLight;
@@ -34,6 +37,7 @@ pub use goniometric::{Fold, GoniometricLight, IntensityTable};
 pub use point::PointLight;
 pub use projector::ProjectorLight;
 pub use spot::{SpotLight, SpotTexture};
+pub use tree::LightTree;
 
 use glam::{Vec2, Vec3};
 
@@ -375,6 +379,22 @@ impl Light {
             | Light::Goniometric(_) => true,
             Light::Directional(l) => l.is_delta(),
             Light::Area(_) | Light::Environment(_) | Light::EnvMap(_) => false,
+        }
+    }
+
+    /// Bounds of the light's emission for the light tree, with power `phi` (W, as
+    /// [`Light::power`] gives); None for the lights the tree does not hold (at infinity, or a
+    /// beam, whose reach is a cylinder), which are chosen by power beside it.
+    pub fn bounds(&self, shapes: &[Shape], phi: f32) -> Option<LightBounds> {
+        match self {
+            Light::Point(l) => Some(l.bounds(phi)),
+            Light::Spot(l) => Some(l.bounds(phi)),
+            Light::Area(l) => Some(l.bounds(&shapes[l.shape as usize], phi)),
+            Light::Projector(l) => Some(l.bounds(phi)),
+            Light::Goniometric(l) => Some(l.bounds(phi)),
+            Light::Directional(_) | Light::Environment(_) | Light::EnvMap(_) | Light::Beam(_) => {
+                None
+            }
         }
     }
 

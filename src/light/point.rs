@@ -2,6 +2,7 @@
 
 use glam::Vec3;
 
+use super::bounds::LightBounds;
 use super::{EmissionSample, LightSample};
 use crate::spectrum::{SampledWavelengths, Spectrum};
 
@@ -16,6 +17,11 @@ pub struct PointLight {
 }
 
 impl PointLight {
+    /// Bounds for the light tree: an isotropic emitter of power `phi` (W) at its position.
+    pub fn bounds(&self, phi: f32) -> LightBounds {
+        LightBounds::point(self.position, phi)
+    }
+
     /// Irradiance-producing sample at `p`: li = I / r² (W·m⁻²·nm⁻¹), pdf 1, delta.
     pub fn sample_li<const N: usize>(
         &self,

@@ -1,6 +1,7 @@
 //! Mitsuba 3's `projector`: a pinhole that projects an image, the reciprocal of a perspective
 //! camera (src/emitters/projector.cpp, whose definition this follows).
 
+use super::bounds::LightBounds;
 use glam::{Mat3, Vec2, Vec3};
 
 use super::{EmissionPdf, EmissionSample, LightSample};
@@ -30,6 +31,12 @@ pub struct ProjectorLight {
 }
 
 impl ProjectorLight {
+    /// Bounds for the light tree: an emitter of power `phi` (W) at its position, taken as
+    /// isotropic (conservative: its distribution is not bounded more tightly).
+    pub fn bounds(&self, phi: f32) -> LightBounds {
+        LightBounds::point(self.position, phi)
+    }
+
     /// The image coordinates of the local direction `d` (z > 0), or None outside the image.
     #[inline]
     fn uv(&self, d: Vec3) -> Option<Vec2> {

@@ -2,6 +2,7 @@
 //! with a smoothstep in cos θ (pbrt-v4 §12.1.2, spectrace's native spot) or linearly in the
 //! angle θ (Mitsuba 3's `spot` emitter).
 
+use super::bounds::{DirectionCone, LightBounds};
 use glam::Vec3;
 
 use super::LightSample;
@@ -50,6 +51,21 @@ fn smoothstep(x: f32, a: f32, b: f32) -> f32 {
 }
 
 impl SpotLight {
+    /// Bounds for the light tree: the axis, full intensity up to the falloff's start (θo) and
+    /// light up to the cut-off (θe = total − start, at least 10⁻³ rad so that a hard-edged spot
+    /// keeps a non-empty emission cone), power `phi` (W).
+    pub fn bounds(&self, phi: f32) -> LightBounds {
+        let theta_e = (self.total - self.falloff_start).max(1e-3);
+        LightBounds {
+            normals: DirectionCone {
+                w: self.frame.n,
+                cos_theta: self.cos_falloff_start,
+            },
+            cos_e: theta_e.cos(),
+            ..LightBounds::point(self.position, phi)
+        }
+    }
+
     /// A spot at `position` aimed along `axis` (unit) with half-angles `falloff_start` ≤
     /// `total` (rad) and zero intensity (build sets it).
     pub fn new(

@@ -180,8 +180,15 @@ pub struct IntegratorDesc {
 /// is unbiased; they differ in noise.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LightSelection {
-    /// In proportion to emitted power (pbrt-v4's `PowerLightSampler`): spectrace's default,
-    /// best when lights differ greatly in power.
+    /// By each light's likely contribution at the shading point, through a tree over the
+    /// lights' bounds ([`crate::light::LightTree`]; pbrt-v4's `BVHLightSampler`): spectrace's
+    /// default, for next-event estimation in `path` and `direct`. Lights at infinity and beams
+    /// are chosen beside the tree, each as likely as the tree (pbrt-v4's rule); the particle
+    /// tracers (`light`, and `bdpt`, whose strategies share their light choice) choose the
+    /// same groups alike and the tree's lights by power.
+    Tree,
+    /// In proportion to emitted power (pbrt-v4's `PowerLightSampler`), best when lights
+    /// differ greatly in power and little in distance.
     Power,
     /// Every emitting light alike, or in proportion to its `sampling_weight`: Mitsuba 3's rule
     /// (weights 1 by default), better when a weak light is hard to sample well, such as a sky

@@ -69,6 +69,9 @@ pub struct Scene {
     /// Emitted power of each light over the wavelength range, W (lights at infinity: through a
     /// disk of the scene's radius), for light selection proportional to power.
     pub light_power: Vec<f64>,
+    /// The light tree over the lights (next-event estimation's default selection, see
+    /// [`crate::light::LightTree`]).
+    pub light_tree: crate::light::LightTree,
     /// Relative weight of each light under uniform light selection (Mitsuba's
     /// `sampling_weight`, 1 unless the scene sets it).
     pub light_sampling_weights: Vec<f64>,

@@ -166,8 +166,8 @@ pub(super) fn scene(
         kind: IntegratorKind::Path,
         max_depth: 1024,
         rr_depth: DEFAULT_RR_DEPTH,
-        // Mitsuba chooses emitters in proportion to their sampling_weight, 1 by default
-        light_selection: LightSelection::Uniform,
+        // decided after the emitters are read (below)
+        light_selection: LightSelection::Tree,
         moment: false,
     };
     let mut camera = None;
@@ -220,6 +220,17 @@ pub(super) fn scene(
         }
     }
     let camera = camera.ok_or_else(|| cx.err(&root, "the scene has no <sensor>"))?;
+    // Mitsuba chooses emitters in proportion to their sampling_weight (1 by default); a scene
+    // that sets one keeps that rule, every other one gets the light tree (either is unbiased)
+    let weighted = lights.iter().any(|l| l.sampling_weight != 1.0)
+        || shapes.iter().any(|s| {
+            s.emission
+                .as_ref()
+                .is_some_and(|e| e.sampling_weight != 1.0)
+        });
+    if weighted {
+        integrator.light_selection = LightSelection::Uniform;
+    }
     let nm = |x: f64| Length::new::<length::nanometer>(x);
     Ok(SceneDesc {
         path: path.to_path_buf(),

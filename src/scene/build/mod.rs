@@ -85,10 +85,16 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
     } else {
         1.0
     };
-    let light_power = lights
+    let light_power: Vec<f64> = lights
         .iter()
         .map(|l| l.power(&shape_list, range, radius))
         .collect();
+    let light_bounds: Vec<_> = lights
+        .iter()
+        .zip(&light_power)
+        .map(|(l, &p)| l.bounds(&shape_list, p as f32))
+        .collect();
+    let light_tree = crate::light::LightTree::build(&light_bounds, &light_power);
     let camera = camera(desc).map_err(|e| err(desc.camera.loc, "camera".into(), e))?;
     let f = &desc.film;
     let infinite_lights = (0..lights.len() as u32)
@@ -103,6 +109,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         infinite_lights,
         light_sampling_weights,
         light_power,
+        light_tree,
         camera,
         film: FilmSettings {
             width: f.width,

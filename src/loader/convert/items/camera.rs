@@ -442,7 +442,7 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
         kind: IntegratorKind::Path,
         max_depth: 16,
         rr_depth: DEFAULT_RR_DEPTH,
-        light_selection: LightSelection::Power,
+        light_selection: LightSelection::Tree,
         moment: false,
     };
     let Some(i) = i else { return Ok(d) };
@@ -506,13 +506,14 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
     }
     if let Some(k) = &i.light_selection {
         d.light_selection = match k.get_ref().as_str() {
+            "tree" => LightSelection::Tree,
             "power" => LightSelection::Power,
             "uniform" => LightSelection::Uniform,
             o => {
                 return Err(cx.err(
                     &k.span(),
                     "integrator.light_selection",
-                    format!("\"{o}\": expected power or uniform"),
+                    format!("\"{o}\": expected tree, power or uniform"),
                 ));
             }
         };
