@@ -79,8 +79,8 @@ fn sphere_directions_match_their_density_and_it_integrates_to_one() {
             SAMPLES,
             || {
                 let u = Vec2::new(rng.uniform(), rng.uniform());
-                let (s, _) = shape.sample_solid_angle(*p, u)?;
-                Some(frame.to_local((s.p - *p).normalize()))
+                let x = shape.sample_solid_angle(*p, u)?;
+                Some(frame.to_local((x.s.p - *p).normalize()))
             },
             |local| density(shape, *p, frame.to_world(local)),
         );
@@ -109,9 +109,15 @@ fn sphere_samples_are_the_first_hit_toward_them_and_report_their_density() {
         let inside = name.contains("area");
         for _ in 0..20_000 {
             let u = Vec2::new(rng.uniform(), rng.uniform());
-            let Some((s, pdf)) = shape.sample_solid_angle(p, u) else {
+            let Some(x) = shape.sample_solid_angle(p, u) else {
                 continue;
             };
+            let (s, pdf) = (x.s, x.pdf);
+            assert!(
+                (x.wi - (s.p - p).normalize()).length() < 1e-5
+                    && (x.distance - (s.p - p).length()).abs() <= 1e-6 * x.distance,
+                "{name}: the direction and distance are the point's"
+            );
             let r = (s.p - p).length();
             let d = (s.p - p) / r;
             assert!(pdf > 0.0 && pdf.is_finite(), "{name}: pdf {pdf}");

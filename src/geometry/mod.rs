@@ -26,5 +26,7 @@ pub use error::GeometryError;
 pub use frame::Frame;
 pub use instance::{Group, Instance};
 pub use ray::{Ray, offset_ray_origin, spawn_ray, spawn_ray_to};
-pub use shape::{Cylinder, Disk, Intersection, Mesh, PrimHit, Shape, Sphere, SurfaceSample};
+pub use shape::{
+    Cylinder, Disk, Intersection, Mesh, PrimHit, Shape, SolidAngleSample, Sphere, SurfaceSample,
+};
 pub use transform::Transform;

@@ -102,23 +102,19 @@ impl AreaLight {
         w: &SampledWavelengths<N>,
         u: Vec2,
     ) -> Option<LightSample<N>> {
-        let (s, pdf) = shapes[self.shape as usize].sample_solid_angle(p, u)?;
-        let d = s.p - p;
-        let r = d.length();
-        let wi = d / r;
-        let cos_l = s.n.dot(-wi);
-        if cos_l == 0.0 || (!self.two_sided && cos_l < 0.0) || !wi.is_finite() {
+        let x = shapes[self.shape as usize].sample_solid_angle(p, u)?;
+        if !self.two_sided && x.cos_light < 0.0 {
             return None;
         }
         Some(LightSample {
-            wi,
-            li: self.radiance_at(s.uv, w),
-            pdf,
+            wi: x.wi,
+            li: self.radiance_at(x.s.uv, w),
+            pdf: x.pdf,
             delta: false,
-            p: s.p,
-            p_error: s.p_error,
-            n: s.n,
-            distance: r,
+            p: x.s.p,
+            p_error: x.s.p_error,
+            n: x.s.n,
+            distance: x.distance,
         })
     }
 

@@ -13,9 +13,9 @@
 //! bits for sampling the light). [`LightTree::pmf`] replays the walk along the light's stored
 //! branch bits, with the same arithmetic, so the two agree exactly.
 //!
-//! Densities: `pmf` is a discrete probability over lights (unitless); a light of zero
-//! importance is never picked and has pmf 0 (the bounds are conservative: it cannot
-//! contribute).
+//! Densities: `pmf` is a discrete probability over lights (unitless); a light whose subtree
+//! has zero importance is never picked and has pmf 0 (the bounds are conservative: it cannot
+//! contribute), except a lone light at the root, which is always picked.
 
 use glam::Vec3;
 
@@ -49,6 +49,8 @@ pub struct LightTree {
     /// Per light, the probability of a choice that ignores position: the groups as above,
     /// the tree's lights in proportion to power ([`LightTree::position_free`]).
     free: Vec<f64>,
+    /// The light, when only one can be picked (no work per pick).
+    single: Option<u32>,
 }
 
 impl LightTree {
@@ -89,6 +91,10 @@ impl LightTree {
         for &i in &t.others {
             t.free[i as usize] = t.p_other / m;
         }
+        t.single = match (items.as_slice(), t.others.as_slice()) {
+            ([(i, _)], []) | ([], [i]) => Some(*i),
+            _ => None,
+        };
         if !items.is_empty() {
             t.build_node(&mut items, 0, 0);
         }
@@ -151,6 +157,9 @@ impl LightTree {
     /// rescaled to a fresh uniform number in [0, 1). None if no light can contribute.
     #[inline]
     pub fn pick(&self, p: Vec3, n: Vec3, u: f32) -> Option<(usize, f32, f32)> {
+        if let Some(i) = self.single {
+            return Some((i as usize, 1.0, u));
+        }
         let mut u = u as f64;
         if u < self.p_other {
             u /= self.p_other;
@@ -170,9 +179,8 @@ impl LightTree {
         loop {
             let nd = &self.nodes[node];
             if nd.leaf {
-                if node == 0 && !(nd.bounds.at(p, n) > 0.0) {
-                    return None;
-                }
+                // a lone light is taken without its importance (as `pmf` does): where it cannot
+                // contribute its sample is zero anyway, and a single-light scene pays nothing
                 return Some((nd.child_or_light as usize, pmf as f32, unit(u)));
             }
             let (c0, c1) = (node + 1, nd.child_or_light as usize);
@@ -191,6 +199,9 @@ impl LightTree {
 
     /// The probability that [`LightTree::pick`] at `p`, `n` returns `light`.
     pub fn pmf(&self, p: Vec3, n: Vec3, light: usize) -> f32 {
+        if let Some(i) = self.single {
+            return if i as usize == light { 1.0 } else { 0.0 };
+        }
         let op = self.other_prob[light];
         if op > 0.0 {
             return (self.p_other * op as f64) as f32;
@@ -213,9 +224,6 @@ impl LightTree {
                 pmf *= 1.0 - p0;
                 node = c1;
             }
-        }
-        if depth == 0 && !(self.nodes[0].bounds.at(p, n) > 0.0) {
-            return 0.0;
         }
         pmf as f32
     }

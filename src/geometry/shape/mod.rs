@@ -54,6 +54,21 @@ pub struct SurfaceSample {
     pub uv: Vec2,
 }
 
+/// A point sampled on a shape for a receiver at `p` ([`Shape::sample_solid_angle`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolidAngleSample {
+    /// The point, its normal and uv (`s.pdf_area` is the shape's area density, not this
+    /// sample's).
+    pub s: SurfaceSample,
+    /// Unit direction from `p` to the point, and the distance, m.
+    pub wi: Vec3,
+    pub distance: f32,
+    /// cos θ at the point: its normal · (−`wi`), signed (negative: seen from its back).
+    pub cos_light: f32,
+    /// Density of `wi` with respect to solid angle at `p`, sr⁻¹.
+    pub pdf: f32,
+}
+
 /// What [`Shape::intersect_primitive`] remembers about a hit for [`Shape::interaction`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum PrimHit {
@@ -122,29 +137,44 @@ impl Shape {
         }
     }
 
-    /// A point of the shape seen from `p`, for next-event estimation, and its density with
-    /// respect to solid angle at `p`, sr⁻¹. Spheres seen from outside sample the cone of
-    /// directions they subtend ([`Sphere::sample_cone`]), so no sample falls on the far side;
-    /// every other case samples by area ([`Shape::sample_area`]) and converts, pdf_ω = pdf_A ·
-    /// r² / |cos θ_light| (Veach 1997, eq. 8.10). The density is the one
-    /// [`Shape::pdf_solid_angle`] gives. None for a degenerate sample (the point at `p`, a
-    /// direction along the surface, a non-finite density).
+    /// A point of the shape seen from `p`, for next-event estimation, with the direction to it
+    /// and its density with respect to solid angle at `p`, sr⁻¹ ([`SolidAngleSample`]). Spheres
+    /// seen from outside sample the cone of directions they subtend ([`Sphere::sample_cone`]),
+    /// so no sample falls on the far side; every other case samples by area
+    /// ([`Shape::sample_area`]) and converts, pdf_ω = pdf_A · r² / |cos θ_light| (Veach 1997,
+    /// eq. 8.10). The density is the one [`Shape::pdf_solid_angle`] gives. None for a
+    /// degenerate sample (the point at `p`, a direction along the surface, a non-finite
+    /// density).
     #[inline]
-    pub fn sample_solid_angle(&self, p: Vec3, u: Vec2) -> Option<(SurfaceSample, f32)> {
-        if let Shape::Sphere(s) = self
-            && let Some(found) = s.sample_cone(p, u)
-        {
-            return Some(found);
-        }
-        let s = self.sample_area(u);
+    pub fn sample_solid_angle(&self, p: Vec3, u: Vec2) -> Option<SolidAngleSample> {
+        let (s, pdf) = match self {
+            Shape::Sphere(sph) => match sph.sample_cone(p, u) {
+                Some(found) => found,
+                None => (self.sample_area(u), f32::NAN),
+            },
+            _ => (self.sample_area(u), f32::NAN),
+        };
         let d = s.p - p;
         let r2 = d.length_squared();
         if r2 == 0.0 || s.pdf_area <= 0.0 {
             return None;
         }
-        let cos_l = s.n.dot(-(d / r2.sqrt()));
-        let pdf = s.pdf_area * r2 / cos_l.abs();
-        pdf.is_finite().then_some((s, pdf))
+        let distance = r2.sqrt();
+        let wi = d / distance;
+        let cos_light = s.n.dot(-wi);
+        // NaN: sampled by area, converted here
+        let pdf = if pdf.is_nan() {
+            s.pdf_area * r2 / cos_light.abs()
+        } else {
+            pdf
+        };
+        (pdf.is_finite() && cos_light != 0.0).then_some(SolidAngleSample {
+            s,
+            wi,
+            distance,
+            cos_light,
+            pdf,
+        })
     }
 
     /// The solid-angle density, sr⁻¹, with which [`Shape::sample_solid_angle`] from `p` picks

@@ -220,6 +220,7 @@ impl Sphere {
     /// d² − r²); the point p + t·ω projected onto the sphere. pbrt-v4 instead finds the angle at
     /// the centre from the law of sines, whose cosine rounds to 1 when `p` is within ~10⁻⁴·r of
     /// the surface; this form stays accurate there.
+    #[inline(never)]
     pub(crate) fn sample_cone(&self, p: Vec3, u: Vec2) -> Option<(SurfaceSample, f32)> {
         let (sin2_max, one_minus_cos_max) = self.cone(p)?;
         let to_c = self.center - p;
