@@ -256,7 +256,7 @@ def main() -> int:
             raise SystemExit(f"unknown configuration {c!r}")
     scene = a.scene.resolve()
     text = scene.read_text()
-    w, h = be.film_size(text)
+    w, h = be.film_size(text) if scene.suffix == ".xml" else (0, 0)
     if "cycles" in configs and (scene != DEFAULT_SCENE.resolve() or w != h):
         raise SystemExit("Cycles builds only the default scene (square film)")
     if "cycles" in configs and not cycles_version():
@@ -312,12 +312,13 @@ def main() -> int:
                         np.save(a.save / f"{c}_{rep}_A.npy", A["y"])
                         np.save(a.save / f"{c}_{rep}_B.npy", B["y"])
                     spp = A["spp"]
+                    ih, iw = A["y"].shape  # the image's (a TOML scene's film is not parsed)
                     masks = regions(A["y"].shape, 0.5 * (A["y"] + B["y"]))
                     rv = {k: rel_var(A["y"], B["y"], spp, m) for k, m in masks.items()}
                     secs = 0.5 * (A["seconds"] + B["seconds"])
-                    rate = w * h * spp / secs
+                    rate = iw * ih * spp / secs
                     results[c].append({"rel_var": rv, "seconds": secs, "samples_per_s": rate,
-                                       "spp": spp, "load": loadavg()})
+                                       "spp": spp, "load": loadavg(), "size": [iw, ih]})
                     log(f"{c} repeat {rep}: {rv} {rate / 1e6:.3f} M samples/s")
         finally:
             if mts is not None:
@@ -325,6 +326,9 @@ def main() -> int:
                 (scene.parent / f".{scene.stem}.ldsampler.xml").unlink(missing_ok=True)
 
     names = ["whole image", "floor", "typical floor pixel"]
+    if results and any(results.values()):
+        first = next(r for r in results.values() if r)
+        w, h = first[0]["size"]
     print(f"# Variance per sample: {scene.relative_to(ROOT)}, {w}×{h}, {a.spp} spp, "
           f"{a.threads} threads, {a.repeats} repeat(s)")
     print(f"{datetime.date.today()}, {cpu_model()}, {platform.python_version()}, spectrace "
