@@ -69,7 +69,7 @@ impl Conductor {
 ///
 /// f = D(wm)·G(wo, wi)·F(wo·wm) / (4 cos θₒ cos θᵢ), wm = normalize(wo + wi),
 ///
-/// sampled through [`Microfacet::sample_normal`] (GGX: the visible normals from `wo`):
+/// sampled through [`Microfacet::sample_normal`] (the visible normals from `wo`):
 /// pdf = p(wm)/(4 wo·wm) with p = [`Microfacet::normal_pdf`]. Reflections below
 /// the horizon are rejected (`None`). Reciprocal. One-sided: zero unless `wo.z > 0` and
 /// `wi.z > 0`.
@@ -226,7 +226,7 @@ impl RoughConductor {
         }
         let wm = mf.sample_normal(wo, u);
         if wo.dot(wm) <= 0.0 {
-            return None; // a back-facing normal (Beckmann samples D·cos, not visible normals)
+            return None; // a back-facing normal (only at grazing views, from rounding)
         }
         let wi = reflect(wo, wm);
         if wi.z <= 0.0 {

@@ -24,7 +24,7 @@ use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 ///
 /// where F = F(wo·wm) is the exact dielectric Fresnel term (in `eval` evaluated from both
 /// microfacet cosines, see [`fresnel_dielectric_pair`]), D_wo the density of sampled normals
-/// ([`Microfacet::normal_pdf`]: visible from `wo` for GGX, D·cos θₘ for Beckmann), and the lobe is chosen with probability F(wo·wm) at λ₀. Microfacets facing away from
+/// ([`Microfacet::normal_pdf`]: the normals visible from `wo`), and the lobe is chosen with probability F(wo·wm) at λ₀. Microfacets facing away from
 /// either direction contribute nothing.
 ///
 /// The half vector, and hence the transmission direction, uses the hero wavelength's η: a
@@ -265,7 +265,7 @@ impl RoughDielectric {
         let eta = self.eta(w.lambda[0]);
         let wm = mf.sample_normal(wo, u);
         if wo.dot(wm) * wo.z <= 0.0 {
-            return None; // a back-facing normal (Beckmann samples D·cos, not visible normals)
+            return None; // a back-facing normal (only at grazing views, from rounding)
         }
         let r = fresnel_dielectric(wo.dot(wm), eta);
         let (wi, transmission, etap) = if uc < r {
