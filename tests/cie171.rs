@@ -21,34 +21,10 @@ fn report(case: &str, got: f64, want: f64, tol: f64) {
     assert!(rel.abs() < tol, "{case}: {got} vs {want}");
 }
 
-/// A black floor and a camera, then `rest`.
-fn floor(rest: &str) -> String {
-    format!(
-        r#"
-[camera]
-eye = [0, 5, 5]
-target = [0, 0, 0]
-fov = "40 deg"
-[film]
-width = 8
-height = 8
-spp = 1
-[materials.black]
-type = "diffuse"
-reflectance = 0
-[[shapes]]
-type = "rectangle"
-material = "black"
-transform = [{{ scale = 30 }}, {{ rotate = {{ axis = [1, 0, 0], angle = "-90 deg" }} }}]
-{rest}
-"#
-    )
-}
-
 /// §5.2-type: a point source of intensity I above a plane: E = I cos³θ / h².
 #[test]
 fn point_source_illuminance() {
-    let scene = scene_from(&floor(
+    let scene = scene_from(&support::render::black_floor(
         "[[lights]]\ntype = \"point\"\nposition = [0, 2.5, 0]\nspectrum = \"cie-a\"\nintensity = \"800 cd\"\n\
          [[sensors]]\ntype = \"grid\"\ncorner = [0, 0, 0]\nedge_u = [0, 0, 4]\nedge_v = [4, 0, 0]\ncount = [4, 4]\n",
     ));
@@ -69,7 +45,7 @@ fn point_source_illuminance() {
 #[test]
 fn area_source_illuminance() {
     let (l, r, h) = (5000.0, 0.3, 1.2);
-    let scene = scene_from(&floor(&format!(
+    let scene = scene_from(&support::render::black_floor(&format!(
         "[[shapes]]\ntype = \"disk\"\ntransform = [{{ scale = {r} }}, {{ rotate = {{ axis = [1, 0, 0], angle = \"90 deg\" }} }}, {{ translate = [0, {h}, 0] }}]\nemission = {{ spectrum = \"cie-d65\", luminance = \"{l} cd/m^2\" }}\n\
          [[sensors]]\ntype = \"point\"\nposition = [0, 0, 0]\nnormal = [0, 1, 0]\n"
     )));

@@ -206,27 +206,11 @@ emission = { radiance = "1 W/m^2/sr" }
 /// the TOML and each lamp as (centre, radius (0: point), band power W).
 fn many_lamps(n: usize, selection: &str) -> (String, Vec<(Vec3, f64, f64)>) {
     let mut rng = Rng::new(25);
-    let mut toml = format!(
-        r#"
-[camera]
-eye = [0, 5, 5]
-target = [0, 0, 0]
-fov = "40 deg"
-[film]
-width = 8
-height = 8
-spp = 1
-[integrator]
+    let mut toml = support::render::black_floor(&format!(
+        r#"[integrator]
 type = "path"
 max_depth = 2
 light_selection = "{selection}"
-[materials.black]
-type = "diffuse"
-reflectance = 0
-[[shapes]]
-type = "rectangle"
-material = "black"
-transform = [{{ scale = 20 }}, {{ rotate = {{ axis = [1, 0, 0], angle = "-90 deg" }} }}]
 [[sensors]]
 type = "grid"
 name = "floor"
@@ -235,7 +219,7 @@ edge_u = [0, 0, 10]
 edge_v = [10, 0, 0]
 count = [8, 8]
 "#
-    );
+    ));
     let mut lamps = Vec::new();
     let step = 12.0 / n as f32;
     for i in 0..n {

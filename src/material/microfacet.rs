@@ -75,15 +75,7 @@ impl Ggx {
     /// [`Ggx::sample_visible_normal`].
     #[inline]
     pub fn visible_normal_pdf(&self, w: Vec3, wm: Vec3) -> f32 {
-        if w.z == 0.0 {
-            return 0.0;
-        }
-        let wu = if w.z < 0.0 { -w } else { w };
-        let c = wu.dot(wm);
-        if c <= 0.0 {
-            return 0.0;
-        }
-        self.g1(w) / wu.z * self.d(wm) * c
+        visible_pdf(w, wm, |w| self.lambda(w), |wm| self.d(wm))
     }
 
     /// Samples a microfacet normal (on the +z side) from the distribution of normals visible from
@@ -140,6 +132,22 @@ fn erfc_parts(x: f64) -> (f64, f64) {
             + t * (-0.284_496_736
                 + t * (1.421_413_741 + t * (-1.453_152_027 + t * 1.061_405_429))));
     (poly, (-x * x).exp())
+}
+
+/// The density of normals visible from `w` (either side, ŵ its +z image) for a distribution
+/// of Smith Λ `lambda` and normals `d`: D_w(wm) = G1(w)/cos θ̂ · D(wm) · ⟨ŵ, wm⟩₊ with
+/// G1 = 1/(1 + Λ), sr⁻¹ of `wm` (Heitz 2018, eq. 1).
+#[inline]
+fn visible_pdf(w: Vec3, wm: Vec3, lambda: impl Fn(Vec3) -> f32, d: impl Fn(Vec3) -> f32) -> f32 {
+    if w.z == 0.0 {
+        return 0.0;
+    }
+    let wu = if w.z < 0.0 { -w } else { w };
+    let c = wu.dot(wm);
+    if c <= 0.0 {
+        return 0.0;
+    }
+    1.0 / (1.0 + lambda(w)) / wu.z * d(wm) * c
 }
 
 /// erf(x) from [`erfc_parts`] (absolute error ≤ 1.5·10⁻⁷), odd.
@@ -322,8 +330,8 @@ impl Microfacet {
 
     /// Samples a microfacet normal on the +z side from the distribution of normals visible from
     /// `w` (either side; the −z side is mirrored). GGX: [`Ggx::sample_visible_normal`];
-    /// Beckmann: stretch the view to α = 1, sample the visible slopes there
-    /// ([`beckmann_visible_slopes`]), turn them to the view's azimuth, unstretch (Heitz & d'Eon
+    /// Beckmann: stretch the view to α = 1, sample the visible slopes there (the slope CDF
+    /// inverted by Newton steps in the erf domain), turn them to the view's azimuth, unstretch (Heitz & d'Eon
     /// 2014, §4; Mitsuba 3 samples Beckmann's visible normals by default too).
     #[inline]
     pub fn sample_normal(&self, w: Vec3, u: Vec2) -> Vec3 {
@@ -359,17 +367,7 @@ impl Microfacet {
     pub fn normal_pdf(&self, w: Vec3, wm: Vec3) -> f32 {
         match self.kind {
             Distribution::Ggx => self.ggx().visible_normal_pdf(w, wm),
-            Distribution::Beckmann => {
-                if w.z == 0.0 {
-                    return 0.0;
-                }
-                let wu = if w.z < 0.0 { -w } else { w };
-                let c = wu.dot(wm);
-                if c <= 0.0 {
-                    return 0.0;
-                }
-                self.d(wm) * c / (wu.z * (1.0 + self.lambda(w)))
-            }
+            Distribution::Beckmann => visible_pdf(w, wm, |w| self.lambda(w), |wm| self.d(wm)),
         }
     }
 }

@@ -142,3 +142,28 @@ pub fn measure(scene: &Scene, samples: u32, seed: u32) -> Vec<spectrace::render:
         .map(|r| r.expect("complete"))
         .collect()
 }
+
+/// TOML: a black 60 m floor (y = 0) seen by an 8 × 8 camera, then `rest` (the meters and
+/// lights of a measurement).
+pub fn black_floor(rest: &str) -> String {
+    format!(
+        r#"
+[camera]
+eye = [0, 5, 5]
+target = [0, 0, 0]
+fov = "40 deg"
+[film]
+width = 8
+height = 8
+spp = 1
+[materials.black]
+type = "diffuse"
+reflectance = 0
+[[shapes]]
+type = "rectangle"
+material = "black"
+transform = [{{ scale = 30 }}, {{ rotate = {{ axis = [1, 0, 0], angle = "-90 deg" }} }}]
+{rest}
+"#
+    )
+}

@@ -139,7 +139,7 @@ impl Shape {
 
     /// A point of the shape seen from `p`, for next-event estimation, with the direction to it
     /// and its density with respect to solid angle at `p`, sr⁻¹ ([`SolidAngleSample`]). Spheres
-    /// seen from outside sample the cone of directions they subtend ([`Sphere::sample_cone`]),
+    /// seen from outside sample the cone of directions they subtend (pbrt-v4 §6.2.4),
     /// so no sample falls on the far side; every other case samples by area
     /// ([`Shape::sample_area`]) and converts, pdf_ω = pdf_A · r² / |cos θ_light| (Veach 1997,
     /// eq. 8.10). The density is the one [`Shape::pdf_solid_angle`] gives. None for a
