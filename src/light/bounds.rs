@@ -195,11 +195,6 @@ impl Importance {
         } else {
             Vec3::Z
         };
-        let mut cos_w = self.w.dot(wi);
-        if self.two_sided {
-            cos_w = cos_w.abs();
-        }
-        let sin_w = (1.0 - cos_w * cos_w).max(0.0).sqrt();
         // the cone of directions from p that the box's bounding sphere subtends
         let (sin_b, cos_b) = if d2p <= self.radius2 {
             (0.0, -1.0)
@@ -207,10 +202,21 @@ impl Importance {
             let s2 = self.radius2 / d2p;
             (s2.sqrt(), (1.0 - s2).max(0.0).sqrt())
         };
-        let (cos_o, sin_o) = (self.cos_o, self.sin_o);
-        let cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, cos_o);
-        let sin_x = sin_sub_clamped(sin_w, cos_w, sin_o, cos_o);
-        let cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
+        let cos_p = if self.cos_o <= -1.0 {
+            // a normal cone of every direction holds the direction toward p: θ' = 0 (what the
+            // general case gives exactly, without its square roots; points and spheres)
+            1.0
+        } else {
+            let mut cos_w = self.w.dot(wi);
+            if self.two_sided {
+                cos_w = cos_w.abs();
+            }
+            let sin_w = (1.0 - cos_w * cos_w).max(0.0).sqrt();
+            let (cos_o, sin_o) = (self.cos_o, self.sin_o);
+            let cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, cos_o);
+            let sin_x = sin_sub_clamped(sin_w, cos_w, sin_o, cos_o);
+            cos_sub_clamped(sin_x, cos_x, sin_b, cos_b)
+        };
         if cos_p <= self.cos_e {
             return 0.0;
         }
