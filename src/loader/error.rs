@@ -47,21 +47,34 @@ impl<'a> SourceMap<'a> {
                 col: col as u32,
             };
         }
-        let starts = self.line_starts.get_or_init(|| {
-            std::iter::once(0)
-                .chain(self.text.match_indices('\n').map(|(i, _)| i + 1))
-                .collect()
-        });
-        // the last line start at or before `at`
-        let line = starts.partition_point(|&s| s <= at);
-        let col = self.text[starts[line - 1]..at].chars().count() + 1;
-        Loc {
-            line: line as u32,
-            col: col as u32,
-        }
+        loc_in(
+            self.text,
+            self.line_starts.get_or_init(|| line_starts(self.text)),
+            at,
+        )
     }
     pub fn span(&self, span: &Range<usize>) -> Loc {
         self.loc(span.start)
+    }
+}
+
+/// Byte offsets of the starts of `text`'s lines, for [`loc_in`].
+pub fn line_starts(text: &str) -> Vec<usize> {
+    std::iter::once(0)
+        .chain(text.match_indices('\n').map(|(i, _)| i + 1))
+        .collect()
+}
+
+/// Line and column (1-based, columns in characters) of byte offset `at` of `text`, whose
+/// [`line_starts`] are `starts`: O(log lines + the line's length).
+pub fn loc_in(text: &str, starts: &[usize], at: usize) -> Loc {
+    let at = floor_char_boundary(text, at.min(text.len()));
+    // the last line start at or before `at`
+    let line = starts.partition_point(|&s| s <= at);
+    let col = text[starts[line - 1]..at].chars().count() + 1;
+    Loc {
+        line: line as u32,
+        col: col as u32,
     }
 }
 

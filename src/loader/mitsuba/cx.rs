@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use super::xml::Element;
-use crate::loader::error::{LoadError, SourceMap};
+use crate::loader::error::{LoadError, SourceMap, line_starts, loc_in};
 use crate::spectrum::named::{Named, lookup};
 use crate::spectrum::{PiecewiseLinear, Spectrum};
 
@@ -107,20 +107,26 @@ pub(super) struct Cx<'a> {
     pub(super) notes: std::cell::RefCell<Vec<(String, String)>>,
     /// BSDFs being converted, nested (through `ref`s too): bounds a reference cycle.
     pub(super) bsdf_depth: std::cell::Cell<u32>,
+    /// Line starts of each source (by index into `sources`), found on its first location:
+    /// every shape records one, and scanning from the file's start each time was quadratic.
+    pub(super) line_starts: std::cell::RefCell<HashMap<usize, Vec<usize>>>,
 }
 
 impl Cx<'_> {
     pub(super) fn err(&self, e: &Element, msg: impl Into<String>) -> LoadError {
-        let (file, text) = &self.sources[e.src];
+        let file = &self.sources[e.src].0;
         let field = match e.attr("name") {
             Some(n) => format!("<{} name=\"{n}\">", e.tag),
             None => format!("<{}>", e.tag),
         };
-        LoadError::new(file, SourceMap::new(text).loc(e.pos), field, msg)
+        LoadError::new(file, self.loc(e), field, msg)
     }
 
     pub(super) fn loc(&self, e: &Element) -> crate::loader::Loc {
-        SourceMap::new(&self.sources[e.src].1).loc(e.pos)
+        let text = &self.sources[e.src].1;
+        let mut cache = self.line_starts.borrow_mut();
+        let starts = cache.entry(e.src).or_insert_with(|| line_starts(text));
+        loc_in(text, starts, e.pos)
     }
 
     /// A relative file name as Mitsuba's file resolver finds it: the first of the search

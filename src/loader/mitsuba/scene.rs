@@ -32,6 +32,7 @@ pub(super) fn scene(
         search: vec![path.parent().map(Path::to_path_buf).unwrap_or_default()],
         notes: Default::default(),
         bsdf_depth: Default::default(),
+        line_starts: Default::default(),
     };
     if root.tag != "scene" {
         return Err(cx.err(&root, "the root element must be <scene>"));
