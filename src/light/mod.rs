@@ -384,7 +384,7 @@ impl Light {
 
     /// Bounds of the light's emission for the light tree, with power `phi` (W, as
     /// [`Light::power`] gives); None for the lights the tree does not hold (at infinity, or a
-    /// beam, whose reach is a cylinder), which are chosen by power beside it.
+    /// beam, whose reach is a cylinder), which are chosen beside it ([`LightTree`]).
     pub fn bounds(&self, shapes: &[Shape], phi: f32) -> Option<LightBounds> {
         match self {
             Light::Point(l) => Some(l.bounds(phi)),

@@ -39,11 +39,8 @@ pub struct LightTree {
     /// Per light: (branch bits from the root, least significant first, 1 = second child;
     /// depth) if it is in the tree.
     trail: Vec<Option<(u64, u32)>>,
-    /// Lights outside the tree, their cumulative probabilities within the group (uniform).
+    /// Lights outside the tree, each chosen with probability `p_other / others.len()`.
     others: Vec<u32>,
-    others_cdf: Vec<f64>,
-    /// Probability of each light within the other group (0 for tree lights).
-    other_prob: Vec<f32>,
     /// Probability of choosing the other group.
     p_other: f64,
     /// Per light, the probability of a choice that ignores position: the groups as above,
@@ -60,7 +57,6 @@ impl LightTree {
         let n = bounds.len();
         let mut t = LightTree {
             trail: vec![None; n],
-            other_prob: vec![0.0; n],
             ..Default::default()
         };
         let mut items: Vec<(u32, LightBounds)> = Vec::new();
@@ -79,10 +75,6 @@ impl LightTree {
             }
         }
         let m = t.others.len() as f64;
-        for (k, &i) in t.others.iter().enumerate() {
-            t.others_cdf.push((k + 1) as f64 / m);
-            t.other_prob[i as usize] = (1.0 / m) as f32;
-        }
         t.p_other = if items.is_empty() { 1.0 } else { m / (m + 1.0) };
         t.free = vec![0.0; n];
         for &(i, _) in &items {
@@ -148,11 +140,6 @@ impl LightTree {
         u
     }
 
-    /// Whether next-event estimation has any light to pick.
-    pub fn is_empty(&self) -> bool {
-        self.nodes.is_empty() && self.others.is_empty()
-    }
-
     /// A light for the shading point `p` (normal `n`, or zero), its probability, and `u`
     /// rescaled to a fresh uniform number in [0, 1). None if no light can contribute.
     #[inline]
@@ -160,18 +147,16 @@ impl LightTree {
         if let Some(i) = self.single {
             return Some((i as usize, 1.0, u));
         }
+        if self.nodes.is_empty() && self.others.is_empty() {
+            return None; // no light emits
+        }
         let mut u = u as f64;
         if u < self.p_other {
-            u /= self.p_other;
-            let k = self
-                .others_cdf
-                .partition_point(|&c| c <= u)
-                .min(self.others.len() - 1);
-            let lo = if k == 0 { 0.0 } else { self.others_cdf[k - 1] };
-            let hi = self.others_cdf[k];
+            // uniform among the others: the integer part picks, the fraction is reused
+            let x = u / self.p_other * self.others.len() as f64;
+            let k = (x as usize).min(self.others.len() - 1);
             let i = self.others[k] as usize;
-            let pr = self.p_other * (hi - lo);
-            return Some((i, pr as f32, unit((u - lo) / (hi - lo))));
+            return Some((i, self.free[i] as f32, unit(x - k as f64)));
         }
         u = (u - self.p_other) / (1.0 - self.p_other);
         let mut pmf = 1.0 - self.p_other;
@@ -202,12 +187,9 @@ impl LightTree {
         if let Some(i) = self.single {
             return if i as usize == light { 1.0 } else { 0.0 };
         }
-        let op = self.other_prob[light];
-        if op > 0.0 {
-            return (self.p_other * op as f64) as f32;
-        }
         let Some((bits, depth)) = self.trail[light] else {
-            return 0.0;
+            // one of the others (its position-free probability is its pick's), or none
+            return self.free[light] as f32;
         };
         let mut pmf = 1.0 - self.p_other;
         let mut node = 0usize;
@@ -264,12 +246,9 @@ fn split(items: &mut [(u32, LightBounds)]) -> usize {
         if !(a1 > a0) {
             continue;
         }
-        let bucket = |b: &LightBounds| {
-            (((b.centroid()[axis] - a0) / (a1 - a0) * BUCKETS as f32) as usize).min(BUCKETS - 1)
-        };
         let mut buckets: [Option<LightBounds>; BUCKETS] = [None; BUCKETS];
         for (_, b) in items.iter() {
-            let k = bucket(b);
+            let k = bucket(b, axis, a0, a1);
             buckets[k] = Some(match buckets[k] {
                 Some(x) => x.union(b),
                 None => *b,
@@ -297,11 +276,7 @@ fn split(items: &mut [(u32, LightBounds)]) -> usize {
         Some((_, axis, cut)) => {
             // the same bucketing as above decides the side
             let (a0, a1) = (clo[axis], chi[axis]);
-            let side = |b: &LightBounds| {
-                (((b.centroid()[axis] - a0) / (a1 - a0) * BUCKETS as f32) as usize).min(BUCKETS - 1)
-                    < cut
-            };
-            partition(items, side)
+            partition(items, |b| bucket(b, axis, a0, a1) < cut)
         }
         None => 0,
     };
@@ -310,6 +285,12 @@ fn split(items: &mut [(u32, LightBounds)]) -> usize {
     } else {
         mid
     }
+}
+
+/// The bucket of `b`'s centroid along `axis`, whose centroids span [a0, a1] (a0 < a1).
+#[inline]
+fn bucket(b: &LightBounds, axis: usize, a0: f32, a1: f32) -> usize {
+    (((b.centroid()[axis] - a0) / (a1 - a0) * BUCKETS as f32) as usize).min(BUCKETS - 1)
 }
 
 /// Orders `items` along the widest axis of their centroids and returns the middle.
@@ -370,6 +351,17 @@ mod tests {
             .collect();
         let p = (0..n).map(|i| 1.0 + i as f64).collect();
         (b, p)
+    }
+
+    #[test]
+    fn no_emitting_light_picks_nothing() {
+        let t = LightTree::build(
+            &[Some(LightBounds::point(Vec3::ZERO, 0.0)), None],
+            &[0.0, 0.0],
+        );
+        assert_eq!(t.pick(Vec3::X, Vec3::ZERO, 0.3), None);
+        assert_eq!(t.pmf(Vec3::X, Vec3::ZERO, 0), 0.0);
+        assert_eq!(t.pmf(Vec3::X, Vec3::ZERO, 1), 0.0);
     }
 
     #[test]
