@@ -20,11 +20,10 @@ impl fmt::Display for Loc {
 /// Maps byte offsets of a source text to lines and columns.
 pub struct SourceMap<'a> {
     text: &'a str,
-    /// Byte offsets of the line starts, found on the second lookup (a loader asks for the
+    /// Byte offsets of the line starts, found on the first lookup (a loader asks for the
     /// location of every item: counting lines from the start each time was quadratic, 1.1 G
-    /// instructions for a file of 1024 lights); a map asked once scans as before.
+    /// instructions for a file of 1024 lights).
     line_starts: std::cell::OnceCell<Vec<usize>>,
-    asked: std::cell::Cell<bool>,
 }
 
 impl<'a> SourceMap<'a> {
@@ -32,21 +31,10 @@ impl<'a> SourceMap<'a> {
         Self {
             text,
             line_starts: std::cell::OnceCell::new(),
-            asked: std::cell::Cell::new(false),
         }
     }
     /// Line and column (1-based, columns in characters) of byte offset `at`.
     pub fn loc(&self, at: usize) -> Loc {
-        let at = floor_char_boundary(self.text, at.min(self.text.len()));
-        if !self.asked.replace(true) {
-            let before = &self.text[..at];
-            let line = before.matches('\n').count() + 1;
-            let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-            return Loc {
-                line: line as u32,
-                col: col as u32,
-            };
-        }
         loc_in(
             self.text,
             self.line_starts.get_or_init(|| line_starts(self.text)),
