@@ -147,12 +147,13 @@ impl Shape {
     /// density).
     #[inline]
     pub fn sample_solid_angle(&self, p: Vec3, u: Vec2) -> Option<SolidAngleSample> {
-        let (s, pdf) = match self {
+        // the cone's density, or None: sampled by area, converted below
+        let (s, cone_pdf) = match self {
             Shape::Sphere(sph) => match sph.sample_cone(p, u) {
-                Some(found) => found,
-                None => (self.sample_area(u), f32::NAN),
+                Some((s, pdf)) => (s, Some(pdf)),
+                None => (self.sample_area(u), None),
             },
-            _ => (self.sample_area(u), f32::NAN),
+            _ => (self.sample_area(u), None),
         };
         let d = s.p - p;
         let r2 = d.length_squared();
@@ -162,12 +163,7 @@ impl Shape {
         let distance = r2.sqrt();
         let wi = d / distance;
         let cos_light = s.n.dot(-wi);
-        // NaN: sampled by area, converted here
-        let pdf = if pdf.is_nan() {
-            s.pdf_area * r2 / cos_light.abs()
-        } else {
-            pdf
-        };
+        let pdf = cone_pdf.unwrap_or_else(|| s.pdf_area * r2 / cos_light.abs());
         (pdf.is_finite() && cos_light != 0.0).then_some(SolidAngleSample {
             s,
             wi,

@@ -185,8 +185,9 @@ impl Sphere {
         }
     }
 
-    /// sin²θ_max and 1 − cos θ_max of the cone of directions the sphere subtends seen from
-    /// `p`, or None when `p` is inside or on the sphere; then the caller samples by area.
+    /// The squared distance from `p` to the centre, m², and sin²θ_max and 1 − cos θ_max of the
+    /// cone of directions the sphere subtends seen from `p`; None when `p` is inside or on the
+    /// sphere, where the caller samples by area.
     ///
     /// "On" is within 4·10⁻⁶ of the largest coordinate magnitude (about 64 f32 ulps): a point
     /// computed on the sphere's inside (a closed emitting sphere lighting itself) may round to
@@ -196,7 +197,7 @@ impl Sphere {
     /// For small cones 1 − cos θ_max would cancel in f32 (pbrt-v4 §6.2.4 switches to a series
     /// below sin²θ_max ≈ 6.9·10⁻⁴), so it is computed as sin²θ_max / (1 + cos θ_max) everywhere.
     #[inline]
-    fn cone(&self, p: Vec3) -> Option<(f32, f32)> {
+    fn cone(&self, p: Vec3) -> Option<(f32, f32, f32)> {
         let d2 = (p - self.center).length_squared();
         let r2 = self.radius * self.radius;
         let slack =
@@ -206,7 +207,7 @@ impl Sphere {
         }
         let sin2_max = r2 / d2;
         let cos_max = (1.0 - sin2_max).max(0.0).sqrt();
-        Some((sin2_max, sin2_max / (1.0 + cos_max)))
+        Some((d2, sin2_max, sin2_max / (1.0 + cos_max)))
     }
 
     /// A point on the part of the sphere visible from `p`, its direction uniform in the cone the
@@ -222,9 +223,8 @@ impl Sphere {
     /// the surface; this form stays accurate there.
     #[inline(never)]
     pub(crate) fn sample_cone(&self, p: Vec3, u: Vec2) -> Option<(SurfaceSample, f32)> {
-        let (sin2_max, one_minus_cos_max) = self.cone(p)?;
+        let (d2, sin2_max, one_minus_cos_max) = self.cone(p)?;
         let to_c = self.center - p;
-        let d2 = to_c.length_squared();
         let d = d2.sqrt();
         let omc = u.x * one_minus_cos_max;
         let sin2_t = (omc * (2.0 - omc)).max(0.0);
@@ -254,7 +254,7 @@ impl Sphere {
     /// The density of [`Sphere::sample_cone`] from `p` with respect to solid angle, sr⁻¹, or
     /// None when `p` is inside or on the sphere (area sampling applies there).
     pub(crate) fn pdf_cone(&self, p: Vec3) -> Option<f32> {
-        let (_, one_minus_cos_max) = self.cone(p)?;
+        let (_, _, one_minus_cos_max) = self.cone(p)?;
         Some(1.0 / (2.0 * PI * one_minus_cos_max))
     }
 }
