@@ -36,6 +36,7 @@ mod blend;
 mod bsdf;
 mod conductor;
 mod dielectric;
+mod erf;
 pub mod fresnel;
 mod lambert;
 mod mask;
