@@ -20,7 +20,7 @@ fn curve(name: &str) -> Spectrum {
 fn bench(c: &mut Criterion) {
     let sampler = WavelengthSampler::visible(WavelengthRange::default());
     let ws: Vec<_> = (0..1024)
-        .map(|i| sampler.sample::<4>((i as f32 + 0.5) / 1024.0))
+        .map(|i| sampler.sample::<4>((i as f32 + 0.5) / 1024.0, 0.5))
         .collect();
 
     let mut g = c.benchmark_group("sample_4_wavelengths");
@@ -28,7 +28,10 @@ fn bench(c: &mut Criterion) {
         let mut i = 0u32;
         b.iter(|| {
             i = i.wrapping_add(2_654_435_761);
-            black_box(sampler.sample::<4>(black_box((i >> 8) as f32 / (1u32 << 24) as f32)))
+            black_box(sampler.sample::<4>(
+                black_box((i >> 8) as f32 / (1u32 << 24) as f32),
+                black_box((i & 0xff) as f32 / 256.0),
+            ))
         })
     });
     g.finish();

@@ -26,9 +26,10 @@ fn estimate<const N: usize>(
     s: &Spectrum,
     sampler: &WavelengthSampler,
     u: f32,
+    u_hero: f32,
     terminate: bool,
 ) -> f64 {
-    let mut w = sampler.sample::<N>(u);
+    let mut w = sampler.sample::<N>(u, u_hero);
     if terminate {
         w.terminate_secondary();
     }
@@ -53,7 +54,7 @@ fn check_unbiased(
     let runs = 200_000;
     let (mut sum, mut sum2) = (0.0, 0.0);
     for _ in 0..runs {
-        let e = estimate::<4>(s, sampler, rng.uniform(), terminate);
+        let e = estimate::<4>(s, sampler, rng.uniform(), rng.uniform(), terminate);
         sum += e;
         sum2 += e * e;
     }

@@ -85,8 +85,10 @@ pub(super) fn render(ctx: &Ctx<'_>, snap: Snapshot) -> (Film, RenderStats) {
                             (px / w as u64) as u32,
                             (i / pixels) as u32,
                         );
-                        let mut wl: SampledWavelengths<N_WAVELENGTHS> =
-                            ctx.lambda.sample(s.get_1d());
+                        let mut wl: SampledWavelengths<N_WAVELENGTHS> = {
+                            let u = s.get_2d();
+                            ctx.lambda.sample(u.x, u.y)
+                        };
                         crate::integrator::light::trace(
                             integrator,
                             filter.radius,

@@ -119,7 +119,10 @@ pub fn measure(
                             return None;
                         }
                         let mut s = Sampler::new(opts.seed, i as u32, k, j);
-                        let mut w: SampledWavelengths<N_WAVELENGTHS> = lambda.sample(s.get_1d());
+                        let mut w: SampledWavelengths<N_WAVELENGTHS> = {
+                            let u = s.get_2d();
+                            lambda.sample(u.x, u.y)
+                        };
                         let e = meter::irradiance(&integrator, mp.p, mp.n, &mut w, &mut s);
                         match SampleSums::new(&w, &e, bins.as_ref()) {
                             Some(ss) => {

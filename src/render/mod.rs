@@ -309,7 +309,10 @@ fn camera_sample(
     crate::geometry::Ray,
 ) {
     let mut s = Sampler::new(seed, x, y, i);
-    let wl = lambda.sample(s.get_1d());
+    let wl = {
+        let u = s.get_2d();
+        lambda.sample(u.x, u.y)
+    };
     let offset = filter.sample(s.get_2d());
     let raster = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
     let ray = scene.camera.generate_ray(raster, s.get_2d());
