@@ -26,9 +26,32 @@ pub struct AreaLight {
 impl AreaLight {
     /// Bounds for the light tree: the box of `shape` (this light's), the cone of its front-face
     /// normals (every direction for spheres and cylinders; a mesh with vertex normals, whose
-    /// front face follows them, counts as two-sided), Lambertian emission (θe = π/2), power
-    /// `phi` (W).
+    /// front face follows them, counts as two-sided), Lambertian emission (θe = π/2); `phi` is
+    /// the light's power, W, of which the tree takes 4π times the peak intensity
+    /// ([`LightBounds::phi`]). Per unit radiance that peak is the largest projected area, taken
+    /// as the larger of |Σ Aᵢ nᵢ| (the vector area: A for a flat emitter) and A/4 (a convex
+    /// closed surface's mean projected area, Cauchy: a sphere's πr²), so the tree's φ is
+    /// Φ · 4·max(|Σ Aᵢ nᵢ|, A/4) / (sides · A).
     pub fn bounds(&self, shape: &Shape, phi: f32) -> LightBounds {
+        let area = shape.area();
+        let vector_area = match shape {
+            Shape::Disk(_) => area,
+            Shape::Mesh(m) => {
+                let p = m.positions();
+                let v = m.indices().iter().fold(Vec3::ZERO, |v, t| {
+                    let [a, b, c] = t.map(|i| p[i as usize]);
+                    v + 0.5 * (b - a).cross(c - a)
+                });
+                v.length()
+            }
+            _ => 0.0,
+        };
+        let sides = if self.two_sided { 2.0 } else { 1.0 };
+        let phi = if area > 0.0 {
+            phi * 4.0 * vector_area.max(0.25 * area) / (sides * area)
+        } else {
+            phi
+        };
         let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
         for i in 0..shape.primitive_count() {
             let (a, b) = shape.primitive_aabb(i);
@@ -94,7 +117,8 @@ impl AreaLight {
     }
 
     /// Samples a point of the shape seen from `p` ([`Shape::sample_solid_angle`]: the cone a
-    /// sphere subtends, else uniform by area converted to solid angle). `pdf` is per sr.
+    /// sphere subtends, a one-sided cylinder's wall facing `p`, else uniform by area converted
+    /// to solid angle). `pdf` is per sr.
     pub fn sample_li<const N: usize>(
         &self,
         shapes: &[Shape],
@@ -102,7 +126,7 @@ impl AreaLight {
         w: &SampledWavelengths<N>,
         u: Vec2,
     ) -> Option<LightSample<N>> {
-        let x = shapes[self.shape as usize].sample_solid_angle(p, u)?;
+        let x = shapes[self.shape as usize].sample_solid_angle(p, u, !self.two_sided)?;
         if !self.two_sided && x.cos_light < 0.0 {
             return None;
         }
@@ -121,7 +145,7 @@ impl AreaLight {
     /// Solid-angle density, sr⁻¹, of [`AreaLight::sample_li`] from `p` reaching `p_light`
     /// (normal `n_light`) on `shape` (this light's) along `wi` ([`Shape::pdf_solid_angle`]).
     pub fn pdf_li(&self, shape: &Shape, p: Vec3, wi: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
-        shape.pdf_solid_angle(p, wi, p_light, n_light)
+        shape.pdf_solid_angle(p, wi, p_light, n_light, !self.two_sided)
     }
 
     /// A particle (light tracing, `bdpt`): a point uniform by area on `shape` (this light's)

@@ -99,7 +99,14 @@ pub struct LightBounds {
     /// Axis-aligned box of the emitting points, m.
     pub lo: Vec3,
     pub hi: Vec3,
-    /// Emitted power, W (the power light selection uses; a sum for a cluster).
+    /// 4π times the emitter's largest radiant intensity over directions, W: the power of an
+    /// isotropic emitter as bright as this one in its brightest direction (a sum for a
+    /// cluster). The importance scales by it, so that φ·cos θ'/d² is in proportion to the
+    /// irradiance the light can deliver whatever its kind: for a point light or a sphere it is
+    /// the power; for a one-sided flat emitter, whose intensity peaks at power/π along its
+    /// normal, four times the power. pbrt-v4's `LightBounds` takes the power for area lights
+    /// and 4π·I for point lights, which picks a point light four times too often beside a
+    /// flat lamp of the same contribution (measured in BENCHMARKS.md, issue 25).
     pub phi: f32,
     /// Cone of the emitters' normals (a spot's axis, a surface's normal), θo.
     pub normals: DirectionCone,
@@ -111,7 +118,8 @@ pub struct LightBounds {
 }
 
 impl LightBounds {
-    /// An isotropic emitter at `p` of power `phi`, W (point lights, luminaires).
+    /// An emitter at `p` emitting in every direction, `phi` as in [`LightBounds::phi`], W (for
+    /// an isotropic point light, its power).
     pub fn point(p: Vec3, phi: f32) -> LightBounds {
         LightBounds {
             lo: p,

@@ -212,9 +212,18 @@ pub struct GoniometricLight {
 }
 
 impl GoniometricLight {
-    /// Bounds for the light tree: an emitter of power `phi` (W) at its position, taken as
-    /// isotropic (conservative: its distribution is not bounded more tightly).
+    /// Bounds for the light tree: an emitter at its position, of every direction
+    /// (conservative: its distribution is not bounded more tightly), with `phi` the power, W,
+    /// of which the tree takes 4π times the table's largest intensity
+    /// ([`LightBounds::phi`]): φ · 4π·max(cd) / (the table's flux in lm-equivalent cd·sr).
     pub fn bounds(&self, phi: f32) -> LightBounds {
+        let flux = self.table.luminous_flux();
+        let peak = self.table.cd.iter().fold(0.0f32, |m, &c| m.max(c)) as f64;
+        let phi = if flux > 0.0 {
+            (phi as f64 * 4.0 * std::f64::consts::PI * peak / flux) as f32
+        } else {
+            phi
+        };
         LightBounds::point(self.position, phi)
     }
 

@@ -31,9 +31,19 @@ pub struct ProjectorLight {
 }
 
 impl ProjectorLight {
-    /// Bounds for the light tree: an emitter of power `phi` (W) at its position, taken as
-    /// isotropic (conservative: its distribution is not bounded more tightly).
+    /// Bounds for the light tree: an emitter at its position, of every direction
+    /// (conservative: its frustum is not bounded more tightly), with `phi` the power, W, of
+    /// which the tree takes 4π times the mean intensity over the frustum's solid angle
+    /// 4·asin(sin α·sin β) (α, β its half-angles): [`LightBounds::phi`] with the mean for the
+    /// peak, which the image would only sharpen.
     pub fn bounds(&self, phi: f32) -> LightBounds {
+        let (a, b) = (self.tan_x.atan(), self.tan_y.atan());
+        let omega = 4.0 * (a.sin() * b.sin()).asin();
+        let phi = if omega > 0.0 {
+            phi * 4.0 * std::f32::consts::PI / omega
+        } else {
+            phi
+        };
         LightBounds::point(self.position, phi)
     }
 

@@ -54,8 +54,16 @@ impl SpotLight {
     /// Bounds for the light tree: the axis, full intensity up to the falloff's start (θo) and
     /// light up to the cut-off (θe = total − start, at least 10⁻³ rad so that a hard-edged spot
     /// keeps a non-empty emission cone), power `phi` (W).
+    /// Bounds for the light tree; `phi` is the spot's power, W, of which the tree takes 4π times
+    /// the axial intensity ([`LightBounds::phi`]).
     pub fn bounds(&self, phi: f32) -> LightBounds {
         let theta_e = (self.total - self.falloff_start).max(1e-3);
+        let omega = self.solid_angle_factor();
+        let phi = if omega > 0.0 {
+            (phi as f64 * 4.0 * std::f64::consts::PI / omega) as f32
+        } else {
+            phi
+        };
         LightBounds {
             normals: DirectionCone {
                 w: self.frame.n,

@@ -144,6 +144,55 @@ impl Cylinder {
         }
     }
 
+    /// The arc of the wall that faces `p`, as (φ of its centre, its half-width), rad: from a
+    /// point at distance ρ > r from the axis the points whose outward normal faces it are
+    /// those within acos(r/ρ) of its own φ, at any height (the cross-section is a circle, so
+    /// the segment from `p` to such a point meets the tube only there: it is the first hit).
+    /// None for a flipped cylinder or a point within the radius of the axis.
+    fn facing_arc(&self, p: Vec3) -> Option<(f32, f32)> {
+        if self.flipped {
+            return None;
+        }
+        let local = self.frame.transpose() * (p - self.base);
+        let rho = local.x.hypot(local.y);
+        // a margin above r, so that points on the wall itself are sampled by area
+        if !(rho > self.radius * (1.0 + 1e-4)) {
+            return None;
+        }
+        let half = (self.radius / rho).acos();
+        (half > 0.0).then(|| (local.y.atan2(local.x), half))
+    }
+
+    /// For a one-sided emitter seen from `p`: a point uniform by area on the arc that faces
+    /// `p` ([`Cylinder::facing_arc`]), pdf 1/(2·half·r·ℓ) per m²; None where there is no such
+    /// arc (sample by area instead). The rest of the wall faces away and emits nothing toward
+    /// `p`.
+    pub(crate) fn sample_facing(&self, p: Vec3, u: Vec2) -> Option<SurfaceSample> {
+        let (centre, half) = self.facing_arc(p)?;
+        let mut phi = centre + half * (2.0 * u.x - 1.0);
+        if phi < 0.0 {
+            phi += 2.0 * PI;
+        }
+        if phi >= 2.0 * PI {
+            phi -= 2.0 * PI;
+        }
+        let (q, p_error, n) = self.surface_point(phi, u.y * self.length);
+        Some(SurfaceSample {
+            p: q,
+            p_error,
+            n,
+            pdf_area: 1.0 / (2.0 * half * self.radius * self.length),
+            uv: Vec2::new(phi / (2.0 * PI), u.y),
+        })
+    }
+
+    /// The area density, m⁻², of [`Cylinder::sample_facing`] from `p` at any point of the
+    /// facing arc; None where it samples by area.
+    pub(crate) fn pdf_facing(&self, p: Vec3) -> Option<f32> {
+        let (_, half) = self.facing_arc(p)?;
+        Some(1.0 / (2.0 * half * self.radius * self.length))
+    }
+
     /// A point uniform by area, pdf 1/area.
     pub(crate) fn sample_area(&self, u: Vec2) -> SurfaceSample {
         let (p, p_error, n) = self.surface_point(2.0 * PI * u.x, u.y * self.length);

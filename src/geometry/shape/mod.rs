@@ -140,19 +140,30 @@ impl Shape {
     /// A point of the shape seen from `p`, for next-event estimation, with the direction to it
     /// and its density with respect to solid angle at `p`, sr⁻¹ ([`SolidAngleSample`]). Spheres
     /// seen from outside sample the cone of directions they subtend (pbrt-v4 §6.2.4),
-    /// so no sample falls on the far side; every other case samples by area
-    /// ([`Shape::sample_area`]) and converts, pdf_ω = pdf_A · r² / |cos θ_light| (Veach 1997,
-    /// eq. 8.10). The density is the one [`Shape::pdf_solid_angle`] gives. None for a
-    /// degenerate sample (the point at `p`, a direction along the surface, a non-finite
-    /// density).
+    /// so no sample falls on the far side; when only the side the normal points to matters
+    /// (`one_sided`: a one-sided emitter), a cylinder seen from outside samples the arc of its
+    /// wall that faces `p` ([`Cylinder`]'s `sample_facing`), which the rest of the wall hides;
+    /// every other case samples by area ([`Shape::sample_area`]). Points sampled by area are
+    /// converted, pdf_ω = pdf_A · r² / |cos θ_light| (Veach 1997, eq. 8.10). The density is the
+    /// one [`Shape::pdf_solid_angle`] gives with the same `one_sided`. None for a degenerate
+    /// sample (the point at `p`, a direction along the surface, a non-finite density).
     #[inline]
-    pub fn sample_solid_angle(&self, p: Vec3, u: Vec2) -> Option<SolidAngleSample> {
+    pub fn sample_solid_angle(
+        &self,
+        p: Vec3,
+        u: Vec2,
+        one_sided: bool,
+    ) -> Option<SolidAngleSample> {
         // the cone's density, or None: sampled by area, converted below
         let (s, cone_pdf) = match self {
             Shape::Sphere(sph) => match sph.sample_cone(p, u) {
                 Some((s, pdf)) => (s, Some(pdf)),
                 None => (self.sample_area(u), None),
             },
+            Shape::Cylinder(c) if one_sided => (
+                c.sample_facing(p, u).unwrap_or_else(|| c.sample_area(u)),
+                None,
+            ),
             _ => (self.sample_area(u), None),
         };
         let d = s.p - p;
@@ -174,21 +185,37 @@ impl Shape {
     }
 
     /// The solid-angle density, sr⁻¹, with which [`Shape::sample_solid_angle`] from `p` picks
-    /// the direction `wi` (unit) toward the point `p_light` of normal `n_light` on this shape.
-    /// Zero for a direction along the surface.
-    pub fn pdf_solid_angle(&self, p: Vec3, wi: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
-        if let Shape::Sphere(s) = self
-            && let Some(pdf) = s.pdf_cone(p)
-        {
-            return pdf;
-        }
-        let area = self.area();
+    /// the direction `wi` (unit) toward the point `p_light` of normal `n_light` on this shape,
+    /// `one_sided` as there. Zero for a direction along the surface, and for a point the
+    /// sampler does not reach (a one-sided cylinder's wall facing away from `p`).
+    pub fn pdf_solid_angle(
+        &self,
+        p: Vec3,
+        wi: Vec3,
+        p_light: Vec3,
+        n_light: Vec3,
+        one_sided: bool,
+    ) -> f32 {
+        let pdf_area = match self {
+            Shape::Sphere(s) => {
+                if let Some(pdf) = s.pdf_cone(p) {
+                    return pdf;
+                }
+                1.0 / self.area()
+            }
+            Shape::Cylinder(c) if one_sided => match c.pdf_facing(p) {
+                Some(_) if n_light.dot(wi) >= 0.0 => return 0.0,
+                Some(pdf) => pdf,
+                None => 1.0 / self.area(),
+            },
+            _ => 1.0 / self.area(),
+        };
         let r2 = (p_light - p).length_squared();
         let cos_l = n_light.dot(-wi).abs();
-        if cos_l == 0.0 || area <= 0.0 {
+        if cos_l == 0.0 || !(pdf_area > 0.0 && pdf_area.is_finite()) {
             return 0.0;
         }
-        r2 / (cos_l * area)
+        pdf_area * r2 / cos_l
     }
 
     /// Number of primitives the BVH indexes: 1 for spheres and disks, triangles for meshes.
