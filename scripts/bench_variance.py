@@ -246,6 +246,8 @@ def main() -> int:
     ap.add_argument("--configs", default="spectrace,mitsuba,cycles")
     ap.add_argument("--save", type=Path, default=None)
     ap.add_argument("--blender-python", default=None)
+    ap.add_argument("--mitsuba-sampler", default="ldsampler",
+                    help="Mitsuba's sampler (ldsampler, independent, stratified, multijitter)")
     a = ap.parse_args()
     if a.blender_python:
         global BLENDER_PY
@@ -270,7 +272,7 @@ def main() -> int:
         mts = None
         if "mitsuba" in configs:
             xml = scene.parent / f".{scene.stem}.ldsampler.xml"
-            xml.write_text(be.rewrite_xml(text, "ldsampler", None))
+            xml.write_text(be.rewrite_xml(text, a.mitsuba_sampler, None))
             mts = be.MitsubaWorker("scalar_spectral", a.threads)
             if not mts.info.get("ready"):
                 skipped.append(f"mitsuba: {mts.info.get('error')}")
@@ -344,7 +346,7 @@ def main() -> int:
         rate = float(np.median([r["samples_per_s"] for r in rs]))
         eff = rate / rv["whole image"]
         summary[c] = {"rel_var": rv, "samples_per_s": rate, "efficiency": eff, "runs": rs}
-        label = {"mitsuba": "Mitsuba 3 scalar_spectral + ldsampler"}.get(c, c)
+        label = {"mitsuba": f"Mitsuba 3 scalar_spectral + {a.mitsuba_sampler}"}.get(c, c)
         print(f"| {label} | " + " | ".join(f"{rv[n]:.4g}" for n in names)
               + f" | {rate / 1e6:.3f} | {eff:.4g} |")
     for s in skipped:
