@@ -7,8 +7,9 @@ use std::path::Path;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use glam::{Vec2, Vec3};
+use spectrace::build::build;
 use spectrace::geometry::{Ray, spawn_ray_to};
-use spectrace::scene::{Scene, build};
+use spectrace::scene::Scene;
 
 fn cornell(extra: &str) -> Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell.toml");

@@ -13,7 +13,7 @@ use spectrace::render::{RenderOptions, render};
 fn bench(c: &mut Criterion) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell.toml");
     let scene =
-        spectrace::scene::build(&spectrace::loader::load(&path).expect("loads")).expect("builds");
+        spectrace::build::build(&spectrace::loader::load(&path).expect("loads")).expect("builds");
     let mut g = c.benchmark_group("cornell_512");
     g.sample_size(10);
     g.throughput(Throughput::Elements(512 * 512));

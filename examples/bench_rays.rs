@@ -117,7 +117,7 @@ fn load(path: &Path, size: u32) -> Scene {
     });
     desc.film.width = size;
     desc.film.height = size;
-    spectrace::scene::build(&desc).unwrap_or_else(|e| {
+    spectrace::build::build(&desc).unwrap_or_else(|e| {
         eprintln!("{e}");
         std::process::exit(1)
     })

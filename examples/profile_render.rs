@@ -28,7 +28,7 @@ fn main() {
     });
     let load_secs = t_load.elapsed().as_secs_f64();
     let t_build = Instant::now();
-    let scene = spectrace::scene::build(&desc).unwrap_or_else(|e| {
+    let scene = spectrace::build::build(&desc).unwrap_or_else(|e| {
         eprintln!("{e}");
         std::process::exit(1)
     });

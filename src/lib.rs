@@ -13,8 +13,10 @@
 extern crate uom;
 
 pub mod api;
+pub mod build;
 pub mod cli;
 pub mod colour;
+pub mod data;
 pub mod daylight;
 pub mod falsecolour;
 pub mod files;
@@ -31,6 +33,7 @@ pub mod render;
 pub mod sampler;
 pub mod sampling;
 pub mod scene;
+pub mod sensor;
 pub mod spectrum;
 pub mod texture;
 pub mod units;

@@ -41,16 +41,16 @@ pub struct RenderInfo<'a> {
     pub rel_error: Option<f64>,
     /// The camera's sensor and the cosine of each pixel's chief ray with the optical axis:
     /// adds the sensor's channels (see [`sensor_channels`]).
-    pub sensor: Option<(&'a crate::colour::sensor::CameraSensor, &'a [f32])>,
+    pub sensor: Option<(&'a crate::sensor::CameraSensor, &'a [f32])>,
 }
 
 /// The sensor's channels of `img`: `sensor.H` (photometric exposure, lx·s), raw `sensor.R`,
 /// `sensor.G`, `sensor.B` and, with white balance, `sensor.wb.R/G/B` (see
-/// `crate::colour::sensor`), with the header text that states their units. Camera curves read
+/// `crate::sensor`), with the header text that states their units. Camera curves read
 /// the spectral bins (the caller renders with them).
 pub fn sensor_channels(
     img: &Image,
-    sensor: &crate::colour::sensor::CameraSensor,
+    sensor: &crate::sensor::CameraSensor,
     cos_theta: &[f32],
 ) -> (Vec<(String, Vec<f32>)>, String) {
     let n = img.width * img.height;
@@ -101,10 +101,10 @@ pub fn sensor_channels(
     }
     let balance = match &sensor.white_balance {
         None => String::new(),
-        Some((name, crate::colour::sensor::Adaptation::VonKries, _)) => {
+        Some((name, crate::sensor::Adaptation::VonKries, _)) => {
             format!("; sensor.wb.R,G,B: raw balanced to {name} by von Kries in the sensor's space")
         }
-        Some((name, crate::colour::sensor::Adaptation::Bradford, _)) => format!(
+        Some((name, crate::sensor::Adaptation::Bradford, _)) => format!(
             "; sensor.wb.R,G,B: linear sRGB (D65) of the raw values through the sensor's XYZ fit, Bradford-adapted from {name}"
         ),
     };

@@ -32,7 +32,7 @@ fn load_and_build(path: &Path) -> Result<(), String> {
         );
         e.to_string()
     })?;
-    spectrace::scene::build(&desc)
+    spectrace::build::build(&desc)
         .map(|_| ())
         .map_err(|e| e.to_string())
 }
@@ -146,7 +146,7 @@ fn fifos_are_refused_without_blocking() {
             std::fs::write(&p, scene(body)).unwrap();
             let r = spectrace::loader::mitsuba::load(&p, &[]).map_err(|e| e.to_string());
             msgs.push(match r {
-                Ok(desc) => spectrace::scene::build(&desc).err().map(|e| e.to_string()),
+                Ok(desc) => spectrace::build::build(&desc).err().map(|e| e.to_string()),
                 Err(e) => Some(e),
             });
         }

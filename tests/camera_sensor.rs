@@ -170,7 +170,7 @@ fn camera_curves_match_their_source() {
             .split_whitespace()
             .filter_map(|t| t.split_once('=').map(|(_, v)| v.parse().unwrap()))
             .collect();
-        let curves = spectrace::colour::sensor::curves_from_text(&text, file).unwrap();
+        let curves = spectrace::sensor::curves_from_text(&text, file).unwrap();
         for (k, c) in curves.iter().enumerate() {
             let integral = c.integrate(300.0, 900.0, 0.5);
             assert!(

@@ -188,7 +188,7 @@ fn a_forest_stores_its_tree_once() {
     std::fs::write(&path, xml).unwrap();
     let desc = spectrace::loader::load_any(&path, &[]).unwrap();
     assert_eq!((desc.groups.len(), desc.instances.len()), (1, 1000));
-    let scene = spectrace::scene::build(&desc).unwrap();
+    let scene = spectrace::build::build(&desc).unwrap();
     assert_eq!(scene.accel.primitive_count(), 1000, "one box per instance");
     assert!(scene.shapes.is_empty(), "no shape outside the group");
     let (img, _) = support::render::render_with(&scene, |o| o.spp = 4);

@@ -28,7 +28,7 @@ fn scene(body: &str) -> Scene {
     let text = format!("{HEAD}\n{body}");
     let desc = spectrace::loader::load_str(&text, Path::new("inline.toml"))
         .unwrap_or_else(|e| panic!("{e}"));
-    spectrace::scene::build(&desc).unwrap_or_else(|e| panic!("{e}"))
+    spectrace::build::build(&desc).unwrap_or_else(|e| panic!("{e}"))
 }
 
 fn at(l: f32) -> SampledWavelengths<1> {

@@ -483,7 +483,7 @@ fn projector_lights_a_facing_plane_uniformly() {
     )
     .unwrap();
     let desc = spectrace::loader::load_any(&path, &[]).unwrap();
-    let scene = spectrace::scene::build(&desc).unwrap();
+    let scene = spectrace::build::build(&desc).unwrap();
     // `band` integrates the spectral radiance (here constant) over the simulated range
     let range = (scene.wavelengths.max_nm - scene.wavelengths.min_nm) as f64;
     let want = 2.0 * 0.5 / 4.0 * range;

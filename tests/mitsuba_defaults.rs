@@ -64,7 +64,7 @@ fn load(xml: &str) -> SceneDesc {
 
 fn err(xml: &str) -> String {
     match load_str(xml, Path::new("t.xml"), &[]) {
-        Ok(d) => match spectrace::scene::build(&d) {
+        Ok(d) => match spectrace::build::build(&d) {
             Ok(_) => panic!("no error for:\n{xml}"),
             Err(e) => e.to_string(),
         },
@@ -97,7 +97,7 @@ fn env_scene(depth: i32, radiance: &str, shapes: &str) -> String {
 /// Horizontal field of view of the built camera, degrees: the angle between the rays through
 /// the left and right edges of the film's middle row.
 fn built_x_fov(desc: &SceneDesc) -> f64 {
-    let scene = spectrace::scene::build(desc).unwrap_or_else(|e| panic!("{e}"));
+    let scene = spectrace::build::build(desc).unwrap_or_else(|e| panic!("{e}"));
     let (w, h) = (desc.film.width as f32, desc.film.height as f32);
     let ray = |x: f32| {
         scene
@@ -222,7 +222,7 @@ fn max_depth_is_path_length() {
     let mut failures = Vec::new();
     for c in data().max_depth {
         let desc = load(&env_scene(c.max_depth, radiance, rect));
-        let scene = spectrace::scene::build(&desc).unwrap_or_else(|e| panic!("{e}"));
+        let scene = spectrace::build::build(&desc).unwrap_or_else(|e| panic!("{e}"));
         let (mut img, _) = support::render::render_with(&scene, |_| {});
         spectrace::output::to_mitsuba_scale(&mut img);
         let y = |x: usize, yy: usize| img.xyz[yy * 16 + x][1] as f64;

@@ -34,7 +34,7 @@ const PLANE: &str = r#"<scene version="3.0.0">
 
 fn err(xml: &str) -> String {
     match load_str(xml, Path::new("t.xml"), &[]) {
-        Ok(d) => match spectrace::scene::build(&d) {
+        Ok(d) => match spectrace::build::build(&d) {
             Ok(_) => panic!("no error for:\n{xml}"),
             Err(e) => e.to_string(),
         },
@@ -53,7 +53,7 @@ fn point_light_over_plane_on_mitsuba_scale() {
         desc.integrator.max_depth, 1,
         "Mitsuba max_depth 2 = one bounce"
     );
-    let scene = spectrace::scene::build(&desc).unwrap_or_else(|e| panic!("{e}"));
+    let scene = spectrace::build::build(&desc).unwrap_or_else(|e| panic!("{e}"));
     let (mut img, _) = support::render::render_with(&scene, |_| {});
     spectrace::output::to_mitsuba_scale(&mut img);
     for (px, py) in [(16, 16), (5, 20), (28, 3)] {

@@ -155,7 +155,7 @@ fn top_level_emitters_and_samplers_are_referred_to() {
         "{:?}",
         desc.notes
     );
-    spectrace::scene::build(&desc).expect("builds");
+    spectrace::build::build(&desc).expect("builds");
 
     // an area emitter at the top level without an id belongs in a shape
     write(
@@ -235,7 +235,7 @@ fn sheet_render(depth: i32, sheet: &str, spp: u32) -> Vec<f32> {
     );
     let desc =
         spectrace::loader::mitsuba::load_str(&xml, std::path::Path::new("sheet.xml"), &[]).unwrap();
-    let s = spectrace::scene::build(&desc).unwrap();
+    let s = spectrace::build::build(&desc).unwrap();
     let mut o = spectrace::render::RenderOptions::from_scene(&s);
     o.threads = Some(1);
     let cancel = std::sync::atomic::AtomicBool::new(false);

@@ -34,7 +34,7 @@ const SCENE: &str = r#"<scene version="3.0.0">
 fn second_moment_matches_the_variance_across_seeds() {
     let desc = spectrace::loader::mitsuba::load_str(SCENE, Path::new("moment.xml"), &[]).unwrap();
     assert!(desc.integrator.moment);
-    let scene = spectrace::scene::build(&desc).unwrap();
+    let scene = spectrace::build::build(&desc).unwrap();
     assert!(scene.integrator.moment);
     let (img, _) = render_with(&scene, |o| o.threads = Some(2));
     let n_pix = img.xyz.len();

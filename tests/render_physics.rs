@@ -124,7 +124,7 @@ fn blackbody_band_radiance() {
 fn deterministic_across_thread_counts() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell.toml");
     let desc = spectrace::loader::load(&path).unwrap();
-    let mut s = spectrace::scene::build(&desc).unwrap();
+    let mut s = spectrace::build::build(&desc).unwrap();
     s.film.width = 48;
     s.film.height = 48;
     let cam = spectrace::geometry::Camera::perspective_focal(

@@ -2,8 +2,8 @@
 
 use std::path::{Path, PathBuf};
 
+use spectrace::build::build;
 use spectrace::light::Light;
-use spectrace::scene::build;
 
 fn scenes() -> Vec<PathBuf> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
@@ -135,7 +135,7 @@ radiance = "1 W/m^2/sr"
         k,
         MaterialKind::Mask { inner, .. } if matches!(**inner, MaterialKind::Diffuse { .. })
     )));
-    spectrace::scene::build(&d).unwrap();
+    spectrace::build::build(&d).unwrap();
     // a mask of a material that does not exist, or of another mask, is a located error
     let bad = text.replace("material = \"leaf\"", "material = \"lead\"");
     let e = spectrace::loader::load_str(&bad, &path)
@@ -212,7 +212,7 @@ radiance = "1 W/m^2/sr"
         .collect();
     assert!(rough.contains(&Some([0.05, 0.3])), "{rough:?}");
     assert!(rough.contains(&Some([0.2, 0.2])), "{rough:?}");
-    spectrace::scene::build(&d).unwrap();
+    spectrace::build::build(&d).unwrap();
     for (bad, want) in [
         ("roughness = [0.05, 0.3]", "roughness = [0.05]"),
         ("roughness = [0.05, 0.3]", "roughness = [0.05, 1.5]"),
@@ -284,7 +284,7 @@ radiance = "1 W/m^2/sr"
         MaterialKind::Blend { a, b, .. }
             if matches!(**a, MaterialKind::Diffuse { .. }) && matches!(**b, MaterialKind::Conductor { .. })
     )));
-    spectrace::scene::build(&d).unwrap();
+    spectrace::build::build(&d).unwrap();
     for (from, to, want) in [
         (r#"["paint", "gold"]"#, r#"["paint"]"#, "two materials"),
         (

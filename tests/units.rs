@@ -1,9 +1,9 @@
 //! Quantity strings and radiant ↔ luminous conversions.
 
-use spectrace::units::parse::{Dimension, QuantityError, parse, parse_any};
-use spectrace::units::photometry::{
+use spectrace::spectrum::photometry::{
     luminous_efficacy, luminous_flux_monochromatic, radiant_power_monochromatic, radiant_power_of,
 };
+use spectrace::units::parse::{Dimension, QuantityError, parse, parse_any};
 use spectrace::units::*;
 
 #[test]

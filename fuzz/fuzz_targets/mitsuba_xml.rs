@@ -23,6 +23,6 @@ fuzz_target!(|data: &[u8]| {
     if let Ok(desc) =
         spectrace::loader::mitsuba::load_str_with_includes(main, path, &defines, &includes)
     {
-        let _ = spectrace::scene::build(&desc);
+        let _ = spectrace::build::build(&desc);
     }
 });

@@ -11,6 +11,6 @@ fuzz_target!(|data: &[u8]| {
     };
     let path = std::path::Path::new("/nonexistent-spectrace-fuzz/scene.toml");
     if let Ok(desc) = spectrace::loader::load_str(text, path) {
-        let _ = spectrace::scene::build(&desc);
+        let _ = spectrace::build::build(&desc);
     }
 });

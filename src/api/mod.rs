@@ -171,7 +171,7 @@ impl Scene {
 
     fn from_desc(desc: crate::loader::SceneDesc, source: String) -> Result<Scene, Error> {
         // a scene that does not build keeps the loader's notes, which may explain why
-        let inner = crate::scene::build(&desc).map_err(|mut e| {
+        let inner = crate::build::build(&desc).map_err(|mut e| {
             for n in &desc.notes {
                 e.message.push_str(&format!("\nnote: {n}"));
             }

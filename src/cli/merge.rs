@@ -5,9 +5,9 @@ use std::path::PathBuf;
 
 use super::CliError;
 use super::farm::{num_attr, text_attr};
+use crate::film::FilterDesc;
 use crate::film::{Film, Filter, STATE_PREFIX};
 use crate::image_io::read_exr;
-use crate::loader::desc::FilterDesc;
 use crate::output::{RenderInfo, write_png};
 use crate::spectrum::WavelengthRange;
 

@@ -3,7 +3,7 @@
 
 use std::sync::OnceLock;
 
-use crate::spectrum::data::{embedded, embedded_table};
+use crate::data::{embedded, embedded_table};
 
 /// Maximum luminous efficacy K_m, lm/W (683 lm/W exactly at 540 THz = 555.016 nm).
 pub const K_M: f64 = 683.002;

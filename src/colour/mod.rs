@@ -3,5 +3,4 @@
 
 pub mod cie;
 pub mod lab;
-pub mod sensor;
 pub mod spaces;

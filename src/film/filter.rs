@@ -4,8 +4,27 @@
 
 use glam::Vec2;
 
-use crate::loader::desc::FilterDesc;
 use crate::sampling::CdfGuide;
+
+/// A pixel filter as the description states it, in pixels (the build step makes the
+/// [`Filter`] the film samples from it).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FilterDesc {
+    Box,
+    /// Gaussian exp(−x²/2σ²) of standard deviation `sigma` per axis, truncated at `radius`
+    /// (both in pixels): spectrace's native filter, radius 3σ.
+    Gaussian {
+        sigma: f64,
+        radius: f64,
+    },
+    /// Mitsuba 3's `gaussian` rfilter as its scalar variants apply it (src/rfilters/gaussian.cpp,
+    /// src/core/rfilter.cpp): per axis exp(−x²/2σ²) − exp(−r²/2σ²) with r = 4σ, zero beyond r,
+    /// tabulated in 31 steps of |x| over [0, r], each step holding the value at its inner end
+    /// (`eval_discretized`, MI_FILTER_RESOLUTION = 31).
+    MitsubaGaussian {
+        stddev: f64,
+    },
+}
 
 /// A separable pixel filter, sampled per axis by inverting a finely tabulated CDF.
 #[derive(Clone, Debug)]

@@ -16,7 +16,7 @@ mod splats;
 mod state;
 
 pub use exact::{Exact, MAX_TERM};
-pub use filter::Filter;
+pub use filter::{Filter, FilterDesc};
 pub use splats::{Splat, SplatList};
 pub use state::STATE_PREFIX;
 

@@ -111,7 +111,7 @@ impl Film {
 mod tests {
     use super::*;
     use crate::film::Filter;
-    use crate::loader::desc::FilterDesc;
+    use crate::film::FilterDesc;
     use crate::spectrum::WavelengthRange;
 
     /// A list applied to the film adds what the same splats add through a full-image tile

@@ -129,7 +129,7 @@ impl Film {
 mod tests {
     use super::*;
     use crate::film::Filter;
-    use crate::loader::desc::FilterDesc;
+    use crate::film::FilterDesc;
     use crate::spectrum::{SampledSpectrum, SampledWavelengths, WavelengthRange};
 
     /// Channels written and added back into an empty film give the same sums; adding them to

@@ -13,12 +13,12 @@ pub mod meter;
 mod path;
 mod whitted;
 
+pub use crate::scene::{IntegratorKind, LightSelection};
+
 use glam::Vec3;
 
 use crate::geometry::{Frame, Intersection, Ray, spawn_ray, spawn_ray_to};
 use crate::light::LightSample;
-use crate::loader::desc::IntegratorKind;
-use crate::loader::desc::LightSelection;
 use crate::material::{Bsdf, BsdfSample, LocalSurface, TransportMode};
 use crate::sampler::Sampler;
 use crate::scene::Scene;

@@ -11,7 +11,7 @@
 //!   emission spectra: s = 2·max(rgb) and the bounded sigmoid of rgb/s. A lookup blends the four
 //!   sigmoids and, separately, the four s, and multiplies them by the illuminant:
 //!   L(λ) = (Σ wₖ sigmoidₖ(λ)) · (Σ wₖ sₖ) · illuminant(λ), W·m⁻²·sr⁻¹·nm⁻¹. The illuminant
-//!   carries the absolute scale (the build step's table in `scene/build/lights.rs`).
+//!   carries the absolute scale (the build step's table in `build/lights.rs`).
 //! - **Sampling**: a cell between four pixel centres ∝ their mean luminance × sin θ at the
 //!   cell's centre, then a point in it by the bilinear interpolation of their luminance (the
 //!   density follows the map's own bilinear radiance, so it is positive wherever the radiance

@@ -1,5 +1,5 @@
 //! Lights in physical units. Each light is a spectral shape already multiplied by the physical
-//! scale that `scene::build` computed from the scene file (see `scene/build/lights.rs`), so the
+//! scale that `build::build` computed from the scene file (see `build/lights.rs`), so the
 //! spectra here are absolute:
 //!
 //! | light | spectrum unit |
@@ -36,7 +36,7 @@ pub use envmap::EnvMapLight;
 pub use goniometric::{Fold, GoniometricLight, IntensityTable};
 pub use point::PointLight;
 pub use projector::ProjectorLight;
-pub use spot::{SpotLight, SpotTexture};
+pub use spot::{SpotFalloff, SpotLight, SpotTexture};
 pub use tree::LightTree;
 
 use glam::{Vec2, Vec3};

@@ -7,12 +7,20 @@ use glam::Vec3;
 
 use super::LightSample;
 use crate::geometry::Frame;
-use crate::loader::desc::SpotFalloff;
 use crate::spectrum::{SampledWavelengths, Spectrum};
 
 /// A point light emitting `intensity` (W·sr⁻¹·nm⁻¹) along its axis, at full strength inside the
 /// half-angle `falloff_start` (cosine `cos_falloff_start`), falling as `falloff_kind` says to
 /// zero at the half-angle `total` (cosine `cos_total`).
+/// How a spot's intensity falls between `falloff_start` (β) and `cone_angle` (γ).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SpotFalloff {
+    /// smoothstep(cos γ, cos β, cos θ) (pbrt-v4 §12.1.2): spectrace's native spot.
+    SmoothstepCos,
+    /// (γ − θ)/(γ − β), linear in the angle θ: Mitsuba 3's `spot` emitter.
+    LinearAngle,
+}
+
 #[derive(Clone, Debug)]
 pub struct SpotLight {
     /// Position, m.

@@ -1,9 +1,12 @@
 //! The scene description: what the file says, validated, with typed quantities (uom) and the
-//! source location of every item. `scene::build` turns it into a render-ready `Scene`.
+//! source location of every item. `build::build` turns it into a render-ready `Scene`.
 
 use std::path::PathBuf;
 
+pub use crate::film::FilterDesc;
+pub use crate::light::SpotFalloff;
 pub use crate::material::microfacet::Distribution;
+pub use crate::scene::{IntegratorKind, LightSelection};
 use crate::spectrum::Spectrum;
 use crate::spectrum::ior::{ComplexIor, Ior};
 pub use crate::texture::{TexFilter, Wrap};
@@ -88,7 +91,7 @@ pub struct CameraDesc {
     pub loc: Loc,
 }
 
-/// A camera's sensor (see `crate::colour::sensor`).
+/// A camera's sensor (see `crate::sensor`).
 #[derive(Clone, Debug)]
 pub struct CameraSensorDesc {
     /// "cie-1931", a camera's name or a file's.
@@ -99,25 +102,7 @@ pub struct CameraSensorDesc {
     pub shutter: crate::units::Time,
     pub f_number: f64,
     /// The illuminant to balance to (name, spectrum) and how.
-    pub white_balance: Option<(String, Spectrum, crate::colour::sensor::Adaptation)>,
-}
-
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum FilterDesc {
-    Box,
-    /// Gaussian exp(−x²/2σ²) of standard deviation `sigma` per axis, truncated at `radius`
-    /// (both in pixels): spectrace's native filter, radius 3σ.
-    Gaussian {
-        sigma: f64,
-        radius: f64,
-    },
-    /// Mitsuba 3's `gaussian` rfilter as its scalar variants apply it (src/rfilters/gaussian.cpp,
-    /// src/core/rfilter.cpp): per axis exp(−x²/2σ²) − exp(−r²/2σ²) with r = 4σ, zero beyond r,
-    /// tabulated in 31 steps of |x| over [0, r], each step holding the value at its inner end
-    /// (`eval_discretized`, MI_FILTER_RESOLUTION = 31).
-    MitsubaGaussian {
-        stddev: f64,
-    },
+    pub white_balance: Option<(String, Spectrum, crate::sensor::Adaptation)>,
 }
 
 #[derive(Clone, Debug)]
@@ -134,34 +119,6 @@ pub struct FilmDesc {
     pub loc: Loc,
 }
 
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum IntegratorKind {
-    Path,
-    Light,
-    /// Bidirectional path tracing (`integrator::bdpt`).
-    Bdpt,
-    Whitted,
-    /// Mitsuba's `direct`: emission seen directly plus direct lighting at the first hit from
-    /// this many light and BSDF samples, combined by MIS.
-    Direct {
-        emitter_samples: u32,
-        bsdf_samples: u32,
-    },
-}
-
-impl IntegratorKind {
-    /// The name the scene format, the CLI and EXR headers use.
-    pub fn name(self) -> &'static str {
-        match self {
-            IntegratorKind::Path => "path",
-            IntegratorKind::Light => "light",
-            IntegratorKind::Bdpt => "bdpt",
-            IntegratorKind::Whitted => "whitted",
-            IntegratorKind::Direct { .. } => "direct",
-        }
-    }
-}
-
 #[derive(Clone, Debug)]
 pub struct IntegratorDesc {
     pub kind: IntegratorKind,
@@ -174,26 +131,6 @@ pub struct IntegratorDesc {
     /// Also write each pixel's second moment (the mean of the squared sample values), as
     /// Mitsuba's `moment` integrator does around another one.
     pub moment: bool,
-}
-
-/// Probabilities with which next-event estimation (and the light tracer) chooses a light. Either
-/// is unbiased; they differ in noise.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum LightSelection {
-    /// By each light's likely contribution at the shading point, through a tree over the
-    /// lights' bounds ([`crate::light::LightTree`]; pbrt-v4's `BVHLightSampler`): spectrace's
-    /// default, for next-event estimation in `path` and `direct`. Lights at infinity and beams
-    /// are chosen beside the tree, each as likely as the tree (pbrt-v4's rule); the particle
-    /// tracers (`light`, and `bdpt`, whose strategies share their light choice) choose the
-    /// same groups alike and the tree's lights by power.
-    Tree,
-    /// In proportion to emitted power (pbrt-v4's `PowerLightSampler`), best when lights
-    /// differ greatly in power and little in distance.
-    Power,
-    /// Every emitting light alike, or in proportion to its `sampling_weight`: Mitsuba 3's rule
-    /// (weights 1 by default), better when a weak light is hard to sample well, such as a sky
-    /// beside a lamp.
-    Uniform,
 }
 
 /// Default `rr_depth`, Mitsuba 3's: paths keep their first five surface hits.
@@ -419,7 +356,7 @@ pub enum MeshNormals {
 }
 
 /// How much light an area emitter gives; its spectrum gives the shape.
-/// How bright an environment map is (see `scene/build/lights.rs`).
+/// How bright an environment map is (see `build/lights.rs`).
 #[derive(Clone, Debug)]
 pub enum EnvMapAmount {
     /// A factor on the illuminant of an RGB (1, 1, 1) pixel.
@@ -510,15 +447,6 @@ pub enum DirectionalAmount {
     Illuminance(Illuminance),
     /// The spectrum is already spectral irradiance in W·m⁻²·nm⁻¹; multiply by this.
     Scale(f64),
-}
-
-/// How a spot's intensity falls between `falloff_start` (β) and `cone_angle` (γ).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SpotFalloff {
-    /// smoothstep(cos γ, cos β, cos θ) (pbrt-v4 §12.1.2): spectrace's native spot.
-    SmoothstepCos,
-    /// (γ − θ)/(γ − β), linear in the angle θ: Mitsuba 3's `spot` emitter.
-    LinearAngle,
 }
 
 #[derive(Clone, Debug)]

@@ -234,7 +234,7 @@ mod tests {
     #[test]
     fn error_estimate_matches_a_known_variance() {
         use crate::film::Filter;
-        use crate::loader::desc::FilterDesc;
+        use crate::film::FilterDesc;
         use crate::spectrum::{SampledSpectrum, SampledWavelengths, WavelengthRange};
         let (w, h) = (64u32, 64u32);
         let mut film = Film::new(

@@ -11,8 +11,8 @@ use rayon::prelude::*;
 
 use super::RenderError;
 use crate::film::{Bins, SampleSums};
+use crate::integrator::IntegratorKind;
 use crate::integrator::{Integrator, meter};
-use crate::loader::desc::IntegratorKind;
 use crate::sampler::Sampler;
 use crate::scene::{MeterPoint, Scene};
 use crate::spectrum::{N_WAVELENGTHS, SampledWavelengths, WavelengthSampler};

@@ -22,7 +22,7 @@ use glam::Vec2;
 
 use crate::film::{Film, Filter, NonFinite, non_finite};
 use crate::integrator::Integrator;
-use crate::loader::desc::IntegratorKind;
+use crate::integrator::IntegratorKind;
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 use crate::spectrum::{N_WAVELENGTHS, SampledWavelengths, WavelengthSampler};

@@ -1,18 +1,18 @@
 //! The immutable, render-ready scene: plain `f32` values in fixed units (nm, m, rad,
-//! W·m⁻²·sr⁻¹·nm⁻¹), closed enums, no strings or parameter maps. [`build`] makes it from a
+//! W·m⁻²·sr⁻¹·nm⁻¹), closed enums, no strings or parameter maps. [`crate::build::build`] makes it from a
 //! [`crate::loader::SceneDesc`] in one place.
 
-mod build;
+mod settings;
 
-pub use build::build;
+pub use settings::{IntegratorKind, LightSelection};
 
 use glam::Vec3;
 
+use crate::film::FilterDesc;
 use crate::geometry::accel::Accel;
 use crate::geometry::camera::Camera;
 use crate::geometry::shape::Shape;
 use crate::light::Light;
-use crate::loader::desc::{FilterDesc, IntegratorKind, LightSelection};
 use crate::material::Material;
 use crate::spectrum::WavelengthRange;
 
@@ -84,7 +84,7 @@ pub struct Scene {
     /// Irradiance meters, measured by `spectrace measure` (not by rendering).
     pub meters: Vec<Meter>,
     /// The camera's sensor (`[camera.sensor]`): raw values and exposure in the EXR.
-    pub camera_sensor: Option<crate::colour::sensor::CameraSensor>,
+    pub camera_sensor: Option<crate::sensor::CameraSensor>,
 }
 
 /// A point where irradiance is measured: position (m) and unit normal of the measured side.

@@ -7,6 +7,7 @@ pub mod curve;
 pub mod data;
 pub mod ior;
 pub mod named;
+pub mod photometry;
 pub mod rgb2spec;
 pub mod sampled;
 pub mod sampling;

@@ -4,11 +4,9 @@
 //! - [`quantities`]: spectrace's uom system, including radiance, spectral radiance, radiant
 //!   intensity, irradiance and luminous flux, which uom's SI lacks.
 //! - [`parse`]: quantity strings (`"100 W"`, `"0.55 um"`, `"800 cd/m^2"`).
-//! - [`photometry`]: radiant ↔ luminous conversions through a spectrum and K_m·ȳ.
 //! - [`plain`]: typed → `f32` in the render loop's units (nm, m, rad, W·m⁻²·sr⁻¹·nm⁻¹, …).
 
 pub mod parse;
-pub mod photometry;
 pub mod plain;
 pub mod quantities;
 

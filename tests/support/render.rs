@@ -11,7 +11,7 @@ use spectrace::scene::Scene;
 pub fn scene_from(text: &str) -> Scene {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/inline.toml");
     let desc = spectrace::loader::load_str(text, &path).unwrap_or_else(|e| panic!("{e}"));
-    spectrace::scene::build(&desc).unwrap_or_else(|e| panic!("{e}"))
+    spectrace::build::build(&desc).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Renders with the scene's settings, overridden by `f`.
@@ -118,7 +118,7 @@ pub fn plane_point(scene: &Scene, px: usize, py: usize) -> (f64, f64) {
 /// Loads and builds a scene file.
 pub fn scene_at(path: &Path) -> Scene {
     let desc = spectrace::loader::load(path).unwrap_or_else(|e| panic!("{e}"));
-    spectrace::scene::build(&desc).unwrap_or_else(|e| panic!("{e}"))
+    spectrace::build::build(&desc).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// Every meter point's reading, `samples` per point, 2 threads, seed `seed`.

@@ -220,12 +220,12 @@ fn camera_sensor(cx: &Cx<'_>, s: &S<RawCameraSensor>, lens_f: Option<f64>) -> R<
                         format!("cannot read {}: {e}", path.display()),
                     )
                 })?;
-            let c = crate::colour::sensor::curves_from_text(&text, &path.display().to_string())
+            let c = crate::sensor::curves_from_text(&text, &path.display().to_string())
                 .map_err(|m| cx.err(&file.span(), format!("{f}.file"), m))?;
             (file.get_ref().clone(), Some(c))
         }
         (Some(c), None) if c.get_ref() == "cie-1931" => ("cie-1931".to_string(), None),
-        (Some(c), None) => match crate::colour::sensor::named_curves(c.get_ref()) {
+        (Some(c), None) => match crate::sensor::named_curves(c.get_ref()) {
             Some(curves) => (c.get_ref().clone(), Some(curves)),
             None => {
                 return Err(cx.err(
@@ -282,8 +282,8 @@ fn camera_sensor(cx: &Cx<'_>, s: &S<RawCameraSensor>, lens_f: Option<f64>) -> R<
         .as_ref()
         .map(|a| (a.get_ref().as_str(), a.span()))
     {
-        None | Some(("von-kries", _)) => crate::colour::sensor::Adaptation::VonKries,
-        Some(("bradford", _)) => crate::colour::sensor::Adaptation::Bradford,
+        None | Some(("von-kries", _)) => crate::sensor::Adaptation::VonKries,
+        Some(("bradford", _)) => crate::sensor::Adaptation::Bradford,
         Some((o, span)) => {
             return Err(cx.err(
                 &span,

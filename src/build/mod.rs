@@ -7,7 +7,7 @@ mod textures;
 
 use glam::Vec3;
 
-use super::{FilmSettings, IntegratorSettings, Scene, Surface};
+use crate::scene::{FilmSettings, IntegratorSettings, Scene, Surface};
 use std::sync::Arc;
 
 use crate::geometry::accel::Accel;
@@ -132,7 +132,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         camera_sensor: match &desc.camera.sensor {
             None => None,
             Some(s) => Some(
-                crate::colour::sensor::CameraSensor::new(
+                crate::sensor::CameraSensor::new(
                     s.name.clone(),
                     s.curves.clone(),
                     s.iso,
@@ -147,7 +147,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
 }
 
 /// A meter's points in metres: a grid's at the centres of its cells.
-fn meter(s: &crate::loader::desc::SensorDesc) -> super::Meter {
+fn meter(s: &crate::loader::desc::SensorDesc) -> crate::scene::Meter {
     use crate::loader::desc::SensorKind;
     // normalised in f64, so a tiny but non-zero normal stays a direction
     let unit = |n: &[f64; 3]| {
@@ -155,10 +155,10 @@ fn meter(s: &crate::loader::desc::SensorDesc) -> super::Meter {
         Vec3::new((n[0] / l) as f32, (n[1] / l) as f32, (n[2] / l) as f32)
     };
     match &s.kind {
-        SensorKind::Point { position, normal } => super::Meter {
+        SensorKind::Point { position, normal } => crate::scene::Meter {
             name: s.name.clone(),
             grid: [1, 1],
-            points: vec![super::MeterPoint {
+            points: vec![crate::scene::MeterPoint {
                 p: v3(position),
                 n: unit(normal),
             }],
@@ -174,13 +174,13 @@ fn meter(s: &crate::loader::desc::SensorDesc) -> super::Meter {
             let n = unit(normal);
             let points = (0..count[1])
                 .flat_map(|j| (0..count[0]).map(move |i| (i, j)))
-                .map(|(i, j)| super::MeterPoint {
+                .map(|(i, j)| crate::scene::MeterPoint {
                     p: c + a * ((i as f32 + 0.5) / count[0] as f32)
                         + b * ((j as f32 + 0.5) / count[1] as f32),
                     n,
                 })
                 .collect();
-            super::Meter {
+            crate::scene::Meter {
                 name: s.name.clone(),
                 grid: *count,
                 points,

@@ -1,10 +1,10 @@
 //! Radiant ↔ luminous conversion through a spectrum: Φ_v = K_m ∫ Φ_e(λ) ȳ(λ) dλ
 //! (`../shared/PHYSICS.md`, "Photometric units").
 
-use super::quantities::{luminance, luminous_flux, power, radiance};
-use super::{Length, Luminance, LuminousFlux, Power, Radiance};
+use super::Spectrum;
 use crate::colour::cie::{K_M, cmf, integrate_xyz};
-use crate::spectrum::Spectrum;
+use crate::units::{Length, Luminance, LuminousFlux, Power, Radiance};
+use crate::units::{luminance, luminous_flux, power, radiance};
 
 /// Luminous efficacy of radiation with spectral shape `shape` over `[lo_nm, hi_nm]`, in lm/W:
 /// K_m ∫ S ȳ dλ / ∫ S dλ. Returns 0 when the shape has no power in the range.
@@ -44,13 +44,13 @@ pub fn radiant_power_of(f: LuminousFlux, shape: &Spectrum, lo_nm: f32, hi_nm: f3
 
 /// Luminous flux of monochromatic radiant power `p` at wavelength `lambda`: K_m ȳ(λ) Φ_e.
 pub fn luminous_flux_monochromatic(p: Power, lambda: Length) -> LuminousFlux {
-    let y = cmf().y_bar(super::plain::nm(lambda)) as f64;
+    let y = cmf().y_bar(crate::units::plain::nm(lambda)) as f64;
     LuminousFlux::new::<luminous_flux::lumen>(K_M * y * p.get::<power::watt>())
 }
 
 /// Radiant power of monochromatic luminous flux `f` at `lambda`; zero where ȳ(λ) = 0.
 pub fn radiant_power_monochromatic(f: LuminousFlux, lambda: Length) -> Power {
-    let y = cmf().y_bar(super::plain::nm(lambda)) as f64;
+    let y = cmf().y_bar(crate::units::plain::nm(lambda)) as f64;
     Power::new::<power::watt>(if y > 0.0 {
         f.get::<luminous_flux::lumen>() / (K_M * y)
     } else {
