@@ -203,7 +203,14 @@ impl Material {
                     ..m.inner.at_surface(s, w).with_material(self)
                 };
             }
-            _ => SampledSpectrum::zero(),
+            // no diffuse albedo: the lobes read their own parameters
+            Material::Phong(_)
+            | Material::Dielectric(_)
+            | Material::RoughDielectric(_)
+            | Material::Conductor(_)
+            | Material::RoughConductor(_)
+            | Material::ThinDielectric { .. }
+            | Material::Null => SampledSpectrum::zero(),
         };
         Bsdf {
             material: self,
@@ -276,13 +283,15 @@ impl Material {
             Material::BumpMap(m) => m.inner.is_specular(),
             Material::Textured(m) => m.inner.is_specular(),
             Material::Blend(m) => m.a.is_specular() && m.b.is_specular(),
-            _ => matches!(
-                self,
-                Material::Dielectric(_)
-                    | Material::Conductor(_)
-                    | Material::Null
-                    | Material::ThinDielectric { .. }
-            ),
+            Material::Dielectric(_)
+            | Material::Conductor(_)
+            | Material::Null
+            | Material::ThinDielectric { .. } => true,
+            Material::Diffuse(_)
+            | Material::Phong(_)
+            | Material::RoughDielectric(_)
+            | Material::RoughConductor(_)
+            | Material::Plastic(_) => false,
         }
     }
 
@@ -299,7 +308,14 @@ impl Material {
             Material::BumpMap(m) => m.inner.is_dispersive(),
             Material::Textured(m) => m.inner.is_dispersive(),
             Material::Blend(m) => m.a.is_dispersive() || m.b.is_dispersive(),
-            _ => false,
+            // a thin sheet sends light on undeviated, and the rest do not transmit
+            Material::ThinDielectric { .. }
+            | Material::Null
+            | Material::Diffuse(_)
+            | Material::Phong(_)
+            | Material::Conductor(_)
+            | Material::RoughConductor(_)
+            | Material::Plastic(_) => false,
         }
     }
 
@@ -314,7 +330,13 @@ impl Material {
             Material::NormalMap(_) | Material::BumpMap(_) | Material::Textured(_) => true,
             Material::Mask(m) => m.inner.needs_tangent(),
             Material::Blend(m) => m.a.needs_tangent() || m.b.needs_tangent(),
-            _ => false,
+            Material::Diffuse(_)
+            | Material::Phong(_)
+            | Material::Dielectric(_)
+            | Material::Conductor(_)
+            | Material::Plastic(_)
+            | Material::ThinDielectric { .. }
+            | Material::Null => false,
         }
     }
 
@@ -325,7 +347,17 @@ impl Material {
         match self {
             Material::NormalMap(_) | Material::BumpMap(_) => true,
             Material::Mask(m) => m.inner.is_perturbed(),
-            _ => false,
+            Material::Diffuse(_)
+            | Material::Phong(_)
+            | Material::Dielectric(_)
+            | Material::RoughDielectric(_)
+            | Material::Conductor(_)
+            | Material::RoughConductor(_)
+            | Material::Plastic(_)
+            | Material::ThinDielectric { .. }
+            | Material::Null
+            | Material::Blend(_)
+            | Material::Textured(_) => false,
         }
     }
 
@@ -339,13 +371,17 @@ impl Material {
             Material::NormalMap(m) => m.inner.is_transmissive(),
             Material::BumpMap(m) => m.inner.is_transmissive(),
             Material::Textured(m) => m.inner.is_transmissive(),
-            _ => matches!(
-                self,
-                Material::Dielectric(_)
-                    | Material::RoughDielectric(_)
-                    | Material::Null
-                    | Material::ThinDielectric { .. }
-            ),
+            Material::Dielectric(_)
+            | Material::RoughDielectric(_)
+            | Material::Null
+            | Material::ThinDielectric { .. } => true,
+            // a mask's pass-through does not distinguish the sides
+            Material::Mask(_)
+            | Material::Diffuse(_)
+            | Material::Phong(_)
+            | Material::Conductor(_)
+            | Material::RoughConductor(_)
+            | Material::Plastic(_) => false,
         }
     }
 }

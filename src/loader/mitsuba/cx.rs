@@ -7,72 +7,13 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use super::plugins::PLUGINS;
 use super::xml::Element;
 use crate::loader::error::{LoadError, SourceMap, line_starts, loc_in};
 use crate::spectrum::named::{Named, lookup};
 use crate::spectrum::{PiecewiseLinear, Spectrum};
 
 pub(super) type R<T> = Result<T, LoadError>;
-
-/// Mitsuba 3.9.1's samplers. spectrace reads their `sample_count` and renders with its own
-/// Owen-scrambled Sobol sampler, whichever is named (and says so once).
-pub(super) const SAMPLERS: &[&str] = &[
-    "independent",
-    "stratified",
-    "multijitter",
-    "orthogonal",
-    "ldsampler",
-];
-
-/// The supported plugins by kind (`what` of [`Cx::unsupported`]): an unknown type is only ever
-/// compared with plugins of its own kind.
-const PLUGINS: &[(&str, &[&str])] = &[
-    ("sensor", &["perspective", "thinlens", "orthographic"]),
-    ("film", &["hdrfilm"]),
-    ("rfilter", &["box", "gaussian"]),
-    ("sampler", SAMPLERS),
-    ("integrator", &["path", "volpath", "direct", "moment"]),
-    (
-        "shape",
-        &[
-            "obj",
-            "ply",
-            "serialized",
-            "rectangle",
-            "cube",
-            "sphere",
-            "disk",
-            "cylinder",
-        ],
-    ),
-    (
-        "bsdf",
-        &[
-            "diffuse",
-            "twosided",
-            "conductor",
-            "roughconductor",
-            "dielectric",
-            "roughdielectric",
-            "plastic",
-            "roughplastic",
-            "null",
-            "thindielectric",
-            "mask",
-        ],
-    ),
-    (
-        "emitter",
-        &["area", "point", "spot", "constant", "directional", "envmap"],
-    ),
-    ("shape emitter", &["area"]),
-    ("spectrum", &["blackbody", "d65"]),
-    ("texture", &["checkerboard", "bitmap"]),
-    (
-        "transform",
-        &["translate", "scale", "rotate", "matrix", "lookat"],
-    ),
-];
 
 /// Mitsuba 3's `MI_CIE_D65_NORMALIZATION` (`include/mitsuba/core/spectrum.h`, 3.9.1): its
 /// `d65` spectrum is the CIE D65 relative SPD (100 at 560 nm) times this, so that

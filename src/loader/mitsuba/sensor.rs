@@ -2,7 +2,8 @@
 //! (`fov`, `fov_axis`, `focal_length`), the film, and camera frames from `to_world` (also used
 //! to place lights).
 
-use super::cx::{Cx, R, SAMPLERS};
+use super::cx::{Cx, R};
+use super::plugins::SAMPLERS;
 use super::xml::Element;
 use crate::loader::desc::*;
 use crate::units::{Angle, Length, angle, length};
