@@ -195,3 +195,54 @@ fn every_kind_accepts_exactly_the_plugins_its_supported_list_names() {
     }
     assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
+
+/// A misspelt property is an error naming it and the property meant, as Mitsuba 3 refuses an
+/// unreferenced property; a property spectrace does not read and that is close to nothing it
+/// asked for loads with a note (Mitsuba may read it: the scene must still render). A misspelt
+/// key in a TOML scene is an error naming it too.
+#[test]
+fn misspelt_keys_are_errors_naming_them() {
+    let sensor = r#"<sensor type="perspective"><film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>"#;
+    for (body, bad, meant) in [
+        (
+            r#"<shape type="sphere"><float name="radiuss" value="2"/></shape>"#,
+            "radiuss",
+            "radius",
+        ),
+        (
+            r#"<shape type="sphere"><bsdf type="diffuse"><rgb name="reflectanc" value="0.5"/></bsdf></shape>"#,
+            "reflectanc",
+            "reflectance",
+        ),
+        (
+            r#"<emitter type="point"><rgb name="intensty" value="1"/></emitter>"#,
+            "intensty",
+            "intensity",
+        ),
+    ] {
+        let e = load_error(&format!("{sensor}{body}")).expect("a misspelt property is refused");
+        assert!(
+            e.contains(&format!("unknown property \"{bad}\""))
+                && e.contains(&format!("\"{meant}\"")),
+            "{e}"
+        );
+    }
+    let text = format!(
+        r#"<scene version="3.0.0">{sensor}<shape type="sphere"><boolean name="zzz_flag" value="true"/></shape></scene>"#
+    );
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/inline.xml");
+    let desc = spectrace::loader::mitsuba::load_str(&text, &path, &[]).expect("loads");
+    assert!(
+        desc.notes
+            .iter()
+            .any(|n| n.contains("zzz_flag") && n.contains("not read")),
+        "{:?}",
+        desc.notes
+    );
+    let toml = "[camera]\neye = [0, 0, 5]\ntarget = [0, 0, 0]\nfov = \"40 deg\"\n[film]\nwidth = 8\nheight = 8\nspp = 1\n[materials.m]\ntype = \"diffuse\"\nreflectanse = 0.5\n";
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/inline.toml");
+    let e = spectrace::loader::load_str(toml, &path)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("reflectanse") && e.contains(":11:"), "{e}");
+}

@@ -51,7 +51,16 @@ pub(super) struct Cx<'a> {
     /// Line starts of each source (by index into `sources`), found on its first location:
     /// every shape records one, and scanning from the file's start each time was quadratic.
     pub(super) line_starts: std::cell::RefCell<HashMap<usize, Vec<usize>>>,
+    /// The property names each element was asked for, by (source, offset): what
+    /// [`Cx::check_unreferenced`] holds its properties to.
+    pub(super) queried: std::cell::RefCell<HashMap<(usize, usize), Vec<String>>>,
 }
+
+/// The tags of Mitsuba's plain properties (a nested object such as a texture or a transform is
+/// found by other means, so it is not held to the names asked for).
+const PROPERTY_TAGS: &[&str] = &[
+    "float", "integer", "boolean", "string", "rgb", "spectrum", "point", "vector",
+];
 
 impl Cx<'_> {
     pub(super) fn err(&self, e: &Element, msg: impl Into<String>) -> LoadError {
@@ -221,7 +230,70 @@ impl Cx<'_> {
     }
 
     pub(super) fn child<'e>(&self, e: &'e Element, name: &str) -> Option<&'e Element> {
+        let mut q = self.queried.borrow_mut();
+        let names = q.entry((e.src, e.pos)).or_default();
+        if !names.iter().any(|n| n == name) {
+            names.push(name.to_string());
+        }
         e.children.iter().find(|c| c.attr("name") == Some(name))
+    }
+
+    /// Mitsuba 3 refuses a plugin with a property it never reads ("unreferenced property"). For
+    /// every element under `root` (and every element stored by id) whose reader asked for
+    /// properties: a plain property (`<float name="…">` and the like) it did not ask for is an
+    /// error when its name is close to one it did ask for (a misspelling: Jaro–Winkler ≥ 0.85,
+    /// named with the likely intent), and otherwise a note that spectrace ignored it (a
+    /// parameter Mitsuba reads and spectrace does not, such as an integrator's `hide_emitters`,
+    /// which must not stop a scene Mitsuba renders).
+    pub(super) fn check_unreferenced(&self, root: &Element) -> R<()> {
+        let mut seen = std::collections::HashSet::new();
+        let mut stack: Vec<&Element> = vec![root];
+        stack.extend(self.ids.values());
+        while let Some(e) = stack.pop() {
+            if !seen.insert((e.src, e.pos)) {
+                continue;
+            }
+            stack.extend(e.children.iter());
+            let q = self.queried.borrow();
+            let Some(asked) = q.get(&(e.src, e.pos)) else {
+                continue;
+            };
+            for c in &e.children {
+                let Some(name) = c.attr("name") else { continue };
+                if !PROPERTY_TAGS.contains(&c.tag.as_str()) || asked.iter().any(|a| a == name) {
+                    continue;
+                }
+                let kind = e
+                    .attr("type")
+                    .map(|t| format!(" \"{t}\""))
+                    .unwrap_or_default();
+                let near = asked
+                    .iter()
+                    .map(|a| (strsim::jaro_winkler(name, a), a))
+                    .max_by(|a, b| a.0.total_cmp(&b.0))
+                    .filter(|(s, _)| *s >= 0.85);
+                match near {
+                    Some((_, a)) => {
+                        return Err(self.err(
+                            c,
+                            format!(
+                                "unknown property \"{name}\" of <{}{kind}>; did you mean \"{a}\"? \
+                                 (Mitsuba 3 refuses a property its plugin does not read)",
+                                e.tag
+                            ),
+                        ));
+                    }
+                    None => self.note(
+                        c,
+                        format!(
+                            "<{} name=\"{name}\"> of <{}{kind}> is not read by spectrace and has no effect",
+                            c.tag, e.tag
+                        ),
+                    ),
+                }
+            }
+        }
+        Ok(())
     }
 
     pub(super) fn opt_float(&self, e: &Element, name: &str) -> R<Option<f64>> {

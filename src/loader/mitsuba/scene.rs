@@ -33,6 +33,7 @@ pub(super) fn scene(
         notes: Default::default(),
         bsdf_depth: Default::default(),
         line_starts: Default::default(),
+        queried: Default::default(),
     };
     if root.tag != "scene" {
         return Err(cx.err(&root, "the root element must be <scene>"));
@@ -232,6 +233,7 @@ pub(super) fn scene(
     if weighted {
         integrator.light_selection = LightSelection::Uniform;
     }
+    cx.check_unreferenced(&root)?;
     let nm = |x: f64| Length::new::<length::nanometer>(x);
     Ok(SceneDesc {
         path: path.to_path_buf(),

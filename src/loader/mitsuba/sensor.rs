@@ -85,6 +85,11 @@ pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraD
     if t != "perspective" && t != "thinlens" && t != "orthographic" {
         return Err(cx.unsupported(s, "sensor", t));
     }
+    if t == "perspective" {
+        // Mitsuba's pinhole reads its projective camera's focus distance, which changes
+        // nothing in its image
+        let _ = cx.child(s, "focus_distance");
+    }
     for c in &s.children {
         // a film or sampler declared at the top level and referred to here
         let c = match c.tag.as_str() {
@@ -93,6 +98,12 @@ pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraD
         };
         match (c.tag.as_str(), c.attr("type")) {
             ("film", Some("hdrfilm")) => {
+                // the output's channels and file format are spectrace's own (XYZ, luminance and
+                // band radiance in 32-bit float EXR, whatever these ask), so they are read and
+                // have nothing to change
+                for name in ["pixel_format", "component_format", "file_format"] {
+                    let _ = cx.child(c, name);
+                }
                 for (name, slot) in [("width", &mut film.width), ("height", &mut film.height)] {
                     let Some(e) = cx.child(c, name) else { continue };
                     let v = cx.float(e)?;
