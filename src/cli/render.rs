@@ -248,61 +248,14 @@ fn run_scene(
         eprintln!("note: {n}");
     }
     // the library API resolves and checks the options, as for every user of it
-    let api_opts = crate::api::Options {
-        spp: args.spp,
-        seed: args.seed,
-        threads: args.threads,
-        integrator: args.integrator.map(|i| match i {
-            IntegratorArg::Path => crate::api::Integrator::Path,
-            IntegratorArg::Light => crate::api::Integrator::Light,
-            IntegratorArg::Bdpt => crate::api::Integrator::Bdpt,
-            IntegratorArg::Whitted => crate::api::Integrator::Whitted,
-        }),
-        spectral_bins: args.spectral_bins,
-        time_limit: match &args.time {
-            Some(t) => Some(super::farm::parse_duration(t, "--time")?),
-            None => None,
-        },
-        target_error: args.target_error,
-    };
+    let api_opts = api_options(args)?;
     let mut opts = api_opts.render_options(&api_scene).map_err(|e| match e {
         // "spectral_bins must be …" → "--spectral-bins must be …"
         crate::api::Error::Options(m) => CliError::Usage(format!("--{}", m.replacen('_', "-", 1))),
         other => CliError::Usage(other.to_string()),
     })?;
     let scene = api_scene.inner();
-    if let Some(st) = &args.bdpt_strategy {
-        let parsed = st.split_once(',').and_then(|(a, b)| {
-            Some((a.trim().parse::<u32>().ok()?, b.trim().parse::<u32>().ok()?))
-        });
-        let Some((s, t)) = parsed else {
-            return Err(CliError::Usage(format!(
-                "--bdpt-strategy {st}: expected S,T (light and camera vertex counts, e.g. 1,2)"
-            )));
-        };
-        if opts.integrator != IntegratorKind::Bdpt {
-            return Err(CliError::Usage(
-                "--bdpt-strategy needs the bdpt integrator (--integrator bdpt)".into(),
-            ));
-        }
-        if t == 0 || s.saturating_add(t) < 2 || (s, t) == (1, 1) {
-            return Err(CliError::Usage(format!(
-                "--bdpt-strategy {s},{t}: bdpt has no such strategy (t ≥ 1, s + t ≥ 2, not 1,1)"
-            )));
-        }
-        if s as u64 + t as u64 - 2 > opts.max_depth as u64 {
-            return Err(CliError::Usage(format!(
-                "--bdpt-strategy {s},{t}: its paths have {} bounces, more than the scene's max_depth {}",
-                s as u64 + t as u64 - 2,
-                opts.max_depth
-            )));
-        }
-        opts.strategy = Some(crate::integrator::bdpt::Strategy {
-            s,
-            t,
-            weighted: !args.bdpt_unweighted,
-        });
-    }
+    opts.strategy = bdpt_strategy(args, &opts)?;
     let splats = matches!(
         opts.integrator,
         IntegratorKind::Light | IntegratorKind::Bdpt
@@ -329,29 +282,7 @@ fn run_scene(
             );
         }
     }
-    let cos_theta: Option<Vec<f32>> = scene.camera_sensor.as_ref().map(|_| {
-        let (w, h) = (scene.film.width, scene.film.height);
-        let centre = scene
-            .camera
-            .generate_ray(
-                glam::Vec2::new(w as f32 / 2.0, h as f32 / 2.0),
-                glam::Vec2::splat(0.5),
-            )
-            .d;
-        (0..h)
-            .flat_map(|y| (0..w).map(move |x| (x, y)))
-            .map(|(x, y)| {
-                let d = scene
-                    .camera
-                    .generate_ray(
-                        glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5),
-                        glam::Vec2::splat(0.5),
-                    )
-                    .d;
-                d.dot(centre).clamp(0.0, 1.0)
-            })
-            .collect()
-    });
+    let cos_theta = scene.camera_sensor.as_ref().map(|_| pixel_cos_theta(scene));
     let budgets = args.time.is_some() || args.target_error.is_some();
     if let Some(p) = &args.part {
         if budgets {
@@ -389,42 +320,8 @@ fn run_scene(
         .false_colour_png
         .clone()
         .unwrap_or_else(|| exr.with_extension("false.png"));
-    if args.mitsuba_units && (args.false_colour.is_some() || scene.camera_sensor.is_some()) {
-        return Err(CliError::Usage(
-            "--mitsuba-units rescales X, Y, Z away from cd/m², which false colour and a camera sensor read; leave it out".into(),
-        ));
-    }
-    if args.false_colour_png.is_some() && args.false_colour.is_none() {
-        return Err(CliError::Usage(
-            "--false-colour-png needs --false-colour luminance or illuminance".into(),
-        ));
-    }
-    if let Some(m) = args.false_colour_max
-        && !(m > 0.0 && m.is_finite())
-    {
-        return Err(CliError::Usage(format!(
-            "--false-colour-max must be a positive number, found {m}"
-        )));
-    }
-    if args
-        .false_colour_decades
-        .is_some_and(|d| !(1..=12).contains(&d))
-    {
-        return Err(CliError::Usage(
-            "--false-colour-decades must be from 1 to 12".into(),
-        ));
-    }
-    for p in [&exr, &png, &false_png] {
-        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty())
-            && !dir.is_dir()
-        {
-            return Err(CliError::Usage(format!(
-                "cannot write {}: folder {} does not exist",
-                p.display(),
-                dir.display()
-            )));
-        }
-    }
+    check_false_colour_args(args, scene)?;
+    check_output_folders(&[&exr, &png, &false_png])?;
 
     let integrator = opts.integrator.name();
     let scene_file = scene_path.display().to_string();
@@ -545,40 +442,174 @@ fn run_scene(
         false_colour(args, scene, &opts, spp, &image, kind, &false_png)?;
     }
     if !args.quiet {
-        let secs = stats.elapsed.as_secs_f64();
-        let why = match stats.stop {
-            crate::render::StopReason::Complete => String::new(),
-            crate::render::StopReason::Cancelled => ", stopped early: the image is partial".into(),
-            crate::render::StopReason::TimeLimit => {
-                format!(", {} spp within the time limit", stats.spp_done)
-            }
-            crate::render::StopReason::TargetError => {
-                format!(", {} spp reached the target error", stats.spp_done)
-            }
-        };
-        eprintln!(
-            "{} samples in {:.1} s ({:.2} M samples/s){why}",
-            stats.samples,
-            secs,
-            stats.samples as f64 / secs.max(1e-9) / 1e6,
-        );
-        if let Some(e) = stats.rel_error {
-            eprintln!("estimated relative error of luminance: {:.2} %", e * 100.0);
-        }
-        if stats.nan_samples + stats.inf_samples > 0 {
-            eprintln!(
-                "dropped {} NaN and {} infinite samples",
-                stats.nan_samples, stats.inf_samples
-            );
-        }
-        eprintln!(
-            "wrote {} and {} (EV100 {:.2})",
-            shown(&exr),
-            shown(&png),
-            ev
-        );
+        print_summary(&stats, &exr, &png, ev);
     }
     Ok(())
+}
+
+/// The closing lines on stderr: samples, rate and why the render stopped, the error estimate,
+/// dropped samples and the files written (with the PNG's exposure, EV100).
+fn print_summary(stats: &crate::render::RenderStats, exr: &Path, png: &Path, ev: f32) {
+    let secs = stats.elapsed.as_secs_f64();
+    let why = match stats.stop {
+        crate::render::StopReason::Complete => String::new(),
+        crate::render::StopReason::Cancelled => ", stopped early: the image is partial".into(),
+        crate::render::StopReason::TimeLimit => {
+            format!(", {} spp within the time limit", stats.spp_done)
+        }
+        crate::render::StopReason::TargetError => {
+            format!(", {} spp reached the target error", stats.spp_done)
+        }
+    };
+    eprintln!(
+        "{} samples in {:.1} s ({:.2} M samples/s){why}",
+        stats.samples,
+        secs,
+        stats.samples as f64 / secs.max(1e-9) / 1e6,
+    );
+    if let Some(e) = stats.rel_error {
+        eprintln!("estimated relative error of luminance: {:.2} %", e * 100.0);
+    }
+    if stats.nan_samples + stats.inf_samples > 0 {
+        eprintln!(
+            "dropped {} NaN and {} infinite samples",
+            stats.nan_samples, stats.inf_samples
+        );
+    }
+    eprintln!("wrote {} and {} (EV100 {:.2})", shown(exr), shown(png), ev);
+}
+
+/// The false-colour and unit options checked against each other and the scene.
+fn check_false_colour_args(args: &RenderArgs, scene: &crate::scene::Scene) -> Result<(), CliError> {
+    if args.mitsuba_units && (args.false_colour.is_some() || scene.camera_sensor.is_some()) {
+        return Err(CliError::Usage(
+            "--mitsuba-units rescales X, Y, Z away from cd/m², which false colour and a camera sensor read; leave it out".into(),
+        ));
+    }
+    if args.false_colour_png.is_some() && args.false_colour.is_none() {
+        return Err(CliError::Usage(
+            "--false-colour-png needs --false-colour luminance or illuminance".into(),
+        ));
+    }
+    if let Some(m) = args.false_colour_max
+        && !(m > 0.0 && m.is_finite())
+    {
+        return Err(CliError::Usage(format!(
+            "--false-colour-max must be a positive number, found {m}"
+        )));
+    }
+    if args
+        .false_colour_decades
+        .is_some_and(|d| !(1..=12).contains(&d))
+    {
+        return Err(CliError::Usage(
+            "--false-colour-decades must be from 1 to 12".into(),
+        ));
+    }
+    Ok(())
+}
+
+/// Every output's folder exists (checked before rendering, not after).
+fn check_output_folders(paths: &[&Path]) -> Result<(), CliError> {
+    for p in paths {
+        if let Some(dir) = p.parent().filter(|d| !d.as_os_str().is_empty())
+            && !dir.is_dir()
+        {
+            return Err(CliError::Usage(format!(
+                "cannot write {}: folder {} does not exist",
+                p.display(),
+                dir.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The library API's options from the command line (the API checks their ranges).
+fn api_options(args: &RenderArgs) -> Result<crate::api::Options, CliError> {
+    Ok(crate::api::Options {
+        spp: args.spp,
+        seed: args.seed,
+        threads: args.threads,
+        integrator: args.integrator.map(|i| match i {
+            IntegratorArg::Path => crate::api::Integrator::Path,
+            IntegratorArg::Light => crate::api::Integrator::Light,
+            IntegratorArg::Bdpt => crate::api::Integrator::Bdpt,
+            IntegratorArg::Whitted => crate::api::Integrator::Whitted,
+        }),
+        spectral_bins: args.spectral_bins,
+        time_limit: match &args.time {
+            Some(t) => Some(super::farm::parse_duration(t, "--time")?),
+            None => None,
+        },
+        target_error: args.target_error,
+    })
+}
+
+/// `--bdpt-strategy S,T` checked against the integrator and the scene's depth (None: not given).
+fn bdpt_strategy(
+    args: &RenderArgs,
+    opts: &crate::render::RenderOptions,
+) -> Result<Option<crate::integrator::bdpt::Strategy>, CliError> {
+    let Some(st) = &args.bdpt_strategy else {
+        return Ok(None);
+    };
+    let parsed = st
+        .split_once(',')
+        .and_then(|(a, b)| Some((a.trim().parse::<u32>().ok()?, b.trim().parse::<u32>().ok()?)));
+    let Some((s, t)) = parsed else {
+        return Err(CliError::Usage(format!(
+            "--bdpt-strategy {st}: expected S,T (light and camera vertex counts, e.g. 1,2)"
+        )));
+    };
+    if opts.integrator != IntegratorKind::Bdpt {
+        return Err(CliError::Usage(
+            "--bdpt-strategy needs the bdpt integrator (--integrator bdpt)".into(),
+        ));
+    }
+    if t == 0 || s.saturating_add(t) < 2 || (s, t) == (1, 1) {
+        return Err(CliError::Usage(format!(
+            "--bdpt-strategy {s},{t}: bdpt has no such strategy (t ≥ 1, s + t ≥ 2, not 1,1)"
+        )));
+    }
+    if s as u64 + t as u64 - 2 > opts.max_depth as u64 {
+        return Err(CliError::Usage(format!(
+            "--bdpt-strategy {s},{t}: its paths have {} bounces, more than the scene's max_depth {}",
+            s as u64 + t as u64 - 2,
+            opts.max_depth
+        )));
+    }
+    Ok(Some(crate::integrator::bdpt::Strategy {
+        s,
+        t,
+        weighted: !args.bdpt_unweighted,
+    }))
+}
+
+/// Per pixel, cos θ between its central ray and the image centre's (for a camera sensor's
+/// cos⁴θ fall-off), row by row.
+fn pixel_cos_theta(scene: &crate::scene::Scene) -> Vec<f32> {
+    let (w, h) = (scene.film.width, scene.film.height);
+    let centre = scene
+        .camera
+        .generate_ray(
+            glam::Vec2::new(w as f32 / 2.0, h as f32 / 2.0),
+            glam::Vec2::splat(0.5),
+        )
+        .d;
+    (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .map(|(x, y)| {
+            let d = scene
+                .camera
+                .generate_ray(
+                    glam::Vec2::new(x as f32 + 0.5, y as f32 + 0.5),
+                    glam::Vec2::splat(0.5),
+                )
+                .d;
+            d.dot(centre).clamp(0.0, 1.0)
+        })
+        .collect()
 }
 
 /// Writes the false-colour PNG of `kind` (see [`RenderArgs::false_colour`]).
