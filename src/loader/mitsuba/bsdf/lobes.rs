@@ -1,0 +1,131 @@
+//! Mitsuba's conductors (`conductor`, `roughconductor`: named presets or eta and k) and
+//! plastics (`plastic`, `roughplastic`).
+
+use std::sync::Arc;
+
+use super::super::cx::{Cx, R};
+use super::super::xml::Element;
+use crate::loader::desc::*;
+use crate::spectrum::ior::ComplexIor;
+use crate::spectrum::named::mitsuba_conductor;
+use crate::spectrum::{PiecewiseLinear, Spectrum};
+
+use super::{alpha, distribution, ior_of, perfect_mirror};
+
+/// Mitsuba's `conductor` and `roughconductor` (`t`).
+pub(super) fn conductor(cx: &Cx<'_>, b: &Element, t: &str) -> R<MaterialKind> {
+    let roughness = if t == "roughconductor" {
+        alpha(cx, b)?
+    } else {
+        None
+    };
+    // material "none" (Mitsuba's default) means eta and k, defaulting to 0 and 1
+    let ior = match (
+        cx.string(b, "material").filter(|m| m != "none"),
+        cx.child(b, "eta"),
+        cx.child(b, "k"),
+    ) {
+        (Some(_), Some(c), _) | (Some(_), None, Some(c)) => {
+            return Err(cx.err(
+                c,
+                "give either material or eta and k, not both (as Mitsuba requires)",
+            ));
+        }
+        // Mitsuba's default: material "none", eta = 0, k = 1, a perfect mirror
+        (None, None, None) => perfect_mirror(),
+        // Mitsuba's own preset data (spectra/metals/mitsuba/), not spectrace's metal:*
+        (Some(m), _, _) => {
+            let (ior, note) = mitsuba_conductor(&m).map_err(|e| cx.err(b, e))?;
+            if let Some(n) = note {
+                cx.note(b, n);
+            }
+            ior
+        }
+        (None, eta, k) => {
+            let table = |s: Spectrum| -> Arc<PiecewiseLinear> {
+                match s {
+                    Spectrum::Piecewise(t) => t,
+                    other => {
+                        let l: Vec<f32> = (300..=900).step_by(5).map(|x| x as f32).collect();
+                        let v = l.iter().map(|&x| other.eval(x)).collect();
+                        match PiecewiseLinear::new(l, v) {
+                            Ok(t) => Arc::new(t),
+                            Err(_) => Arc::new(
+                                PiecewiseLinear::new(vec![300.0, 900.0], vec![1.0, 1.0])
+                                    .unwrap_or_else(|_| unreachable!()),
+                            ), // ok: two valid samples
+                        }
+                    }
+                }
+            };
+            // Mitsuba's defaults with material "none": eta = 0, k = 1
+            let spec = |c: Option<&Element>, default: f32| -> R<Spectrum> {
+                match c {
+                    Some(c) => cx.spectrum(c, false),
+                    None => Ok(Spectrum::Constant(default)),
+                }
+            };
+            ComplexIor {
+                n: table(spec(eta, 0.0)?),
+                k: table(spec(k, 1.0)?),
+            }
+        }
+    };
+    if let Some(c) = cx.child(b, "ext_ior") {
+        return Err(cx.err(
+            c,
+            "Mitsuba's conductors take no ext_ior (eta and k are relative to vacuum)",
+        ));
+    }
+    Ok(MaterialKind::Conductor {
+        ior,
+        // Mitsuba's eta, k are the metal's own, relative to vacuum
+        exterior_ior: 1.0,
+        roughness,
+        distribution: distribution(cx, b)?,
+    })
+}
+
+/// Mitsuba's `plastic` and `roughplastic` (`t`).
+pub(super) fn plastic(cx: &Cx<'_>, b: &Element, t: &str) -> R<MaterialKind> {
+    let specular = match cx.child(b, "specular_reflectance") {
+        None => 1.0,
+        Some(c) => match cx.spectrum(c, false)? {
+            Spectrum::Constant(v) if v >= 0.0 => v as f64,
+            _ => {
+                return Err(cx.err(
+                    c,
+                    "a plastic's specular_reflectance must be one number ≥ 0 here (a spectrum or texture is not supported)",
+                ));
+            }
+        },
+    };
+    for k in ["alpha_u", "alpha_v"] {
+        if let Some(c) = cx.child(b, k) {
+            return Err(cx.err(
+                c,
+                "roughplastic is isotropic in Mitsuba: give alpha, not alpha_u/alpha_v",
+            ));
+        }
+    }
+    let nonlinear = match cx.string(b, "nonlinear").as_deref() {
+        None | Some("false") => false,
+        Some("true") => true,
+        Some(o) => {
+            return Err(cx.err(b, format!("nonlinear: expected true or false, found {o}")));
+        }
+    };
+    Ok(MaterialKind::Plastic {
+        diffuse: cx.texture_prop(b, "diffuse_reflectance", 0.5)?,
+        specular,
+        int_ior: ior_of(cx, b, "int_ior", 1.49)?,
+        exterior_ior: ior_of(cx, b, "ext_ior", 1.000277)?,
+        nonlinear,
+        roughness: if t == "roughplastic" {
+            alpha(cx, b)?.map(|a| a[0])
+        } else {
+            None
+        },
+        distribution: distribution(cx, b)?,
+    })
+}
