@@ -1,4 +1,5 @@
-//! Mitsuba emitters that are not shapes: `point`, `spot`, `constant`, `directional`; and
+//! Mitsuba emitters that are not shapes (`point`, `spot`, `constant`, `directional`, `projector`,
+//! `envmap`, each kind its own function beyond the one-liners); and
 //! `sampling_weight`, which area emitters read too.
 
 use super::cx::{Cx, R, mitsuba_d65};
@@ -39,145 +40,11 @@ pub(super) fn emitter(cx: &Cx<'_>, e: &Element) -> R<LightDesc> {
             },
             cx.spectrum_prop(e, "radiance", 1.0, true)?,
         ),
-        "directional" => {
-            // Mitsuba: `direction`, or the image of +z under `to_world`, never both
-            let d = match (cx.child(e, "direction"), to_world) {
-                (Some(_), Some(tr)) => {
-                    return Err(cx.err(
-                        tr,
-                        "give either direction or to_world, not both (as Mitsuba requires)",
-                    ));
-                }
-                (Some(d), None) => cx.vec3(d)?,
-                (None, Some(tr)) => {
-                    let (eye, target, _) = camera_frame(cx, e, &cx.transform(tr)?)?;
-                    [0, 1, 2].map(|i| target[i].value - eye[i].value)
-                }
-                (None, None) => [0.0, 0.0, 1.0],
-            };
-            (
-                LightKind::Directional {
-                    direction: d,
-                    angular_diameter: Angle::new::<angle::radian>(0.0),
-                    amount: DirectionalAmount::Scale(1.0),
-                },
-                cx.spectrum_prop(e, "irradiance", 1.0, true)?,
-            )
-        }
-        "spot" => {
-            let cutoff = cx.opt_float(e, "cutoff_angle")?.unwrap_or(20.0);
-            let width = cx.opt_float(e, "beam_width")?.unwrap_or(cutoff * 0.75);
-            let steps = match e.children.iter().find(|c| c.tag == "transform") {
-                Some(tr) => cx.transform(tr)?,
-                None => return Err(cx.err(e, "a spot needs a to_world with lookat")),
-            };
-            let texture = match cx.child(e, "texture") {
-                Some(t) if cx.resolve(t)?.attr("type") == Some("bitmap") => {
-                    Some(Box::new((cx.texture_of(t)?, steps.clone())))
-                }
-                Some(t) => {
-                    return Err(cx.err(t, "a spot's texture must be a bitmap here"));
-                }
-                None => None,
-            };
-            let (eye, target, _) = camera_frame(cx, e, &steps)?;
-            (
-                LightKind::Spot {
-                    position: eye,
-                    target,
-                    cone_angle: Angle::new::<angle::degree>(cutoff),
-                    // Mitsuba's falloff is linear in the angle from beam_width to cutoff_angle
-                    // (src/emitters/spot.cpp, falloff_curve)
-                    falloff_start: Angle::new::<angle::degree>(width.min(cutoff)),
-                    falloff: SpotFalloff::LinearAngle,
-                    amount: PointAmount::Scale(1.0),
-                    texture,
-                },
-                cx.spectrum_prop(e, "intensity", 1.0, true)?,
-            )
-        }
+        "directional" => directional(cx, e, to_world)?,
+        "spot" => spot(cx, e)?,
         // Mitsuba's projector: an image projected through a pinhole, times scale
-        "projector" => {
-            let steps = match e.children.iter().find(|c| c.tag == "transform") {
-                Some(tr) => cx.transform(tr)?,
-                None => Vec::new(),
-            };
-            let fov = match (cx.opt_float(e, "fov")?, cx.child(e, "focal_length")) {
-                (Some(f), _) if f > 0.0 && f < 180.0 => f,
-                (Some(f), _) => {
-                    return Err(cx.err(
-                        e,
-                        format!("fov must lie strictly between 0 and 180°, not {f}"),
-                    ));
-                }
-                (None, Some(c)) => {
-                    return Err(cx.err(
-                        c,
-                        "a projector's focal_length is not supported here; give fov",
-                    ));
-                }
-                // Mitsuba's default 50 mm lens on 36 mm: 2·atan(18/50) across x
-                (None, None) => 2.0 * (18.0f64 / 50.0).atan().to_degrees(),
-            };
-            let fov_axis_y = match cx.string(e, "fov_axis").as_deref() {
-                None | Some("x") => false,
-                Some("y") => true,
-                Some(o) => {
-                    return Err(cx.err(
-                        e,
-                        format!("a projector's fov_axis \"{o}\" is not supported here; use x or y"),
-                    ));
-                }
-            };
-            if cx.child(e, "irradiance").is_none() {
-                return Err(cx.err(e, "a projector needs an irradiance (a texture or a value)"));
-            }
-            let scale = cx.opt_float(e, "scale")?.unwrap_or(1.0);
-            (
-                LightKind::Projector {
-                    transform: steps,
-                    fov: Angle::new::<angle::degree>(fov),
-                    fov_axis_y,
-                    image: cx.texture_prop(e, "irradiance", 1.0)?,
-                },
-                // measured in Mitsuba 3.9.1: a grey image projects an equal-energy spectrum
-                // (X = Y = Z), not D65 (the `D65(scale)` texture in its source notwithstanding)
-                Spectrum::Constant(scale as f32),
-            )
-        }
-        "envmap" => {
-            let f = cx
-                .string(e, "filename")
-                .ok_or_else(|| cx.err(e, "missing filename (a latitude–longitude image)"))?;
-            let path = cx.resolve_file(&f);
-            if !path.is_file() {
-                return Err(cx.err(e, format!("image file {} does not exist", path.display())));
-            }
-            let scale = cx.opt_float(e, "scale")?.unwrap_or(1.0);
-            if scale < 0.0 {
-                return Err(cx.err(e, format!("scale must be ≥ 0, not {scale}")));
-            }
-            if let Some(m) = cx.child(e, "mis_compensation")
-                && m.attr("value") == Some("true")
-            {
-                cx.note(
-                    m,
-                    "mis_compensation changes only how Mitsuba samples the map, not the image; spectrace samples it by luminance",
-                );
-            }
-            (
-                LightKind::EnvMap {
-                    path,
-                    transform: match to_world {
-                        Some(tr) => cx.transform(tr)?,
-                        None => Vec::new(),
-                    },
-                    amount: EnvMapAmount::Scale(scale),
-                },
-                // an RGB (1, 1, 1) pixel is Mitsuba's normalised D65, as for `constant`
-                Spectrum::Piecewise(mitsuba_d65(1.0)),
-            )
-        }
+        "projector" => projector(cx, e)?,
+        "envmap" => envmap(cx, e, to_world)?,
         other => return Err(cx.unsupported(e, "emitter", other)),
     };
     Ok(LightDesc {
@@ -186,6 +53,153 @@ pub(super) fn emitter(cx: &Cx<'_>, e: &Element) -> R<LightDesc> {
         sampling_weight: sampling_weight(cx, e)?,
         loc: cx.loc(e),
     })
+}
+
+/// Mitsuba's `directional`: along `direction`, or the image of +z under `to_world`.
+fn directional(cx: &Cx<'_>, e: &Element, to_world: Option<&Element>) -> R<(LightKind, Spectrum)> {
+    // Mitsuba: `direction`, or the image of +z under `to_world`, never both
+    let d = match (cx.child(e, "direction"), to_world) {
+        (Some(_), Some(tr)) => {
+            return Err(cx.err(
+                tr,
+                "give either direction or to_world, not both (as Mitsuba requires)",
+            ));
+        }
+        (Some(d), None) => cx.vec3(d)?,
+        (None, Some(tr)) => {
+            let (eye, target, _) = camera_frame(cx, e, &cx.transform(tr)?)?;
+            [0, 1, 2].map(|i| target[i].value - eye[i].value)
+        }
+        (None, None) => [0.0, 0.0, 1.0],
+    };
+    Ok((
+        LightKind::Directional {
+            direction: d,
+            angular_diameter: Angle::new::<angle::radian>(0.0),
+            amount: DirectionalAmount::Scale(1.0),
+        },
+        cx.spectrum_prop(e, "irradiance", 1.0, true)?,
+    ))
+}
+
+/// Mitsuba's `spot`: placed by `to_world`, linear in angle from `beam_width` to
+/// `cutoff_angle`, with an optional bitmap across its cone.
+fn spot(cx: &Cx<'_>, e: &Element) -> R<(LightKind, Spectrum)> {
+    let cutoff = cx.opt_float(e, "cutoff_angle")?.unwrap_or(20.0);
+    let width = cx.opt_float(e, "beam_width")?.unwrap_or(cutoff * 0.75);
+    let steps = match e.children.iter().find(|c| c.tag == "transform") {
+        Some(tr) => cx.transform(tr)?,
+        None => return Err(cx.err(e, "a spot needs a to_world with lookat")),
+    };
+    let texture = match cx.child(e, "texture") {
+        Some(t) if cx.resolve(t)?.attr("type") == Some("bitmap") => {
+            Some(Box::new((cx.texture_of(t)?, steps.clone())))
+        }
+        Some(t) => {
+            return Err(cx.err(t, "a spot's texture must be a bitmap here"));
+        }
+        None => None,
+    };
+    let (eye, target, _) = camera_frame(cx, e, &steps)?;
+    Ok((
+        LightKind::Spot {
+            position: eye,
+            target,
+            cone_angle: Angle::new::<angle::degree>(cutoff),
+            // Mitsuba's falloff is linear in the angle from beam_width to cutoff_angle
+            // (src/emitters/spot.cpp, falloff_curve)
+            falloff_start: Angle::new::<angle::degree>(width.min(cutoff)),
+            falloff: SpotFalloff::LinearAngle,
+            amount: PointAmount::Scale(1.0),
+            texture,
+        },
+        cx.spectrum_prop(e, "intensity", 1.0, true)?,
+    ))
+}
+
+/// Mitsuba's `projector`: an image projected through a pinhole, times `scale`.
+fn projector(cx: &Cx<'_>, e: &Element) -> R<(LightKind, Spectrum)> {
+    let steps = match e.children.iter().find(|c| c.tag == "transform") {
+        Some(tr) => cx.transform(tr)?,
+        None => Vec::new(),
+    };
+    let fov = match (cx.opt_float(e, "fov")?, cx.child(e, "focal_length")) {
+        (Some(f), _) if f > 0.0 && f < 180.0 => f,
+        (Some(f), _) => {
+            return Err(cx.err(
+                e,
+                format!("fov must lie strictly between 0 and 180°, not {f}"),
+            ));
+        }
+        (None, Some(c)) => {
+            return Err(cx.err(
+                c,
+                "a projector's focal_length is not supported here; give fov",
+            ));
+        }
+        // Mitsuba's default 50 mm lens on 36 mm: 2·atan(18/50) across x
+        (None, None) => 2.0 * (18.0f64 / 50.0).atan().to_degrees(),
+    };
+    let fov_axis_y = match cx.string(e, "fov_axis").as_deref() {
+        None | Some("x") => false,
+        Some("y") => true,
+        Some(o) => {
+            return Err(cx.err(
+                e,
+                format!("a projector's fov_axis \"{o}\" is not supported here; use x or y"),
+            ));
+        }
+    };
+    if cx.child(e, "irradiance").is_none() {
+        return Err(cx.err(e, "a projector needs an irradiance (a texture or a value)"));
+    }
+    let scale = cx.opt_float(e, "scale")?.unwrap_or(1.0);
+    Ok((
+        LightKind::Projector {
+            transform: steps,
+            fov: Angle::new::<angle::degree>(fov),
+            fov_axis_y,
+            image: cx.texture_prop(e, "irradiance", 1.0)?,
+        },
+        // measured in Mitsuba 3.9.1: a grey image projects an equal-energy spectrum
+        // (X = Y = Z), not D65 (the `D65(scale)` texture in its source notwithstanding)
+        Spectrum::Constant(scale as f32),
+    ))
+}
+
+/// Mitsuba's `envmap`: a latitude–longitude image at infinity, times `scale`.
+fn envmap(cx: &Cx<'_>, e: &Element, to_world: Option<&Element>) -> R<(LightKind, Spectrum)> {
+    let f = cx
+        .string(e, "filename")
+        .ok_or_else(|| cx.err(e, "missing filename (a latitude–longitude image)"))?;
+    let path = cx.resolve_file(&f);
+    if !path.is_file() {
+        return Err(cx.err(e, format!("image file {} does not exist", path.display())));
+    }
+    let scale = cx.opt_float(e, "scale")?.unwrap_or(1.0);
+    if scale < 0.0 {
+        return Err(cx.err(e, format!("scale must be ≥ 0, not {scale}")));
+    }
+    if let Some(m) = cx.child(e, "mis_compensation")
+        && m.attr("value") == Some("true")
+    {
+        cx.note(
+            m,
+            "mis_compensation changes only how Mitsuba samples the map, not the image; spectrace samples it by luminance",
+        );
+    }
+    Ok((
+        LightKind::EnvMap {
+            path,
+            transform: match to_world {
+                Some(tr) => cx.transform(tr)?,
+                None => Vec::new(),
+            },
+            amount: EnvMapAmount::Scale(scale),
+        },
+        // an RGB (1, 1, 1) pixel is Mitsuba's normalised D65, as for `constant`
+        Spectrum::Piecewise(mitsuba_d65(1.0)),
+    ))
 }
 
 /// An emitter's `sampling_weight`: its relative probability of being chosen for emitter
