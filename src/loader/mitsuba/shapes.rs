@@ -21,7 +21,75 @@ pub(super) fn shape(
         Some(tr) => cx.transform(tr)?,
         None => Vec::new(),
     };
-    let kind = match t {
+    let kind = shape_kind(cx, s, t)?;
+    if cx.child(s, "flip_normals").and_then(|f| f.attr("value")) == Some("true")
+        && !matches!(kind, ShapeKind::Cylinder { .. })
+    {
+        // a mirror through the object's z = 0 plane reverses the winding and the normal
+        transform.insert(0, TransformStep::Scale([1.0, 1.0, -1.0]));
+    }
+    let mut material = None;
+    let mut two_sided = false;
+    let mut emission = None;
+    for c in &s.children {
+        match c.tag.as_str() {
+            "bsdf" => {
+                let (m, two) = bsdf(cx, c, &format!("shape@{}", cx.loc(s).line))?;
+                material = Some(materials.len());
+                two_sided = two;
+                materials.push(m);
+            }
+            "ref" if c.attr("name") == Some("interior") || c.attr("name") == Some("exterior") => {
+                return Err(cx.err(c, "participating media (`medium`, e.g. homogeneous) are not supported yet; remove the medium (volpath renders a scene without media as path does)"));
+            }
+            // a reference to a BSDF, or to an area emitter declared at the top level
+            "ref" if cx.resolve(c)?.tag == "emitter" => {
+                emission = Some(area_emitter(cx, cx.resolve(c)?)?);
+            }
+            "ref" => {
+                let id = c.attr("id").unwrap_or("");
+                let &(m, two) = ids.get(id).ok_or_else(|| {
+                    cx.err(
+                        c,
+                        format!("refers to \"{id}\", which is not a <bsdf> or area <emitter> declared before it"),
+                    )
+                })?;
+                material = Some(m);
+                two_sided = two;
+            }
+            "emitter" => emission = Some(area_emitter(cx, c)?),
+            "medium" => return Err(cx.err(c, "participating media (`medium`, e.g. homogeneous) are not supported yet; remove the medium (volpath renders a scene without media as path does)")),
+            _ => {}
+        }
+    }
+    if material.is_none() && emission.is_none() {
+        // Mitsuba's default BSDF is diffuse with reflectance 0.5; an emitting shape without a
+        // BSDF gets a black one instead (measured in Mitsuba 3.9.1: `shape.bsdf()` is
+        // SmoothDiffuse with reflectance 0), which is spectrace's pure emitter (no material)
+        material = Some(materials.len());
+        materials.push(MaterialDesc {
+            name: format!("default@{}", cx.loc(s).line),
+            kind: MaterialKind::Diffuse {
+                reflectance: Spectrum::Constant(0.5).into(),
+            },
+            loc: cx.loc(s),
+        });
+    }
+    Ok(ShapeDesc {
+        kind,
+        transform,
+        material,
+        two_sided,
+        emission,
+        unit_m: 1.0,
+        loc: cx.loc(s),
+    })
+}
+
+/// The geometry of a Mitsuba shape of type `t` (its material, emitter and transform are
+/// read by [`shape`]).
+fn shape_kind(cx: &Cx<'_>, s: &Element, t: &str) -> R<ShapeKind> {
+    Ok(match t {
         "obj" => {
             let f = cx
                 .string(s, "filename")
@@ -96,68 +164,6 @@ pub(super) fn shape(
             }
         }
         other => return Err(cx.unsupported(s, "shape", other)),
-    };
-    if cx.child(s, "flip_normals").and_then(|f| f.attr("value")) == Some("true")
-        && !matches!(kind, ShapeKind::Cylinder { .. })
-    {
-        // a mirror through the object's z = 0 plane reverses the winding and the normal
-        transform.insert(0, TransformStep::Scale([1.0, 1.0, -1.0]));
-    }
-    let mut material = None;
-    let mut two_sided = false;
-    let mut emission = None;
-    for c in &s.children {
-        match c.tag.as_str() {
-            "bsdf" => {
-                let (m, two) = bsdf(cx, c, &format!("shape@{}", cx.loc(s).line))?;
-                material = Some(materials.len());
-                two_sided = two;
-                materials.push(m);
-            }
-            "ref" if c.attr("name") == Some("interior") || c.attr("name") == Some("exterior") => {
-                return Err(cx.err(c, "participating media (`medium`, e.g. homogeneous) are not supported yet; remove the medium (volpath renders a scene without media as path does)"));
-            }
-            // a reference to a BSDF, or to an area emitter declared at the top level
-            "ref" if cx.resolve(c)?.tag == "emitter" => {
-                emission = Some(area_emitter(cx, cx.resolve(c)?)?);
-            }
-            "ref" => {
-                let id = c.attr("id").unwrap_or("");
-                let &(m, two) = ids.get(id).ok_or_else(|| {
-                    cx.err(
-                        c,
-                        format!("refers to \"{id}\", which is not a <bsdf> or area <emitter> declared before it"),
-                    )
-                })?;
-                material = Some(m);
-                two_sided = two;
-            }
-            "emitter" => emission = Some(area_emitter(cx, c)?),
-            "medium" => return Err(cx.err(c, "participating media (`medium`, e.g. homogeneous) are not supported yet; remove the medium (volpath renders a scene without media as path does)")),
-            _ => {}
-        }
-    }
-    if material.is_none() && emission.is_none() {
-        // Mitsuba's default BSDF is diffuse with reflectance 0.5; an emitting shape without a
-        // BSDF gets a black one instead (measured in Mitsuba 3.9.1: `shape.bsdf()` is
-        // SmoothDiffuse with reflectance 0), which is spectrace's pure emitter (no material)
-        material = Some(materials.len());
-        materials.push(MaterialDesc {
-            name: format!("default@{}", cx.loc(s).line),
-            kind: MaterialKind::Diffuse {
-                reflectance: Spectrum::Constant(0.5).into(),
-            },
-            loc: cx.loc(s),
-        });
-    }
-    Ok(ShapeDesc {
-        kind,
-        transform,
-        material,
-        two_sided,
-        emission,
-        unit_m: 1.0,
-        loc: cx.loc(s),
     })
 }
 
