@@ -46,12 +46,10 @@ impl AreaLight {
             }
             _ => 0.0,
         };
+        // Φ / I_peak = sides·π·L·A / (L·max(|Σ Aᵢ nᵢ|, A/4)), sr
         let sides = if self.two_sided { 2.0 } else { 1.0 };
-        let phi = if area > 0.0 {
-            phi * 4.0 * vector_area.max(0.25 * area) / (sides * area)
-        } else {
-            phi
-        };
+        let omega = sides * std::f32::consts::PI * area / vector_area.max(0.25 * area);
+        let phi = LightBounds::phi_of(phi, omega);
         let (mut lo, mut hi) = (Vec3::INFINITY, Vec3::NEG_INFINITY);
         for i in 0..shape.primitive_count() {
             let (a, b) = shape.primitive_aabb(i);

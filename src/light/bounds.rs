@@ -131,6 +131,17 @@ impl LightBounds {
         }
     }
 
+    /// [`LightBounds::phi`] of an emitter of power `power` (W) whose peak intensity is
+    /// `power / omega` (`omega` in sr: 4π for an isotropic emitter, π for a one-sided flat
+    /// one): 4π·power/omega. The power itself where `omega` is not a positive finite number.
+    pub fn phi_of(power: f32, omega: f32) -> f32 {
+        if omega > 0.0 && omega.is_finite() {
+            power * (4.0 * std::f32::consts::PI / omega)
+        } else {
+            power
+        }
+    }
+
     pub fn centroid(&self) -> Vec3 {
         0.5 * (self.lo + self.hi)
     }
@@ -241,6 +252,16 @@ impl Importance {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn phi_is_four_pi_times_the_peak_intensity() {
+        use std::f32::consts::PI;
+        // isotropic: the power; a one-sided Lambertian plate, Φ = π·I_peak: four times it
+        assert!((LightBounds::phi_of(10.0, 4.0 * PI) - 10.0).abs() < 1e-5);
+        assert!((LightBounds::phi_of(10.0, PI) - 40.0).abs() < 1e-4);
+        assert_eq!(LightBounds::phi_of(10.0, 0.0), 10.0);
+        assert_eq!(LightBounds::phi_of(10.0, f32::NAN), 10.0);
+    }
 
     #[test]
     fn cone_union_holds_both_cones() {

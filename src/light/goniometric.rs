@@ -217,14 +217,10 @@ impl GoniometricLight {
     /// of which the tree takes 4π times the table's largest intensity
     /// ([`LightBounds::phi`]): φ · 4π·max(cd) / (the table's flux in lm-equivalent cd·sr).
     pub fn bounds(&self, phi: f32) -> LightBounds {
-        let flux = self.table.luminous_flux();
+        // the solid angle the flux would fill at the peak intensity: flux / max(cd), sr
         let peak = self.table.cd.iter().fold(0.0f32, |m, &c| m.max(c)) as f64;
-        let phi = if flux > 0.0 {
-            (phi as f64 * 4.0 * std::f64::consts::PI * peak / flux) as f32
-        } else {
-            phi
-        };
-        LightBounds::point(self.position, phi)
+        let omega = (self.table.luminous_flux() / peak) as f32;
+        LightBounds::point(self.position, LightBounds::phi_of(phi, omega))
     }
 
     /// None if the table is zero everywhere.

@@ -39,12 +39,7 @@ impl ProjectorLight {
     pub fn bounds(&self, phi: f32) -> LightBounds {
         let (a, b) = (self.tan_x.atan(), self.tan_y.atan());
         let omega = 4.0 * (a.sin() * b.sin()).asin();
-        let phi = if omega > 0.0 {
-            phi * 4.0 * std::f32::consts::PI / omega
-        } else {
-            phi
-        };
-        LightBounds::point(self.position, phi)
+        LightBounds::point(self.position, LightBounds::phi_of(phi, omega))
     }
 
     /// The image coordinates of the local direction `d` (z > 0), or None outside the image.

@@ -9,9 +9,6 @@ use super::LightSample;
 use crate::geometry::Frame;
 use crate::spectrum::{SampledWavelengths, Spectrum};
 
-/// A point light emitting `intensity` (W·sr⁻¹·nm⁻¹) along its axis, at full strength inside the
-/// half-angle `falloff_start` (cosine `cos_falloff_start`), falling as `falloff_kind` says to
-/// zero at the half-angle `total` (cosine `cos_total`).
 /// How a spot's intensity falls between `falloff_start` (β) and `cone_angle` (γ).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SpotFalloff {
@@ -21,6 +18,9 @@ pub enum SpotFalloff {
     LinearAngle,
 }
 
+/// A point light emitting `intensity` (W·sr⁻¹·nm⁻¹) along its axis, at full strength inside the
+/// half-angle `falloff_start` (cosine `cos_falloff_start`), falling as `falloff_kind` says to
+/// zero at the half-angle `total` (cosine `cos_total`).
 #[derive(Clone, Debug)]
 pub struct SpotLight {
     /// Position, m.
@@ -61,17 +61,11 @@ fn smoothstep(x: f32, a: f32, b: f32) -> f32 {
 impl SpotLight {
     /// Bounds for the light tree: the axis, full intensity up to the falloff's start (θo) and
     /// light up to the cut-off (θe = total − start, at least 10⁻³ rad so that a hard-edged spot
-    /// keeps a non-empty emission cone), power `phi` (W).
-    /// Bounds for the light tree; `phi` is the spot's power, W, of which the tree takes 4π times
-    /// the axial intensity ([`LightBounds::phi`]).
+    /// keeps a non-empty emission cone); `phi` is the spot's power, W, of which the tree takes
+    /// 4π times the axial intensity ([`LightBounds::phi`]): power over ∫ falloff dω.
     pub fn bounds(&self, phi: f32) -> LightBounds {
         let theta_e = (self.total - self.falloff_start).max(1e-3);
-        let omega = self.solid_angle_factor();
-        let phi = if omega > 0.0 {
-            (phi as f64 * 4.0 * std::f64::consts::PI / omega) as f32
-        } else {
-            phi
-        };
+        let phi = LightBounds::phi_of(phi, self.solid_angle_factor() as f32);
         LightBounds {
             normals: DirectionCone {
                 w: self.frame.n,
