@@ -62,6 +62,16 @@ const PROPERTY_TAGS: &[&str] = &[
     "float", "integer", "boolean", "string", "rgb", "spectrum", "point", "vector",
 ];
 
+/// The candidate closest to `name` if it is close enough to be a likely misspelling of it
+/// (Jaro–Winkler similarity ≥ 0.85).
+fn nearest<'a>(name: &str, candidates: impl Iterator<Item = &'a str>) -> Option<&'a str> {
+    candidates
+        .map(|c| (strsim::jaro_winkler(name, c), c))
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+        .filter(|(s, _)| *s >= 0.85)
+        .map(|(_, c)| c)
+}
+
 impl Cx<'_> {
     pub(super) fn err(&self, e: &Element, msg: impl Into<String>) -> LoadError {
         let file = &self.sources[e.src].0;
@@ -115,12 +125,7 @@ impl Cx<'_> {
             .unwrap_or(&[]);
         // a suggestion only when it is close (Jaro–Winkler ≥ 0.85), and only of the same
         // kind; a plugin of another kind is named as such
-        let near = same_kind
-            .iter()
-            .map(|n| (strsim::jaro_winkler(kind, n), *n))
-            .max_by(|a, b| a.0.total_cmp(&b.0))
-            .filter(|(s, _)| *s >= 0.85)
-            .map(|(_, n)| n);
+        let near = nearest(kind, same_kind.iter().copied());
         let other = PLUGINS
             .iter()
             .find(|(k, names)| *k != what && names.contains(&kind))
@@ -267,13 +272,8 @@ impl Cx<'_> {
                     .attr("type")
                     .map(|t| format!(" \"{t}\""))
                     .unwrap_or_default();
-                let near = asked
-                    .iter()
-                    .map(|a| (strsim::jaro_winkler(name, a), a))
-                    .max_by(|a, b| a.0.total_cmp(&b.0))
-                    .filter(|(s, _)| *s >= 0.85);
-                match near {
-                    Some((_, a)) => {
+                match nearest(name, asked.iter().map(String::as_str)) {
+                    Some(a) => {
                         return Err(self.err(
                             c,
                             format!(
