@@ -9,7 +9,6 @@ use rayon::prelude::*;
 use super::{Ctx, RenderStats, Snapshot, StopReason, camera_sample, count_dropped, splat_filtered};
 use crate::film::{Film, SplatList};
 use crate::sampler::Sampler;
-use crate::spectrum::{N_WAVELENGTHS, SampledWavelengths};
 
 /// Light paths per chunk of the light tracer: a chunk's splat list stays a few MB.
 const LIGHT_CHUNK: u64 = 4096;
@@ -85,10 +84,7 @@ pub(super) fn render(ctx: &Ctx<'_>, snap: Snapshot) -> (Film, RenderStats) {
                             (px / w as u64) as u32,
                             (i / pixels) as u32,
                         );
-                        let mut wl: SampledWavelengths<N_WAVELENGTHS> = {
-                            let u = s.get_2d();
-                            ctx.lambda.sample(u.x, u.y)
-                        };
+                        let mut wl = super::draw_wavelengths(ctx.lambda, &mut s);
                         crate::integrator::light::trace(
                             integrator,
                             filter.radius,

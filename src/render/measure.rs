@@ -15,7 +15,7 @@ use crate::integrator::IntegratorKind;
 use crate::integrator::{Integrator, meter};
 use crate::sampler::Sampler;
 use crate::scene::{MeterPoint, Scene};
-use crate::spectrum::{N_WAVELENGTHS, SampledWavelengths, WavelengthSampler};
+use crate::spectrum::WavelengthSampler;
 
 /// Independent replicas per point.
 pub const REPLICAS: u32 = 16;
@@ -119,10 +119,7 @@ pub fn measure(
                             return None;
                         }
                         let mut s = Sampler::new(opts.seed, i as u32, k, j);
-                        let mut w: SampledWavelengths<N_WAVELENGTHS> = {
-                            let u = s.get_2d();
-                            lambda.sample(u.x, u.y)
-                        };
+                        let mut w = super::draw_wavelengths(&lambda, &mut s);
                         let e = meter::irradiance(&integrator, mp.p, mp.n, &mut w, &mut s);
                         match SampleSums::new(&w, &e, bins.as_ref()) {
                             Some(ss) => {

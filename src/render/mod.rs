@@ -291,6 +291,17 @@ fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, RenderError>
         })
 }
 
+/// The wavelengths of a path from the next pair of `s`'s dimensions: the first number places
+/// them within their strata, the second picks the hero's stratum ([`WavelengthSampler::sample`]).
+#[inline]
+pub(super) fn draw_wavelengths(
+    lambda: &WavelengthSampler,
+    s: &mut Sampler,
+) -> SampledWavelengths<N_WAVELENGTHS> {
+    let u = s.get_2d();
+    lambda.sample(u.x, u.y)
+}
+
 /// Camera sample `i` of pixel (x, y) under `seed`: the wavelengths, the filter offset and the
 /// lens position read the sampler's first dimensions in that order; returns the sampler (for
 /// the integrator's further dimensions), the wavelengths and the camera ray.
@@ -309,10 +320,7 @@ fn camera_sample(
     crate::geometry::Ray,
 ) {
     let mut s = Sampler::new(seed, x, y, i);
-    let wl = {
-        let u = s.get_2d();
-        lambda.sample(u.x, u.y)
-    };
+    let wl = draw_wavelengths(lambda, &mut s);
     let offset = filter.sample(s.get_2d());
     let raster = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
     let ray = scene.camera.generate_ray(raster, s.get_2d());
