@@ -28,6 +28,7 @@ pub mod light;
 pub mod loader;
 pub mod material;
 pub mod output;
+pub mod params;
 pub mod plot;
 pub mod render;
 pub mod sampler;

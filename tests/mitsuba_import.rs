@@ -130,7 +130,7 @@ fn import_errors_are_located_and_suggest_alternatives() {
 /// with its line.
 #[test]
 fn spot_filter_and_mesh_normals_follow_mitsuba() {
-    use spectrace::loader::desc::{FilterDesc, LightKind, MeshNormals, ShapeKind, SpotFalloff};
+    use spectrace::loader::desc::{LightKind, MeshNormals, ShapeKind, SpotFalloff};
     let spot = PLANE.replace(
         r#"<emitter type="point">
     <point name="position" x="0" y="2" z="0"/>"#,
@@ -171,7 +171,10 @@ fn spot_filter_and_mesh_normals_follow_mitsuba() {
         &[],
     )
     .unwrap();
-    assert_eq!(d.film.filter, FilterDesc::MitsubaGaussian { stddev: 0.5 });
+    assert_eq!(
+        d.film.filter,
+        spectrace::film::filter::gaussian::Desc::mitsuba(0.5)
+    );
     let d = load_str(
         &PLANE.replace(
             r#"<rfilter type="box"/>"#,
@@ -181,7 +184,10 @@ fn spot_filter_and_mesh_normals_follow_mitsuba() {
         &[],
     )
     .unwrap();
-    assert_eq!(d.film.filter, FilterDesc::MitsubaGaussian { stddev: 0.3 });
+    assert_eq!(
+        d.film.filter,
+        spectrace::film::filter::gaussian::Desc::mitsuba(0.3)
+    );
 
     // meshes without normals are smoothed unless face_normals is true
     let mesh = |extra: &str| {

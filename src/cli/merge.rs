@@ -89,7 +89,7 @@ pub fn merge(args: MergeArgs) -> Result<(), CliError> {
                     max_nm: num_attr(&img, path, "spectrace:wavelengthMaxNm")?,
                 };
                 let (w, h) = (img.width as u32, img.height as u32);
-                let f = Filter::from_desc(&FilterDesc::Box);
+                let f = Filter::from_desc(&FilterDesc::BOX);
                 film = Some(Film::new(w, h, f, range, k.bins));
                 key = Some(k);
             }

@@ -11,7 +11,7 @@
 //! on the order of additions, so threads, checkpoints and render parts cannot change a bit.
 
 mod exact;
-mod filter;
+pub mod filter;
 mod splats;
 mod state;
 

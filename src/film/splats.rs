@@ -120,7 +120,7 @@ mod tests {
     #[test]
     fn applied_list_equals_tile_and_merge() {
         let new_film = || {
-            let f = Filter::from_desc(&FilterDesc::Box);
+            let f = Filter::from_desc(&FilterDesc::BOX);
             Film::new(7, 5, f, WavelengthRange::default(), 6)
         };
         let (mut a, mut b) = (new_film(), new_film());

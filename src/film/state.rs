@@ -136,7 +136,7 @@ mod tests {
     /// a film twice doubles its sums.
     #[test]
     fn state_channels_round_trip() {
-        let f = Filter::from_desc(&FilterDesc::Box);
+        let f = Filter::from_desc(&FilterDesc::BOX);
         let mut a = Film::new(5, 3, f, WavelengthRange::default(), 4);
         let mut tile = a.tile(0, 0, 5, 3);
         let bins = a.bins.clone();

@@ -104,7 +104,7 @@ pub struct RawFilm {
     pub width: Option<S<Value>>,
     pub height: Option<S<Value>>,
     pub spp: Option<S<Value>>,
-    pub filter: Option<S<String>>,
+    pub filter: Option<S<Value>>,
     pub filter_radius: Option<S<Value>>,
     pub spectral_bins: Option<S<Value>>,
     pub exposure: Option<S<Value>>,

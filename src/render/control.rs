@@ -240,7 +240,7 @@ mod tests {
         let mut film = Film::new(
             w,
             h,
-            Filter::from_desc(&FilterDesc::Box),
+            Filter::from_desc(&FilterDesc::BOX),
             WavelengthRange::default(),
             0,
         );

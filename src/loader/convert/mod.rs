@@ -1,6 +1,7 @@
 //! Raw TOML → [`SceneDesc`]: typed quantities, resolved spectra and paths, located errors.
 
 mod items;
+mod params;
 mod spectra;
 
 use std::ops::Range;

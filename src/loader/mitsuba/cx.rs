@@ -7,7 +7,7 @@ use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use super::plugins::PLUGINS;
+use super::plugins::{kinds, supported};
 use super::xml::Element;
 use crate::loader::error::{LoadError, SourceMap, line_starts, loc_in};
 use crate::spectrum::named::{Named, lookup};
@@ -118,18 +118,11 @@ impl Cx<'_> {
     }
 
     pub(super) fn unsupported(&self, e: &Element, what: &str, kind: &str) -> LoadError {
-        let same_kind = PLUGINS
-            .iter()
-            .find(|(k, _)| *k == what)
-            .map(|(_, names)| *names)
-            .unwrap_or(&[]);
+        let same_kind = supported(what);
         // a suggestion only when it is close (Jaro–Winkler ≥ 0.85), and only of the same
         // kind; a plugin of another kind is named as such
         let near = nearest(kind, same_kind.iter().copied());
-        let other = PLUGINS
-            .iter()
-            .find(|(k, names)| *k != what && names.contains(&kind))
-            .map(|(k, _)| *k);
+        let other = kinds().find(|k| *k != what && supported(k).contains(&kind));
         let supported = same_kind.join(", ");
         let msg = match (other, near) {
             (Some(k), _) => {

@@ -22,6 +22,7 @@
 mod bsdf;
 mod cx;
 mod emitters;
+mod params;
 mod plugins;
 mod scene;
 mod sensor;

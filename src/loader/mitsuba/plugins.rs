@@ -3,6 +3,8 @@
 //! what the readers accept, for every plugin Mitsuba 3.9.1 has, so the list cannot drift from
 //! the code: a reader that learns a plugin fails that test until its name is added here.
 
+use crate::params::{self, Dialect};
+
 /// Mitsuba 3.9.1's samplers. spectrace reads their `sample_count` and renders with its own
 /// Owen-scrambled Sobol sampler, whichever is named (and says so once).
 pub(super) const SAMPLERS: &[&str] = &[
@@ -13,12 +15,30 @@ pub(super) const SAMPLERS: &[&str] = &[
     "ldsampler",
 ];
 
-/// The supported plugins by kind (`what` of [`Cx::unsupported`]): an unknown type is only ever
-/// compared with plugins of its own kind.
-pub(super) const PLUGINS: &[(&str, &[&str])] = &[
+/// The supported plugins of kind `what` (of [`Cx::unsupported`]), in order: from the kind's
+/// own registry where it has one (`rfilter`: [`crate::film::filter::KINDS`]), else from
+/// [`PLUGINS`].
+pub(super) fn supported(what: &str) -> Vec<&'static str> {
+    match what {
+        "rfilter" => params::names(crate::film::filter::KINDS, Dialect::Mitsuba),
+        _ => PLUGINS
+            .iter()
+            .find(|(k, _)| *k == what)
+            .map(|(_, names)| names.to_vec())
+            .unwrap_or_default(),
+    }
+}
+
+/// Every kind of plugin, for naming the kind a misplaced plugin belongs to.
+pub(super) fn kinds() -> impl Iterator<Item = &'static str> {
+    PLUGINS.iter().map(|(k, _)| *k).chain(["rfilter"])
+}
+
+/// The supported plugins by kind, for kinds without a registry of their own: an unknown type
+/// is only ever compared with plugins of its own kind.
+const PLUGINS: &[(&str, &[&str])] = &[
     ("sensor", &["perspective", "thinlens", "orthographic"]),
     ("film", &["hdrfilm"]),
-    ("rfilter", &["box", "gaussian"]),
     ("sampler", SAMPLERS),
     ("integrator", &["path", "volpath", "direct", "moment"]),
     (

@@ -159,7 +159,7 @@ pub(super) fn scene(
         height: 576,
         spp: 4,
         // Mitsuba's default rfilter
-        filter: FilterDesc::MitsubaGaussian { stddev: 0.5 },
+        filter: crate::film::filter::gaussian::Desc::mitsuba(0.5),
         spectral_bins: 0,
         exposure_ev: None,
         loc: Default::default(),

@@ -3,8 +3,10 @@
 //! to place lights).
 
 use super::cx::{Cx, R};
+use super::params::read_kind;
 use super::plugins::SAMPLERS;
 use super::xml::Element;
+use crate::film::filter::KINDS;
 use crate::loader::desc::*;
 use crate::units::{Angle, Length, angle, length};
 
@@ -116,20 +118,7 @@ pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraD
                     *slot = v as u32;
                 }
                 for f in c.children.iter().filter(|f| f.tag == "rfilter") {
-                    film.filter = match f.attr("type") {
-                        Some("box") => FilterDesc::Box,
-                        Some("gaussian") => {
-                            let s = cx.opt_float(f, "stddev")?.unwrap_or(0.5);
-                            if s <= 0.0 {
-                                return Err(
-                                    cx.err(f, format!("stddev must be positive, found {s}"))
-                                );
-                            }
-                            FilterDesc::MitsubaGaussian { stddev: s }
-                        }
-                        Some(o) => return Err(cx.unsupported(f, "rfilter", o)),
-                        None => return Err(cx.err(f, "missing type")),
-                    };
+                    film.filter = read_kind(cx, KINDS, "rfilter", f)?;
                 }
             }
             ("film", Some(o)) => return Err(cx.unsupported(c, "film", o)),

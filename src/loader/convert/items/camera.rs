@@ -1,6 +1,8 @@
 //! `[camera]`, `[film]` and `[integrator]`.
 
 use super::*;
+use crate::film::filter::{KINDS, gaussian};
+use crate::loader::convert::params::{Entry, inline_table, read_kind};
 
 pub(super) fn camera(cx: &Cx<'_>, c: &S<RawCamera>) -> R<CameraDesc> {
     let sp = c.span();
@@ -372,10 +374,7 @@ pub(super) fn film(cx: &Cx<'_>, f: Option<&S<RawFilm>>) -> R<FilmDesc> {
         width: 512,
         height: 512,
         spp: 16,
-        filter: FilterDesc::Gaussian {
-            sigma: 0.5,
-            radius: 1.5,
-        },
+        filter: gaussian::Desc::native(1.5),
         spectral_bins: 0,
         exposure_ev: None,
         loc: Default::default(),
@@ -414,27 +413,55 @@ pub(super) fn film(cx: &Cx<'_>, f: Option<&S<RawFilm>>) -> R<FilmDesc> {
     if let Some(e) = &f.exposure {
         d.exposure_ev = Some(cx.number(e, "film.exposure")?);
     }
-    let sigma = match &f.filter_radius {
-        Some(r) => cx.positive(r, "film.filter_radius")? / 3.0,
-        None => 0.5,
-    };
-    d.filter = match f.filter.as_ref().map(|s| (s.get_ref().as_str(), s.span())) {
-        // the native Gaussian is truncated at its radius, 3σ (Mitsuba's own is
-        // FilterDesc::MitsubaGaussian, which only its importer asks for)
-        None | Some(("gaussian", _)) => FilterDesc::Gaussian {
-            sigma,
-            radius: 3.0 * sigma,
+    d.filter = filter(cx, f)?;
+    Ok(d)
+}
+
+/// `film.filter`: a kind's name with its radius in `filter_radius`, or an inline table
+/// `{ type = "NAME", … }` of the kind's own parameters; spectrace's Gaussian if absent.
+fn filter(cx: &Cx<'_>, f: &RawFilm) -> R<FilterDesc> {
+    let (name, name_span, entries) = match &f.filter {
+        None => ("gaussian", WHOLE_FILE, Vec::new()),
+        Some(v) => match v.get_ref() {
+            Value::String(s) => (s.as_str(), v.span(), Vec::new()),
+            Value::Table(t) => {
+                let (name, entries) = inline_table(cx, t, &v.span(), "film.filter")?;
+                (name, v.span(), entries)
+            }
+            _ => {
+                return Err(cx.err(
+                    &v.span(),
+                    "film.filter",
+                    "expected a filter name or a table { type = \"NAME\", … }",
+                ));
+            }
         },
-        Some(("box", _)) => FilterDesc::Box,
-        Some((o, span)) => {
+    };
+    let mut entries = entries;
+    if let Some(r) = &f.filter_radius {
+        if entries.iter().any(|e| e.name == "radius") {
             return Err(cx.err(
-                &span,
-                "film.filter",
-                format!("\"{o}\": expected box or gaussian"),
+                &r.span(),
+                "film.filter_radius",
+                "the filter's table gives its radius already",
             ));
         }
-    };
-    Ok(d)
+        entries.push(Entry {
+            name: "radius".into(),
+            field: "film.filter_radius".into(),
+            value: r.get_ref().clone(),
+            span: r.span(),
+        });
+    }
+    read_kind(
+        cx,
+        KINDS,
+        "filter",
+        "film.filter",
+        name,
+        &name_span,
+        &entries,
+    )
 }
 
 pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<IntegratorDesc> {

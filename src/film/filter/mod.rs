@@ -4,27 +4,79 @@
 
 use glam::Vec2;
 
+use crate::params::Kind;
 use crate::sampling::CdfGuide;
 
-/// A pixel filter as the description states it, in pixels (the build step makes the
-/// [`Filter`] the film samples from it).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum FilterDesc {
-    Box,
-    /// Gaussian exp(−x²/2σ²) of standard deviation `sigma` per axis, truncated at `radius`
-    /// (both in pixels): spectrace's native filter, radius 3σ.
-    Gaussian {
-        sigma: f64,
-        radius: f64,
-    },
-    /// Mitsuba 3's `gaussian` rfilter as its scalar variants apply it (src/rfilters/gaussian.cpp,
-    /// src/core/rfilter.cpp): per axis exp(−x²/2σ²) − exp(−r²/2σ²) with r = 4σ, zero beyond r,
-    /// tabulated in 31 steps of |x| over [0, r], each step holding the value at its inner end
-    /// (`eval_discretized`, MI_FILTER_RESOLUTION = 31).
-    MitsubaGaussian {
-        stddev: f64,
-    },
+/// The registry of pixel filter kinds: one line per kind, naming its enum variant and its file.
+/// Each file holds the kind's description (`Desc`, in pixels), its one-axis kernel (`Kernel`,
+/// `Copy`, with `fn eval(self, x: f32) -> f32`: unnormalised, x in pixels, |x| ≤ radius) and its
+/// reader (`KIND`: its names in TOML and Mitsuba XML and a `fn(&mut dyn Params)`). The macro
+/// makes [`FilterDesc`] and the kernel a closed enum of these with `match` dispatch, and
+/// [`KINDS`] the list both loaders look names up in and take their "expected …" lists from.
+macro_rules! filter_kinds {
+    ($($variant:ident => $module:ident),* $(,)?) => {
+        $(pub mod $module;)*
+
+        /// A pixel filter as the description states it, in pixels (the build step makes the
+        /// [`Filter`] the film samples from it): one variant per kind of [`KINDS`].
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub enum FilterDesc {
+            $($variant($module::Desc),)*
+        }
+
+        /// Every filter kind, for the loaders (see [`crate::params`]).
+        pub const KINDS: &[Kind<FilterDesc>] = &[$($module::KIND,)*];
+
+        /// One axis of the filter, unnormalised, for |x| ≤ radius.
+        #[derive(Clone, Copy, Debug)]
+        enum Kernel {
+            $($variant($module::Kernel),)*
+        }
+
+        impl Kernel {
+            fn eval(self, x: f32) -> f32 {
+                match self {
+                    $(Kernel::$variant(k) => k.eval(x),)*
+                }
+            }
+        }
+
+        impl FilterDesc {
+            /// The half-width of the support (pixels) and the one-axis kernel.
+            fn kernel(&self) -> (f32, Kernel) {
+                match self {
+                    $(FilterDesc::$variant(d) => (d.radius(), Kernel::$variant(d.kernel())),)*
+                }
+            }
+        }
+    };
 }
+
+filter_kinds! {
+    Box => box_filter,
+    Gaussian => gaussian,
+}
+
+impl FilterDesc {
+    /// A box of width 1 pixel: each sample counts in the pixel it falls in.
+    pub const BOX: Self = FilterDesc::Box(box_filter::Desc { radius: 0.5 });
+}
+
+/// `x` rounded towards 0 to a multiple of `step` when `step` > 0 (Mitsuba 3's scalar variants
+/// evaluate a filter from a table of its values at the ends of `MI_FILTER_RESOLUTION` = 31
+/// steps over [0, radius], each step holding the value at its inner end:
+/// `ReconstructionFilter::eval_discretized` in src/core/rfilter.cpp); `x` itself when `step`
+/// is 0.
+pub(crate) fn stepped(x: f32, step: f32) -> f32 {
+    if step > 0.0 {
+        (x.abs() / step).floor() * step
+    } else {
+        x
+    }
+}
+
+/// Steps of Mitsuba 3's filter table over [0, radius] (`MI_FILTER_RESOLUTION`).
+pub(crate) const MITSUBA_FILTER_RESOLUTION: f32 = 31.0;
 
 /// A separable pixel filter, sampled per axis by inverting a finely tabulated CDF.
 #[derive(Clone, Debug)]
@@ -45,66 +97,13 @@ pub struct Filter {
 /// Entries of the CDF's guide table.
 const GUIDE: usize = 1024;
 
-/// One axis of the filter, unnormalised, for |x| ≤ radius.
-#[derive(Clone, Copy, Debug)]
-enum Kernel {
-    Box,
-    /// max(0, exp(−α x'²) − bias), α = 1/2σ², with x' = |x| rounded down to a multiple of
-    /// `step` when `step` > 0 (a table of the kernel at step ends, as Mitsuba's scalar variants
-    /// use it), x' = x when `step` = 0.
-    Gaussian {
-        alpha: f32,
-        bias: f32,
-        step: f32,
-    },
-}
-
-impl Kernel {
-    fn eval(self, x: f32) -> f32 {
-        match self {
-            Kernel::Box => 1.0,
-            Kernel::Gaussian { alpha, bias, step } => {
-                let x = if step > 0.0 {
-                    (x.abs() / step).floor() * step
-                } else {
-                    x
-                };
-                ((-alpha * x * x).exp() - bias).max(0.0)
-            }
-        }
-    }
-}
-
 const CELLS: usize = 8192;
 
-/// Steps of Mitsuba 3's filter table over [0, radius] (`MI_FILTER_RESOLUTION`).
-const MITSUBA_FILTER_RESOLUTION: f32 = 31.0;
-
 impl Filter {
-    /// Box of width 1 pixel, spectrace's truncated Gaussian or Mitsuba's (see [`FilterDesc`]).
+    /// The filter a description states, tabulated for sampling.
     pub fn from_desc(d: &FilterDesc) -> Self {
-        match *d {
-            FilterDesc::Box => Self::tabulate(0.5, Kernel::Box),
-            FilterDesc::Gaussian { sigma, radius } => {
-                let alpha = (1.0 / (2.0 * sigma * sigma)) as f32;
-                let kernel = Kernel::Gaussian {
-                    alpha,
-                    bias: 0.0,
-                    step: 0.0,
-                };
-                Self::tabulate(radius as f32, kernel)
-            }
-            FilterDesc::MitsubaGaussian { stddev } => {
-                let alpha = (1.0 / (2.0 * stddev * stddev)) as f32;
-                let r = (4.0 * stddev) as f32;
-                let kernel = Kernel::Gaussian {
-                    alpha,
-                    bias: (-alpha * r * r).exp(),
-                    step: r / MITSUBA_FILTER_RESOLUTION,
-                };
-                Self::tabulate(r, kernel)
-            }
-        }
+        let (radius, kernel) = d.kernel();
+        Self::tabulate(radius, kernel)
     }
 
     /// The filter's weight at `offset` from the pixel centre (pixels): the product of the two
@@ -167,7 +166,7 @@ impl Filter {
     /// tabulated piecewise-constant kernel, tails included).
     fn sample_axis(&self, u: f32) -> f32 {
         let u = u.clamp(0.0, 1.0);
-        if let Kernel::Box = self.kernel {
+        if let Kernel::Box(_) = self.kernel {
             // the CDF is the identity: no table needed
             return -self.radius + u * (2.0 * self.radius);
         }
@@ -193,7 +192,7 @@ mod tests {
 
     #[test]
     fn box_is_uniform_over_the_pixel() {
-        let f = Filter::from_desc(&FilterDesc::Box);
+        let f = Filter::from_desc(&FilterDesc::BOX);
         assert!((f.sample(Vec2::ZERO).x + 0.5).abs() < 1e-5);
         assert!((f.sample(Vec2::splat(0.25)).x + 0.25).abs() < 1e-4);
         assert!((f.sample(Vec2::ONE).x - 0.5).abs() < 1e-5);
@@ -201,13 +200,7 @@ mod tests {
 
     #[test]
     fn guide_table_finds_the_cell_a_binary_search_finds() {
-        for d in [
-            FilterDesc::Gaussian {
-                sigma: 0.5,
-                radius: 1.5,
-            },
-            FilterDesc::MitsubaGaussian { stddev: 0.5 },
-        ] {
+        for d in [gaussian::Desc::native(1.5), gaussian::Desc::mitsuba(0.5)] {
             let f = Filter::from_desc(&d);
             for k in 0..=100_000u32 {
                 let u = k as f32 / 100_000.0;
@@ -227,12 +220,9 @@ mod tests {
     #[test]
     fn weight_is_the_sampled_density() {
         for d in [
-            FilterDesc::Box,
-            FilterDesc::Gaussian {
-                sigma: 0.5,
-                radius: 1.5,
-            },
-            FilterDesc::MitsubaGaussian { stddev: 0.5 },
+            FilterDesc::BOX,
+            gaussian::Desc::native(1.5),
+            gaussian::Desc::mitsuba(0.5),
         ] {
             let f = Filter::from_desc(&d);
             // ∫∫ weight = (∫ weight_axis)² = 1 over the support: the weight is the product of
@@ -270,17 +260,14 @@ mod tests {
                 .sum();
             assert!((below - cdf).abs() < 1e-3, "{d:?}: {below} vs {cdf}");
         }
-        let b = Filter::from_desc(&FilterDesc::Box);
+        let b = Filter::from_desc(&FilterDesc::BOX);
         assert_eq!(b.weight(Vec2::new(-0.5, 0.0)), 1.0);
         assert_eq!(b.weight(Vec2::new(0.5, 0.0)), 0.0);
     }
 
     #[test]
     fn gaussian_has_its_sigma() {
-        let f = Filter::from_desc(&FilterDesc::Gaussian {
-            sigma: 0.5,
-            radius: 1.5,
-        });
+        let f = Filter::from_desc(&gaussian::Desc::native(1.5));
         let n = 100_000;
         let var: f64 = (0..n)
             .map(|i| (f.sample_axis((i as f32 + 0.5) / n as f32) as f64).powi(2))
@@ -306,7 +293,7 @@ mod tests {
 
     #[test]
     fn mitsuba_gaussian_is_mitsubas_table() {
-        let f = Filter::from_desc(&FilterDesc::MitsubaGaussian { stddev: 0.5 });
+        let f = Filter::from_desc(&gaussian::Desc::mitsuba(0.5));
         assert_eq!(f.radius, 2.0);
         // Mitsuba 3.9.1 scalar_spectral, `mi.load_dict({'type': 'gaussian'})
         // .eval_discretized(x)` (its kernel is a polynomial fit of the Gaussian, hence 1e-3)
@@ -336,10 +323,7 @@ mod tests {
             let got = tail(&f, d);
             assert!((got - want).abs() < 2e-4, "{d}: {got} vs {want}");
         }
-        let native = Filter::from_desc(&FilterDesc::Gaussian {
-            sigma: 0.5,
-            radius: 1.5,
-        });
+        let native = Filter::from_desc(&gaussian::Desc::native(1.5));
         assert_eq!(tail(&native, 1.5), 0.0);
     }
 }
