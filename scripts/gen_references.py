@@ -67,6 +67,7 @@ SPP = {
     "spot": 8192,
     # 48 × 48 one-difference scenes (issue 8)
     "gaussian_edge": 32768,
+    "tent_edge": 32768,
     "smooth_mesh": 8192,
     "spot_ramp": 8192,
     # issue 10

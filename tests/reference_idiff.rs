@@ -249,8 +249,23 @@ fn column_stats(path: &Path) -> (Vec<f64>, Vec<f64>) {
 /// 4.9e-3 against 6.9e-3.
 #[test]
 fn gaussian_filter_edges_match_mitsuba() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference/gaussian_edge");
-    let out = out_dir("gaussian_edge_columns");
+    filter_edges_match_mitsuba("gaussian_edge");
+}
+
+/// The tent filter (radius 1.5 px, Mitsuba's 31-step table) at the same edges
+/// (`tests/reference/tent_edge`), by the same measure as the Gaussian above.
+#[test]
+fn tent_filter_edges_match_mitsuba() {
+    filter_edges_match_mitsuba("tent_edge");
+}
+
+/// Each column's mean of `tests/reference/NAME`, rendered at 1024 spp, against Mitsuba's
+/// references (see `gaussian_filter_edges_match_mitsuba`).
+fn filter_edges_match_mitsuba(name: &str) {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/reference")
+        .join(name);
+    let out = out_dir(&format!("{name}_columns"));
     let ours = out.join("ours.exr");
     render(
         &dir.join("scene.xml"),

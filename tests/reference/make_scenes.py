@@ -596,7 +596,7 @@ Exercises: the spot's falloff profile.""",
     write("spot_ramp", s + FOOTER)
 
 
-def gaussian_edge():
+def edge_scene(name, comment, rfilter):
     # the camera looks along +z from the origin; with fov 40° along x, one pixel spans
     # 2 tan(20°)/48 at z = 1. The emitting strip covers pixel columns 12 to 36.25 (one edge on
     # a pixel boundary, the other a quarter pixel inside), full height.
@@ -604,22 +604,7 @@ def gaussian_edge():
     u0, u1 = 12.0, 36.25
     half = (u1 - u0) / 2 * px
     cx = ((u0 + u1) / 2 - SMALL[0] / 2) * px
-    s = header(
-        f"""A uniformly emitting vertical strip (radiance 1, flat) seen straight on against black,
-with Mitsuba's default reconstruction filter, a Gaussian of stddev 0.5 px written explicitly.
-The strip's edges fall on a pixel boundary and a quarter pixel off one, so the columns next to
-them sample the filter's profile at 0.25 px steps out to 2 px. Mitsuba's gaussian is cut at
-4 stddev (2 px) and shifted down by its value there; a Gaussian cut at 3 stddev (1.5 px) leaves
-the columns 1.5 px and beyond from an edge black.
-Exercises: the pixel filter's radius and shape at sharp edges.""",
-        "0, 0, 0",
-        "0, 0, 1",
-        40,
-        64,
-        2,
-        size=SMALL,
-        rfilter='<rfilter type="gaussian">\n                <float name="stddev" value="0.5"/>\n            </rfilter>',
-    )
+    s = header(comment, "0, 0, 0", "0, 0, 1", 40, 64, 2, size=SMALL, rfilter=rfilter)
     s += f"""
     <!-- the strip: rectangle [-1,1]² scaled, turned to face the camera (normal -z) -->
     <shape type="rectangle">
@@ -636,7 +621,32 @@ Exercises: the pixel filter's radius and shape at sharp edges.""",
         </bsdf>
     </shape>
 """
-    write("gaussian_edge", s + FOOTER)
+    write(name, s + FOOTER)
+
+
+def gaussian_edge():
+    edge_scene(
+        "gaussian_edge",
+        """A uniformly emitting vertical strip (radiance 1, flat) seen straight on against black,
+with Mitsuba's default reconstruction filter, a Gaussian of stddev 0.5 px written explicitly.
+The strip's edges fall on a pixel boundary and a quarter pixel off one, so the columns next to
+them sample the filter's profile at 0.25 px steps out to 2 px. Mitsuba's gaussian is cut at
+4 stddev (2 px) and shifted down by its value there; a Gaussian cut at 3 stddev (1.5 px) leaves
+the columns 1.5 px and beyond from an edge black.
+Exercises: the pixel filter's radius and shape at sharp edges.""",
+        '<rfilter type="gaussian">\n                <float name="stddev" value="0.5"/>\n            </rfilter>',
+    )
+
+
+def tent_edge():
+    edge_scene(
+        "tent_edge",
+        """The strip of gaussian_edge with Mitsuba's tent filter of radius 1.5 px: 1 - |x|/1.5
+per axis, which Mitsuba's scalar variants evaluate from a table of 31 steps over [0, 1.5].
+The columns next to the edges sample the tent's profile at 0.25 px steps out to 1.5 px.
+Exercises: a filter kind added through the filter registry (issue 26).""",
+        '<rfilter type="tent">\n                <float name="radius" value="1.5"/>\n            </rfilter>',
+    )
 
 
 def heightfield_obj(path, n=24, size=1.0, amp=0.15):
@@ -1689,7 +1699,7 @@ SCENES = {
     f.__name__: f
     for f in (cornell, point_plane, gold_copper, conductor_presets, rough_conductor, rough_beckmann,
               dielectric_sphere, rough_dielectric, spot, blackbody, constant_env, directional,
-              spot_ramp, gaussian_edge, smooth_mesh, textures, envmap, plastics, serialized, direct, orthographic, mask, cylinders,
+              spot_ramp, gaussian_edge, tent_edge, smooth_mesh, textures, envmap, plastics, serialized, direct, orthographic, mask, cylinders,
               anisotropic, blend, bumps, instances, textured_lobes, emissive_textures,
               projector, spot_texture)
 }

@@ -55,6 +55,7 @@ macro_rules! filter_kinds {
 filter_kinds! {
     Box => box_filter,
     Gaussian => gaussian,
+    Tent => tent,
 }
 
 impl FilterDesc {
