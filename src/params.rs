@@ -8,7 +8,8 @@
 //! records what was asked for, so a key no reader asked for is an error naming it, and turns a
 //! [`ParamError`] into its own error with the file, line and field.
 //!
-//! This module is a leaf of the describe phase: it imports nothing from the crate, so render-side
+//! This module is a leaf of the describe phase: it imports nothing from the crate (and only
+//! `strsim` from outside), so render-side
 //! kind files may use it without importing a loader.
 
 use std::fmt;
@@ -105,6 +106,23 @@ pub fn find<'r, D>(registry: &'r [Kind<D>], dialect: Dialect, name: &str) -> Opt
 /// The names of `registry`'s kinds in `dialect`, in registry order, for "expected …" messages.
 pub fn names<D>(registry: &[Kind<D>], dialect: Dialect) -> Vec<&'static str> {
     registry.iter().filter_map(|k| k.name(dialect)).collect()
+}
+
+/// The candidate closest to `name` if it is close enough to be a likely misspelling of it
+/// (Jaro–Winkler similarity ≥ 0.85), for "did you mean …?" in every loader's errors.
+pub fn nearest<'a>(name: &str, candidates: impl Iterator<Item = &'a str>) -> Option<&'a str> {
+    candidates
+        .map(|c| (strsim::jaro_winkler(name, c), c))
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+        .filter(|(s, _)| *s >= 0.85)
+        .map(|(_, c)| c)
+}
+
+/// ` (did you mean "NAME"?)` for [`nearest`]`(name, candidates)`, else nothing.
+pub fn did_you_mean<'a>(name: &str, candidates: impl Iterator<Item = &'a str>) -> String {
+    nearest(name, candidates)
+        .map(|c| format!(" (did you mean \"{c}\"?)"))
+        .unwrap_or_default()
 }
 
 #[cfg(test)]

@@ -125,38 +125,11 @@ pub struct RawIntegrator {
     pub second_moment: Option<S<bool>>,
 }
 
+/// A material's keys, `type` and the kind's own, read by the kind's reader
+/// (`convert/items/materials/`), which rejects the keys it does not take.
 #[derive(Deserialize, Debug)]
-#[serde(deny_unknown_fields)]
-pub struct RawMaterial {
-    #[serde(rename = "type")]
-    pub kind: Option<S<String>>,
-    pub reflectance: Option<S<Value>>,
-    pub kd: Option<S<Value>>,
-    pub ks: Option<S<Value>>,
-    pub exponent: Option<S<Value>>,
-    pub ior: Option<S<Value>>,
-    pub exterior_ior: Option<S<Value>>,
-    pub metal: Option<S<String>>,
-    pub eta: Option<S<Value>>,
-    pub k: Option<S<Value>>,
-    pub roughness: Option<S<Value>>,
-    /// A plastic's internal scattering model (Mitsuba's `nonlinear`).
-    pub nonlinear: Option<S<bool>>,
-    /// A mask's opacity and the name of the material it masks.
-    pub opacity: Option<S<Value>>,
-    pub material: Option<S<String>>,
-    /// A blend's weight (0: the first material, 1: the second) and the names of the two.
-    pub weight: Option<S<Value>>,
-    pub materials: Option<S<Vec<S<String>>>>,
-    /// Factors on a conductor's or dielectric's reflected and transmitted lobes (Mitsuba's
-    /// `specular_reflectance`, `specular_transmittance`): spectra or textures.
-    pub specular_reflectance: Option<S<Value>>,
-    pub specular_transmittance: Option<S<Value>>,
-    /// A normal map's image, a bump map's height image and its scale.
-    pub map: Option<S<Value>>,
-    pub height: Option<S<Value>>,
-    pub scale: Option<S<Value>>,
-}
+#[serde(transparent)]
+pub struct RawMaterial(pub BTreeMap<String, S<Value>>);
 
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]

@@ -72,7 +72,8 @@ pub(crate) fn read_kind<D>(
             name_span,
             field,
             format!(
-                "\"{name}\" is not a {what}; expected {}",
+                "\"{name}\" is not a {what}{}; expected {}",
+                params::did_you_mean(name, params::names(registry, Dialect::Toml).into_iter()),
                 params::names(registry, Dialect::Toml).join(", ")
             ),
         ));

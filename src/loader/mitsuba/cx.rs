@@ -62,15 +62,7 @@ const PROPERTY_TAGS: &[&str] = &[
     "float", "integer", "boolean", "string", "rgb", "spectrum", "point", "vector",
 ];
 
-/// The candidate closest to `name` if it is close enough to be a likely misspelling of it
-/// (Jaro–Winkler similarity ≥ 0.85).
-fn nearest<'a>(name: &str, candidates: impl Iterator<Item = &'a str>) -> Option<&'a str> {
-    candidates
-        .map(|c| (strsim::jaro_winkler(name, c), c))
-        .max_by(|a, b| a.0.total_cmp(&b.0))
-        .filter(|(s, _)| *s >= 0.85)
-        .map(|(_, c)| c)
-}
+use crate::params::nearest;
 
 impl Cx<'_> {
     pub(super) fn err(&self, e: &Element, msg: impl Into<String>) -> LoadError {
