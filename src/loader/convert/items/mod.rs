@@ -1,9 +1,7 @@
 //! Sections of the scene file: settings, camera, film, integrator, materials, shapes, lights.
 
 mod camera;
-mod daylight;
 mod lights;
-mod luminaire;
 mod materials;
 mod sensors;
 mod shapes;

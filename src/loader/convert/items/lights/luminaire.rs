@@ -1,10 +1,29 @@
 //! `type = "luminaire"`: a photometric file (IES LM-63 or EULUMDAT) placed and aimed.
 
-use super::*;
+use super::super::*;
+use super::{Kind, Lt};
+
+pub(super) const KIND: Kind = Kind {
+    name: "luminaire",
+    what: "a luminaire",
+    keys: &[
+        "spectrum", "position", "target", "file", "c0", "tilt", "power", "scale",
+    ],
+    read,
+};
+
+fn read(l: &Lt<'_>) -> R<(LightKind, Spectrum)> {
+    // the default: CIE illuminant A, the lamp of classical photometry
+    let spectrum = l.spectrum(Spectrum::Blackbody(
+        crate::spectrum::blackbody::Blackbody::cie_illuminant_a(),
+    ))?;
+    let aim = l.aim("luminaire's nadir (0° vertical)")?;
+    Ok((luminaire(l.cx, &l.sp, &l.f, l.l, aim)?, spectrum))
+}
 
 /// A luminaire: its photometric file read, its C0 direction and tilt, and its amount (the
 /// file's candela by default, `scale` times them, or `power` in lm or W setting the total).
-pub(super) fn luminaire(
+fn luminaire(
     cx: &Cx<'_>,
     sp: &Range<usize>,
     f: &str,

@@ -1,6 +1,26 @@
 //! The sun's placement (by time and place, or by angles) and `type = "sky"` lights.
 
-use super::*;
+use super::super::*;
+use super::Kind;
+
+pub(super) const SKY: Kind = Kind {
+    name: "sky",
+    what: "a sky",
+    keys: &[
+        "spectrum",
+        "model",
+        "luminance",
+        "irradiance",
+        "sun_elevation",
+        "sun_azimuth",
+        "latitude",
+        "longitude",
+        "time",
+        "up",
+        "north",
+    ],
+    read: |l| Ok((sky(l.cx, &l.sp, &l.f, l.l)?, l.flat_spectrum()?)),
+};
 
 /// The scene's up and north (unit, north made perpendicular to up): defaults +y and −z.
 fn up_north(cx: &Cx<'_>, sp: &Range<usize>, f: &str, l: &RawLight) -> R<([f64; 3], [f64; 3])> {
@@ -118,7 +138,7 @@ pub(super) fn sun_placement(
 }
 
 /// A CIE sky: its model, its sun, and its zenith luminance or horizontal illuminance.
-pub(super) fn sky(cx: &Cx<'_>, sp: &Range<usize>, f: &str, l: &RawLight) -> R<LightKind> {
+fn sky(cx: &Cx<'_>, sp: &Range<usize>, f: &str, l: &RawLight) -> R<LightKind> {
     use crate::daylight::sky::SkyModel;
     let m = cx.required(
         &l.model,
