@@ -1,12 +1,16 @@
 //! Sections of the scene file: settings, camera, film, integrator, materials, shapes, lights.
 
 mod camera;
+mod film;
+mod integrator;
 mod lights;
 mod materials;
 mod sensors;
 mod shapes;
 
-use camera::{camera, film, integrator};
+use camera::camera;
+use film::film;
+use integrator::integrator;
 use lights::light;
 use materials::material;
 use sensors::sensor;

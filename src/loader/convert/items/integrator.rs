@@ -1,0 +1,87 @@
+//! `[integrator]`.
+
+use super::*;
+
+pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<IntegratorDesc> {
+    let mut d = IntegratorDesc {
+        kind: IntegratorKind::Path,
+        max_depth: 16,
+        rr_depth: DEFAULT_RR_DEPTH,
+        light_selection: LightSelection::Tree,
+        moment: false,
+    };
+    let Some(i) = i else { return Ok(d) };
+    let i = i.get_ref();
+    if let Some(k) = &i.kind {
+        d.kind = match k.get_ref().as_str() {
+            "path" => IntegratorKind::Path,
+            "light" => IntegratorKind::Light,
+            "bdpt" => IntegratorKind::Bdpt,
+            "whitted" => IntegratorKind::Whitted,
+            "direct" => IntegratorKind::Direct {
+                emitter_samples: match &i.emitter_samples {
+                    Some(v) => cx.int(v, "integrator.emitter_samples", 0, 1 << 16)? as u32,
+                    None => 1,
+                },
+                bsdf_samples: match &i.bsdf_samples {
+                    Some(v) => cx.int(v, "integrator.bsdf_samples", 0, 1 << 16)? as u32,
+                    None => 1,
+                },
+            },
+            o => {
+                return Err(cx.err(
+                    &k.span(),
+                    "integrator.type",
+                    format!("\"{o}\": expected path, bdpt, light, whitted or direct"),
+                ));
+            }
+        };
+        if let IntegratorKind::Direct {
+            emitter_samples: 0,
+            bsdf_samples: 0,
+        } = d.kind
+        {
+            return Err(cx.err(
+                &k.span(),
+                "integrator",
+                "direct needs at least one emitter or BSDF sample",
+            ));
+        }
+    }
+    for (key, v) in [
+        ("emitter_samples", &i.emitter_samples),
+        ("bsdf_samples", &i.bsdf_samples),
+    ] {
+        if let Some(v) = v
+            && !matches!(d.kind, IntegratorKind::Direct { .. })
+        {
+            return Err(cx.err(
+                &v.span(),
+                format!("integrator.{key}"),
+                "applies to type = \"direct\" only",
+            ));
+        }
+    }
+    d.moment = i.second_moment.as_ref().is_some_and(|b| *b.get_ref());
+    if let Some(m) = &i.max_depth {
+        d.max_depth = cx.int(m, "integrator.max_depth", 1, 1024)? as u32;
+    }
+    if let Some(r) = &i.rr_depth {
+        d.rr_depth = cx.int(r, "integrator.rr_depth", 1, 1024)? as u32;
+    }
+    if let Some(k) = &i.light_selection {
+        d.light_selection = match k.get_ref().as_str() {
+            "tree" => LightSelection::Tree,
+            "power" => LightSelection::Power,
+            "uniform" => LightSelection::Uniform,
+            o => {
+                return Err(cx.err(
+                    &k.span(),
+                    "integrator.light_selection",
+                    format!("\"{o}\": expected tree, power or uniform"),
+                ));
+            }
+        };
+    }
+    Ok(d)
+}
