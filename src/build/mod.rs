@@ -2,6 +2,9 @@
 //! quantities leave the uom world here, through `units::plain`.
 
 mod lights;
+mod materials;
+
+use materials::material;
 mod shapes;
 mod textures;
 
@@ -14,12 +17,8 @@ use crate::geometry::accel::Accel;
 use crate::geometry::camera::{Camera, FovAxis as CamAxis};
 use crate::geometry::instance::{Group, Instance};
 use crate::geometry::transform::Transform;
-use crate::loader::desc::{CameraKind, FovAxis, MaterialKind, Projection, SceneDesc};
+use crate::loader::desc::{CameraKind, FovAxis, Projection, SceneDesc};
 use crate::loader::{LoadError, Loc};
-use crate::material::{
-    Blend, BumpMap, Conductor, Dielectric, Lambert, Mask, Material, NormalMap, Phong, Plastic,
-    RoughConductor, RoughDielectric, TexturedLobes,
-};
 use crate::spectrum::WavelengthRange;
 use crate::units::plain;
 
@@ -196,178 +195,6 @@ pub(super) fn surface(material: Option<usize>, two_sided: bool, light: Option<us
         two_sided,
         light: light.map(|l| l as u32),
     }
-}
-
-fn material(k: &MaterialKind) -> Result<Material, String> {
-    Ok(match k {
-        MaterialKind::Diffuse { reflectance } => Material::Diffuse(Lambert {
-            reflectance: textures::texture(reflectance)?,
-        }),
-        MaterialKind::Phong { kd, ks, exponent } => {
-            Material::Phong(Phong::new(kd.clone(), ks.clone(), *exponent as f32)?)
-        }
-        MaterialKind::Dielectric {
-            ior,
-            exterior_ior,
-            roughness: None,
-            ..
-        } => Material::Dielectric(Dielectric {
-            int_ior: ior.clone(),
-            ext_ior: *exterior_ior as f32,
-        }),
-        MaterialKind::Dielectric {
-            ior,
-            exterior_ior,
-            roughness: Some(a),
-            distribution,
-        } => Material::RoughDielectric(
-            RoughDielectric::new(ior.clone(), *exterior_ior as f32, a[0] as f32)
-                .with_anisotropy(a[0] as f32, a[1] as f32)
-                .with_distribution(*distribution),
-        ),
-        MaterialKind::Conductor {
-            ior,
-            exterior_ior,
-            roughness: None,
-            ..
-        } => Material::Conductor(Conductor {
-            ior: ior.clone(),
-            ext_ior: *exterior_ior as f32,
-        }),
-        MaterialKind::Conductor {
-            ior,
-            exterior_ior,
-            roughness: Some(a),
-            distribution,
-        } => Material::RoughConductor(
-            RoughConductor::new(ior.clone(), *exterior_ior as f32, a[0] as f32)
-                .with_anisotropy(a[0] as f32, a[1] as f32)
-                .with_distribution(*distribution),
-        ),
-        MaterialKind::Null => Material::Null,
-        MaterialKind::Mask { opacity, inner } => {
-            let opacity = textures::texture(opacity)?;
-            if !textures::is_grey(&opacity) {
-                return Err("a mask's opacity must be a number or a grey image, the same at every wavelength".into());
-            }
-            let inner = material(inner)?;
-            if matches!(inner, Material::Mask(_) | Material::Blend(_)) {
-                return Err("a mask cannot hold another mask or a blend".into());
-            }
-            Material::Mask(Box::new(Mask { opacity, inner }))
-        }
-        MaterialKind::Blend { weight, a, b } => {
-            let weight = textures::texture(weight)?;
-            if !textures::is_grey(&weight) {
-                return Err("a blend's weight must be a number or a grey image, the same at every wavelength".into());
-            }
-            let (a, b) = (material(a)?, material(b)?);
-            if [&a, &b].iter().any(|m| {
-                matches!(
-                    m,
-                    Material::Mask(_)
-                        | Material::Blend(_)
-                        | Material::NormalMap(_)
-                        | Material::BumpMap(_)
-                        | Material::Textured(_)
-                )
-            }) {
-                return Err(
-                    "a blend cannot hold a mask, another blend, a normal or bump map, or textured roughness or specular factors".into(),
-                );
-            }
-            Material::Blend(Box::new(Blend { weight, a, b }))
-        }
-        MaterialKind::Textured {
-            alpha,
-            reflectance,
-            transmittance,
-            inner,
-        } => {
-            let inner = material(inner)?;
-            if !matches!(
-                inner,
-                Material::Conductor(_)
-                    | Material::RoughConductor(_)
-                    | Material::Dielectric(_)
-                    | Material::RoughDielectric(_)
-            ) {
-                return Err("textured roughness and specular factors apply to conductors and dielectrics only".into());
-            }
-            let alpha = match alpha.as_deref() {
-                Some([u, v]) => {
-                    let (u, v) = (textures::texture(u)?, textures::texture(v)?);
-                    if !(textures::is_grey(&u) && textures::is_grey(&v)) {
-                        return Err("a textured alpha must be a grey image or a number".into());
-                    }
-                    Some([u, v])
-                }
-                None => None,
-            };
-            Material::Textured(Box::new(TexturedLobes {
-                alpha,
-                reflectance: textures::texture(reflectance)?,
-                transmittance: textures::texture(transmittance)?,
-                inner,
-            }))
-        }
-        MaterialKind::NormalMap { map, inner } => {
-            let inner = material(inner)?;
-            if matches!(inner, Material::NormalMap(_) | Material::BumpMap(_)) {
-                return Err("a normal map cannot hold another normal or bump map".into());
-            }
-            Material::NormalMap(Box::new(NormalMap {
-                map: textures::vector_texture(map)?,
-                inner,
-            }))
-        }
-        MaterialKind::BumpMap {
-            height,
-            scale,
-            inner,
-        } => {
-            let inner = material(inner)?;
-            if matches!(inner, Material::NormalMap(_) | Material::BumpMap(_)) {
-                return Err("a bump map cannot hold another normal or bump map".into());
-            }
-            let height = textures::texture(height)?;
-            if !textures::is_grey(&height) {
-                return Err("a bump map's height must be a grey image".into());
-            }
-            Material::BumpMap(Box::new(BumpMap {
-                height,
-                scale: *scale as f32,
-                inner,
-            }))
-        }
-        MaterialKind::ThinDielectric {
-            int_ior,
-            exterior_ior,
-        } => Material::ThinDielectric {
-            eta: (*int_ior / *exterior_ior) as f32,
-        },
-        MaterialKind::Plastic {
-            diffuse,
-            specular,
-            int_ior,
-            exterior_ior,
-            nonlinear,
-            roughness,
-            distribution,
-        } => {
-            let diffuse = textures::texture(diffuse)?;
-            let mean = diffuse.mean();
-            Material::Plastic(Plastic::new(
-                diffuse,
-                mean,
-                *specular as f32,
-                *int_ior as f32,
-                *exterior_ior as f32,
-                *nonlinear,
-                roughness.map(|a| (a as f32, *distribution)),
-            )?)
-        }
-    })
 }
 
 fn v3(p: &crate::loader::desc::Point) -> Vec3 {

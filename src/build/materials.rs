@@ -1,0 +1,212 @@
+//! Materials as described → render-side [`Material`]s: textures looked up once, the rules
+//! on what composites may hold checked.
+
+use super::textures;
+use crate::loader::desc::{MaterialKind, TextureDesc};
+use crate::material::{
+    Blend, BumpMap, Conductor, Dielectric, Lambert, Mask, Material, NormalMap, Phong, Plastic,
+    RoughConductor, RoughDielectric, TexturedLobes,
+};
+
+/// The render-side material for `k`; an error (for the user, without a location) if a
+/// composite holds what it may not or a texture is not as its slot needs.
+pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
+    Ok(match k {
+        MaterialKind::Diffuse { reflectance } => Material::Diffuse(Lambert {
+            reflectance: textures::texture(reflectance)?,
+        }),
+        MaterialKind::Phong { kd, ks, exponent } => {
+            Material::Phong(Phong::new(kd.clone(), ks.clone(), *exponent as f32)?)
+        }
+        MaterialKind::Dielectric {
+            ior,
+            exterior_ior,
+            roughness: None,
+            ..
+        } => Material::Dielectric(Dielectric {
+            int_ior: ior.clone(),
+            ext_ior: *exterior_ior as f32,
+        }),
+        MaterialKind::Dielectric {
+            ior,
+            exterior_ior,
+            roughness: Some(a),
+            distribution,
+        } => Material::RoughDielectric(
+            RoughDielectric::new(ior.clone(), *exterior_ior as f32, a[0] as f32)
+                .with_anisotropy(a[0] as f32, a[1] as f32)
+                .with_distribution(*distribution),
+        ),
+        MaterialKind::Conductor {
+            ior,
+            exterior_ior,
+            roughness: None,
+            ..
+        } => Material::Conductor(Conductor {
+            ior: ior.clone(),
+            ext_ior: *exterior_ior as f32,
+        }),
+        MaterialKind::Conductor {
+            ior,
+            exterior_ior,
+            roughness: Some(a),
+            distribution,
+        } => Material::RoughConductor(
+            RoughConductor::new(ior.clone(), *exterior_ior as f32, a[0] as f32)
+                .with_anisotropy(a[0] as f32, a[1] as f32)
+                .with_distribution(*distribution),
+        ),
+        MaterialKind::Null => Material::Null,
+        MaterialKind::Mask { opacity, inner } => mask(opacity, inner)?,
+        MaterialKind::Blend { weight, a, b } => blend(weight, a, b)?,
+        MaterialKind::Textured {
+            alpha,
+            reflectance,
+            transmittance,
+            inner,
+        } => textured(alpha.as_deref(), reflectance, transmittance, inner)?,
+        MaterialKind::NormalMap { map, inner } => normal_map(map, inner)?,
+        MaterialKind::BumpMap {
+            height,
+            scale,
+            inner,
+        } => bump_map(height, *scale, inner)?,
+        MaterialKind::ThinDielectric {
+            int_ior,
+            exterior_ior,
+        } => Material::ThinDielectric {
+            eta: (*int_ior / *exterior_ior) as f32,
+        },
+        MaterialKind::Plastic {
+            diffuse,
+            specular,
+            int_ior,
+            exterior_ior,
+            nonlinear,
+            roughness,
+            distribution,
+        } => {
+            let diffuse = textures::texture(diffuse)?;
+            let mean = diffuse.mean();
+            Material::Plastic(Plastic::new(
+                diffuse,
+                mean,
+                *specular as f32,
+                *int_ior as f32,
+                *exterior_ior as f32,
+                *nonlinear,
+                roughness.map(|a| (a as f32, *distribution)),
+            )?)
+        }
+    })
+}
+
+/// `mask`: `opacity` (grey) of `inner`, which is no mask or blend.
+fn mask(opacity: &TextureDesc, inner: &MaterialKind) -> Result<Material, String> {
+    let opacity = textures::texture(opacity)?;
+    if !textures::is_grey(&opacity) {
+        return Err(
+            "a mask's opacity must be a number or a grey image, the same at every wavelength"
+                .into(),
+        );
+    }
+    let inner = material(inner)?;
+    if matches!(inner, Material::Mask(_) | Material::Blend(_)) {
+        return Err("a mask cannot hold another mask or a blend".into());
+    }
+    Ok(Material::Mask(Box::new(Mask { opacity, inner })))
+}
+
+/// `blend`: (1 − `weight`)·a + `weight`·b (grey weight) of two plain materials.
+fn blend(weight: &TextureDesc, a: &MaterialKind, b: &MaterialKind) -> Result<Material, String> {
+    let weight = textures::texture(weight)?;
+    if !textures::is_grey(&weight) {
+        return Err(
+            "a blend's weight must be a number or a grey image, the same at every wavelength"
+                .into(),
+        );
+    }
+    let (a, b) = (material(a)?, material(b)?);
+    if [&a, &b].iter().any(|m| {
+        matches!(
+            m,
+            Material::Mask(_)
+                | Material::Blend(_)
+                | Material::NormalMap(_)
+                | Material::BumpMap(_)
+                | Material::Textured(_)
+        )
+    }) {
+        return Err(
+            "a blend cannot hold a mask, another blend, a normal or bump map, or textured roughness or specular factors".into(),
+        );
+    }
+    Ok(Material::Blend(Box::new(Blend { weight, a, b })))
+}
+
+/// Textured roughness (grey α_u, α_v) and lobe factors around a conductor or dielectric.
+fn textured(
+    alpha: Option<&[TextureDesc; 2]>,
+    reflectance: &TextureDesc,
+    transmittance: &TextureDesc,
+    inner: &MaterialKind,
+) -> Result<Material, String> {
+    let inner = material(inner)?;
+    if !matches!(
+        inner,
+        Material::Conductor(_)
+            | Material::RoughConductor(_)
+            | Material::Dielectric(_)
+            | Material::RoughDielectric(_)
+    ) {
+        return Err(
+            "textured roughness and specular factors apply to conductors and dielectrics only"
+                .into(),
+        );
+    }
+    let alpha = match alpha {
+        Some([u, v]) => {
+            let (u, v) = (textures::texture(u)?, textures::texture(v)?);
+            if !(textures::is_grey(&u) && textures::is_grey(&v)) {
+                return Err("a textured alpha must be a grey image or a number".into());
+            }
+            Some([u, v])
+        }
+        None => None,
+    };
+    Ok(Material::Textured(Box::new(TexturedLobes {
+        alpha,
+        reflectance: textures::texture(reflectance)?,
+        transmittance: textures::texture(transmittance)?,
+        inner,
+    })))
+}
+
+/// A normal map around a material that is no normal or bump map.
+fn normal_map(map: &TextureDesc, inner: &MaterialKind) -> Result<Material, String> {
+    let inner = material(inner)?;
+    if matches!(inner, Material::NormalMap(_) | Material::BumpMap(_)) {
+        return Err("a normal map cannot hold another normal or bump map".into());
+    }
+    Ok(Material::NormalMap(Box::new(NormalMap {
+        map: textures::vector_texture(map)?,
+        inner,
+    })))
+}
+
+/// A bump map (grey height times `scale`) around a material that is no normal or bump map.
+fn bump_map(height: &TextureDesc, scale: f64, inner: &MaterialKind) -> Result<Material, String> {
+    let inner = material(inner)?;
+    if matches!(inner, Material::NormalMap(_) | Material::BumpMap(_)) {
+        return Err("a bump map cannot hold another normal or bump map".into());
+    }
+    let height = textures::texture(height)?;
+    if !textures::is_grey(&height) {
+        return Err("a bump map's height must be a grey image".into());
+    }
+    Ok(Material::BumpMap(Box::new(BumpMap {
+        height,
+        scale: scale as f32,
+        inner,
+    })))
+}
