@@ -1,0 +1,147 @@
+//! Materials and the textures their slots take.
+
+use super::*;
+
+#[derive(Clone, Debug)]
+pub enum MaterialKind {
+    Diffuse {
+        reflectance: TextureDesc,
+    },
+    Phong {
+        kd: Spectrum,
+        ks: Spectrum,
+        exponent: f64,
+    },
+    /// Smooth when `roughness` is None, else microfacets of `distribution` with roughness
+    /// [α_u, α_v]: α_u along the surface's ∂p/∂u, α_v across it (equal when isotropic).
+    Dielectric {
+        ior: Ior,
+        exterior_ior: f64,
+        roughness: Option<[f64; 2]>,
+        distribution: Distribution,
+    },
+    /// As a dielectric's: smooth, or roughness [α_u, α_v].
+    Conductor {
+        ior: ComplexIor,
+        exterior_ior: f64,
+        roughness: Option<[f64; 2]>,
+        distribution: Distribution,
+    },
+    /// No surface: light passes straight through (Mitsuba's `null`).
+    Null,
+    /// A partly transparent surface (Mitsuba's `mask`): `opacity` (a number or a grey image)
+    /// of the nested material, the rest straight through.
+    Mask {
+        opacity: TextureDesc,
+        inner: Box<MaterialKind>,
+    },
+    /// A blend (Mitsuba's `blendbsdf`): (1 − weight)·f_a + weight·f_b, weight a number or a
+    /// grey image in [0, 1].
+    Blend {
+        weight: TextureDesc,
+        a: Box<MaterialKind>,
+        b: Box<MaterialKind>,
+    },
+    /// Mitsuba's `normalmap`: `map` an image of raw triples, each a local normal encoded as
+    /// (n + 1)/2, around the nested material.
+    NormalMap {
+        map: TextureDesc,
+        inner: Box<MaterialKind>,
+    },
+    /// Mitsuba's `bumpmap`: a grey `height` image times `scale` displacing the shading normal
+    /// of the nested material.
+    BumpMap {
+        height: TextureDesc,
+        scale: f64,
+        inner: Box<MaterialKind>,
+    },
+    /// A conductor or dielectric (`inner`) with textured parameters: roughness [α_u, α_v] as
+    /// grey textures (rough materials), and factors on the reflected and transmitted lobes
+    /// (Mitsuba's `specular_reflectance`, `specular_transmittance`).
+    Textured {
+        alpha: Option<Box<[TextureDesc; 2]>>,
+        reflectance: TextureDesc,
+        transmittance: TextureDesc,
+        inner: Box<MaterialKind>,
+    },
+    /// A sheet of negligible thickness (Mitsuba's `thindielectric`), indices as a dielectric's.
+    ThinDielectric {
+        int_ior: f64,
+        exterior_ior: f64,
+    },
+    /// A diffuse base under a dielectric coating (Mitsuba's `plastic`, and `roughplastic` when
+    /// `roughness` is given; see `crate::material::Plastic`).
+    Plastic {
+        diffuse: TextureDesc,
+        /// A factor on the coating's reflection (Mitsuba's `specular_reflectance`), 1 by default.
+        specular: f64,
+        int_ior: f64,
+        exterior_ior: f64,
+        nonlinear: bool,
+        roughness: Option<f64>,
+        distribution: Distribution,
+    },
+}
+
+/// A spectral quantity that may vary over a surface (see `crate::texture`).
+#[derive(Clone, Debug)]
+pub enum TextureDesc {
+    /// The same spectrum everywhere.
+    Uniform(Spectrum),
+    /// Mitsuba's checkerboard: `a` on the checks where the fractional parts of `to_uv`(uv) are
+    /// both ≤ ½ or both > ½, else `b`.
+    Checkerboard {
+        a: Spectrum,
+        b: Spectrum,
+        to_uv: Vec<TransformStep>,
+    },
+    /// An image file (PNG, EXR, HDR), read when the scene is built.
+    Bitmap {
+        path: PathBuf,
+        filter: TexFilter,
+        wrap: Wrap,
+        /// Use 8- and 16-bit values as stored instead of decoding sRGB; colour images cannot
+        /// then be spectra (Mitsuba's `raw`), so only grey images are accepted with it.
+        raw: bool,
+        to_uv: Vec<TransformStep>,
+        loc: Loc,
+    },
+}
+
+impl TextureDesc {
+    /// The same texture with an image's values read as stored (`raw`), for images of numbers
+    /// (normals, heights, roughness) rather than colours; other textures unchanged.
+    pub fn raw(self) -> TextureDesc {
+        match self {
+            TextureDesc::Bitmap {
+                path,
+                filter,
+                wrap,
+                to_uv,
+                loc,
+                ..
+            } => TextureDesc::Bitmap {
+                path,
+                filter,
+                wrap,
+                raw: true,
+                to_uv,
+                loc,
+            },
+            other => other,
+        }
+    }
+}
+
+impl From<Spectrum> for TextureDesc {
+    fn from(s: Spectrum) -> Self {
+        TextureDesc::Uniform(s)
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct MaterialDesc {
+    pub name: String,
+    pub kind: MaterialKind,
+    pub loc: Loc,
+}

@@ -1,0 +1,169 @@
+//! The scene description: what the file says, validated, with typed quantities (uom) and the
+//! source location of every item. `build::build` turns it into a render-ready `Scene`.
+
+use std::path::PathBuf;
+
+pub use crate::film::FilterDesc;
+pub use crate::light::SpotFalloff;
+pub use crate::material::microfacet::Distribution;
+pub use crate::scene::{IntegratorKind, LightSelection};
+use crate::spectrum::Spectrum;
+use crate::spectrum::ior::{ComplexIor, Ior};
+pub use crate::texture::{TexFilter, Wrap};
+use crate::units::{
+    Angle, Illuminance, Irradiance, Length, Luminance, LuminousFlux, LuminousIntensity, Power,
+    Radiance, RadiantIntensity,
+};
+
+use super::error::Loc;
+
+mod lights;
+mod materials;
+mod shapes;
+
+pub use lights::*;
+pub use materials::*;
+pub use shapes::*;
+
+/// A point or vector given in the scene's length unit, converted to lengths.
+pub type Point = [Length; 3];
+
+#[derive(Clone, Debug)]
+pub struct SceneDesc {
+    /// The scene file, as given.
+    pub path: PathBuf,
+    /// Shortest and longest simulated wavelength.
+    pub wavelength_range: [Length; 2],
+    pub camera: CameraDesc,
+    pub film: FilmDesc,
+    pub integrator: IntegratorDesc,
+    pub materials: Vec<MaterialDesc>,
+    pub shapes: Vec<ShapeDesc>,
+    /// Groups of shapes that are drawn only through `instances` (Mitsuba's `shapegroup`).
+    pub groups: Vec<GroupDesc>,
+    /// Placements of groups (Mitsuba's `instance`).
+    pub instances: Vec<InstanceDesc>,
+    pub lights: Vec<LightDesc>,
+    /// Irradiance and illuminance meters (`[[sensors]]`), measured by `spectrace measure`.
+    pub sensors: Vec<SensorDesc>,
+    /// What the loader wants the user to know without refusing the file ("file:line: message"),
+    /// e.g. a Mitsuba sampler replaced by spectrace's own. Printed once by the CLI.
+    pub notes: Vec<String>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FovAxis {
+    X,
+    Y,
+    Larger,
+    Smaller,
+}
+
+#[derive(Clone, Debug)]
+pub enum Projection {
+    /// Field of view along an axis.
+    Fov { fov: Angle, axis: FovAxis },
+    /// Focal length and sensor width (horizontal field of view 2·atan(w / 2f)).
+    Focal {
+        focal_length: Length,
+        sensor_width: Length,
+    },
+}
+
+#[derive(Clone, Debug)]
+pub enum CameraKind {
+    Perspective {
+        projection: Projection,
+    },
+    /// Thin lens: aperture radius = focal length / (2 · f-number). With a field of view, the focal
+    /// length is the one that gives that horizontal field of view on a 36 mm wide sensor.
+    ThinLens {
+        projection: Projection,
+        f_number: f64,
+        focus_distance: Length,
+    },
+    Orthographic {
+        view_width: Length,
+    },
+}
+
+#[derive(Clone, Debug)]
+pub struct CameraDesc {
+    pub kind: CameraKind,
+    pub eye: Point,
+    pub target: Point,
+    /// Dimensionless direction.
+    pub up: [f64; 3],
+    /// `[camera.sensor]`.
+    pub sensor: Option<CameraSensorDesc>,
+    pub loc: Loc,
+}
+
+/// A camera's sensor (see `crate::sensor`).
+#[derive(Clone, Debug)]
+pub struct CameraSensorDesc {
+    /// "cie-1931", a camera's name or a file's.
+    pub name: String,
+    /// r, g, b sensitivities; None for the CIE 1931 observer.
+    pub curves: Option<[Spectrum; 3]>,
+    pub iso: f64,
+    pub shutter: crate::units::Time,
+    pub f_number: f64,
+    /// The illuminant to balance to (name, spectrum) and how.
+    pub white_balance: Option<(String, Spectrum, crate::sensor::Adaptation)>,
+}
+
+#[derive(Clone, Debug)]
+pub struct FilmDesc {
+    pub width: u32,
+    pub height: u32,
+    /// Samples per pixel.
+    pub spp: u32,
+    pub filter: FilterDesc,
+    /// Number of bins of the spectral EXR output (0: none).
+    pub spectral_bins: u32,
+    /// Exposure for the PNG preview in EV (None: automatic).
+    pub exposure_ev: Option<f64>,
+    pub loc: Loc,
+}
+
+#[derive(Clone, Debug)]
+pub struct IntegratorDesc {
+    pub kind: IntegratorKind,
+    pub max_depth: u32,
+    /// Russian roulette may end a camera path at surface hit k only when k > `rr_depth` (hits
+    /// counted from 1 at the first surface the camera ray meets): Mitsuba 3's `rr_depth`.
+    pub rr_depth: u32,
+    /// How next-event estimation chooses among the lights.
+    pub light_selection: LightSelection,
+    /// Also write each pixel's second moment (the mean of the squared sample values), as
+    /// Mitsuba's `moment` integrator does around another one.
+    pub moment: bool,
+}
+
+/// Default `rr_depth`, Mitsuba 3's: paths keep their first five surface hits.
+pub const DEFAULT_RR_DEPTH: u32 = 5;
+
+/// Where a meter measures.
+#[derive(Clone, Debug)]
+pub enum SensorKind {
+    /// One point; `normal` (dimensionless, non-zero) is the side measured.
+    Point { position: Point, normal: [f64; 3] },
+    /// `count[0] × count[1]` points at the centres of the cells of the parallelogram
+    /// `corner + s·edge_u + t·edge_v` (s, t in [0, 1]), measuring the side of `normal`.
+    Grid {
+        corner: Point,
+        edge_u: Point,
+        edge_v: Point,
+        count: [u32; 2],
+        normal: [f64; 3],
+    },
+}
+
+/// A meter (`[[sensors]]`).
+#[derive(Clone, Debug)]
+pub struct SensorDesc {
+    pub name: String,
+    pub kind: SensorKind,
+    pub loc: Loc,
+}
