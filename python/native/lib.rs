@@ -160,15 +160,12 @@ fn render(
     use spectrace::api::Integrator as I;
     let integrator = match integrator {
         None => None,
-        Some("path") => Some(I::Path),
-        Some("light") => Some(I::Light),
-        Some("bdpt") => Some(I::Bdpt),
-        Some("whitted") => Some(I::Whitted),
-        Some(other) => {
-            return Err(PyValueError::new_err(format!(
-                "integrator {other:?}: expected \"path\", \"light\", \"bdpt\" or \"whitted\""
-            )));
-        }
+        Some(name) => Some(I::from_name(name).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "integrator {name:?}: expected one of {}",
+                I::NAMES.join(", ")
+            ))
+        })?),
     };
     let time_limit = match time_limit {
         None => None,

@@ -212,22 +212,8 @@ impl Scene {
 /// without a sample count renders toward.
 pub const MAX_SPP: u32 = 1 << 24;
 
-/// Which estimator renders.
-///
-/// ```
-/// let o = spectrace::Options { integrator: Some(spectrace::Integrator::Bdpt), ..Default::default() };
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Integrator {
-    /// Path tracing with next-event estimation and MIS.
-    Path,
-    /// Light tracing (particles from the lights).
-    Light,
-    /// Bidirectional path tracing.
-    Bdpt,
-    /// Whitted-style ray tracing (delta lobes and direct light only).
-    Whitted,
-}
+/// Which estimator renders: the scene's own [`crate::scene::IntegratorKind`].
+pub use crate::scene::IntegratorKind as Integrator;
 
 /// How to render; `None` fields take the scene's settings.
 ///
@@ -269,7 +255,6 @@ impl Options {
     /// # Ok::<(), spectrace::api::Error>(())
     /// ```
     pub fn render_options(&self, scene: &Scene) -> Result<crate::render::RenderOptions, Error> {
-        use crate::loader::desc::IntegratorKind as K;
         let mut o = crate::render::RenderOptions::from_scene(&scene.inner);
         if let Some(spp) = self.spp {
             if spp == 0 {
@@ -295,12 +280,7 @@ impl Options {
             o.spectral_bins = b;
         }
         if let Some(i) = self.integrator {
-            o.integrator = match i {
-                Integrator::Path => K::Path,
-                Integrator::Light => K::Light,
-                Integrator::Bdpt => K::Bdpt,
-                Integrator::Whitted => K::Whitted,
-            };
+            o.integrator = i;
         }
         if let Some(t) = self.time_limit
             && (t.is_zero() || t.as_secs_f64() >= 1e9)

@@ -1,12 +1,22 @@
 //! What the scene asks the integrator for: which estimator, and how it chooses lights. The
 //! loaders name these; the render side owns them.
 
+/// Which estimator renders (the one list the scene formats, the CLI, the library API and
+/// Python name integrators from).
+///
+/// ```
+/// let o = spectrace::Options { integrator: Some(spectrace::Integrator::Bdpt), ..Default::default() };
+/// assert_eq!(spectrace::Integrator::from_name("bdpt"), o.integrator);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum IntegratorKind {
+    /// Path tracing with next-event estimation and MIS (`integrator::path`).
     Path,
+    /// Light tracing: particles from the lights connected to the camera (`integrator::light`).
     Light,
     /// Bidirectional path tracing (`integrator::bdpt`).
     Bdpt,
+    /// The lecture notes' Whitted model: delta lobes and direct light only.
     Whitted,
     /// Mitsuba's `direct`: emission seen directly plus direct lighting at the first hit from
     /// this many light and BSDF samples, combined by MIS.
@@ -17,6 +27,26 @@ pub enum IntegratorKind {
 }
 
 impl IntegratorKind {
+    /// The names [`IntegratorKind::from_name`] knows, for the CLI's `--integrator`, the API's
+    /// and Python's `integrator` and their messages.
+    pub const NAMES: [&'static str; 5] = ["path", "light", "bdpt", "whitted", "direct"];
+
+    /// The integrator called `name` (one of [`IntegratorKind::NAMES`]); `direct` with one light
+    /// and one BSDF sample per camera hit (Mitsuba's defaults). None for other names.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Some(match name {
+            "path" => IntegratorKind::Path,
+            "light" => IntegratorKind::Light,
+            "bdpt" => IntegratorKind::Bdpt,
+            "whitted" => IntegratorKind::Whitted,
+            "direct" => IntegratorKind::Direct {
+                emitter_samples: 1,
+                bsdf_samples: 1,
+            },
+            _ => return None,
+        })
+    }
+
     /// The name the scene format, the CLI and EXR headers use.
     pub fn name(self) -> &'static str {
         match self {
@@ -47,4 +77,20 @@ pub enum LightSelection {
     /// (weights 1 by default), better when a weak light is hard to sample well, such as a sky
     /// beside a lamp.
     Uniform,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::IntegratorKind;
+
+    /// Every name the CLI, the API and Python accept reads back as itself, and nothing else
+    /// reads as an integrator.
+    #[test]
+    fn names_round_trip() {
+        for n in IntegratorKind::NAMES {
+            let k = IntegratorKind::from_name(n).unwrap_or_else(|| panic!("{n}"));
+            assert_eq!(k.name(), n);
+        }
+        assert_eq!(IntegratorKind::from_name("volpath"), None);
+    }
 }
