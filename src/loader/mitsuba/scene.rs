@@ -48,13 +48,35 @@ pub(super) fn scene(
         }
         None => return Err(cx.err(&root, "missing version (e.g. version=\"3.0.0\")")),
     }
-    // `<path>` folders and includes in document order, as Mitsuba 3.9.1's parser meets them: a
-    // path of the scene file joins the file resolver (searched before the scene's folder, the
-    // latest first); one inside an included file has no effect in Mitsuba (it changes a copy
-    // of the resolver) and is skipped with a note. An include is looked for next to the file
-    // that includes it, then by the resolver. Everything else an included file names (meshes,
-    // images, spectra) is resolved by the scene's resolver, not against the included file's
-    // folder. Included children are spliced in place (depth-limited).
+    splice_includes(&mut cx, &mut root, served_includes)?;
+    for c in root.children.iter().filter(|c| c.tag == "default") {
+        let (Some(n), Some(v)) = (c.attr("name"), c.attr("value")) else {
+            return Err(cx.err(c, "a <default> needs name and value"));
+        };
+        cx.params.insert(n.to_string(), v.to_string());
+    }
+    cx.substitute(&mut root)?;
+    for c in &root.children {
+        if let Some(id) = c.attr("id") {
+            cx.ids.insert(id.to_string(), c.clone());
+        }
+    }
+
+    contents(cx, &root, path)
+}
+
+/// `<path>` folders and includes in document order, as Mitsuba 3.9.1's parser meets them: a
+/// path of the scene file joins the file resolver (searched before the scene's folder, the
+/// latest first); one inside an included file has no effect in Mitsuba (it changes a copy of
+/// the resolver) and is skipped with a note. An include is looked for next to the file that
+/// includes it, then by the resolver. Everything else an included file names (meshes, images,
+/// spectra) is resolved by the scene's resolver, not against the included file's folder.
+/// Included children are spliced in place (depth-limited).
+fn splice_includes(
+    cx: &mut Cx<'_>,
+    root: &mut Element,
+    served_includes: Option<&HashMap<String, String>>,
+) -> R<()> {
     let mut depth = 0;
     let (mut includes, mut bytes) = (0u32, cx.sources[0].1.len() as u64);
     while root
@@ -64,7 +86,7 @@ pub(super) fn scene(
     {
         depth += 1;
         if depth > 16 {
-            return Err(cx.err(&root, "includes nest more than 16 deep"));
+            return Err(cx.err(root, "includes nest more than 16 deep"));
         }
         let mut out = Vec::new();
         for c in std::mem::take(&mut root.children) {
@@ -141,19 +163,12 @@ pub(super) fn scene(
         }
         root.children = out;
     }
-    for c in root.children.iter().filter(|c| c.tag == "default") {
-        let (Some(n), Some(v)) = (c.attr("name"), c.attr("value")) else {
-            return Err(cx.err(c, "a <default> needs name and value"));
-        };
-        cx.params.insert(n.to_string(), v.to_string());
-    }
-    cx.substitute(&mut root)?;
-    for c in &root.children {
-        if let Some(id) = c.attr("id") {
-            cx.ids.insert(id.to_string(), c.clone());
-        }
-    }
+    Ok(())
+}
 
+/// The scene's top-level elements, each handed to its plugin family, as a description.
+fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
+    let cx = &owned;
     let mut film = FilmDesc {
         width: 768,
         height: 576,
@@ -183,23 +198,23 @@ pub(super) fn scene(
     for c in &root.children {
         match c.tag.as_str() {
             "default" => {}
-            "integrator" => integrator_settings(&cx, c, &mut integrator)?,
-            "sensor" => camera = Some(sensor(&cx, c, &mut film)?),
+            "integrator" => integrator_settings(cx, c, &mut integrator)?,
+            "sensor" => camera = Some(sensor(cx, c, &mut film)?),
             "bsdf" => {
                 if let Some(id) = c.attr("id") {
-                    let (m, two) = bsdf(&cx, c, id)?;
+                    let (m, two) = bsdf(cx, c, id)?;
                     material_ids.insert(id.to_string(), (materials.len(), two));
                     materials.push(m);
                 }
             }
             // a group of shapes drawn only through instances; an instance places one
             "shape" if c.attr("type") == Some("shapegroup") => {
-                groups.push(shapegroup(&cx, c, &mut materials, &material_ids)?);
+                groups.push(shapegroup(cx, c, &mut materials, &material_ids)?);
             }
             "shape" if c.attr("type") == Some("instance") => {
-                instances.push(instance(&cx, c, &groups)?);
+                instances.push(instance(cx, c, &groups)?);
             }
-            "shape" => shapes.push(shape(&cx, c, &mut materials, &material_ids)?),
+            "shape" => shapes.push(shape(cx, c, &mut materials, &material_ids)?),
             "medium" => return Err(cx.err(c, "participating media (`medium`, e.g. homogeneous) are not supported yet; remove the medium (volpath renders a scene without media as path does)")),
             // an area emitter at the top level is a declaration that shapes refer to by id
             "emitter" if c.attr("type") == Some("area") => {
@@ -210,7 +225,7 @@ pub(super) fn scene(
                     ));
                 }
             }
-            "emitter" => lights.push(emitter(&cx, c)?),
+            "emitter" => lights.push(emitter(cx, c)?),
             // declarations that sensors, shapes and BSDFs refer to by id
             "spectrum" | "texture" | "rgb" | "float" | "sampler" | "rfilter" => {}
             other => {
@@ -221,7 +236,7 @@ pub(super) fn scene(
             }
         }
     }
-    let camera = camera.ok_or_else(|| cx.err(&root, "the scene has no <sensor>"))?;
+    let camera = camera.ok_or_else(|| cx.err(root, "the scene has no <sensor>"))?;
     // Mitsuba chooses emitters in proportion to their sampling_weight (1 by default); a scene
     // that sets one keeps that rule, every other one gets the light tree (either is unbiased)
     let weighted = lights.iter().any(|l| l.sampling_weight != 1.0)
@@ -233,7 +248,7 @@ pub(super) fn scene(
     if weighted {
         integrator.light_selection = LightSelection::Uniform;
     }
-    cx.check_unreferenced(&root)?;
+    cx.check_unreferenced(root)?;
     let nm = |x: f64| Length::new::<length::nanometer>(x);
     Ok(SceneDesc {
         path: path.to_path_buf(),
@@ -247,7 +262,12 @@ pub(super) fn scene(
         instances,
         lights,
         sensors: Vec::new(),
-        notes: cx.notes.into_inner().into_iter().map(|(_, l)| l).collect(),
+        notes: owned
+            .notes
+            .into_inner()
+            .into_iter()
+            .map(|(_, l)| l)
+            .collect(),
     })
 }
 

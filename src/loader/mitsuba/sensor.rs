@@ -99,63 +99,9 @@ pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraD
             _ => c,
         };
         match (c.tag.as_str(), c.attr("type")) {
-            ("film", Some("hdrfilm")) => {
-                // the output's channels and file format are spectrace's own (XYZ, luminance and
-                // band radiance in 32-bit float EXR, whatever these ask), so they are read and
-                // have nothing to change
-                for name in ["pixel_format", "component_format", "file_format"] {
-                    let _ = cx.child(c, name);
-                }
-                for (name, slot) in [("width", &mut film.width), ("height", &mut film.height)] {
-                    let Some(e) = cx.child(c, name) else { continue };
-                    let v = cx.float(e)?;
-                    if !(v.fract() == 0.0 && (1.0..=32768.0).contains(&v)) {
-                        return Err(cx.err(
-                            e,
-                            format!("expected an integer from 1 to 32768 pixels, found {v}"),
-                        ));
-                    }
-                    *slot = v as u32;
-                }
-                for f in c.children.iter().filter(|f| f.tag == "rfilter") {
-                    film.filter = read_kind(cx, KINDS, "rfilter", f)?;
-                }
-            }
+            ("film", Some("hdrfilm")) => hdrfilm(cx, c, film)?,
             ("film", Some(o)) => return Err(cx.unsupported(c, "film", o)),
-            ("sampler", Some(o)) => {
-                if !SAMPLERS.contains(&o) {
-                    return Err(cx.unsupported(c, "sampler", o));
-                }
-                let asked = match cx.opt_float(c, "sample_count")? {
-                    // the TOML film's limit, an error rather than a silent clamp
-                    Some(n) if n > MAX_SPP as f64 && n.fract() == 0.0 => {
-                        return Err(cx.err(
-                            cx.child(c, "sample_count").unwrap_or(c),
-                            format!(
-                                "sample_count {n} is more than spectrace renders: at most {MAX_SPP} samples per pixel (as a TOML film's spp)"
-                            ),
-                        ));
-                    }
-                    Some(n) if n >= 1.0 && n.fract() == 0.0 => n as u32,
-                    Some(n) => {
-                        return Err(cx.err(
-                            c,
-                            format!("sample_count must be a positive integer, not {n}"),
-                        ));
-                    }
-                    // Mitsuba's default sample count
-                    None => 4,
-                };
-                film.spp = mitsuba_sample_count(o, asked);
-                cx.note(
-                    c,
-                    if film.spp == asked {
-                        format!("Mitsuba's \"{o}\" sampler: spectrace renders {asked} samples per pixel with its own Owen-scrambled Sobol sampler")
-                    } else {
-                        format!("Mitsuba's \"{o}\" sampler renders {} samples per pixel for sample_count {asked}; spectrace renders as many, with its own Owen-scrambled Sobol sampler", film.spp)
-                    },
-                );
-            }
+            ("sampler", Some(o)) => sampler(cx, c, o, film)?,
             _ => {}
         }
     }
@@ -334,4 +280,67 @@ mod tests {
         }
         assert_eq!(c("independent", 7), 7);
     }
+}
+
+/// An `hdrfilm`'s size and reconstruction filter (its pixel and file formats are read: the
+/// output is spectrace's own).
+fn hdrfilm(cx: &Cx<'_>, c: &Element, film: &mut FilmDesc) -> R<()> {
+    // the output's channels and file format are spectrace's own (XYZ, luminance and
+    // band radiance in 32-bit float EXR, whatever these ask), so they are read and
+    // have nothing to change
+    for name in ["pixel_format", "component_format", "file_format"] {
+        let _ = cx.child(c, name);
+    }
+    for (name, slot) in [("width", &mut film.width), ("height", &mut film.height)] {
+        let Some(e) = cx.child(c, name) else { continue };
+        let v = cx.float(e)?;
+        if !(v.fract() == 0.0 && (1.0..=32768.0).contains(&v)) {
+            return Err(cx.err(
+                e,
+                format!("expected an integer from 1 to 32768 pixels, found {v}"),
+            ));
+        }
+        *slot = v as u32;
+    }
+    for f in c.children.iter().filter(|f| f.tag == "rfilter") {
+        film.filter = read_kind(cx, KINDS, "rfilter", f)?;
+    }
+    Ok(())
+}
+
+/// A sampler's `sample_count`, as the sample count the Mitsuba sampler `o` would render.
+fn sampler(cx: &Cx<'_>, c: &Element, o: &str, film: &mut FilmDesc) -> R<()> {
+    if !SAMPLERS.contains(&o) {
+        return Err(cx.unsupported(c, "sampler", o));
+    }
+    let asked = match cx.opt_float(c, "sample_count")? {
+        // the TOML film's limit, an error rather than a silent clamp
+        Some(n) if n > MAX_SPP as f64 && n.fract() == 0.0 => {
+            return Err(cx.err(
+                cx.child(c, "sample_count").unwrap_or(c),
+                format!(
+                    "sample_count {n} is more than spectrace renders: at most {MAX_SPP} samples per pixel (as a TOML film's spp)"
+                ),
+            ));
+        }
+        Some(n) if n >= 1.0 && n.fract() == 0.0 => n as u32,
+        Some(n) => {
+            return Err(cx.err(
+                c,
+                format!("sample_count must be a positive integer, not {n}"),
+            ));
+        }
+        // Mitsuba's default sample count
+        None => 4,
+    };
+    film.spp = mitsuba_sample_count(o, asked);
+    cx.note(
+        c,
+        if film.spp == asked {
+            format!("Mitsuba's \"{o}\" sampler: spectrace renders {asked} samples per pixel with its own Owen-scrambled Sobol sampler")
+        } else {
+            format!("Mitsuba's \"{o}\" sampler renders {} samples per pixel for sample_count {asked}; spectrace renders as many, with its own Owen-scrambled Sobol sampler", film.spp)
+        },
+    );
+    Ok(())
 }
