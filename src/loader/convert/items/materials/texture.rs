@@ -67,26 +67,7 @@ pub(super) fn reflectance_texture(
             format!("unknown key; a texture here takes {}", allowed.join(", ")),
         ));
     }
-    let to_uv = match t.get("scale") {
-        None => Vec::new(),
-        Some(v) => {
-            let sub = format!("{field}.scale");
-            let k = match v {
-                Value::Array(a) if a.len() == 2 => {
-                    [cx.number(&at(&a[0]), &sub)?, cx.number(&at(&a[1]), &sub)?]
-                }
-                _ => [cx.number(&at(v), &sub)?; 2],
-            };
-            if !(k[0].is_finite() && k[1].is_finite() && k[0] != 0.0 && k[1] != 0.0) {
-                return Err(cx.err(
-                    &span,
-                    format!("{field}.scale"),
-                    "expected a non-zero number or [su, sv]",
-                ));
-            }
-            vec![TransformStep::Scale([k[0], k[1], 1.0])]
-        }
-    };
+    let to_uv = uv_scale(cx, t, &span, field)?;
     if let Some(c) = t.get("checkerboard") {
         let Value::Array(ab) = c else {
             return Err(cx.err(
@@ -157,5 +138,37 @@ pub(super) fn reflectance_texture(
         raw: false,
         to_uv,
         loc: cx.src.span(&span),
+    })
+}
+
+/// A texture table's `scale = [su, sv]` (or one number for both) as the step applied to uv
+/// before the lookup; none if absent.
+fn uv_scale(
+    cx: &Cx<'_>,
+    t: &toml::Table,
+    span: &Range<usize>,
+    field: &str,
+) -> R<Vec<TransformStep>> {
+    // entries of an inline table carry the table's span
+    let at = |v: &Value| S::new(span.clone(), v.clone());
+    Ok(match t.get("scale") {
+        None => Vec::new(),
+        Some(v) => {
+            let sub = format!("{field}.scale");
+            let k = match v {
+                Value::Array(a) if a.len() == 2 => {
+                    [cx.number(&at(&a[0]), &sub)?, cx.number(&at(&a[1]), &sub)?]
+                }
+                _ => [cx.number(&at(v), &sub)?; 2],
+            };
+            if !(k[0].is_finite() && k[1].is_finite() && k[0] != 0.0 && k[1] != 0.0) {
+                return Err(cx.err(
+                    span,
+                    format!("{field}.scale"),
+                    "expected a non-zero number or [su, sv]",
+                ));
+            }
+            vec![TransformStep::Scale([k[0], k[1], 1.0])]
+        }
     })
 }
