@@ -259,29 +259,6 @@ fn to_world_matrix(steps: &[TransformStep]) -> glam::DMat4 {
     m
 }
 
-#[cfg(test)]
-mod tests {
-    use super::mitsuba_sample_count as c;
-
-    /// The counts Mitsuba 3.9.1 reports for these requests (`mi.load_dict({"type": name,
-    /// "sample_count": n}).sample_count()`).
-    #[test]
-    fn sample_counts_round_as_mitsuba() {
-        let asked = [1, 2, 3, 4, 5, 10, 16, 17, 64, 100];
-        for (name, got) in [
-            ("stratified", [1, 4, 4, 4, 9, 16, 16, 25, 64, 100]),
-            ("multijitter", [1, 2, 3, 4, 6, 12, 16, 20, 64, 100]),
-            ("orthogonal", [4, 4, 4, 4, 9, 25, 25, 25, 121, 121]),
-            ("ldsampler", [4, 4, 4, 4, 16, 16, 16, 64, 64, 256]),
-        ] {
-            for (n, want) in asked.iter().zip(got) {
-                assert_eq!(c(name, *n), want, "{name} {n}");
-            }
-        }
-        assert_eq!(c("independent", 7), 7);
-    }
-}
-
 /// An `hdrfilm`'s size and reconstruction filter (its pixel and file formats are read: the
 /// output is spectrace's own).
 fn hdrfilm(cx: &Cx<'_>, c: &Element, film: &mut FilmDesc) -> R<()> {
@@ -343,4 +320,27 @@ fn sampler(cx: &Cx<'_>, c: &Element, o: &str, film: &mut FilmDesc) -> R<()> {
         },
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::mitsuba_sample_count as c;
+
+    /// The counts Mitsuba 3.9.1 reports for these requests (`mi.load_dict({"type": name,
+    /// "sample_count": n}).sample_count()`).
+    #[test]
+    fn sample_counts_round_as_mitsuba() {
+        let asked = [1, 2, 3, 4, 5, 10, 16, 17, 64, 100];
+        for (name, got) in [
+            ("stratified", [1, 4, 4, 4, 9, 16, 16, 25, 64, 100]),
+            ("multijitter", [1, 2, 3, 4, 6, 12, 16, 20, 64, 100]),
+            ("orthogonal", [4, 4, 4, 4, 9, 25, 25, 25, 121, 121]),
+            ("ldsampler", [4, 4, 4, 4, 16, 16, 16, 64, 64, 256]),
+        ] {
+            for (n, want) in asked.iter().zip(got) {
+                assert_eq!(c(name, *n), want, "{name} {n}");
+            }
+        }
+        assert_eq!(c("independent", 7), 7);
+    }
 }

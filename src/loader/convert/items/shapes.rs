@@ -152,43 +152,7 @@ pub(super) fn shape(
         }
         "mesh" => {
             cx.only("an inline mesh", &f, &all, &with(&["vertices", "faces"]))?;
-            let v = cx.required(
-                &s.vertices,
-                &sp,
-                &format!("{f}.vertices"),
-                "a list of [x, y, z]",
-            )?;
-            let fs = cx.required(
-                &s.faces,
-                &sp,
-                &format!("{f}.faces"),
-                "a list of [i, j, k] (0-based)",
-            )?;
-            let vertices = v
-                .get_ref()
-                .iter()
-                .enumerate()
-                .map(|(i, p)| cx.vec3(p, &format!("{f}.vertices[{i}]")))
-                .collect::<R<Vec<_>>>()?;
-            let mut faces = Vec::new();
-            for (i, t) in fs.get_ref().iter().enumerate() {
-                let idx = cx.vec3(t, &format!("{f}.faces[{i}]"))?;
-                if idx
-                    .iter()
-                    .any(|&k| k < 0.0 || k.fract() != 0.0 || k as usize >= vertices.len())
-                {
-                    return Err(cx.err(
-                        &t.span(),
-                        format!("{f}.faces[{i}]"),
-                        format!(
-                            "expected 3 vertex indices from 0 to {}",
-                            vertices.len().saturating_sub(1)
-                        ),
-                    ));
-                }
-                faces.push(idx.map(|k| k as u32));
-            }
-            ShapeKind::Inline { vertices, faces }
+            inline_mesh(cx, s, &sp, &f)?
         }
         o => {
             return Err(cx.err(
@@ -204,7 +168,74 @@ pub(super) fn shape(
         Some(t) => transform(cx, t, &format!("{f}.transform"))?,
         None => Vec::new(),
     };
-    let material = match &s.material {
+    let material = material_index(cx, s, &f, material_names)?;
+    let emission = match &s.emission {
+        Some(e) => Some(emission(cx, e, &format!("{f}.emission"))?),
+        None => None,
+    };
+    if material.is_none() && emission.is_none() {
+        return Err(cx.err(
+            &sp,
+            &f,
+            "a shape needs a `material`, an `emission`, or both",
+        ));
+    }
+    Ok(ShapeDesc {
+        kind,
+        transform,
+        material,
+        two_sided: s.two_sided.as_ref().is_some_and(|b| *b.get_ref()),
+        emission,
+        unit_m: cx.unit_m,
+        loc: cx.src.span(&sp),
+    })
+}
+
+/// An inline mesh: `vertices` [x, y, z] and `faces` [i, j, k] (0-based, in range).
+fn inline_mesh(cx: &Cx<'_>, s: &RawShape, sp: &Range<usize>, f: &str) -> R<ShapeKind> {
+    let v = cx.required(
+        &s.vertices,
+        sp,
+        &format!("{f}.vertices"),
+        "a list of [x, y, z]",
+    )?;
+    let fs = cx.required(
+        &s.faces,
+        sp,
+        &format!("{f}.faces"),
+        "a list of [i, j, k] (0-based)",
+    )?;
+    let vertices = v
+        .get_ref()
+        .iter()
+        .enumerate()
+        .map(|(i, p)| cx.vec3(p, &format!("{f}.vertices[{i}]")))
+        .collect::<R<Vec<_>>>()?;
+    let mut faces = Vec::new();
+    for (i, t) in fs.get_ref().iter().enumerate() {
+        let idx = cx.vec3(t, &format!("{f}.faces[{i}]"))?;
+        if idx
+            .iter()
+            .any(|&k| k < 0.0 || k.fract() != 0.0 || k as usize >= vertices.len())
+        {
+            return Err(cx.err(
+                &t.span(),
+                format!("{f}.faces[{i}]"),
+                format!(
+                    "expected 3 vertex indices from 0 to {}",
+                    vertices.len().saturating_sub(1)
+                ),
+            ));
+        }
+        faces.push(idx.map(|k| k as u32));
+    }
+    Ok(ShapeKind::Inline { vertices, faces })
+}
+
+/// The index of the shape's `material` among the file's materials, an error naming them if
+/// it is not one.
+fn material_index(cx: &Cx<'_>, s: &RawShape, f: &str, material_names: &[&str]) -> R<Option<usize>> {
+    Ok(match &s.material {
         Some(m) => Some(
             material_names
                 .iter()
@@ -226,26 +257,6 @@ pub(super) fn shape(
                 })?,
         ),
         None => None,
-    };
-    let emission = match &s.emission {
-        Some(e) => Some(emission(cx, e, &format!("{f}.emission"))?),
-        None => None,
-    };
-    if material.is_none() && emission.is_none() {
-        return Err(cx.err(
-            &sp,
-            &f,
-            "a shape needs a `material`, an `emission`, or both",
-        ));
-    }
-    Ok(ShapeDesc {
-        kind,
-        transform,
-        material,
-        two_sided: s.two_sided.as_ref().is_some_and(|b| *b.get_ref()),
-        emission,
-        unit_m: cx.unit_m,
-        loc: cx.src.span(&sp),
     })
 }
 
