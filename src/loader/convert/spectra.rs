@@ -5,6 +5,7 @@
 //! `{ samples = [[λ_nm, v], …] }`, `{ file = "…" }`, `{ name = "…" }`, `{ blackbody = "6500 K" }`
 //! (absolute Planck radiance, W·m⁻²·sr⁻¹·nm⁻¹), `{ rgb = [r, g, b] }` (linear sRGB, upsampled).
 
+use std::ops::Range;
 use std::sync::Arc;
 
 use toml::Value;
@@ -226,105 +227,7 @@ impl Cx<'_> {
                     .next()
                     .map(|(k, v)| (k.as_str(), v))
                     .unwrap_or(("", v.get_ref()));
-                let sub = format!("{field}.{key}");
-                let coeffs = |tt: &toml::Table, name: &str| -> R<Vec<f64>> {
-                    match tt.get(name) {
-                        Some(Value::Array(a)) => a
-                            .iter()
-                            .map(|x| match x {
-                                Value::Integer(n) => Ok(*n as f64),
-                                Value::Float(f) if f.is_finite() => Ok(*f),
-                                _ => Err(self.err(
-                                    &span,
-                                    format!("{sub}.{name}"),
-                                    "expected finite numbers",
-                                )),
-                            })
-                            .collect(),
-                        Some(Value::Integer(n)) => Ok(vec![*n as f64]),
-                        Some(Value::Float(f)) if f.is_finite() => Ok(vec![*f]),
-                        _ => Err(self.err(
-                            &span,
-                            format!("{sub}.{name}"),
-                            "missing or not a number list",
-                        )),
-                    }
-                };
-                match (key, val) {
-                    ("sellmeier", Value::Table(tt)) => {
-                        if let Some(k) = tt.keys().find(|k| !["A", "B", "C"].contains(&k.as_str()))
-                        {
-                            return Err(self.err(
-                                &span,
-                                format!("{sub}.{k}"),
-                                "unknown key; expected A, B, C",
-                            ));
-                        }
-                        let a = if tt.contains_key("A") {
-                            coeffs(tt, "A")?[0]
-                        } else {
-                            0.0
-                        };
-                        let (b, c) = (coeffs(tt, "B")?, coeffs(tt, "C")?);
-                        if b.len() != c.len() || b.is_empty() || b.len() > 4 {
-                            return Err(self.err(
-                                &span,
-                                &sub,
-                                "B and C need the same length, 1 to 4 terms",
-                            ));
-                        }
-                        let mut s = Sellmeier {
-                            a: a as f32,
-                            b: [0.0; 4],
-                            c: [0.0; 4],
-                        };
-                        for i in 0..b.len() {
-                            s.b[i] = b[i] as f32;
-                            s.c[i] = c[i] as f32;
-                        }
-                        Ok(Ior::Sellmeier(s))
-                    }
-                    ("cauchy", Value::Table(tt)) => {
-                        if let Some(k) = tt.keys().find(|k| !["A", "B", "C"].contains(&k.as_str()))
-                        {
-                            return Err(self.err(
-                                &span,
-                                format!("{sub}.{k}"),
-                                "unknown key; expected A, B, C",
-                            ));
-                        }
-                        let a = coeffs(tt, "A")?[0];
-                        let b = coeffs(tt, "B")?[0];
-                        let c = if tt.contains_key("C") {
-                            coeffs(tt, "C")?[0]
-                        } else {
-                            0.0
-                        };
-                        Ok(Ior::Cauchy(Cauchy {
-                            a: a as f32,
-                            b: b as f32,
-                            c: c as f32,
-                        }))
-                    }
-                    ("samples", Value::Array(a)) => {
-                        let (l, n) = self.pairs(a, &span, &sub)?;
-                        if n.iter().any(|n| *n < 1.0) {
-                            return Err(self.err(
-                                &span,
-                                &sub,
-                                "an index of refraction below 1 is not supported",
-                            ));
-                        }
-                        PiecewiseLinear::new(l, n)
-                            .map(|t| Ior::Table(Arc::new(t)))
-                            .map_err(|e| self.err(&span, &sub, e.to_string()))
-                    }
-                    _ => Err(self.err(
-                        &span,
-                        &sub,
-                        "expected sellmeier = {B, C}, cauchy = {A, B, C} or samples = [[λ, n], …]",
-                    )),
-                }
+                self.ior_formula(key, val, &span, &format!("{field}.{key}"))
             }
             other => Err(self.err(
                 &span,
@@ -333,6 +236,104 @@ impl Cx<'_> {
                     "expected an index of refraction (number, glass name or table), found {}",
                     kind(other)
                 ),
+            )),
+        }
+    }
+
+    /// An index given by a formula or samples: `sellmeier = { A, B, C }`, `cauchy = { A, B,
+    /// C }` or `samples = [[λ_nm, n], …]` (the table's one key, `key`, at the field `sub`).
+    fn ior_formula(&self, key: &str, val: &Value, span: &Range<usize>, sub: &str) -> R<Ior> {
+        match (key, val) {
+            ("sellmeier", Value::Table(tt)) => {
+                if let Some(k) = tt.keys().find(|k| !["A", "B", "C"].contains(&k.as_str())) {
+                    return Err(self.err(
+                        span,
+                        format!("{sub}.{k}"),
+                        "unknown key; expected A, B, C",
+                    ));
+                }
+                let a = if tt.contains_key("A") {
+                    self.coeffs(tt, span, sub, "A")?[0]
+                } else {
+                    0.0
+                };
+                let (b, c) = (
+                    self.coeffs(tt, span, sub, "B")?,
+                    self.coeffs(tt, span, sub, "C")?,
+                );
+                if b.len() != c.len() || b.is_empty() || b.len() > 4 {
+                    return Err(self.err(span, sub, "B and C need the same length, 1 to 4 terms"));
+                }
+                let mut s = Sellmeier {
+                    a: a as f32,
+                    b: [0.0; 4],
+                    c: [0.0; 4],
+                };
+                for i in 0..b.len() {
+                    s.b[i] = b[i] as f32;
+                    s.c[i] = c[i] as f32;
+                }
+                Ok(Ior::Sellmeier(s))
+            }
+            ("cauchy", Value::Table(tt)) => {
+                if let Some(k) = tt.keys().find(|k| !["A", "B", "C"].contains(&k.as_str())) {
+                    return Err(self.err(
+                        span,
+                        format!("{sub}.{k}"),
+                        "unknown key; expected A, B, C",
+                    ));
+                }
+                let a = self.coeffs(tt, span, sub, "A")?[0];
+                let b = self.coeffs(tt, span, sub, "B")?[0];
+                let c = if tt.contains_key("C") {
+                    self.coeffs(tt, span, sub, "C")?[0]
+                } else {
+                    0.0
+                };
+                Ok(Ior::Cauchy(Cauchy {
+                    a: a as f32,
+                    b: b as f32,
+                    c: c as f32,
+                }))
+            }
+            ("samples", Value::Array(a)) => {
+                let (l, n) = self.pairs(a, span, sub)?;
+                if n.iter().any(|n| *n < 1.0) {
+                    return Err(self.err(
+                        span,
+                        sub,
+                        "an index of refraction below 1 is not supported",
+                    ));
+                }
+                PiecewiseLinear::new(l, n)
+                    .map(|t| Ior::Table(Arc::new(t)))
+                    .map_err(|e| self.err(span, sub, e.to_string()))
+            }
+            _ => Err(self.err(
+                span,
+                sub,
+                "expected sellmeier = {B, C}, cauchy = {A, B, C} or samples = [[λ, n], …]",
+            )),
+        }
+    }
+
+    /// The numbers of coefficient `name` of a formula table: a number or a list.
+    fn coeffs(&self, tt: &toml::Table, span: &Range<usize>, sub: &str, name: &str) -> R<Vec<f64>> {
+        match tt.get(name) {
+            Some(Value::Array(a)) => a
+                .iter()
+                .map(|x| match x {
+                    Value::Integer(n) => Ok(*n as f64),
+                    Value::Float(f) if f.is_finite() => Ok(*f),
+                    _ => Err(self.err(span, format!("{sub}.{name}"), "expected finite numbers")),
+                })
+                .collect(),
+            Some(Value::Integer(n)) => Ok(vec![*n as f64]),
+            Some(Value::Float(f)) if f.is_finite() => Ok(vec![*f]),
+            _ => Err(self.err(
+                span,
+                format!("{sub}.{name}"),
+                "missing or not a number list",
             )),
         }
     }
