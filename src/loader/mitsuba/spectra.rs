@@ -16,62 +16,10 @@ impl Cx<'_> {
             // Mitsuba gives an emitter's bare float the shape of its D65 illuminant
             "float" if emission => Ok(Spectrum::Piecewise(mitsuba_d65(self.float(e)?))),
             "float" => Ok(Spectrum::Constant(self.float(e)? as f32)),
-            "rgb" => {
-                let v = e
-                    .attr("value")
-                    .ok_or_else(|| self.err(e, "missing value"))?;
-                let f = self.floats(e, v)?;
-                let rgb = match f.len() {
-                    1 => [f[0] as f32; 3],
-                    3 => [f[0] as f32, f[1] as f32, f[2] as f32],
-                    _ => return Err(self.err(e, "expected 3 numbers")),
-                };
-                if emission {
-                    // Mitsuba's `d65` spectrum with a colour: the unbounded sigmoid spectrum
-                    // (scale 2·max(rgb)) times its normalised D65, so RGB (1, 1, 1) is exactly
-                    // that D65, ∫S ȳ dλ / ∫ȳ dλ ≈ 1, not spectrace's ∫S ȳ dλ = 1
-                    return match rgb2spec::unbounded(rgb) {
-                        Ok(Spectrum::Rgb { poly, scale }) => Ok(Spectrum::RgbIlluminant {
-                            poly,
-                            scale,
-                            illuminant: mitsuba_d65(1.0),
-                        }),
-                        Ok(other) => Ok(other),
-                        Err(er) => Err(self.err(e, er.to_string())),
-                    };
-                }
-                rgb2spec::albedo(rgb).map_err(|er| self.err(e, er.to_string()))
-            }
+            "rgb" => self.rgb_spectrum(e, emission),
             "spectrum" => {
                 if let Some(t) = e.attr("type") {
-                    return match t {
-                        "blackbody" => {
-                            let t = self
-                                .opt_float(e, "temperature")?
-                                .ok_or_else(|| self.err(e, "missing temperature"))?;
-                            if !(t > 0.0) {
-                                let at = self.child(e, "temperature").unwrap_or(e);
-                                return Err(self.err(
-                                    at,
-                                    format!("a blackbody's temperature must be above 0 K, not {t} K"),
-                                ));
-                            }
-                            Ok(Spectrum::Blackbody(Blackbody::absolute(t as f32)))
-                        }
-                        "d65" => {
-                            if let Some(c) =
-                                e.children.iter().find(|c| c.attr("name") != Some("scale"))
-                            {
-                                return Err(self.err(
-                                    c,
-                                    "a d65 spectrum takes only a scale here (no color or nested texture)",
-                                ));
-                            }
-                            let scale = self.opt_float(e, "scale")?.unwrap_or(1.0);
-                            Ok(Spectrum::Piecewise(mitsuba_d65(scale)))
-                        }
-                        other => Err(self.unsupported(e, "spectrum", other)),
-                    };
+                    return self.typed_spectrum(e, t);
                 }
                 if let Some(f) = e.attr("filename") {
                     let path = self.resolve_file(f);
@@ -139,6 +87,66 @@ impl Cx<'_> {
                 e,
                 format!("<{other}> cannot give a spectrum; use <float>, <spectrum> or <rgb>"),
             )),
+        }
+    }
+
+    /// An `<rgb>`: an albedo's bounded upsampling, or for an emitter Mitsuba's `d65` with a
+    /// colour.
+    fn rgb_spectrum(&self, e: &Element, emission: bool) -> R<Spectrum> {
+        let v = e
+            .attr("value")
+            .ok_or_else(|| self.err(e, "missing value"))?;
+        let f = self.floats(e, v)?;
+        let rgb = match f.len() {
+            1 => [f[0] as f32; 3],
+            3 => [f[0] as f32, f[1] as f32, f[2] as f32],
+            _ => return Err(self.err(e, "expected 3 numbers")),
+        };
+        if emission {
+            // Mitsuba's `d65` spectrum with a colour: the unbounded sigmoid spectrum
+            // (scale 2·max(rgb)) times its normalised D65, so RGB (1, 1, 1) is exactly
+            // that D65, ∫S ȳ dλ / ∫ȳ dλ ≈ 1, not spectrace's ∫S ȳ dλ = 1
+            return match rgb2spec::unbounded(rgb) {
+                Ok(Spectrum::Rgb { poly, scale }) => Ok(Spectrum::RgbIlluminant {
+                    poly,
+                    scale,
+                    illuminant: mitsuba_d65(1.0),
+                }),
+                Ok(other) => Ok(other),
+                Err(er) => Err(self.err(e, er.to_string())),
+            };
+        }
+        rgb2spec::albedo(rgb).map_err(|er| self.err(e, er.to_string()))
+    }
+
+    /// A `<spectrum type="…">`: `blackbody` (absolute Planck radiance) or `d65` (Mitsuba's
+    /// normalised D65 times `scale`).
+    fn typed_spectrum(&self, e: &Element, t: &str) -> R<Spectrum> {
+        match t {
+            "blackbody" => {
+                let t = self
+                    .opt_float(e, "temperature")?
+                    .ok_or_else(|| self.err(e, "missing temperature"))?;
+                if !(t > 0.0) {
+                    let at = self.child(e, "temperature").unwrap_or(e);
+                    return Err(self.err(
+                        at,
+                        format!("a blackbody's temperature must be above 0 K, not {t} K"),
+                    ));
+                }
+                Ok(Spectrum::Blackbody(Blackbody::absolute(t as f32)))
+            }
+            "d65" => {
+                if let Some(c) = e.children.iter().find(|c| c.attr("name") != Some("scale")) {
+                    return Err(self.err(
+                        c,
+                        "a d65 spectrum takes only a scale here (no color or nested texture)",
+                    ));
+                }
+                let scale = self.opt_float(e, "scale")?.unwrap_or(1.0);
+                Ok(Spectrum::Piecewise(mitsuba_d65(scale)))
+            }
+            other => Err(self.unsupported(e, "spectrum", other)),
         }
     }
 
