@@ -134,81 +134,13 @@ pub fn parse_ldt(text: &str, path: &Path) -> Result<Photometry, LoadError> {
         ));
     }
     l.number("measurement tilt")?;
-    let (sets, sets_line) = l.count("number of lamp sets", 1, 20)?;
-    let mut flux = None;
-    for s in 0..sets {
-        l.number(&format!("lamp set {}: number of lamps", s + 1))?;
-        l.text(&format!("lamp set {}: type", s + 1))?;
-        let (f, fl) = l.number(&format!("lamp set {}: total luminous flux", s + 1))?;
-        if s == 0 {
-            if !(f > 0.0) {
-                return Err(l.err(
-                    fl,
-                    "lamp set 1: total luminous flux",
-                    format!("expected a positive flux in lm, found {f}"),
-                ));
-            }
-            flux = Some(f);
-        }
-        for what in ["colour", "colour rendering", "wattage"] {
-            l.text(&format!("lamp set {}: {what}", s + 1))?;
-        }
-    }
-    let Some(flux) = flux else {
-        return Err(l.err(sets_line, "number of lamp sets", "no lamp set".into()));
-    };
+    let flux = lamp_sets(&mut l)?;
     for k in 0..10 {
         l.number(&format!("direct ratio {}", k + 1))?;
     }
-    let mut c_angles = Vec::with_capacity(mc as usize);
-    for k in 0..mc as usize {
-        let what = format!("C-angles[{k}]");
-        let (a, i) = l.number(&what)?;
-        if !(0.0..360.0).contains(&a) || c_angles.last().is_some_and(|&p| a <= p) {
-            return Err(l.err(
-                i,
-                &what,
-                format!("expected ascending angles in [0, 360) deg, found {a}"),
-            ));
-        }
-        c_angles.push(a);
-    }
-    let mut g_angles = Vec::with_capacity(ng as usize);
-    for k in 0..ng as usize {
-        let what = format!("gamma angles[{k}]");
-        let (a, i) = l.number(&what)?;
-        if !(0.0..=180.0).contains(&a) || g_angles.last().is_some_and(|&p| a <= p) {
-            return Err(l.err(
-                i,
-                &what,
-                format!("expected ascending angles in [0, 180] deg, found {a}"),
-            ));
-        }
-        g_angles.push(a);
-    }
-    // the stored planes: those of the C-angle list inside the symmetry's range
-    let (symmetry, lo, hi) = match isym {
-        0 => (Symmetry::Full, 0.0, 360.0),
-        1 => (Symmetry::Axial, 0.0, 0.0),
-        2 => (Symmetry::Bilateral0To180, 0.0, 180.0),
-        3 => (Symmetry::Bilateral90To270, 270.0, 450.0),
-        _ => (Symmetry::Quadrant, 0.0, 90.0),
-    };
-    // the stored planes' angles, C270…C450 (= C90) unwrapped for Isym 3
-    let horizontal: Vec<f64> = match isym {
-        0 => c_angles.clone(),
-        1 => vec![0.0],
-        3 => {
-            let mut v: Vec<f64> = c_angles.iter().copied().filter(|&a| a >= 270.0).collect();
-            v.extend(c_angles.iter().filter(|&&a| a <= 90.0).map(|a| a + 360.0));
-            v
-        }
-        _ => c_angles
-            .iter()
-            .copied()
-            .filter(|a| (lo..=hi).contains(a))
-            .collect(),
-    };
+    let c_angles = angles(&mut l, mc, "C-angles", 360.0, false)?;
+    let g_angles = angles(&mut l, ng, "gamma angles", 180.0, true)?;
+    let (symmetry, lo, hi, horizontal) = stored_planes(isym, &c_angles);
     let ends_ok = isym <= 1 || (horizontal.first() == Some(&lo) && horizontal.last() == Some(&hi));
     if !ends_ok || (isym == 0 && c_angles[0] != 0.0) {
         return Err(l.err(
@@ -267,6 +199,90 @@ pub fn parse_ldt(text: &str, path: &Path) -> Result<Photometry, LoadError> {
         lamp_lumens: Some(flux),
         light_output_ratio: Some(lor / 100.0),
     })
+}
+
+/// The symmetry of Isym, the range C`lo`–C`hi` of the planes it stores and their angles (deg),
+/// C270…C450 (= C90) unwrapped for Isym 3.
+fn stored_planes(isym: i64, c_angles: &[f64]) -> (Symmetry, f64, f64, Vec<f64>) {
+    // the stored planes: those of the C-angle list inside the symmetry's range
+    let (symmetry, lo, hi) = match isym {
+        0 => (Symmetry::Full, 0.0, 360.0),
+        1 => (Symmetry::Axial, 0.0, 0.0),
+        2 => (Symmetry::Bilateral0To180, 0.0, 180.0),
+        3 => (Symmetry::Bilateral90To270, 270.0, 450.0),
+        _ => (Symmetry::Quadrant, 0.0, 90.0),
+    };
+    // the stored planes' angles, C270…C450 (= C90) unwrapped for Isym 3
+    let horizontal: Vec<f64> = match isym {
+        0 => c_angles.to_vec(),
+        1 => vec![0.0],
+        3 => {
+            let mut v: Vec<f64> = c_angles.iter().copied().filter(|&a| a >= 270.0).collect();
+            v.extend(c_angles.iter().filter(|&&a| a <= 90.0).map(|a| a + 360.0));
+            v
+        }
+        _ => c_angles
+            .iter()
+            .copied()
+            .filter(|a| (lo..=hi).contains(a))
+            .collect(),
+    };
+    (symmetry, lo, hi, horizontal)
+}
+
+/// The lamp sets: the first set's total luminous flux, lm (the intensities are per 1000 lm of
+/// it).
+fn lamp_sets(l: &mut Lines<'_, '_>) -> Result<f64, LoadError> {
+    let (sets, sets_line) = l.count("number of lamp sets", 1, 20)?;
+    let mut flux = None;
+    for s in 0..sets {
+        l.number(&format!("lamp set {}: number of lamps", s + 1))?;
+        l.text(&format!("lamp set {}: type", s + 1))?;
+        let (f, fl) = l.number(&format!("lamp set {}: total luminous flux", s + 1))?;
+        if s == 0 {
+            if !(f > 0.0) {
+                return Err(l.err(
+                    fl,
+                    "lamp set 1: total luminous flux",
+                    format!("expected a positive flux in lm, found {f}"),
+                ));
+            }
+            flux = Some(f);
+        }
+        for what in ["colour", "colour rendering", "wattage"] {
+            l.text(&format!("lamp set {}: {what}", s + 1))?;
+        }
+    }
+    let Some(flux) = flux else {
+        return Err(l.err(sets_line, "number of lamp sets", "no lamp set".into()));
+    };
+    Ok(flux)
+}
+
+/// `n` ascending angles named `what`, in [0, max) (or [0, max] when `inclusive`), deg.
+fn angles(
+    l: &mut Lines<'_, '_>,
+    n: i64,
+    what: &str,
+    max: f64,
+    inclusive: bool,
+) -> Result<Vec<f64>, LoadError> {
+    let mut out: Vec<f64> = Vec::with_capacity(n as usize);
+    for k in 0..n as usize {
+        let name = format!("{what}[{k}]");
+        let (a, i) = l.number(&name)?;
+        let inside = a >= 0.0 && (a < max || (inclusive && a == max));
+        if !inside || out.last().is_some_and(|&p| a <= p) {
+            let close = if inclusive { ']' } else { ')' };
+            return Err(l.err(
+                i,
+                &name,
+                format!("expected ascending angles in [0, {max}{close} deg, found {a}"),
+            ));
+        }
+        out.push(a);
+    }
+    Ok(out)
 }
 
 #[cfg(test)]
