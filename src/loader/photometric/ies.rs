@@ -63,37 +63,74 @@ pub fn parse_ies(text: &str, path: &Path) -> Result<Photometry, LoadError> {
     let tilt = match tilt_text {
         "NONE" => Vec::new(),
         "INCLUDE" => tilt_data(&mut n)?,
-        file => {
-            let tilt_path = path.parent().unwrap_or(Path::new(".")).join(file);
-            let at = Loc {
-                line: tilt_line as u32 + 1,
-                col: 1,
-            };
-            let bytes = crate::files::read_bytes(&tilt_path, crate::files::MAX_TEXT_BYTES)
-                .map_err(|e| {
-                    LoadError::new(
-                        path,
-                        at,
-                        "TILT",
-                        format!("cannot read the tilt file {}: {e}", tilt_path.display()),
-                    )
-                })?;
-            let t: String = bytes.iter().map(|&b| b as char).collect();
-            let mut tn = Numbers {
-                end: Loc {
-                    line: t.split('\n').count() as u32,
-                    col: 1,
-                },
-                toks: tokens(&t, 1),
-                next: 0,
-                path: &tilt_path,
-            };
-            let data = tilt_data(&mut tn)?;
-            tn.finish()?;
-            data
-        }
+        file => tilt_file(path, file, tilt_line)?,
     };
 
+    let Header {
+        lamps,
+        lumens_per_lamp,
+        multiplier,
+        nv,
+        nh,
+        ballast,
+        second,
+    } = header(&mut n, path, modern)?;
+    let (nv, nh) = (nv as usize, nh as usize);
+    let vertical_deg = n.angles(nv, "vertical angles", 0.0, 180.0)?;
+    let h_loc = n.toks.get(n.next).map_or(end, |t| t.loc);
+    let horizontal_deg = n.angles(nh, "horizontal angles", 0.0, 360.0)?;
+    let symmetry = symmetry(&horizontal_deg)
+        .map_err(|m| LoadError::new(path, h_loc, "horizontal angles", m))?;
+    let factor = multiplier * ballast * if modern { 1.0 } else { second };
+    // the table cannot hold more values than the file has numbers left (no huge allocation
+    // from a header's counts)
+    let left = n.toks.len() - n.next;
+    if nv * nh > left {
+        return Err(LoadError::new(
+            path,
+            h_loc,
+            "candela values",
+            format!(
+                "the header declares {nv} × {nh} candela values, but only {left} numbers follow"
+            ),
+        ));
+    }
+    let mut candela = Vec::with_capacity(nv * nh);
+    for h in 0..nh {
+        for v in 0..nv {
+            let what = format!("candela[{h}][{v}]");
+            let (x, loc) = n.number(&what)?;
+            candela.push(intensity(x, loc, &what, path)? * factor);
+        }
+    }
+    n.finish()?;
+    Ok(Photometry {
+        file: path.to_path_buf(),
+        vertical_deg,
+        horizontal_deg,
+        symmetry,
+        candela,
+        tilt,
+        lamp_lumens: (lumens_per_lamp > 0.0).then_some(lumens_per_lamp * lamps as f64),
+        light_output_ratio: None,
+    })
+}
+
+/// The numbers between the tilt data and the angles.
+struct Header {
+    lamps: i64,
+    /// lm, or −1 for absolute photometry.
+    lumens_per_lamp: f64,
+    multiplier: f64,
+    nv: i64,
+    nh: i64,
+    ballast: f64,
+    /// The ballast-lamp photometric factor (1986 and 1991 files; later files' field is unused).
+    second: f64,
+}
+
+/// Reads and checks the header after the tilt data (type C photometry only).
+fn header(n: &mut Numbers<'_, '_>, path: &Path, modern: bool) -> Result<Header, LoadError> {
     let (lamps, _) = n.count("number of lamps", 0, 1_000_000)?;
     let (lumens_per_lamp, lum_loc) = n.number("lumens per lamp")?;
     if !(lumens_per_lamp > 0.0 || lumens_per_lamp == -1.0) {
@@ -152,45 +189,47 @@ pub fn parse_ies(text: &str, path: &Path) -> Result<Photometry, LoadError> {
         ));
     }
     n.number("input watts")?;
-    let (nv, nh) = (nv as usize, nh as usize);
-    let vertical_deg = n.angles(nv, "vertical angles", 0.0, 180.0)?;
-    let h_loc = n.toks.get(n.next).map_or(end, |t| t.loc);
-    let horizontal_deg = n.angles(nh, "horizontal angles", 0.0, 360.0)?;
-    let symmetry = symmetry(&horizontal_deg)
-        .map_err(|m| LoadError::new(path, h_loc, "horizontal angles", m))?;
-    let factor = multiplier * ballast * if modern { 1.0 } else { second };
-    // the table cannot hold more values than the file has numbers left (no huge allocation
-    // from a header's counts)
-    let left = n.toks.len() - n.next;
-    if nv * nh > left {
-        return Err(LoadError::new(
-            path,
-            h_loc,
-            "candela values",
-            format!(
-                "the header declares {nv} × {nh} candela values, but only {left} numbers follow"
-            ),
-        ));
-    }
-    let mut candela = Vec::with_capacity(nv * nh);
-    for h in 0..nh {
-        for v in 0..nv {
-            let what = format!("candela[{h}][{v}]");
-            let (x, loc) = n.number(&what)?;
-            candela.push(intensity(x, loc, &what, path)? * factor);
-        }
-    }
-    n.finish()?;
-    Ok(Photometry {
-        file: path.to_path_buf(),
-        vertical_deg,
-        horizontal_deg,
-        symmetry,
-        candela,
-        tilt,
-        lamp_lumens: (lumens_per_lamp > 0.0).then_some(lumens_per_lamp * lamps as f64),
-        light_output_ratio: None,
+    Ok(Header {
+        lamps,
+        lumens_per_lamp,
+        multiplier,
+        nv,
+        nh,
+        ballast,
+        second,
     })
+}
+
+/// The tilt data of `TILT=file` (on line `tilt_line` + 1 of `path`), read from `file` beside
+/// the photometric file.
+fn tilt_file(path: &Path, file: &str, tilt_line: usize) -> Result<Vec<(f64, f64)>, LoadError> {
+    let tilt_path = path.parent().unwrap_or(Path::new(".")).join(file);
+    let at = Loc {
+        line: tilt_line as u32 + 1,
+        col: 1,
+    };
+    let bytes =
+        crate::files::read_bytes(&tilt_path, crate::files::MAX_TEXT_BYTES).map_err(|e| {
+            LoadError::new(
+                path,
+                at,
+                "TILT",
+                format!("cannot read the tilt file {}: {e}", tilt_path.display()),
+            )
+        })?;
+    let t: String = bytes.iter().map(|&b| b as char).collect();
+    let mut tn = Numbers {
+        end: Loc {
+            line: t.split('\n').count() as u32,
+            col: 1,
+        },
+        toks: tokens(&t, 1),
+        next: 0,
+        path: &tilt_path,
+    };
+    let data = tilt_data(&mut tn)?;
+    tn.finish()?;
+    Ok(data)
 }
 
 /// Tilt data: geometry, pair count, angles, factors.
