@@ -138,61 +138,7 @@ impl Mesh {
                 break;
             }
         }
-        let mut lines = header.lines();
-        if lines.next().map(str::trim) != Some("ply") {
-            return Err(bad("not a PLY file (no 'ply' magic)"));
-        }
-        let mut format = None;
-        let mut elems: Vec<Elem> = Vec::new();
-        for line in lines {
-            let w: Vec<&str> = line.split_whitespace().collect();
-            match w.as_slice() {
-                ["format", f, _] => {
-                    format = Some(match *f {
-                        "ascii" => Format::Ascii,
-                        "binary_little_endian" => Format::Le,
-                        "binary_big_endian" => Format::Be,
-                        _ => return Err(bad(&format!("unknown format {f}"))),
-                    })
-                }
-                ["element", name, count] => elems.push(Elem {
-                    name: name.to_string(),
-                    count: count
-                        .parse()
-                        .map_err(|_| bad(&format!("bad element count {count}")))?,
-                    props: Vec::new(),
-                }),
-                ["property", "list", ct, ty, name] => {
-                    let (Some(ct), Some(ty)) = (Ty::parse(ct), Ty::parse(ty)) else {
-                        return Err(bad(&format!("unknown type in '{line}'")));
-                    };
-                    elems
-                        .last_mut()
-                        .ok_or_else(|| bad("property before element"))?
-                        .props
-                        .push(Prop {
-                            name: name.to_string(),
-                            ty,
-                            list: Some(ct),
-                        });
-                }
-                ["property", ty, name] => {
-                    let ty =
-                        Ty::parse(ty).ok_or_else(|| bad(&format!("unknown type in '{line}'")))?;
-                    elems
-                        .last_mut()
-                        .ok_or_else(|| bad("property before element"))?
-                        .props
-                        .push(Prop {
-                            name: name.to_string(),
-                            ty,
-                            list: None,
-                        });
-                }
-                _ => {}
-            }
-        }
-        let format = format.ok_or_else(|| bad("no format line"))?;
+        let (format, elems) = parse_header(header, &bad)?;
         let text = if format == Format::Ascii {
             std::str::from_utf8(&bytes[body_start..]).map_err(|_| bad("ASCII body is not text"))?
         } else {
@@ -283,6 +229,68 @@ impl Mesh {
         let uvs = (has("u") || has("s") || has("texture_u")).then_some(uvs);
         Mesh::new(positions, normals, uvs, indices, transform).map_err(|e| bad(&e.to_string()))
     }
+}
+
+/// The PLY header's format and elements (with their properties); `bad` makes the error.
+fn parse_header(
+    header: &str,
+    bad: &dyn Fn(&str) -> GeometryError,
+) -> Result<(Format, Vec<Elem>), GeometryError> {
+    let mut lines = header.lines();
+    if lines.next().map(str::trim) != Some("ply") {
+        return Err(bad("not a PLY file (no 'ply' magic)"));
+    }
+    let mut format = None;
+    let mut elems: Vec<Elem> = Vec::new();
+    for line in lines {
+        let w: Vec<&str> = line.split_whitespace().collect();
+        match w.as_slice() {
+            ["format", f, _] => {
+                format = Some(match *f {
+                    "ascii" => Format::Ascii,
+                    "binary_little_endian" => Format::Le,
+                    "binary_big_endian" => Format::Be,
+                    _ => return Err(bad(&format!("unknown format {f}"))),
+                })
+            }
+            ["element", name, count] => elems.push(Elem {
+                name: name.to_string(),
+                count: count
+                    .parse()
+                    .map_err(|_| bad(&format!("bad element count {count}")))?,
+                props: Vec::new(),
+            }),
+            ["property", "list", ct, ty, name] => {
+                let (Some(ct), Some(ty)) = (Ty::parse(ct), Ty::parse(ty)) else {
+                    return Err(bad(&format!("unknown type in '{line}'")));
+                };
+                elems
+                    .last_mut()
+                    .ok_or_else(|| bad("property before element"))?
+                    .props
+                    .push(Prop {
+                        name: name.to_string(),
+                        ty,
+                        list: Some(ct),
+                    });
+            }
+            ["property", ty, name] => {
+                let ty = Ty::parse(ty).ok_or_else(|| bad(&format!("unknown type in '{line}'")))?;
+                elems
+                    .last_mut()
+                    .ok_or_else(|| bad("property before element"))?
+                    .props
+                    .push(Prop {
+                        name: name.to_string(),
+                        ty,
+                        list: None,
+                    });
+            }
+            _ => {}
+        }
+    }
+    let format = format.ok_or_else(|| bad("no format line"))?;
+    Ok((format, elems))
 }
 
 #[cfg(test)]
