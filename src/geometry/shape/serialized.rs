@@ -59,41 +59,7 @@ impl Mesh {
             return Err(bad(format!("version {version} (only 3 and 4 are read)")));
         }
         // where mesh `index` starts: 0 for the first, else from the table at the end
-        let start = if index == 0 {
-            0
-        } else {
-            let n = bytes.len();
-            let count = bytes
-                .get(n.saturating_sub(4)..)
-                .and_then(|b| b.try_into().ok())
-                .map(u32::from_le_bytes)
-                .ok_or_else(|| bad("no mesh table at the end".into()))?
-                as usize;
-            if index >= count {
-                return Err(bad(format!(
-                    "shape_index {index} is out of range: the file holds {count} meshes"
-                )));
-            }
-            // the table's entry for `index`, counted back from the end (numbers from the file:
-            // checked arithmetic, so a corrupt table is an error, never an overflow)
-            let off = if version == 4 {
-                8usize
-                    .checked_mul(count - index)
-                    .and_then(|k| n.checked_sub(k.checked_add(4)?))
-                    .and_then(|o| bytes.get(o..o + 8))
-                    .and_then(|b| b.try_into().ok())
-                    .map(u64::from_le_bytes)
-            } else {
-                4usize
-                    .checked_mul(count - index + 1)
-                    .and_then(|k| n.checked_sub(k))
-                    .and_then(|o| bytes.get(o..o + 4))
-                    .and_then(|b| b.try_into().ok())
-                    .map(|b| u32::from_le_bytes(b) as u64)
-            };
-            off.and_then(|o| usize::try_from(o).ok())
-                .ok_or_else(|| bad("the mesh table is truncated or corrupt".into()))?
-        };
+        let start = mesh_start(&bytes, index, version).map_err(bad)?;
         if u16_at(start) != Some(MAGIC) {
             return Err(bad(format!(
                 "mesh {index} does not start with the 0x041C header"
@@ -153,6 +119,45 @@ impl Mesh {
         }
         Mesh::new(positions, normals, uvs, indices, transform)
     }
+}
+
+/// The byte offset of mesh `index` in a `.serialized` file of `version` (3 or 4): 0 for the
+/// first, else from the table of offsets at the end; an error message if it has none.
+fn mesh_start(bytes: &[u8], index: usize, version: u16) -> Result<usize, String> {
+    Ok(if index == 0 {
+        0
+    } else {
+        let n = bytes.len();
+        let count = bytes
+            .get(n.saturating_sub(4)..)
+            .and_then(|b| b.try_into().ok())
+            .map(u32::from_le_bytes)
+            .ok_or_else(|| "no mesh table at the end".to_string())? as usize;
+        if index >= count {
+            return Err(format!(
+                "shape_index {index} is out of range: the file holds {count} meshes"
+            ));
+        }
+        // the table's entry for `index`, counted back from the end (numbers from the file:
+        // checked arithmetic, so a corrupt table is an error, never an overflow)
+        let off = if version == 4 {
+            8usize
+                .checked_mul(count - index)
+                .and_then(|k| n.checked_sub(k.checked_add(4)?))
+                .and_then(|o| bytes.get(o..o + 8))
+                .and_then(|b| b.try_into().ok())
+                .map(u64::from_le_bytes)
+        } else {
+            4usize
+                .checked_mul(count - index + 1)
+                .and_then(|k| n.checked_sub(k))
+                .and_then(|o| bytes.get(o..o + 4))
+                .and_then(|b| b.try_into().ok())
+                .map(|b| u32::from_le_bytes(b) as u64)
+        };
+        off.and_then(|o| usize::try_from(o).ok())
+            .ok_or_else(|| "the mesh table is truncated or corrupt".to_string())?
+    })
 }
 
 struct Reader<'a> {
