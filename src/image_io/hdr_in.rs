@@ -21,44 +21,7 @@ pub(crate) fn read_hdr(path: &Path) -> Result<RgbImage, ImageError> {
             }
         })?;
     let bad = |why: &str| invalid(path, format!("not a readable Radiance HDR file: {why}"));
-    // header lines up to an empty line, then the resolution line
-    let mut pos = 0;
-    let line = |pos: &mut usize| -> Option<String> {
-        let start = *pos;
-        let end = start + bytes.get(start..)?.iter().position(|&b| b == b'\n')?;
-        *pos = end + 1;
-        Some(
-            String::from_utf8_lossy(&bytes[start..end])
-                .trim()
-                .to_string(),
-        )
-    };
-    let first = line(&mut pos).ok_or_else(|| bad("empty"))?;
-    if !first.starts_with("#?") {
-        return Err(bad("it does not start with #?RADIANCE"));
-    }
-    loop {
-        let l = line(&mut pos).ok_or_else(|| bad("the header does not end"))?;
-        if l.is_empty() {
-            break;
-        }
-        if let Some(f) = l.strip_prefix("FORMAT=")
-            && f != "32-bit_rle_rgbe"
-        {
-            return Err(bad(&format!("format {f} (only 32-bit_rle_rgbe is read)")));
-        }
-    }
-    let res = line(&mut pos).ok_or_else(|| bad("no resolution line"))?;
-    let parts: Vec<&str> = res.split_whitespace().collect();
-    let (h, w) = match parts.as_slice() {
-        ["-Y", h, "+X", w] => (h.parse::<usize>().ok(), w.parse::<usize>().ok()),
-        _ => (None, None),
-    };
-    let (Some(h), Some(w)) = (h, w) else {
-        return Err(bad(&format!(
-            "resolution \"{res}\" (only the standard -Y h +X w orientation is read)"
-        )));
-    };
+    let (w, h, pos) = header(&bytes, &bad)?;
     let n = pixel_count(path, w, h)?;
     let data = &bytes[pos..];
     // every scanline takes at least 4 bytes and every run at most 127 pixels of one component:
@@ -134,6 +97,53 @@ pub(crate) fn read_hdr(path: &Path) -> Result<RgbImage, ImageError> {
         encoding: Encoding::Linear,
         grey: false,
     })
+}
+
+/// The header (`#?RADIANCE`, `FORMAT=32-bit_rle_rgbe`, then an empty line) and the resolution
+/// line `-Y h +X w`: the width, the height and where the pixel data starts.
+fn header(
+    bytes: &[u8],
+    bad: &dyn Fn(&str) -> ImageError,
+) -> Result<(usize, usize, usize), ImageError> {
+    // header lines up to an empty line, then the resolution line
+    let mut pos = 0;
+    let line = |pos: &mut usize| -> Option<String> {
+        let start = *pos;
+        let end = start + bytes.get(start..)?.iter().position(|&b| b == b'\n')?;
+        *pos = end + 1;
+        Some(
+            String::from_utf8_lossy(&bytes[start..end])
+                .trim()
+                .to_string(),
+        )
+    };
+    let first = line(&mut pos).ok_or_else(|| bad("empty"))?;
+    if !first.starts_with("#?") {
+        return Err(bad("it does not start with #?RADIANCE"));
+    }
+    loop {
+        let l = line(&mut pos).ok_or_else(|| bad("the header does not end"))?;
+        if l.is_empty() {
+            break;
+        }
+        if let Some(f) = l.strip_prefix("FORMAT=")
+            && f != "32-bit_rle_rgbe"
+        {
+            return Err(bad(&format!("format {f} (only 32-bit_rle_rgbe is read)")));
+        }
+    }
+    let res = line(&mut pos).ok_or_else(|| bad("no resolution line"))?;
+    let parts: Vec<&str> = res.split_whitespace().collect();
+    let (h, w) = match parts.as_slice() {
+        ["-Y", h, "+X", w] => (h.parse::<usize>().ok(), w.parse::<usize>().ok()),
+        _ => (None, None),
+    };
+    let (Some(h), Some(w)) = (h, w) else {
+        return Err(bad(&format!(
+            "resolution \"{res}\" (only the standard -Y h +X w orientation is read)"
+        )));
+    };
+    Ok((w, h, pos))
 }
 
 #[cfg(test)]
