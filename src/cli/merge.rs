@@ -1,13 +1,13 @@
 //! `spectrace merge`: render parts (`--part I/N`, whose EXRs carry their film's exact sums)
 //! added into the image one render of all their samples gives, bit for bit.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use super::CliError;
 use super::farm::{num_attr, text_attr};
 use crate::film::FilterDesc;
 use crate::film::{Film, Filter, STATE_PREFIX};
-use crate::image_io::read_exr;
+use crate::image_io::{ExrImage, read_exr};
 use crate::output::{RenderInfo, write_png};
 use crate::spectrum::WavelengthRange;
 
@@ -57,30 +57,7 @@ pub fn merge(args: MergeArgs) -> Result<(), CliError> {
     let mut stop = "complete".to_string();
     for path in &args.parts {
         let img = read_exr(path)?;
-        let part = text_attr(&img, path, "spectrace:part")?;
-        let (i, n) = part
-            .split_once('/')
-            .and_then(|(i, n)| Some((i.parse::<u32>().ok()?, n.parse::<u32>().ok()?)))
-            .filter(|(i, n)| i < n && *n <= 1 << 24)
-            .ok_or_else(|| {
-                CliError::Usage(format!("{}: part `{part}` is not I/N", path.display()))
-            })?;
-        let k = PartKey {
-            size: (img.width, img.height),
-            n,
-            hash: text_attr(&img, path, "spectrace:sceneHash")?,
-            seed: text_attr(&img, path, "spectrace:seed")?,
-            integrator: text_attr(&img, path, "spectrace:integrator")?,
-            spp: num_attr(&img, path, "spectrace:partsSamplesPerPixel")?,
-            range: (
-                text_attr(&img, path, "spectrace:wavelengthMinNm")?,
-                text_attr(&img, path, "spectrace:wavelengthMaxNm")?,
-            ),
-            bins: num_attr(&img, path, "spectrace:spectralBins")?,
-            moment: num_attr::<i32>(&img, path, "spectrace:moment")? != 0,
-            mitsuba_units: num_attr::<i32>(&img, path, "spectrace:mitsubaUnits")? != 0,
-            scene: text_attr(&img, path, "spectrace:scene")?,
-        };
+        let (i, n, k) = part_key(&img, path)?;
         match &key {
             None => {
                 seen = vec![None; n as usize];
@@ -176,6 +153,33 @@ pub fn merge(args: MergeArgs) -> Result<(), CliError> {
         );
     }
     Ok(())
+}
+
+/// A part's index, its count and the fields every part of one render shares.
+fn part_key(img: &ExrImage, path: &Path) -> Result<(u32, u32, PartKey), CliError> {
+    let part = text_attr(img, path, "spectrace:part")?;
+    let (i, n) = part
+        .split_once('/')
+        .and_then(|(i, n)| Some((i.parse::<u32>().ok()?, n.parse::<u32>().ok()?)))
+        .filter(|(i, n)| i < n && *n <= 1 << 24)
+        .ok_or_else(|| CliError::Usage(format!("{}: part `{part}` is not I/N", path.display())))?;
+    let k = PartKey {
+        size: (img.width, img.height),
+        n,
+        hash: text_attr(img, path, "spectrace:sceneHash")?,
+        seed: text_attr(img, path, "spectrace:seed")?,
+        integrator: text_attr(img, path, "spectrace:integrator")?,
+        spp: num_attr(img, path, "spectrace:partsSamplesPerPixel")?,
+        range: (
+            text_attr(img, path, "spectrace:wavelengthMinNm")?,
+            text_attr(img, path, "spectrace:wavelengthMaxNm")?,
+        ),
+        bins: num_attr(img, path, "spectrace:spectralBins")?,
+        moment: num_attr::<i32>(img, path, "spectrace:moment")? != 0,
+        mitsuba_units: num_attr::<i32>(img, path, "spectrace:mitsubaUnits")? != 0,
+        scene: text_attr(img, path, "spectrace:scene")?,
+    };
+    Ok((i, n, k))
 }
 
 /// The first field in which two parts differ, for the error message.
