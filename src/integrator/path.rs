@@ -6,8 +6,9 @@
 
 use glam::Vec3;
 
-use super::Integrator;
+use super::{Integrator, Shading};
 use crate::geometry::Ray;
+use crate::geometry::shape::Intersection;
 use crate::material::TransportMode;
 use crate::sampler::Sampler;
 use crate::sampling::power_heuristic;
@@ -69,22 +70,8 @@ fn trace<const N: usize>(
     loop {
         let Some(hit) = scene.accel.intersect(&scene.shapes, &ray) else {
             // Escaped: environment and sun disks, MIS-weighted against BSDF sampling.
-            for &i in &scene.infinite_lights {
-                let i = i as usize;
-                let light = &scene.lights[i];
-                let le = light.escaped(ray.d, w);
-                if le.is_zero() {
-                    continue;
-                }
-                let wgt = if specular_bounce {
-                    1.0
-                } else {
-                    let pl = it.light_prob(prev_p, prev_n, i)
-                        * light.pdf_li(&scene.shapes, prev_p, ray.d, Vec3::ZERO, Vec3::ZERO);
-                    power_heuristic(1.0, prev_pdf, 1.0, pl)
-                };
-                l += beta * le * wgt;
-            }
+            let prev = (!specular_bounce).then_some((prev_p, prev_n, prev_pdf));
+            add_escaped(it, ray.d, prev, beta, w, &mut l);
             break;
         };
         let surf = scene.surfaces[hit.shape as usize];
@@ -127,28 +114,7 @@ fn trace<const N: usize>(
 
         // Next-event estimation.
         if !sh.bsdf.is_specular() {
-            let u = s.get_2d();
-            if let Some((li, p_sel, ux)) = it.pick_light(hit.p, sh.frame.n, u.x) {
-                let light = &scene.lights[li];
-                let u = glam::Vec2::new(ux, u.y);
-                if let Some(ls) = light.sample_li(&scene.shapes, hit.p, w, u) {
-                    let wi = sh.frame.to_local(ls.wi);
-                    let (f, bsdf_pdf) = sh.bsdf.eval_pdf(wo, wi, w, TransportMode::Radiance);
-                    let f = f * wi.z.abs();
-                    if !f.is_zero()
-                        && !ls.li.is_zero()
-                        && !it.occluded(&hit, sh.n_geom_toward(ls.wi), &ls)
-                    {
-                        let p_light = p_sel * ls.pdf;
-                        let wgt = if ls.delta {
-                            1.0
-                        } else {
-                            power_heuristic(1.0, p_light, 1.0, bsdf_pdf)
-                        };
-                        l += beta * f * ls.li * (wgt / p_light);
-                    }
-                }
-            }
+            add_next_event(it, &hit, &sh, wo, beta, w, s, &mut l);
         } else {
             // keep the dimension layout fixed
             s.get_2d();
@@ -188,4 +154,74 @@ fn trace<const N: usize>(
         }
     }
     l
+}
+
+/// Adds the radiance of the lights at infinity in direction `d` to `l`, times `beta`; `prev`
+/// (the previous vertex's point, shading normal and BSDF density) MIS-weights it against
+/// light sampling there (None after a specular bounce or for a camera ray: weight 1).
+#[inline(always)]
+fn add_escaped<const N: usize>(
+    it: &Integrator<'_>,
+    d: Vec3,
+    prev: Option<(Vec3, Vec3, f32)>,
+    beta: SampledSpectrum<N>,
+    w: &SampledWavelengths<N>,
+    l: &mut SampledSpectrum<N>,
+) {
+    let scene = it.scene;
+    for &i in &scene.infinite_lights {
+        let i = i as usize;
+        let light = &scene.lights[i];
+        let le = light.escaped(d, w);
+        if le.is_zero() {
+            continue;
+        }
+        let wgt = match prev {
+            None => 1.0,
+            Some((prev_p, prev_n, prev_pdf)) => {
+                let pl = it.light_prob(prev_p, prev_n, i)
+                    * light.pdf_li(&scene.shapes, prev_p, d, Vec3::ZERO, Vec3::ZERO);
+                power_heuristic(1.0, prev_pdf, 1.0, pl)
+            }
+        };
+        *l += beta * le * wgt;
+    }
+}
+
+/// Next-event estimation at a non-specular hit (Veach 1997 §9.2; pbrt-v4 §13.4): a light
+/// chosen by the integrator's light selection, a point on it, its radiance times f·|cos θ|,
+/// MIS-weighted against BSDF sampling by the power heuristic, added to `l` times `beta`.
+/// Reads one 2D sample (the light choice reuses its first coordinate).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn add_next_event<const N: usize>(
+    it: &Integrator<'_>,
+    hit: &Intersection,
+    sh: &Shading<'_, N>,
+    wo: Vec3,
+    beta: SampledSpectrum<N>,
+    w: &SampledWavelengths<N>,
+    s: &mut Sampler,
+    l: &mut SampledSpectrum<N>,
+) {
+    let scene = it.scene;
+    let u = s.get_2d();
+    if let Some((li, p_sel, ux)) = it.pick_light(hit.p, sh.frame.n, u.x) {
+        let light = &scene.lights[li];
+        let u = glam::Vec2::new(ux, u.y);
+        if let Some(ls) = light.sample_li(&scene.shapes, hit.p, w, u) {
+            let wi = sh.frame.to_local(ls.wi);
+            let (f, bsdf_pdf) = sh.bsdf.eval_pdf(wo, wi, w, TransportMode::Radiance);
+            let f = f * wi.z.abs();
+            if !f.is_zero() && !ls.li.is_zero() && !it.occluded(hit, sh.n_geom_toward(ls.wi), &ls) {
+                let p_light = p_sel * ls.pdf;
+                let wgt = if ls.delta {
+                    1.0
+                } else {
+                    power_heuristic(1.0, p_light, 1.0, bsdf_pdf)
+                };
+                *l += beta * f * ls.li * (wgt / p_light);
+            }
+        }
+    }
 }

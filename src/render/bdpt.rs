@@ -36,12 +36,10 @@ pub(super) fn render(
     tiles: &[(u32, u32, u32, u32)],
     passes: &[(u32, u32)],
 ) -> (Film, RenderStats) {
-    let (opts, it) = (ctx.opts, ctx.integrator);
+    let opts = ctx.opts;
     let mut film = snap.film;
     let (w, h) = (film.width, film.height);
     let first = opts.sample_range().0;
-    let inv_pixels = 1.0 / (w as f32 * h as f32);
-    let (filter, bins) = (film.filter.clone(), film.bins.clone());
     let pass0 = (snap.pass as usize).min(passes.len());
     let pixels = w as u64 * h as u64;
     let done_before: u64 = passes[..pass0]
@@ -100,61 +98,7 @@ pub(super) fn render(
             let out: Vec<Option<(Tile, SplatList)>> = ctx.pool.install(|| {
                 chunk
                     .par_iter()
-                    .map(|&ti| {
-                        let (x0, y0, tw, th) = tiles[ti];
-                        if ctx.cancel.load(Ordering::Relaxed) {
-                            return None;
-                        }
-                        let mut tile = pass_film.tile(x0, y0, tw, th);
-                        let mut list = SplatList::new(w);
-                        let mut scratch = Scratch::<N_WAVELENGTHS>::new(it.max_depth);
-                        for y in y0..y0 + th {
-                            for x in x0..x0 + tw {
-                                for i in a..b {
-                                    let (mut s, wl, ray) = camera_sample(
-                                        it.scene, ctx.lambda, &filter, opts.seed, x, y, i,
-                                    );
-                                    let mut sl = Sampler::new(opts.seed ^ LIGHT_SEED, x, y, i);
-                                    let l = sample(
-                                        it,
-                                        ray,
-                                        &wl,
-                                        &mut s,
-                                        &mut sl,
-                                        filter.radius,
-                                        &mut scratch,
-                                        &mut |raster, wl, v| {
-                                            let v = v * inv_pixels;
-                                            let b = bins.as_ref();
-                                            if !splat_filtered(
-                                                &mut list,
-                                                (w, h),
-                                                &filter,
-                                                raster,
-                                                wl,
-                                                &v,
-                                                b,
-                                            ) {
-                                                count_dropped(wl, &v, &nan, &inf);
-                                            }
-                                        },
-                                    );
-                                    // the sample counts once; its hero-only part adds to it
-                                    let b = bins.as_ref();
-                                    if !tile.add(x, y, &wl, &l.all, b) {
-                                        count_dropped(&wl, &l.all, &nan, &inf);
-                                    }
-                                    let wh = &l.hero_only;
-                                    if !l.hero.is_zero() && !tile.splat(x, y, wh, &l.hero, b) {
-                                        count_dropped(wh, &l.hero, &nan, &inf);
-                                    }
-                                }
-                            }
-                        }
-                        let n = (tw * th * (b - a)) as u64;
-                        (ctx.progress)(done.fetch_add(n, Ordering::Relaxed) + n, ctx.total);
-                        Some((tile, list))
-                    })
+                    .map(|&ti| trace_tile(ctx, &pass_film, tiles[ti], (a, b), (&nan, &inf), &done))
                     .collect()
             });
             let mut cancelled = false;
@@ -203,4 +147,65 @@ pub(super) fn render(
         rel_error: estimate.last,
     };
     (film, stats)
+}
+
+/// One tile of one pass: its camera samples' t ≥ 2 strategies in a tile of `pass_film`'s
+/// pixels and their light subpaths' t = 1 splats in a list (None if cancelled before it
+/// started).
+fn trace_tile(
+    ctx: &Ctx<'_>,
+    pass_film: &Film,
+    rect: (u32, u32, u32, u32),
+    (a, b): (u32, u32),
+    (nan, inf): (&AtomicU64, &AtomicU64),
+    done: &AtomicU64,
+) -> Option<(Tile, SplatList)> {
+    let (opts, it) = (ctx.opts, ctx.integrator);
+    let (w, h) = (pass_film.width, pass_film.height);
+    let inv_pixels = 1.0 / (w as f32 * h as f32);
+    let (filter, bins) = (&pass_film.filter, &pass_film.bins);
+    let (x0, y0, tw, th) = rect;
+    if ctx.cancel.load(Ordering::Relaxed) {
+        return None;
+    }
+    let mut tile = pass_film.tile(x0, y0, tw, th);
+    let mut list = SplatList::new(w);
+    let mut scratch = Scratch::<N_WAVELENGTHS>::new(it.max_depth);
+    for y in y0..y0 + th {
+        for x in x0..x0 + tw {
+            for i in a..b {
+                let (mut s, wl, ray) =
+                    camera_sample(it.scene, ctx.lambda, filter, opts.seed, x, y, i);
+                let mut sl = Sampler::new(opts.seed ^ LIGHT_SEED, x, y, i);
+                let l = sample(
+                    it,
+                    ray,
+                    &wl,
+                    &mut s,
+                    &mut sl,
+                    filter.radius,
+                    &mut scratch,
+                    &mut |raster, wl, v| {
+                        let v = v * inv_pixels;
+                        let b = bins.as_ref();
+                        if !splat_filtered(&mut list, (w, h), filter, raster, wl, &v, b) {
+                            count_dropped(wl, &v, nan, inf);
+                        }
+                    },
+                );
+                // the sample counts once; its hero-only part adds to it
+                let b = bins.as_ref();
+                if !tile.add(x, y, &wl, &l.all, b) {
+                    count_dropped(&wl, &l.all, nan, inf);
+                }
+                let wh = &l.hero_only;
+                if !l.hero.is_zero() && !tile.splat(x, y, wh, &l.hero, b) {
+                    count_dropped(wh, &l.hero, nan, inf);
+                }
+            }
+        }
+    }
+    let n = (tw * th * (b - a)) as u64;
+    (ctx.progress)(done.fetch_add(n, Ordering::Relaxed) + n, ctx.total);
+    Some((tile, list))
 }

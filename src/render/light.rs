@@ -123,44 +123,7 @@ pub(super) fn render(ctx: &Ctx<'_>, snap: Snapshot) -> (Film, RenderStats) {
     }
     ctx.final_checkpoint(&snapshot(&film, paths));
     film.set_path_count(paths.max(1));
-    // Lights at infinity seen directly (sky, sun disk): camera rays with the filter's offsets,
-    // each adding the escaped radiance times paths / (samples per pixel), so that the film's
-    // division by the path count leaves their mean (the factor is the pixel count when every
-    // path was traced).
-    let mut cam_cancelled = false;
-    if crate::integrator::light::has_visible_infinite_lights(integrator) && paths > 0 {
-        let scene = integrator.scene;
-        let scale = paths as f64 / (end - first).max(1) as f64;
-        let rows: Vec<Option<crate::film::Tile>> = ctx.pool.install(|| {
-            (0..h)
-                .into_par_iter()
-                .map(|y| {
-                    if ctx.cancel.load(Ordering::Relaxed) {
-                        return None;
-                    }
-                    let mut tile = film.tile(0, y, w, 1);
-                    for x in 0..w {
-                        for i in first..end {
-                            let seed = opts.seed ^ 0x534b_5900;
-                            let (_, wl, ray) =
-                                camera_sample(scene, ctx.lambda, &filter, seed, x, y, i);
-                            let l = crate::integrator::light::escaped(integrator, &ray, &wl);
-                            if !tile.splat_scaled(x, y, &wl, &l, bins.as_ref(), scale) {
-                                count_dropped(&wl, &l, &nan, &inf);
-                            }
-                        }
-                    }
-                    Some(tile)
-                })
-                .collect()
-        });
-        for row in &rows {
-            match row {
-                Some(t) => film.merge(t),
-                None => cam_cancelled = true,
-            }
-        }
-    }
+    let cam_cancelled = infinite_lights_pass(ctx, &mut film, paths, (&nan, &inf));
     if cam_cancelled {
         stop = StopReason::Cancelled;
     }
@@ -175,4 +138,55 @@ pub(super) fn render(ctx: &Ctx<'_>, snap: Snapshot) -> (Film, RenderStats) {
         rel_error: None,
     };
     (film, stats)
+}
+
+/// Lights at infinity seen directly (sky, sun disk): camera rays with the filter's offsets,
+/// each adding the escaped radiance times paths / (samples per pixel), so that the film's
+/// division by the path count leaves their mean (the factor is the pixel count when every
+/// path was traced). True if cancelled part-way.
+fn infinite_lights_pass(
+    ctx: &Ctx<'_>,
+    film: &mut Film,
+    paths: u64,
+    (nan, inf): (&AtomicU64, &AtomicU64),
+) -> bool {
+    let (opts, integrator) = (ctx.opts, ctx.integrator);
+    if !(crate::integrator::light::has_visible_infinite_lights(integrator) && paths > 0) {
+        return false;
+    }
+    let (w, h) = (film.width, film.height);
+    let (first, end) = opts.sample_range();
+    let (bins, filter) = (film.bins.clone(), film.filter.clone());
+    let mut cam_cancelled = false;
+    let scene = integrator.scene;
+    let scale = paths as f64 / (end - first).max(1) as f64;
+    let rows: Vec<Option<crate::film::Tile>> = ctx.pool.install(|| {
+        (0..h)
+            .into_par_iter()
+            .map(|y| {
+                if ctx.cancel.load(Ordering::Relaxed) {
+                    return None;
+                }
+                let mut tile = film.tile(0, y, w, 1);
+                for x in 0..w {
+                    for i in first..end {
+                        let seed = opts.seed ^ 0x534b_5900;
+                        let (_, wl, ray) = camera_sample(scene, ctx.lambda, &filter, seed, x, y, i);
+                        let l = crate::integrator::light::escaped(integrator, &ray, &wl);
+                        if !tile.splat_scaled(x, y, &wl, &l, bins.as_ref(), scale) {
+                            count_dropped(&wl, &l, nan, inf);
+                        }
+                    }
+                }
+                Some(tile)
+            })
+            .collect()
+    });
+    for row in &rows {
+        match row {
+            Some(t) => film.merge(t),
+            None => cam_cancelled = true,
+        }
+    }
+    cam_cancelled
 }

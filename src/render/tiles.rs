@@ -9,7 +9,7 @@ use rayon::prelude::*;
 
 use super::control::ErrorEstimate;
 use super::{Ctx, RenderStats, Snapshot, StopReason, camera_sample};
-use crate::film::{Film, NonFinite, non_finite};
+use crate::film::{Bins, Film, Filter, NonFinite, Tile, non_finite};
 
 /// The state of a pass shared by the threads: the film and the tiles summed into it.
 struct Shared {
@@ -27,7 +27,7 @@ pub(super) fn render(
     tiles: &[(u32, u32, u32, u32)],
     passes: &[(u32, u32)],
 ) -> (Film, RenderStats) {
-    let (opts, scene) = (ctx.opts, ctx.integrator.scene);
+    let opts = ctx.opts;
     let first = opts.sample_range().0;
     let (filter, bins) = (snap.film.filter.clone(), snap.film.bins.clone());
     let pixels = snap.film.width as u64 * snap.film.height as u64;
@@ -85,24 +85,8 @@ pub(super) fn render(
                     if ctx.cancel.load(Ordering::Relaxed) || lock().tiles_done[ti] {
                         return;
                     }
-                    let nb = bins.as_ref().map_or(0, |b| b.count);
-                    let mut tile = crate::film::Tile::new(x0, y0, tw, th, nb);
-                    let (mut nan, mut inf) = (0, 0);
-                    for y in y0..y0 + th {
-                        for x in x0..x0 + tw {
-                            for i in a..b {
-                                let (mut s, mut wl, ray) =
-                                    camera_sample(scene, ctx.lambda, &filter, opts.seed, x, y, i);
-                                let l = ctx.integrator.radiance(ray, &mut wl, &mut s);
-                                if !tile.add(x, y, &wl, &l, bins.as_ref()) {
-                                    match non_finite(&wl, &l) {
-                                        Some(NonFinite::NaN) => nan += 1,
-                                        _ => inf += 1,
-                                    }
-                                }
-                            }
-                        }
-                    }
+                    let (tile, nan, inf) =
+                        trace_tile(ctx, (x0, y0, tw, th), (a, b), &filter, bins.as_ref());
                     let n = (tw * th * (b - a)) as u64;
                     let mut s = lock();
                     s.film.merge(&tile);
@@ -150,4 +134,41 @@ pub(super) fn render(
         rel_error: estimate.last,
     };
     (s.film, stats)
+}
+
+/// One tile's samples [a, b) of every pixel, with the counts of samples dropped as NaN and as
+/// infinite.
+fn trace_tile(
+    ctx: &Ctx<'_>,
+    (x0, y0, tw, th): (u32, u32, u32, u32),
+    (a, b): (u32, u32),
+    filter: &Filter,
+    bins: Option<&Bins>,
+) -> (Tile, u64, u64) {
+    let nb = bins.map_or(0, |b| b.count);
+    let mut tile = crate::film::Tile::new(x0, y0, tw, th, nb);
+    let (mut nan, mut inf) = (0, 0);
+    for y in y0..y0 + th {
+        for x in x0..x0 + tw {
+            for i in a..b {
+                let (mut s, mut wl, ray) = camera_sample(
+                    ctx.integrator.scene,
+                    ctx.lambda,
+                    filter,
+                    ctx.opts.seed,
+                    x,
+                    y,
+                    i,
+                );
+                let l = ctx.integrator.radiance(ray, &mut wl, &mut s);
+                if !tile.add(x, y, &wl, &l, bins) {
+                    match non_finite(&wl, &l) {
+                        Some(NonFinite::NaN) => nan += 1,
+                        _ => inf += 1,
+                    }
+                }
+            }
+        }
+    }
+    (tile, nan, inf)
 }
