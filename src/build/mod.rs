@@ -114,7 +114,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
             width: f.width,
             height: f.height,
             spp: f.spp,
-            filter: f.filter,
+            filter: crate::film::Filter::from_desc(&f.filter),
             spectral_bins: f.spectral_bins,
             exposure_ev: f.exposure_ev.map(|e| e as f32),
         },

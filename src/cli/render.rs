@@ -320,7 +320,7 @@ fn resume_or_start<'a>(
             let f = crate::film::Film::new(
                 scene.film.width,
                 scene.film.height,
-                crate::film::Filter::from_desc(&scene.film.filter),
+                scene.film.filter.clone(),
                 scene.wavelengths,
                 spectral_bins,
             );

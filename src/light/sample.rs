@@ -27,7 +27,7 @@ pub struct LightSample<const N: usize> {
 
 /// A particle leaving a light: the emission sample of light tracing and of bidirectional path
 /// tracing's light subpaths (Veach 1997 §8.3.2 and §10.2; pbrt-v4 §12.5, `SampleLe`). Every
-/// light owns its sampling ([`Light::sample_le`]) and the densities of it ([`Light::pdf_le`]).
+/// light owns its sampling ([`super::Light::sample_le`]) and the densities of it ([`super::Light::pdf_le`]).
 #[derive(Clone, Copy, Debug)]
 pub struct EmissionSample<const N: usize> {
     /// Ray origin, m: a point on an area light, the position of a point-like light, a point on
@@ -110,7 +110,7 @@ impl<const N: usize> EmissionSample<N> {
 }
 
 /// The densities with which a light's emission sampling produces a given particle (see
-/// [`Light::pdf_le`]).
+/// [`super::Light::pdf_le`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct EmissionPdf {
     /// Density of the origin, m⁻² (of the light's surface, or of the disk perpendicular to the

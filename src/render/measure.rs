@@ -155,7 +155,7 @@ pub fn illuminance_image(
 ) -> Result<Vec<f32>, RenderError> {
     let integrator = Integrator::new(scene, IntegratorKind::Path, opts.max_depth);
     let lambda = WavelengthSampler::visible(scene.wavelengths);
-    let filter = crate::film::Filter::from_desc(&scene.film.filter);
+    let filter = scene.film.filter.clone();
     let (w, h) = (scene.film.width, scene.film.height);
     let pool = super::thread_pool(opts.threads)?;
     let done = AtomicU64::new(0);

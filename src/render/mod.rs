@@ -220,7 +220,7 @@ pub fn render_with(
     let film = Film::new(
         w,
         h,
-        Filter::from_desc(&scene.film.filter),
+        scene.film.filter.clone(),
         scene.wavelengths,
         opts.spectral_bins,
     );

@@ -8,7 +8,7 @@ pub use settings::{IntegratorKind, LightSelection};
 
 use glam::Vec3;
 
-use crate::film::FilterDesc;
+use crate::film::Filter;
 use crate::geometry::accel::Accel;
 use crate::geometry::camera::Camera;
 use crate::geometry::shape::Shape;
@@ -28,13 +28,14 @@ pub struct Surface {
 }
 
 /// Film settings in plain units.
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 pub struct FilmSettings {
     pub width: u32,
     pub height: u32,
     /// Samples per pixel.
     pub spp: u32,
-    pub filter: FilterDesc,
+    /// The pixel filter, tabulated for sampling by the build step.
+    pub filter: Filter,
     /// Bins of the spectral EXR output (0: none).
     pub spectral_bins: u32,
     /// PNG exposure in EV (None: automatic).

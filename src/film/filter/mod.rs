@@ -68,7 +68,7 @@ impl FilterDesc {
 /// steps over [0, radius], each step holding the value at its inner end:
 /// `ReconstructionFilter::eval_discretized` in src/core/rfilter.cpp); `x` itself when `step`
 /// is 0.
-pub(crate) fn stepped(x: f32, step: f32) -> f32 {
+pub fn stepped(x: f32, step: f32) -> f32 {
     if step > 0.0 {
         (x.abs() / step).floor() * step
     } else {
@@ -77,7 +77,7 @@ pub(crate) fn stepped(x: f32, step: f32) -> f32 {
 }
 
 /// Steps of Mitsuba 3's filter table over [0, radius] (`MI_FILTER_RESOLUTION`).
-pub(crate) const MITSUBA_FILTER_RESOLUTION: f32 = 31.0;
+pub const MITSUBA_FILTER_RESOLUTION: f32 = 31.0;
 
 /// A separable pixel filter, sampled per axis by inverting a finely tabulated CDF.
 #[derive(Clone, Debug)]
