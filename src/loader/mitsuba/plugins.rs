@@ -16,11 +16,13 @@ pub(super) const SAMPLERS: &[&str] = &[
 ];
 
 /// The supported plugins of kind `what` (of [`Cx::unsupported`]), in order: from the kind's
-/// own registry where it has one (`rfilter`: [`crate::film::filter::KINDS`]), else from
+/// own registry where it has one (`rfilter`: [`crate::film::filter::KINDS`]; `bsdf`: the BSDF
+/// readers' `BSDFS`), else from
 /// [`PLUGINS`].
 pub(super) fn supported(what: &str) -> Vec<&'static str> {
     match what {
         "rfilter" => params::names(crate::film::filter::KINDS, Dialect::Mitsuba),
+        "bsdf" => super::bsdf::BSDFS.iter().map(|(n, _)| *n).collect(),
         _ => PLUGINS
             .iter()
             .find(|(k, _)| *k == what)
@@ -31,7 +33,7 @@ pub(super) fn supported(what: &str) -> Vec<&'static str> {
 
 /// Every kind of plugin, for naming the kind a misplaced plugin belongs to.
 pub(super) fn kinds() -> impl Iterator<Item = &'static str> {
-    PLUGINS.iter().map(|(k, _)| *k).chain(["rfilter"])
+    PLUGINS.iter().map(|(k, _)| *k).chain(["rfilter", "bsdf"])
 }
 
 /// The supported plugins by kind, for kinds without a registry of their own: an unknown type
@@ -54,25 +56,6 @@ const PLUGINS: &[(&str, &[&str])] = &[
             "cylinder",
             "shapegroup",
             "instance",
-        ],
-    ),
-    (
-        "bsdf",
-        &[
-            "diffuse",
-            "twosided",
-            "conductor",
-            "roughconductor",
-            "dielectric",
-            "roughdielectric",
-            "plastic",
-            "roughplastic",
-            "null",
-            "thindielectric",
-            "mask",
-            "blendbsdf",
-            "normalmap",
-            "bumpmap",
         ],
     ),
     (

@@ -81,45 +81,78 @@ const MAX_BSDF_NESTING: u32 = 32;
 fn bsdf_inner(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, bool)> {
     let b = cx.resolve(b)?;
     let t = b.attr("type").unwrap_or("");
+    match BSDFS.iter().find(|(n, _)| *n == t) {
+        Some((_, read)) => read(cx, b, name, t),
+        None => Err(cx.unsupported(b, "bsdf", t)),
+    }
+}
+
+/// A BSDF plugin's reader: the element (resolved), the material's name and the plugin's name;
+/// returns the material and whether it is two-sided.
+type Reader = fn(&Cx<'_>, &Element, &str, &str) -> R<(MaterialDesc, bool)>;
+
+/// The BSDF plugins the importer reads, one line each: the registry that dispatch, the
+/// "supported" lists and the suggestions of its errors come from (`plugins.rs`).
+pub(in crate::loader::mitsuba) const BSDFS: &[(&str, Reader)] = &[
+    ("diffuse", |cx, b, n, _| {
+        let reflectance = cx.texture_prop(b, "reflectance", 0.5)?;
+        plain(cx, b, n, MaterialKind::Diffuse { reflectance })
+    }),
+    ("twosided", twosided),
+    ("conductor", conductor_or_dielectric),
+    ("roughconductor", conductor_or_dielectric),
+    ("dielectric", conductor_or_dielectric),
+    ("roughdielectric", conductor_or_dielectric),
+    // Mitsuba's plastics: defaults diffuse_reflectance 0.5, int_ior polypropylene (1.49),
+    // ext_ior air, nonlinear false; roughplastic's alpha is isotropic only
+    ("plastic", |cx, b, n, t| plain(cx, b, n, plastic(cx, b, t)?)),
+    ("roughplastic", |cx, b, n, t| {
+        plain(cx, b, n, plastic(cx, b, t)?)
+    }),
+    // light passes straight through; each crossing still counts toward max_depth
+    ("null", |cx, b, n, _| plain(cx, b, n, MaterialKind::Null)),
+    ("thindielectric", thindielectric),
+    // Mitsuba's opacity mask around one nested BSDF (whose twosided flag it keeps)
+    ("mask", |cx, b, n, _| mask(cx, b, n)),
+    // Mitsuba's blend of two nested BSDFs by `weight` (0.5; 0 is the first, 1 the second)
+    ("blendbsdf", |cx, b, n, _| blend(cx, b, n)),
+    // Mitsuba's normal and bump maps around one nested BSDF (whose twosided flag they keep):
+    // `normalmap` reads the texture named "normalmap", `bumpmap` its one nested texture,
+    // whatever its name, times `scale` (1)
+    ("normalmap", perturbed),
+    ("bumpmap", perturbed),
+];
+
+/// A one-sided material of `kind` named `name`, located at `b`.
+fn plain(cx: &Cx<'_>, b: &Element, name: &str, kind: MaterialKind) -> R<(MaterialDesc, bool)> {
+    let m = MaterialDesc {
+        name: name.to_string(),
+        kind,
+        loc: cx.loc(b),
+    };
+    Ok((m, false))
+}
+
+/// `twosided`: its nested BSDF, seen from both sides.
+fn twosided(cx: &Cx<'_>, b: &Element, name: &str, _: &str) -> R<(MaterialDesc, bool)> {
+    let inner = b
+        .children
+        .iter()
+        .find(|c| c.tag == "bsdf" || c.tag == "ref")
+        .ok_or_else(|| cx.err(b, "twosided needs a nested <bsdf>"))?;
+    let (m, _) = bsdf(cx, inner, name)?;
+    Ok((m, true))
+}
+
+/// Conductors and dielectrics, smooth or rough, with their textured roughness and lobe
+/// factors (`textured`).
+fn conductor_or_dielectric(
+    cx: &Cx<'_>,
+    b: &Element,
+    name: &str,
+    t: &str,
+) -> R<(MaterialDesc, bool)> {
     let kind = match t {
-        "twosided" => {
-            let inner = b
-                .children
-                .iter()
-                .find(|c| c.tag == "bsdf" || c.tag == "ref")
-                .ok_or_else(|| cx.err(b, "twosided needs a nested <bsdf>"))?;
-            let (m, _) = bsdf(cx, inner, name)?;
-            return Ok((m, true));
-        }
-        // light passes straight through; each crossing still counts toward max_depth
-        "null" => MaterialKind::Null,
-        // Mitsuba's blend of two nested BSDFs by `weight` (0.5; 0 is the first, 1 the second)
-        "blendbsdf" => return blend(cx, b, name),
-        // Mitsuba's normal and bump maps around one nested BSDF (whose twosided flag they
-        // keep): `normalmap` reads the texture named "normalmap", `bumpmap` its one nested
-        // texture, whatever its name, times `scale` (1)
-        "normalmap" | "bumpmap" => return perturbed(cx, b, name, t),
-        // Mitsuba's opacity mask around one nested BSDF (whose twosided flag it keeps)
-        "mask" => return mask(cx, b, name),
-        "thindielectric" => {
-            for k in ["specular_reflectance", "specular_transmittance"] {
-                if let Some(c) = cx.child(b, k) {
-                    return Err(cx.err(
-                        c,
-                        format!(
-                            "a thindielectric's {k} is not supported (it is 1, Mitsuba's default)"
-                        ),
-                    ));
-                }
-            }
-            MaterialKind::ThinDielectric {
-                int_ior: ior_of(cx, b, "int_ior", 1.5046)?,
-                exterior_ior: ior_of(cx, b, "ext_ior", 1.000277)?,
-            }
-        }
-        "diffuse" => MaterialKind::Diffuse {
-            reflectance: cx.texture_prop(b, "reflectance", 0.5)?,
-        },
         "dielectric" | "roughdielectric" => MaterialKind::Dielectric {
             ior: Ior::Constant(ior_of(cx, b, "int_ior", 1.5046)? as f32),
             exterior_ior: ior_of(cx, b, "ext_ior", 1.000277)?,
@@ -130,28 +163,26 @@ fn bsdf_inner(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, bool)> {
             },
             distribution: distribution(cx, b)?,
         },
-        "conductor" | "roughconductor" => conductor(cx, b, t)?,
-        // Mitsuba's plastics: defaults diffuse_reflectance 0.5, int_ior polypropylene (1.49),
-        // ext_ior air, nonlinear false; roughplastic's alpha is isotropic only
-        "plastic" | "roughplastic" => plastic(cx, b, t)?,
-        other => return Err(cx.unsupported(b, "bsdf", other)),
+        _ => conductor(cx, b, t)?,
     };
-    let kind = if matches!(
-        t,
-        "conductor" | "roughconductor" | "dielectric" | "roughdielectric"
-    ) {
-        textured(cx, b, t, kind)?
-    } else {
-        kind
+    plain(cx, b, name, textured(cx, b, t, kind)?)
+}
+
+/// `thindielectric`: its indices (its lobe factors are Mitsuba's default 1 only).
+fn thindielectric(cx: &Cx<'_>, b: &Element, name: &str, _: &str) -> R<(MaterialDesc, bool)> {
+    for k in ["specular_reflectance", "specular_transmittance"] {
+        if let Some(c) = cx.child(b, k) {
+            return Err(cx.err(
+                c,
+                format!("a thindielectric's {k} is not supported (it is 1, Mitsuba's default)"),
+            ));
+        }
+    }
+    let kind = MaterialKind::ThinDielectric {
+        int_ior: ior_of(cx, b, "int_ior", 1.5046)?,
+        exterior_ior: ior_of(cx, b, "ext_ior", 1.000277)?,
     };
-    Ok((
-        MaterialDesc {
-            name: name.to_string(),
-            kind,
-            loc: cx.loc(b),
-        },
-        false,
-    ))
+    plain(cx, b, name, kind)
 }
 
 /// Mitsuba's rough BSDFs' `distribution`: beckmann (its default) or ggx.
