@@ -11,48 +11,58 @@ use crate::units::{Angle, Length, angle, length};
 
 pub(super) fn emitter(cx: &Cx<'_>, e: &Element) -> R<LightDesc> {
     let t = e.attr("type").unwrap_or("");
-    let l = |x: f64| Length::new::<length::meter>(x);
     let to_world = e.children.iter().find(|c| c.tag == "transform");
-    // Mitsuba places a point light by `position` or by `to_world` (its image of the origin),
-    // never both
-    let position = || -> R<Point> {
-        match (cx.child(e, "position"), to_world) {
-            (Some(_), Some(tr)) => Err(cx.err(
-                tr,
-                "give either position or to_world, not both (as Mitsuba requires)",
-            )),
-            (Some(p), None) => Ok(cx.vec3(p)?.map(l)),
-            (None, Some(tr)) => Ok(camera_frame(cx, e, &cx.transform(tr)?)?.0),
-            (None, None) => Ok([l(0.0), l(0.0), l(0.0)]),
-        }
+    let Some((_, read)) = EMITTERS.iter().find(|(n, _)| *n == t) else {
+        return Err(cx.unsupported(e, "emitter", t));
     };
-    let (kind, spectrum) = match t {
-        "point" => (
-            LightKind::Point {
-                position: position()?,
-                amount: PointAmount::Scale(1.0),
-            },
-            cx.spectrum_prop(e, "intensity", 1.0, true)?,
-        ),
-        "constant" => (
-            LightKind::Environment {
-                amount: EmitAmount::Scale(1.0),
-            },
-            cx.spectrum_prop(e, "radiance", 1.0, true)?,
-        ),
-        "directional" => directional(cx, e, to_world)?,
-        "spot" => spot(cx, e)?,
-        // Mitsuba's projector: an image projected through a pinhole, times scale
-        "projector" => projector(cx, e)?,
-        "envmap" => envmap(cx, e, to_world)?,
-        other => return Err(cx.unsupported(e, "emitter", other)),
-    };
+    let (kind, spectrum) = read(cx, e, to_world)?;
     Ok(LightDesc {
         kind,
         spectrum,
         sampling_weight: sampling_weight(cx, e)?,
         loc: cx.loc(e),
     })
+}
+
+/// An emitter plugin's reader: the element and its `to_world`, if any.
+type Reader = fn(&Cx<'_>, &Element, Option<&Element>) -> R<(LightKind, Spectrum)>;
+
+/// The emitter plugins the importer reads (besides `area`, which belongs to shapes), one line
+/// each: the registry that dispatch and the importer's supported list come from.
+pub(super) const EMITTERS: &[(&str, Reader)] = &[
+    ("point", point),
+    ("spot", |cx, e, _| spot(cx, e)),
+    ("constant", |cx, e, _| {
+        let amount = EmitAmount::Scale(1.0);
+        let radiance = cx.spectrum_prop(e, "radiance", 1.0, true)?;
+        Ok((LightKind::Environment { amount }, radiance))
+    }),
+    ("directional", directional),
+    ("envmap", envmap),
+    // Mitsuba's projector: an image projected through a pinhole, times scale
+    ("projector", |cx, e, _| projector(cx, e)),
+];
+
+/// Mitsuba's `point`, placed by `position` or by `to_world` (its image of the origin), never
+/// both.
+fn point(cx: &Cx<'_>, e: &Element, to_world: Option<&Element>) -> R<(LightKind, Spectrum)> {
+    let l = |x: f64| Length::new::<length::meter>(x);
+    let position = match (cx.child(e, "position"), to_world) {
+        (Some(_), Some(tr)) => {
+            return Err(cx.err(
+                tr,
+                "give either position or to_world, not both (as Mitsuba requires)",
+            ));
+        }
+        (Some(p), None) => cx.vec3(p)?.map(l),
+        (None, Some(tr)) => camera_frame(cx, e, &cx.transform(tr)?)?.0,
+        (None, None) => [l(0.0), l(0.0), l(0.0)],
+    };
+    let kind = LightKind::Point {
+        position,
+        amount: PointAmount::Scale(1.0),
+    };
+    Ok((kind, cx.spectrum_prop(e, "intensity", 1.0, true)?))
 }
 
 /// Mitsuba's `directional`: along `direction`, or the image of +z under `to_world`.

@@ -17,12 +17,16 @@ pub(super) const SAMPLERS: &[&str] = &[
 
 /// The supported plugins of kind `what` (of [`Cx::unsupported`]), in order: from the kind's
 /// own registry where it has one (`rfilter`: [`crate::film::filter::KINDS`]; `bsdf`: the BSDF
-/// readers' `BSDFS`), else from
+/// readers' `BSDFS`; `emitter`: `area` and the emitter readers' `EMITTERS`), else from
 /// [`PLUGINS`].
 pub(super) fn supported(what: &str) -> Vec<&'static str> {
     match what {
         "rfilter" => params::names(crate::film::filter::KINDS, Dialect::Mitsuba),
         "bsdf" => super::bsdf::BSDFS.iter().map(|(n, _)| *n).collect(),
+        // `area` emitters belong to shapes; the others are the emitter readers' registry
+        "emitter" => std::iter::once("area")
+            .chain(super::emitters::EMITTERS.iter().map(|(n, _)| *n))
+            .collect(),
         _ => PLUGINS
             .iter()
             .find(|(k, _)| *k == what)
@@ -33,7 +37,10 @@ pub(super) fn supported(what: &str) -> Vec<&'static str> {
 
 /// Every kind of plugin, for naming the kind a misplaced plugin belongs to.
 pub(super) fn kinds() -> impl Iterator<Item = &'static str> {
-    PLUGINS.iter().map(|(k, _)| *k).chain(["rfilter", "bsdf"])
+    PLUGINS
+        .iter()
+        .map(|(k, _)| *k)
+        .chain(["rfilter", "bsdf", "emitter"])
 }
 
 /// The supported plugins by kind, for kinds without a registry of their own: an unknown type
@@ -56,18 +63,6 @@ const PLUGINS: &[(&str, &[&str])] = &[
             "cylinder",
             "shapegroup",
             "instance",
-        ],
-    ),
-    (
-        "emitter",
-        &[
-            "area",
-            "point",
-            "spot",
-            "constant",
-            "directional",
-            "envmap",
-            "projector",
         ],
     ),
     ("shape emitter", &["area"]),
