@@ -17,12 +17,19 @@ pub(super) const SAMPLERS: &[&str] = &[
 
 /// The supported plugins of kind `what` (of [`Cx::unsupported`]), in order: from the kind's
 /// own registry where it has one (`rfilter`: [`crate::film::filter::KINDS`]; `bsdf`: the BSDF
-/// readers' `BSDFS`; `emitter`: `area` and the emitter readers' `EMITTERS`), else from
+/// readers' `BSDFS`; `emitter`: `area` and the emitter readers' `EMITTERS`; `shape`: the shape readers'
+/// `SHAPES`, `shapegroup` and `instance`), else from
 /// [`PLUGINS`].
 pub(super) fn supported(what: &str) -> Vec<&'static str> {
     match what {
         "rfilter" => params::names(crate::film::filter::KINDS, Dialect::Mitsuba),
         "bsdf" => super::bsdf::BSDFS.iter().map(|(n, _)| *n).collect(),
+        // `shapegroup` and `instance` are read by the scene; the others are the shape readers'
+        "shape" => super::shapes::SHAPES
+            .iter()
+            .map(|(n, _)| *n)
+            .chain(["shapegroup", "instance"])
+            .collect(),
         // `area` emitters belong to shapes; the others are the emitter readers' registry
         "emitter" => std::iter::once("area")
             .chain(super::emitters::EMITTERS.iter().map(|(n, _)| *n))
@@ -35,12 +42,24 @@ pub(super) fn supported(what: &str) -> Vec<&'static str> {
     }
 }
 
-/// Every kind of plugin, for naming the kind a misplaced plugin belongs to.
+/// Every kind of plugin, in the order searched when naming the kind a misplaced plugin belongs
+/// to (`area` is an `emitter` before a `shape emitter`).
 pub(super) fn kinds() -> impl Iterator<Item = &'static str> {
-    PLUGINS
-        .iter()
-        .map(|(k, _)| *k)
-        .chain(["rfilter", "bsdf", "emitter"])
+    [
+        "sensor",
+        "film",
+        "rfilter",
+        "sampler",
+        "integrator",
+        "shape",
+        "bsdf",
+        "emitter",
+        "shape emitter",
+        "spectrum",
+        "texture",
+        "transform",
+    ]
+    .into_iter()
 }
 
 /// The supported plugins by kind, for kinds without a registry of their own: an unknown type
@@ -50,21 +69,6 @@ const PLUGINS: &[(&str, &[&str])] = &[
     ("film", &["hdrfilm"]),
     ("sampler", SAMPLERS),
     ("integrator", &["path", "volpath", "direct", "moment"]),
-    (
-        "shape",
-        &[
-            "obj",
-            "ply",
-            "serialized",
-            "rectangle",
-            "cube",
-            "sphere",
-            "disk",
-            "cylinder",
-            "shapegroup",
-            "instance",
-        ],
-    ),
     ("shape emitter", &["area"]),
     ("spectrum", &["blackbody", "d65"]),
     ("texture", &["checkerboard", "bitmap"]),
@@ -73,3 +77,21 @@ const PLUGINS: &[(&str, &[&str])] = &[
         &["translate", "scale", "rotate", "matrix", "lookat"],
     ),
 ];
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every kind with a list, whether from `PLUGINS` or a registry, is searched by `kinds`,
+    /// and every kind searched has a list.
+    #[test]
+    fn kinds_are_the_listed_kinds() {
+        let all: Vec<&str> = kinds().collect();
+        for (k, _) in PLUGINS {
+            assert!(all.contains(k), "{k}");
+        }
+        for k in all {
+            assert!(!supported(k).is_empty(), "{k}");
+        }
+    }
+}

@@ -89,81 +89,106 @@ pub(super) fn shape(
 /// The geometry of a Mitsuba shape of type `t` (its material, emitter and transform are
 /// read by [`shape`]).
 fn shape_kind(cx: &Cx<'_>, s: &Element, t: &str) -> R<ShapeKind> {
-    Ok(match t {
-        "obj" => {
-            let f = cx
-                .string(s, "filename")
-                .ok_or_else(|| cx.err(s, "missing filename"))?;
-            ShapeKind::Obj {
-                path: cx.resolve_file(&f),
-                normals: mesh_normals(cx, s)?,
-            }
+    match SHAPES.iter().find(|(n, _)| *n == t) {
+        Some((_, read)) => read(cx, s),
+        None => Err(cx.unsupported(s, "shape", t)),
+    }
+}
+
+/// A shape plugin's reader of its geometry.
+type Reader = fn(&Cx<'_>, &Element) -> R<ShapeKind>;
+
+/// The shape plugins the importer reads (besides `shapegroup` and `instance`, read by the
+/// scene), one line each: the registry that dispatch and the importer's supported list come
+/// from.
+pub(super) const SHAPES: &[(&str, Reader)] = &[
+    ("obj", obj_shape),
+    ("ply", ply_shape),
+    ("serialized", serialized_shape),
+    ("rectangle", |_, _| Ok(ShapeKind::Rectangle)),
+    ("cube", |_, _| Ok(ShapeKind::Box)),
+    ("sphere", sphere_shape),
+    ("disk", |_, _| Ok(ShapeKind::Disk)),
+    ("cylinder", cylinder_shape),
+];
+
+/// Mitsuba's `obj`.
+fn obj_shape(cx: &Cx<'_>, s: &Element) -> R<ShapeKind> {
+    let f = cx
+        .string(s, "filename")
+        .ok_or_else(|| cx.err(s, "missing filename"))?;
+    Ok(ShapeKind::Obj {
+        path: cx.resolve_file(&f),
+        normals: mesh_normals(cx, s)?,
+    })
+}
+
+/// Mitsuba's `cylinder`.
+fn cylinder_shape(cx: &Cx<'_>, s: &Element) -> R<ShapeKind> {
+    let l = |x: f64| Length::new::<length::meter>(x);
+    let point = |key: &str, default: [f64; 3]| -> R<[f64; 3]> {
+        match cx.child(s, key) {
+            Some(c) => cx.vec3(c),
+            None => Ok(default),
         }
-        "rectangle" => ShapeKind::Rectangle,
-        "cylinder" => {
-            let l = |x: f64| Length::new::<length::meter>(x);
-            let point = |key: &str, default: [f64; 3]| -> R<[f64; 3]> {
-                match cx.child(s, key) {
-                    Some(c) => cx.vec3(c),
-                    None => Ok(default),
-                }
-            };
-            let (p0, p1) = (point("p0", [0.0; 3])?, point("p1", [0.0, 0.0, 1.0])?);
-            let r = cx.opt_float(s, "radius")?.unwrap_or(1.0);
-            if r <= 0.0 || p0 == p1 {
-                return Err(cx.err(s, "a cylinder needs a positive radius and p0 ≠ p1"));
-            }
-            ShapeKind::Cylinder {
-                p0: p0.map(l),
-                p1: p1.map(l),
-                radius: l(r),
-                flipped: cx.child(s, "flip_normals").and_then(|f| f.attr("value")) == Some("true"),
-            }
+    };
+    let (p0, p1) = (point("p0", [0.0; 3])?, point("p1", [0.0, 0.0, 1.0])?);
+    let r = cx.opt_float(s, "radius")?.unwrap_or(1.0);
+    if r <= 0.0 || p0 == p1 {
+        return Err(cx.err(s, "a cylinder needs a positive radius and p0 ≠ p1"));
+    }
+    Ok(ShapeKind::Cylinder {
+        p0: p0.map(l),
+        p1: p1.map(l),
+        radius: l(r),
+        flipped: cx.child(s, "flip_normals").and_then(|f| f.attr("value")) == Some("true"),
+    })
+}
+
+/// Mitsuba's `sphere`.
+fn sphere_shape(cx: &Cx<'_>, s: &Element) -> R<ShapeKind> {
+    let c = match cx.child(s, "center") {
+        Some(c) => cx.vec3(c)?,
+        None => [0.0; 3],
+    };
+    let r = cx.opt_float(s, "radius")?.unwrap_or(1.0);
+    if r <= 0.0 {
+        return Err(cx.err(s, "radius must be positive"));
+    }
+    let l = |x: f64| Length::new::<length::meter>(x);
+    Ok(ShapeKind::Sphere {
+        center: c.map(l),
+        radius: l(r),
+    })
+}
+
+/// Mitsuba's `ply`.
+fn ply_shape(cx: &Cx<'_>, s: &Element) -> R<ShapeKind> {
+    let f = cx
+        .string(s, "filename")
+        .ok_or_else(|| cx.err(s, "missing filename"))?;
+    Ok(ShapeKind::Ply {
+        path: cx.resolve_file(&f),
+        normals: mesh_normals(cx, s)?,
+    })
+}
+
+/// Mitsuba's `serialized`.
+fn serialized_shape(cx: &Cx<'_>, s: &Element) -> R<ShapeKind> {
+    let f = cx
+        .string(s, "filename")
+        .ok_or_else(|| cx.err(s, "missing filename"))?;
+    let shape_index = match cx.opt_float(s, "shape_index")? {
+        None => 0,
+        Some(i) if i >= 0.0 && i.fract() == 0.0 => i as usize,
+        Some(i) => {
+            return Err(cx.err(s, format!("shape_index must be an integer ≥ 0, not {i}")));
         }
-        "cube" => ShapeKind::Box,
-        "disk" => ShapeKind::Disk,
-        "sphere" => {
-            let c = match cx.child(s, "center") {
-                Some(c) => cx.vec3(c)?,
-                None => [0.0; 3],
-            };
-            let r = cx.opt_float(s, "radius")?.unwrap_or(1.0);
-            if r <= 0.0 {
-                return Err(cx.err(s, "radius must be positive"));
-            }
-            let l = |x: f64| Length::new::<length::meter>(x);
-            ShapeKind::Sphere {
-                center: c.map(l),
-                radius: l(r),
-            }
-        }
-        "ply" => {
-            let f = cx
-                .string(s, "filename")
-                .ok_or_else(|| cx.err(s, "missing filename"))?;
-            ShapeKind::Ply {
-                path: cx.resolve_file(&f),
-                normals: mesh_normals(cx, s)?,
-            }
-        }
-        "serialized" => {
-            let f = cx
-                .string(s, "filename")
-                .ok_or_else(|| cx.err(s, "missing filename"))?;
-            let shape_index = match cx.opt_float(s, "shape_index")? {
-                None => 0,
-                Some(i) if i >= 0.0 && i.fract() == 0.0 => i as usize,
-                Some(i) => {
-                    return Err(cx.err(s, format!("shape_index must be an integer ≥ 0, not {i}")));
-                }
-            };
-            ShapeKind::Serialized {
-                path: cx.resolve_file(&f),
-                shape_index,
-                normals: mesh_normals(cx, s)?,
-            }
-        }
-        other => return Err(cx.unsupported(s, "shape", other)),
+    };
+    Ok(ShapeKind::Serialized {
+        path: cx.resolve_file(&f),
+        shape_index,
+        normals: mesh_normals(cx, s)?,
     })
 }
 
