@@ -98,72 +98,30 @@ pub(super) fn shape(
     let sp = s.span();
     let s = s.get_ref();
     let all = present!(s; kind, material, file, center, radius, transform, two_sided, emission, vertices, faces);
-    let ty = cx.required(
-        &s.kind,
-        &sp,
-        &format!("{f}.type"),
-        "sphere, rectangle, box, disk or obj",
-    )?;
-    let common = ["kind", "material", "transform", "two_sided", "emission"];
-    let with = |extra: &[&'static str]| -> Vec<&'static str> {
-        common.iter().chain(extra).copied().collect()
+    let names = || {
+        let n: Vec<&str> = SHAPES.iter().map(|k| k.name).collect();
+        n.join(", ")
     };
-    let kind = match ty.get_ref().as_str() {
-        "sphere" => {
-            cx.only("a sphere", &f, &all, &with(&["center", "radius"]))?;
-            let center = match &s.center {
-                Some(c) => cx.point(c, &format!("{f}.center"))?,
-                None => [Length::new::<length::meter>(0.0); 3],
-            };
-            let r = cx.required(&s.radius, &sp, &format!("{f}.radius"), "a positive length")?;
-            let radius = cx.length(r, &format!("{f}.radius"))?;
-            if !(radius.get::<length::meter>() > 0.0) {
-                return Err(cx.err(
-                    &r.span(),
-                    format!("{f}.radius"),
-                    format!(
-                        "expected a positive radius, found {}",
-                        radius.get::<length::meter>() / cx.unit_m
-                    ),
-                ));
-            }
-            ShapeKind::Sphere { center, radius }
-        }
-        "rectangle" => {
-            cx.only("a rectangle", &f, &all, &with(&[]))?;
-            ShapeKind::Rectangle
-        }
-        "box" => {
-            cx.only("a box", &f, &all, &with(&[]))?;
-            ShapeKind::Box
-        }
-        "disk" => {
-            cx.only("a disk", &f, &all, &with(&[]))?;
-            ShapeKind::Disk
-        }
-        "obj" => {
-            cx.only("an obj mesh", &f, &all, &with(&["file"]))?;
-            let p = cx.required(&s.file, &sp, &format!("{f}.file"), "a path to a .obj file")?;
-            // a mesh without normals stays flat-shaded (the Mitsuba importer smooths it)
-            ShapeKind::Obj {
-                path: cx.path(p.get_ref()),
-                normals: MeshNormals::FromFile,
-            }
-        }
-        "mesh" => {
-            cx.only("an inline mesh", &f, &all, &with(&["vertices", "faces"]))?;
-            inline_mesh(cx, s, &sp, &f)?
-        }
-        o => {
-            return Err(cx.err(
-                &ty.span(),
-                format!("{f}.type"),
-                format!(
-                    "unknown shape type \"{o}\"; expected sphere, rectangle, box, disk, obj or mesh"
-                ),
-            ));
-        }
+    let ty = cx.required(&s.kind, &sp, &format!("{f}.type"), &names())?;
+    let Some(k) = SHAPES.iter().find(|k| k.name == ty.get_ref()) else {
+        return Err(cx.err(
+            &ty.span(),
+            format!("{f}.type"),
+            format!(
+                "unknown shape type \"{}\"{}; expected {}",
+                ty.get_ref(),
+                crate::params::did_you_mean(ty.get_ref(), SHAPES.iter().map(|k| k.name)),
+                names()
+            ),
+        ));
     };
+    let allowed: Vec<&str> = ["kind", "material", "transform", "two_sided", "emission"]
+        .iter()
+        .chain(k.keys)
+        .copied()
+        .collect();
+    cx.only(k.what, &f, &all, &allowed)?;
+    let kind = (k.read)(cx, s, &sp, &f)?;
     let transform = match &s.transform {
         Some(t) => transform(cx, t, &format!("{f}.transform"))?,
         None => Vec::new(),
@@ -188,6 +146,85 @@ pub(super) fn shape(
         emission,
         unit_m: cx.unit_m,
         loc: cx.src.span(&sp),
+    })
+}
+
+/// A shape kind's TOML reader: its `type` name, "a sphere" for messages, the keys it takes
+/// besides every shape's (`material`, `transform`, `two_sided`, `emission`) and its reader.
+struct ShapeReader {
+    name: &'static str,
+    what: &'static str,
+    keys: &'static [&'static str],
+    read: fn(&Cx<'_>, &RawShape, &Range<usize>, &str) -> R<ShapeKind>,
+}
+
+/// Every shape kind of the TOML format, one line each, in the order "expected …" lists them.
+const SHAPES: &[ShapeReader] = &[
+    ShapeReader {
+        name: "sphere",
+        what: "a sphere",
+        keys: &["center", "radius"],
+        read: sphere,
+    },
+    ShapeReader {
+        name: "rectangle",
+        what: "a rectangle",
+        keys: &[],
+        read: |_, _, _, _| Ok(ShapeKind::Rectangle),
+    },
+    ShapeReader {
+        name: "box",
+        what: "a box",
+        keys: &[],
+        read: |_, _, _, _| Ok(ShapeKind::Box),
+    },
+    ShapeReader {
+        name: "disk",
+        what: "a disk",
+        keys: &[],
+        read: |_, _, _, _| Ok(ShapeKind::Disk),
+    },
+    ShapeReader {
+        name: "obj",
+        what: "an obj mesh",
+        keys: &["file"],
+        read: obj,
+    },
+    ShapeReader {
+        name: "mesh",
+        what: "an inline mesh",
+        keys: &["vertices", "faces"],
+        read: inline_mesh,
+    },
+];
+
+/// A sphere: `center` (default the origin) and a positive `radius`.
+fn sphere(cx: &Cx<'_>, s: &RawShape, sp: &Range<usize>, f: &str) -> R<ShapeKind> {
+    let center = match &s.center {
+        Some(c) => cx.point(c, &format!("{f}.center"))?,
+        None => [Length::new::<length::meter>(0.0); 3],
+    };
+    let r = cx.required(&s.radius, sp, &format!("{f}.radius"), "a positive length")?;
+    let radius = cx.length(r, &format!("{f}.radius"))?;
+    if !(radius.get::<length::meter>() > 0.0) {
+        return Err(cx.err(
+            &r.span(),
+            format!("{f}.radius"),
+            format!(
+                "expected a positive radius, found {}",
+                radius.get::<length::meter>() / cx.unit_m
+            ),
+        ));
+    }
+    Ok(ShapeKind::Sphere { center, radius })
+}
+
+/// An OBJ file's mesh; without normals it stays flat-shaded (the Mitsuba importer smooths it).
+fn obj(cx: &Cx<'_>, s: &RawShape, sp: &Range<usize>, f: &str) -> R<ShapeKind> {
+    let p = cx.required(&s.file, sp, &format!("{f}.file"), "a path to a .obj file")?;
+    Ok(ShapeKind::Obj {
+        path: cx.path(p.get_ref()),
+        normals: MeshNormals::FromFile,
     })
 }
 
