@@ -13,12 +13,10 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
     let Some(i) = i else { return Ok(d) };
     let i = i.get_ref();
     if let Some(k) = &i.kind {
-        d.kind = match k.get_ref().as_str() {
-            "path" => IntegratorKind::Path,
-            "light" => IntegratorKind::Light,
-            "bdpt" => IntegratorKind::Bdpt,
-            "whitted" => IntegratorKind::Whitted,
-            "direct" => IntegratorKind::Direct {
+        let name = k.get_ref().as_str();
+        d.kind = match IntegratorKind::from_name(name) {
+            // `direct` takes its sample counts (default 1 each, Mitsuba's)
+            Some(IntegratorKind::Direct { .. }) => IntegratorKind::Direct {
                 emitter_samples: match &i.emitter_samples {
                     Some(v) => cx.int(v, "integrator.emitter_samples", 0, 1 << 16)? as u32,
                     None => 1,
@@ -28,11 +26,16 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
                     None => 1,
                 },
             },
-            o => {
+            Some(kind) => kind,
+            None => {
                 return Err(cx.err(
                     &k.span(),
                     "integrator.type",
-                    format!("\"{o}\": expected path, bdpt, light, whitted or direct"),
+                    format!(
+                        "\"{name}\"{}: expected {}",
+                        crate::params::did_you_mean(name, IntegratorKind::NAMES.into_iter()),
+                        IntegratorKind::NAMES.join(", ")
+                    ),
                 ));
             }
         };
