@@ -136,8 +136,9 @@ fn run_scene(
         )?),
         None => None,
     };
-    let (exr, png, false_png) = outputs(args, scene_path)?;
+    let (exr, png, false_png) = outputs(args, scene_path);
     check_false_colour_args(args, scene)?;
+    check_output_folders(&[&exr, &png, &false_png])?;
 
     let integrator = opts.integrator.name();
     let scene_file = scene_path.display().to_string();
@@ -277,8 +278,8 @@ fn shown(p: &Path) -> String {
 }
 
 /// The EXR, PNG and false-colour PNG to write: as asked, else the scene's name in the current
-/// folder; their folders checked before the render starts.
-fn outputs(args: &RenderArgs, scene_path: &Path) -> Result<(PathBuf, PathBuf, PathBuf), CliError> {
+/// folder.
+fn outputs(args: &RenderArgs, scene_path: &Path) -> (PathBuf, PathBuf, PathBuf) {
     let stem = scene_path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
@@ -295,8 +296,7 @@ fn outputs(args: &RenderArgs, scene_path: &Path) -> Result<(PathBuf, PathBuf, Pa
         .false_colour_png
         .clone()
         .unwrap_or_else(|| exr.with_extension("false.png"));
-    check_output_folders(&[&exr, &png, &false_png])?;
-    Ok((exr, png, false_png))
+    (exr, png, false_png)
 }
 
 /// The state to resume from (`--resume`, whose scene must be unchanged), or none after starting

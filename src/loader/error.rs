@@ -41,6 +41,18 @@ impl<'a> SourceMap<'a> {
             at,
         )
     }
+    /// Where `needle` first occurs in `span` at or after byte `from` (within `span`), for
+    /// locating an element of an array, whose value carries no span of its own; `span` itself
+    /// if it does not occur.
+    pub fn find_in(&self, span: &Range<usize>, from: usize, needle: &str) -> Range<usize> {
+        let start = from.clamp(span.start, span.end);
+        self.text
+            .get(start..span.end)
+            .and_then(|t| t.find(needle))
+            .map(|i| start + i..start + i + needle.len())
+            .unwrap_or_else(|| span.clone())
+    }
+
     pub fn span(&self, span: &Range<usize>) -> Loc {
         self.loc(span.start)
     }

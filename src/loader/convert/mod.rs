@@ -72,6 +72,30 @@ impl<'a> Cx<'a> {
         Ok(())
     }
 
+    /// The index in `names` (a registry's `type` names, in order) of `name`, the `type` of a
+    /// `family` ("light") at `span`, the field `field`; else an error naming the types with a
+    /// suggestion.
+    pub fn kind_index(
+        &self,
+        name: &str,
+        span: &Range<usize>,
+        field: &str,
+        family: &str,
+        names: &[&str],
+    ) -> R<usize> {
+        names.iter().position(|n| *n == name).ok_or_else(|| {
+            self.err(
+                span,
+                field,
+                format!(
+                    "unknown {family} type \"{name}\"{}; expected {}",
+                    crate::params::did_you_mean(name, names.iter().copied()),
+                    names.join(", ")
+                ),
+            )
+        })
+    }
+
     pub fn required<'v, T>(
         &self,
         v: &'v Option<S<T>>,

@@ -42,7 +42,7 @@ impl Params for TomlParams<'_> {
             other => {
                 return Err(ParamError::new(
                     name,
-                    format!("expected a number, found a {}", other.type_str()),
+                    format!("expected a number, found {}", super::kind(other)),
                 ));
             }
         };

@@ -98,23 +98,10 @@ pub(super) fn shape(
     let sp = s.span();
     let s = s.get_ref();
     let all = present!(s; kind, material, file, center, radius, transform, two_sided, emission, vertices, faces);
-    let names = || {
-        let n: Vec<&str> = SHAPES.iter().map(|k| k.name).collect();
-        n.join(", ")
-    };
-    let ty = cx.required(&s.kind, &sp, &format!("{f}.type"), &names())?;
-    let Some(k) = SHAPES.iter().find(|k| k.name == ty.get_ref()) else {
-        return Err(cx.err(
-            &ty.span(),
-            format!("{f}.type"),
-            format!(
-                "unknown shape type \"{}\"{}; expected {}",
-                ty.get_ref(),
-                crate::params::did_you_mean(ty.get_ref(), SHAPES.iter().map(|k| k.name)),
-                names()
-            ),
-        ));
-    };
+    let names: Vec<&str> = SHAPES.iter().map(|k| k.name).collect();
+    let field = format!("{f}.type");
+    let ty = cx.required(&s.kind, &sp, &field, &names.join(", "))?;
+    let k = &SHAPES[cx.kind_index(ty.get_ref(), &ty.span(), &field, "shape", &names)?];
     let allowed: Vec<&str> = ["kind", "material", "transform", "two_sided", "emission"]
         .iter()
         .chain(k.keys)

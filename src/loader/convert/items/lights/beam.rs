@@ -6,12 +6,13 @@ use super::*;
 pub(super) const KIND: Kind = Kind {
     name: "beam",
     what: "a beam light",
-    keys: &["spectrum", "position", "target", "radius", "power", "scale"],
+    keys: Some(&["spectrum", "position", "target", "radius", "power", "scale"]),
+    default_spectrum: flat,
     read,
 };
 
 fn read(l: &Lt<'_>) -> R<(LightKind, Spectrum)> {
-    let spectrum = l.flat_spectrum()?;
+    let spectrum = l.spectrum.clone();
     let (position, target) = l.aim("beam")?;
     let r = l.required(&l.l.radius, "radius", "the beam radius, a positive length")?;
     let radius = l.cx.length(r, &l.field("radius"))?;

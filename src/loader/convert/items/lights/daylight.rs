@@ -1,12 +1,12 @@
 //! The sun's placement (by time and place, or by angles) and `type = "sky"` lights.
 
 use super::super::*;
-use super::Kind;
+use super::{Kind, flat};
 
 pub(super) const SKY: Kind = Kind {
     name: "sky",
     what: "a sky",
-    keys: &[
+    keys: Some(&[
         "spectrum",
         "model",
         "luminance",
@@ -18,8 +18,9 @@ pub(super) const SKY: Kind = Kind {
         "time",
         "up",
         "north",
-    ],
-    read: |l| Ok((sky(l.cx, &l.sp, &l.f, l.l)?, l.flat_spectrum()?)),
+    ]),
+    default_spectrum: flat,
+    read: |l| Ok((sky(l.cx, &l.sp, &l.f, l.l)?, l.spectrum.clone())),
 };
 
 /// The scene's up and north (unit, north made perpendicular to up): defaults +y and −z.

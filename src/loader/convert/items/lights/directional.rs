@@ -23,20 +23,22 @@ const KEYS: &[&str] = &[
 pub(super) const DIRECTIONAL: Kind = Kind {
     name: "directional",
     what: "a directional light",
-    keys: KEYS,
+    keys: Some(KEYS),
+    default_spectrum: flat,
     read,
 };
 
 pub(super) const SUN: Kind = Kind {
     name: "sun",
     what: "a directional light",
-    keys: KEYS,
+    keys: Some(KEYS),
+    default_spectrum: flat,
     read,
 };
 
 fn read(l: &Lt<'_>) -> R<(LightKind, Spectrum)> {
     let (cx, raw) = (l.cx, l.l);
-    let spectrum = l.flat_spectrum()?;
+    let spectrum = l.spectrum.clone();
     let direction = direction(l)?;
     let angular_diameter = match &raw.angular_diameter {
         Some(a) => {

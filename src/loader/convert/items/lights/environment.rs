@@ -8,15 +8,8 @@ use super::*;
 pub(super) const KIND: Kind = Kind {
     name: "environment",
     what: "an environment light",
-    keys: &[
-        "spectrum",
-        "image",
-        "transform",
-        "radiance",
-        "luminance",
-        "irradiance",
-        "scale",
-    ],
+    keys: None,
+    default_spectrum: flat,
     read,
 };
 
@@ -36,7 +29,7 @@ fn read(l: &Lt<'_>) -> R<(LightKind, Spectrum)> {
             &None,
             &raw.scale,
         )?;
-        return Ok((LightKind::Environment { amount }, l.flat_spectrum()?));
+        return Ok((LightKind::Environment { amount }, l.spectrum.clone()));
     };
     l.only(
         "an environment map (an environment light with an image)",

@@ -6,17 +6,18 @@ use super::{Kind, Lt};
 pub(super) const KIND: Kind = Kind {
     name: "luminaire",
     what: "a luminaire",
-    keys: &[
+    keys: Some(&[
         "spectrum", "position", "target", "file", "c0", "tilt", "power", "scale",
-    ],
+    ]),
+    // CIE illuminant A, the lamp of classical photometry
+    default_spectrum: || {
+        Spectrum::Blackbody(crate::spectrum::blackbody::Blackbody::cie_illuminant_a())
+    },
     read,
 };
 
 fn read(l: &Lt<'_>) -> R<(LightKind, Spectrum)> {
-    // the default: CIE illuminant A, the lamp of classical photometry
-    let spectrum = l.spectrum(Spectrum::Blackbody(
-        crate::spectrum::blackbody::Blackbody::cie_illuminant_a(),
-    ))?;
+    let spectrum = l.spectrum.clone();
     let aim = l.aim("luminaire's nadir (0° vertical)")?;
     Ok((luminaire(l.cx, &l.sp, &l.f, l.l, aim)?, spectrum))
 }

@@ -22,10 +22,18 @@ pub(super) struct Kind {
     name: &'static str,
     /// "a point light", for messages.
     what: &'static str,
-    /// The keys it takes besides `type`.
-    keys: &'static [&'static str],
+    /// The keys it takes besides `type` (None: the reader checks them, as they depend on
+    /// which are given).
+    keys: Option<&'static [&'static str]>,
+    /// The emission's shape when `spectrum` is not given.
+    default_spectrum: fn() -> Spectrum,
     /// Reads the light and its emission spectrum; the keys were checked against `keys`.
     read: fn(&Lt<'_>) -> R<(LightKind, Spectrum)>,
+}
+
+/// A flat spectrum, most lights' default shape.
+fn flat() -> Spectrum {
+    Spectrum::Constant(1.0)
 }
 
 /// Every light kind of the TOML format, in the order "expected …" lists them.
@@ -50,6 +58,8 @@ pub(super) struct Lt<'a> {
     l: &'a RawLight,
     /// The keys present, with their spans.
     present: Vec<(&'static str, Range<usize>)>,
+    /// `spectrum`, the emission's shape, or the kind's default.
+    spectrum: Spectrum,
 }
 
 impl Lt<'_> {
@@ -68,21 +78,6 @@ impl Lt<'_> {
     /// depend on which of them are given).
     fn only(&self, what: &str, allowed: &[&str]) -> R<()> {
         self.cx.only(what, &self.f, &self.present, allowed)
-    }
-
-    /// `spectrum`, the emission's shape, or `default` if absent.
-    fn spectrum(&self, default: Spectrum) -> R<Spectrum> {
-        match &self.l.spectrum {
-            Some(s) => self
-                .cx
-                .spectrum(s, &self.field("spectrum"), SpectrumUse::Emission),
-            None => Ok(default),
-        }
-    }
-
-    /// `spectrum`, or a flat one.
-    fn flat_spectrum(&self) -> R<Spectrum> {
-        self.spectrum(Spectrum::Constant(1.0))
     }
 
     fn position(&self) -> R<Point> {
@@ -169,32 +164,31 @@ pub(super) fn light(cx: &Cx<'_>, i: usize, l: &S<RawLight>) -> R<LightDesc> {
     let f = format!("lights[{i}]");
     let l = l.get_ref();
     let present = present!(l; kind, spectrum, position, target, direction, power, intensity, radiance, luminance, irradiance, scale, cone_angle, falloff_start, falloff, angular_diameter, radius, image, transform, file, c0, tilt, model, sun_elevation, sun_azimuth, latitude, longitude, time, up, north);
-    let names = || {
-        let n: Vec<&str> = KINDS.iter().map(|k| k.name).collect();
-        n.join(", ")
+    let names: Vec<&str> = KINDS.iter().map(|k| k.name).collect();
+    let field = format!("{f}.type");
+    let ty = cx.required(&l.kind, &sp, &field, &names.join(", "))?;
+    // the spectrum first (before the keys and the type are checked), in its kind's default
+    let default = KINDS
+        .iter()
+        .find(|k| k.name == ty.get_ref())
+        .map_or(flat as fn() -> Spectrum, |k| k.default_spectrum);
+    let spectrum = match &l.spectrum {
+        Some(s) => cx.spectrum(s, &format!("{f}.spectrum"), SpectrumUse::Emission)?,
+        None => default(),
     };
-    let ty = cx.required(&l.kind, &sp, &format!("{f}.type"), &names())?;
-    let Some(kind) = KINDS.iter().find(|k| k.name == ty.get_ref()) else {
-        return Err(cx.err(
-            &ty.span(),
-            format!("{f}.type"),
-            format!(
-                "unknown light type \"{}\"{}; expected {}",
-                ty.get_ref(),
-                crate::params::did_you_mean(ty.get_ref(), KINDS.iter().map(|k| k.name)),
-                names()
-            ),
-        ));
-    };
-    let mut allowed = vec!["kind"];
-    allowed.extend_from_slice(kind.keys);
-    cx.only(kind.what, &f, &present, &allowed)?;
+    let kind = &KINDS[cx.kind_index(ty.get_ref(), &ty.span(), &field, "light", &names)?];
+    if let Some(keys) = kind.keys {
+        let mut allowed = vec!["kind"];
+        allowed.extend_from_slice(keys);
+        cx.only(kind.what, &f, &present, &allowed)?;
+    }
     let lt = Lt {
         cx,
         f,
         sp: sp.clone(),
         l,
         present,
+        spectrum,
     };
     let (kind, spectrum) = (kind.read)(&lt)?;
     Ok(LightDesc {

@@ -6,7 +6,8 @@ use super::*;
 pub(super) const KIND: Kind = Kind {
     name: "point",
     what: "a point light",
-    keys: &["spectrum", "position", "power", "intensity", "scale"],
+    keys: Some(&["spectrum", "position", "power", "intensity", "scale"]),
+    default_spectrum: flat,
     read,
 };
 
@@ -15,5 +16,5 @@ fn read(l: &Lt<'_>) -> R<(LightKind, Spectrum)> {
         position: l.position()?,
         amount: l.point_amount()?,
     };
-    Ok((kind, l.flat_spectrum()?))
+    Ok((kind, l.spectrum.clone()))
 }

@@ -7,7 +7,7 @@ use super::*;
 pub(super) const KIND: Kind = Kind {
     name: "spot",
     what: "a spot light",
-    keys: &[
+    keys: Some(&[
         "spectrum",
         "position",
         "target",
@@ -17,13 +17,14 @@ pub(super) const KIND: Kind = Kind {
         "cone_angle",
         "falloff_start",
         "falloff",
-    ],
+    ]),
+    default_spectrum: flat,
     read,
 };
 
 fn read(l: &Lt<'_>) -> R<(LightKind, Spectrum)> {
     let (cx, raw) = (l.cx, l.l);
-    let spectrum = l.flat_spectrum()?;
+    let spectrum = l.spectrum.clone();
     let (position, target) = l.aim("spot")?;
     let c = l.required(
         &raw.cone_angle,

@@ -13,11 +13,18 @@ fn read(m: &Mat<'_>) -> R<MaterialKind> {
     let what = "the names of the two blended materials, [\"a\", \"b\"]";
     let v = m.required("materials", what)?;
     let names: Vec<S<String>> = match v.get_ref() {
-        Value::Array(a) if a.iter().all(Value::is_str) => a
-            .iter()
-            .filter_map(|n| n.as_str())
-            .map(|n| S::new(v.span(), n.to_string()))
-            .collect(),
+        Value::Array(a) if a.iter().all(Value::is_str) => {
+            // each name located where it stands in the array (errors point at it)
+            let mut from = v.span().start;
+            a.iter()
+                .filter_map(|n| n.as_str())
+                .map(|n| {
+                    let at = m.cx.src.find_in(&v.span(), from, &format!("\"{n}\""));
+                    from = at.end;
+                    S::new(at, n.to_string())
+                })
+                .collect()
+        }
         _ => {
             return Err(m
                 .cx

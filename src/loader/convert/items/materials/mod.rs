@@ -269,26 +269,17 @@ pub(super) fn material(
     let sp = m.span();
     let f = format!("materials.{}", name.get_ref());
     let keys = &m.get_ref().0;
-    let names = || KINDS.iter().map(|k| k.name).collect::<Vec<_>>().join(", ");
+    let names: Vec<&str> = KINDS.iter().map(|k| k.name).collect();
     let Some(ty) = keys.get("type") else {
         return Err(cx.err(
             &sp,
             format!("{f}.type"),
-            format!("missing; expected {}", names()),
+            format!("missing; expected {}", names.join(", ")),
         ));
     };
     let ty_name = cx.string(ty, &format!("{f}.type"), "a material type")?;
-    let Some(kind) = KINDS.iter().find(|k| k.name == ty_name) else {
-        return Err(cx.err(
-            &ty.span(),
-            format!("{f}.type"),
-            format!(
-                "unknown material type \"{ty_name}\"{}; expected {}",
-                did_you_mean(ty_name, KINDS.iter().map(|k| k.name)),
-                names()
-            ),
-        ));
-    };
+    let field = format!("{f}.type");
+    let kind = &KINDS[cx.kind_index(ty_name, &ty.span(), &field, "material", &names)?];
     for (key, v) in keys {
         if key != "type" && !kind.keys.contains(&key.as_str()) {
             let near = did_you_mean(key, kind.keys.iter().copied());
