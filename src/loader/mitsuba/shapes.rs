@@ -112,13 +112,18 @@ pub(super) const SHAPES: &[(&str, Reader)] = &[
     ("cylinder", cylinder_shape),
 ];
 
-/// Mitsuba's `obj`.
-fn obj_shape(cx: &Cx<'_>, s: &Element) -> R<ShapeKind> {
+/// A mesh plugin's `filename`, resolved as Mitsuba resolves it.
+fn filename(cx: &Cx<'_>, s: &Element) -> R<std::path::PathBuf> {
     let f = cx
         .string(s, "filename")
         .ok_or_else(|| cx.err(s, "missing filename"))?;
+    Ok(cx.resolve_file(&f))
+}
+
+/// Mitsuba's `obj`.
+fn obj_shape(cx: &Cx<'_>, s: &Element) -> R<ShapeKind> {
     Ok(ShapeKind::Obj {
-        path: cx.resolve_file(&f),
+        path: filename(cx, s)?,
         normals: mesh_normals(cx, s)?,
     })
 }
@@ -164,20 +169,15 @@ fn sphere_shape(cx: &Cx<'_>, s: &Element) -> R<ShapeKind> {
 
 /// Mitsuba's `ply`.
 fn ply_shape(cx: &Cx<'_>, s: &Element) -> R<ShapeKind> {
-    let f = cx
-        .string(s, "filename")
-        .ok_or_else(|| cx.err(s, "missing filename"))?;
     Ok(ShapeKind::Ply {
-        path: cx.resolve_file(&f),
+        path: filename(cx, s)?,
         normals: mesh_normals(cx, s)?,
     })
 }
 
 /// Mitsuba's `serialized`.
 fn serialized_shape(cx: &Cx<'_>, s: &Element) -> R<ShapeKind> {
-    let f = cx
-        .string(s, "filename")
-        .ok_or_else(|| cx.err(s, "missing filename"))?;
+    let path = filename(cx, s)?;
     let shape_index = match cx.opt_float(s, "shape_index")? {
         None => 0,
         Some(i) if i >= 0.0 && i.fract() == 0.0 => i as usize,
@@ -186,7 +186,7 @@ fn serialized_shape(cx: &Cx<'_>, s: &Element) -> R<ShapeKind> {
         }
     };
     Ok(ShapeKind::Serialized {
-        path: cx.resolve_file(&f),
+        path,
         shape_index,
         normals: mesh_normals(cx, s)?,
     })

@@ -10,13 +10,9 @@ pub(super) const KIND: Kind = Kind {
 };
 
 fn read(m: &Mat<'_>) -> R<MaterialKind> {
-    m.required("material", "the name of the masked material")?;
-    let name = m
-        .string("material", "a material name")?
-        .expect("required above");
-    let inner = m.named(
-        &name,
+    let (_, inner) = m.named_at(
         "material",
+        "the name of the masked material",
         "a mask",
         &["mask", "blend"],
         "another mask or blend",

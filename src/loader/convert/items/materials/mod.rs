@@ -204,6 +204,24 @@ impl Mat<'_> {
         Ok((a[0] > 0.0 || a[1] > 0.0).then_some(a))
     }
 
+    /// The material named by the string at `key` (required: `what` it names), read as
+    /// [`Mat::named`] reads it.
+    fn named_at(
+        &self,
+        key: &str,
+        what: &str,
+        holder: &str,
+        not: &[&str],
+        not_what: &str,
+    ) -> R<(S<String>, MaterialKind)> {
+        self.required(key, what)?;
+        let name = self
+            .string(key, "a material name")?
+            .expect("required above");
+        let kind = self.named(&name, key, holder, not, not_what)?;
+        Ok((name, kind))
+    }
+
     /// The material called `name` (a mask's `material`, a blend's `materials`), which may not
     /// be one of `not` (`type` names) itself; errors are located at the name and say `holder`
     /// cannot hold `not_what`.

@@ -37,13 +37,9 @@ fn read(m: &Mat<'_>, normal: bool) -> R<MaterialKind> {
             ));
         }
     };
-    m.required("material", "the name of the material the map perturbs")?;
-    let name = m
-        .string("material", "a material name")?
-        .expect("required above");
-    let inner = m.named(
-        &name,
+    let (name, inner) = m.named_at(
         "material",
+        "the name of the material the map perturbs",
         what,
         &["mask", "blend"],
         "another mask or blend",
