@@ -27,6 +27,7 @@ pub mod integrator;
 pub mod light;
 pub mod loader;
 pub mod material;
+pub mod medium;
 pub mod output;
 pub mod params;
 pub mod plot;
