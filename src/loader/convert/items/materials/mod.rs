@@ -20,6 +20,7 @@ mod thin_dielectric;
 use std::collections::BTreeMap;
 
 use super::*;
+use crate::loader::LoadError;
 use crate::loader::convert::kind;
 use crate::params::did_you_mean;
 use texture::{check_reflectance, reflectance_texture};
@@ -77,13 +78,16 @@ impl Mat<'_> {
 
     /// The value of `key`, or an error saying it is missing and `what` it should be.
     fn required(&self, key: &str, what: &str) -> R<&S<Value>> {
-        self.get(key).ok_or_else(|| {
-            self.cx.err(
-                &self.sp,
-                self.field(key),
-                format!("missing; expected {what}"),
-            )
-        })
+        self.get(key).ok_or_else(|| self.missing(key, what))
+    }
+
+    /// The error for `key` missing, saying `what` it should be.
+    fn missing(&self, key: &str, what: &str) -> LoadError {
+        self.cx.err(
+            &self.sp,
+            self.field(key),
+            format!("missing; expected {what}"),
+        )
     }
 
     fn number(&self, v: &S<Value>, key: &str) -> R<f64> {
@@ -214,10 +218,9 @@ impl Mat<'_> {
         not: &[&str],
         not_what: &str,
     ) -> R<(S<String>, MaterialKind)> {
-        self.required(key, what)?;
         let name = self
             .string(key, "a material name")?
-            .expect("required above");
+            .ok_or_else(|| self.missing(key, what))?;
         let kind = self.named(&name, key, holder, not, not_what)?;
         Ok((name, kind))
     }
