@@ -14,7 +14,7 @@ use integrator::integrator;
 use lights::light;
 use materials::material;
 use sensors::sensor;
-use shapes::{emit_amount, one_amount, shape};
+use shapes::{emit_amount, non_negative, one_amount, shape};
 
 use std::ops::Range;
 

@@ -284,6 +284,18 @@ fn material_index(cx: &Cx<'_>, s: &RawShape, f: &str, material_names: &[&str]) -
     })
 }
 
+/// An error at `v` (the field `field`) if its amount `x` is negative: light cannot be.
+pub(super) fn non_negative(cx: &Cx<'_>, v: &S<Value>, field: &str, x: f64) -> R<()> {
+    if x >= 0.0 {
+        return Ok(());
+    }
+    Err(cx.err(
+        &v.span(),
+        field,
+        format!("light cannot be negative, found {x}"),
+    ))
+}
+
 /// Exactly one of the listed amount keys.
 pub(super) fn one_amount<'v>(
     cx: &Cx<'_>,
@@ -362,12 +374,6 @@ pub(super) fn emit_amount(
         EmitAmount::LuminousFlux(p) => p.get::<luminous_flux::lumen>(),
         EmitAmount::Scale(s) => *s,
     };
-    if si < 0.0 {
-        return Err(cx.err(
-            &v.span(),
-            field,
-            format!("light cannot be negative, found {si}"),
-        ));
-    }
+    non_negative(cx, v, &field, si)?;
     Ok(amount)
 }

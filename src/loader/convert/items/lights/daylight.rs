@@ -200,13 +200,7 @@ fn sky(cx: &Cx<'_>, sp: &Range<usize>, f: &str, l: &RawLight) -> R<LightKind> {
             ),
         }
     };
-    if !(x >= 0.0) {
-        return Err(cx.err(
-            &v.span(),
-            field,
-            format!("light cannot be negative, found {x}"),
-        ));
-    }
+    non_negative(cx, v, &field, x)?;
     Ok(LightKind::Sky {
         model,
         sun,

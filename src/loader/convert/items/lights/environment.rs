@@ -110,12 +110,6 @@ fn envmap_amount(l: &Lt<'_>) -> R<EnvMapAmount> {
             (EnvMapAmount::Scale(k), k)
         }
     };
-    if !(si >= 0.0) {
-        return Err(cx.err(
-            &v.span(),
-            field,
-            format!("light cannot be negative, found {si}"),
-        ));
-    }
+    non_negative(cx, v, &field, si)?;
     Ok(amount)
 }

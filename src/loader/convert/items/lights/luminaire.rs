@@ -88,25 +88,13 @@ fn luminaire(
                     lm,
                 ),
             };
-            if !(v >= 0.0) {
-                return Err(cx.err(
-                    &p.span(),
-                    field,
-                    format!("light cannot be negative, found {v}"),
-                ));
-            }
+            non_negative(cx, p, &field, v)?;
             amount
         }
         (None, Some(s)) => {
             let field = format!("{f}.scale");
             let k = cx.number(s, &field)?;
-            if !(k >= 0.0) {
-                return Err(cx.err(
-                    &s.span(),
-                    field,
-                    format!("light cannot be negative, found {k}"),
-                ));
-            }
+            non_negative(cx, s, &field, k)?;
             LuminaireAmount::Scale(k)
         }
         (None, None) => LuminaireAmount::File,

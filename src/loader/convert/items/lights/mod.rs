@@ -148,13 +148,7 @@ impl Lt<'_> {
                 (PointAmount::Scale(s), s)
             }
         };
-        if si < 0.0 {
-            return Err(cx.err(
-                &v.span(),
-                field,
-                format!("light cannot be negative, found {si}"),
-            ));
-        }
+        non_negative(cx, v, &field, si)?;
         Ok(amount)
     }
 }
