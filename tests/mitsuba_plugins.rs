@@ -135,6 +135,14 @@ const KINDS: &[(&str, &str)] = &[
     ),
     ("integrator", r#"<integrator type="{}"/>"#),
     (
+        "medium",
+        r#"<integrator type="volpath"/><shape type="sphere"><medium type="{}" name="interior"/></shape>"#,
+    ),
+    (
+        "phase",
+        r#"<integrator type="volpath"/><shape type="sphere"><medium type="homogeneous" name="interior"><phase type="{}"/></medium></shape>"#,
+    ),
+    (
         "texture",
         r#"<shape type="sphere"><bsdf type="diffuse"><texture type="{}" name="reflectance"/></bsdf></shape>"#,
     ),

@@ -3,6 +3,7 @@
 
 mod lights;
 mod materials;
+mod media;
 
 use materials::material;
 mod shapes;
@@ -95,6 +96,27 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         .collect();
     let light_tree = crate::light::LightTree::build(&light_bounds, &light_power);
     let camera = camera(desc).map_err(|e| err(desc.camera.loc, "camera".into(), e))?;
+    let media = desc
+        .media
+        .iter()
+        .map(|m| {
+            media::medium(m, range).map_err(|(f, e)| err(m.loc, format!("media.{}.{f}", m.name), e))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let medium_interfaces = media::interfaces(desc, surfaces.len());
+    if let Some(m) = desc.media.first()
+        && desc.integrator.kind != crate::scene::IntegratorKind::Path
+    {
+        return Err(err(
+            m.loc,
+            "integrator".into(),
+            format!(
+                "media (\"{}\") are rendered by the path integrator only so far; {} would ignore them",
+                m.name,
+                desc.integrator.kind.name()
+            ),
+        ));
+    }
     let f = &desc.film;
     let infinite_lights = (0..lights.len() as u32)
         .filter(|&i| lights[i as usize].is_at_infinity())
@@ -142,6 +164,9 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
                 .map_err(|e| err(desc.camera.loc, "camera.sensor".into(), e))?,
             ),
         },
+        media,
+        medium_interfaces,
+        camera_medium: desc.camera_medium.map(|m| m as u32),
     })
 }
 

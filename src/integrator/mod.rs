@@ -11,6 +11,7 @@ mod direct;
 pub mod light;
 pub mod meter;
 mod path;
+mod volpath;
 mod whitted;
 
 pub use crate::scene::{IntegratorKind, LightSelection};
@@ -157,6 +158,9 @@ impl<'a> Integrator<'a> {
             // `light` traces from the lights (see `light::trace`); camera rays use `path`
             // `light` and `bdpt` also trace from the lights (see `render`); camera rays alone use
             // `path`
+            IntegratorKind::Path if !self.scene.media.is_empty() => {
+                volpath::radiance(self, ray, w, s)
+            }
             IntegratorKind::Path | IntegratorKind::Light | IntegratorKind::Bdpt => {
                 path::radiance(self, ray, w, s)
             }

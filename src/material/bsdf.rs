@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{BsdfSample, Material, TransportMode, fresnel};
+use super::{BsdfSample, Material, TransportMode};
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
 /// A material at one surface point, for one set of wavelengths: its textured values looked up
@@ -144,8 +144,7 @@ impl<const N: usize> Bsdf<'_, N> {
                 if c == 0.0 {
                     return None;
                 }
-                let f = fresnel::fresnel_dielectric(c, *eta);
-                let r = 2.0 * f / (1.0 + f);
+                let r = super::thin_reflectance(c, *eta);
                 let (wi, p, transmission) = if uc < r {
                     (Vec3::new(-wo.x, -wo.y, wo.z), r, false)
                 } else {

@@ -1,14 +1,13 @@
-//! A homogeneous medium: absorption and scattering coefficients that vary with wavelength but
-//! not with position, its transmittance (Beer–Lambert) and free-flight sampling with spectral
-//! MIS over the path's wavelengths.
+//! A homogeneous medium: extinction and albedo that vary with wavelength but not with
+//! position, its transmittance (Beer–Lambert) and free-flight sampling by the hero wavelength.
 //!
 //! Free flights are sampled by the hero wavelength's extinction σt(λ₀). The hero is a uniformly
 //! random member of the path's wavelength set (`render::draw_wavelengths`: wavelength j sits in
 //! stratum (h + j) mod N with the hero's stratum h uniform), so sampling by the hero's σt is
-//! one-sample MIS over the N techniques "sample by σt(λⱼ)", and dividing by the average of
-//! their densities, (1/N) Σⱼ pⱼ(t), is the balance heuristic (Veach 1997 §9.2.4; the hero
-//! scheme of Wilkie et al. 2014 and the spectral MIS of Miller, Georgiev and Jarosz 2019, §5).
-//! Terminated secondary wavelengths (pdf 0) take no part in the average.
+//! one-sample MIS over the N techniques "sample by σt(λⱼ)". [`Flight`] returns every
+//! technique's density of the sampled event; dividing by their average over the path's
+//! segments is the balance heuristic (Veach 1997 §9.2.4; Wilkie et al. 2014; Miller, Georgiev
+//! and Jarosz 2019 §5). [`Flight::weight`] does it for one segment alone.
 
 use super::PhaseFunction;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
@@ -16,46 +15,72 @@ use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
 /// A homogeneous medium. Coefficients are per metre.
 #[derive(Clone, Debug)]
 pub struct Homogeneous {
-    /// Absorption coefficient σa(λ), m⁻¹ (λ in nm).
-    pub sigma_a: Spectrum,
-    /// Scattering coefficient σs(λ), m⁻¹.
-    pub sigma_s: Spectrum,
+    /// Extinction coefficient σt(λ) = σa + σs, m⁻¹ (λ in nm).
+    pub sigma_t: Spectrum,
+    /// Single-scattering albedo σs/σt, dimensionless in [0, 1].
+    pub albedo: Spectrum,
     /// The phase function of its scattering.
     pub phase: PhaseFunction,
 }
 
-/// The outcome of a sampled free flight along a segment of length `t_max`.
+/// The outcome of a free flight sampled along a segment of length `t_max`, per wavelength of
+/// the path: the value of the event and its density had that wavelength been the hero.
 #[derive(Clone, Copy, Debug)]
 pub enum Flight<const N: usize> {
-    /// A scattering event at distance `t` (m): the path continues from there with its
-    /// throughput times `weight` = Tr(t)·σs(λ) / p̄(t), dimensionless (the phase function is
-    /// sampled or evaluated next).
-    Scatter { t: f32, weight: SampledSpectrum<N> },
-    /// No event before `t_max`: the path reaches the segment's end with its throughput times
-    /// `weight` = Tr(t_max) / P̄(t ≥ t_max).
-    Pass { weight: SampledSpectrum<N> },
+    /// A scattering event at distance `t` (m): `f` = Tr(t)·σs(λ), m⁻¹ (the phase function is
+    /// sampled or evaluated next), and `pdf` = σt(λ)·Tr(t), the density of t, m⁻¹.
+    Scatter {
+        t: f32,
+        f: SampledSpectrum<N>,
+        pdf: SampledSpectrum<N>,
+    },
+    /// No event before `t_max`: `tr` = Tr(t_max) and `pdf` = P(t ≥ t_max) = Tr(t_max), both
+    /// dimensionless.
+    Pass {
+        tr: SampledSpectrum<N>,
+        pdf: SampledSpectrum<N>,
+    },
+}
+
+impl<const N: usize> Flight<N> {
+    /// The event's value over the average of its densities over the live wavelengths: the
+    /// one-segment balance-heuristic weight (Tr·σs/p̄ for a scattering event, Tr/P̄ for a
+    /// pass), unbiased at every wavelength for a lone segment. 0 where every density is 0.
+    pub fn weight(&self, w: &SampledWavelengths<N>) -> SampledSpectrum<N> {
+        let (f, pdf) = match *self {
+            Flight::Scatter { f, pdf, .. } => (f, pdf),
+            Flight::Pass { tr, pdf } => (tr, pdf),
+        };
+        let p = super::live_average(pdf, w);
+        if p > 0.0 {
+            f / p
+        } else {
+            SampledSpectrum::zero()
+        }
+    }
 }
 
 impl Homogeneous {
-    /// σt(λ) = σa(λ) + σs(λ) at the path's wavelengths, m⁻¹.
+    /// σt(λ) at the path's wavelengths, m⁻¹.
+    #[inline]
     pub fn sigma_t<const N: usize>(&self, w: &SampledWavelengths<N>) -> SampledSpectrum<N> {
-        self.sigma_a.sample(w) + self.sigma_s.sample(w)
+        self.sigma_t.sample(w)
     }
 
     /// Beer–Lambert transmittance exp(−σt(λ) t) over `t` metres.
+    #[inline]
     pub fn transmittance<const N: usize>(
         &self,
         t: f32,
         w: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
-        self.sigma_t(w).map(|s| (-s * t).exp())
+        self.sigma_t(w).map(|s| beer_lambert(s, t))
     }
 
     /// Samples a free flight of at most `t_max` metres (may be infinite) from a uniform `u`:
-    /// t = −ln(1 − u)/σt(λ₀), a scattering event if t < `t_max`. The weights divide by the
-    /// balance heuristic's average density over the live wavelengths, so that the estimate is
-    /// unbiased at every wavelength (see the module's doc). A medium with σt(λ₀) = 0 is passed
-    /// through.
+    /// t = −ln(1 − u)/σt(λ₀), a scattering event if t < `t_max`. A medium with σt(λ₀) = 0 is
+    /// passed through.
+    #[inline]
     pub fn sample_flight<const N: usize>(
         &self,
         u: f32,
@@ -63,8 +88,6 @@ impl Homogeneous {
         w: &SampledWavelengths<N>,
     ) -> Flight<N> {
         let sigma_t = self.sigma_t(w);
-        let live = |j: usize| w.pdf[j] > 0.0;
-        let n_live = (0..N).filter(|&j| live(j)).count().max(1) as f32;
         let hero = sigma_t[0];
         let t = if hero > 0.0 {
             -(1.0 - u).max(f32::MIN_POSITIVE).ln() / hero
@@ -73,28 +96,25 @@ impl Homogeneous {
         };
         if t < t_max {
             let tr = sigma_t.map(|s| (-s * t).exp());
-            // p̄(t) = (1/N) Σⱼ σt(λⱼ) exp(−σt(λⱼ) t), the average free-flight density
-            let p: f32 = (0..N)
-                .filter(|&j| live(j))
-                .map(|j| sigma_t[j] * tr[j])
-                .sum::<f32>()
-                / n_live;
-            let weight = if p > 0.0 {
-                tr * self.sigma_s.sample(w) / p
-            } else {
-                SampledSpectrum::zero()
+            let sigma_s = sigma_t * self.albedo.sample(w);
+            return Flight::Scatter {
+                t,
+                f: tr * sigma_s,
+                pdf: tr * sigma_t,
             };
-            return Flight::Scatter { t, weight };
         }
-        let tr = sigma_t.map(|s| (-s * t_max).exp());
-        // P̄(t ≥ t_max) = (1/N) Σⱼ exp(−σt(λⱼ) t_max)
-        let p: f32 = (0..N).filter(|&j| live(j)).map(|j| tr[j]).sum::<f32>() / n_live;
-        let weight = if p > 0.0 {
-            tr / p
-        } else {
-            SampledSpectrum::zero()
-        };
-        Flight::Pass { weight }
+        let tr = sigma_t.map(|s| beer_lambert(s, t_max));
+        Flight::Pass { tr, pdf: tr }
+    }
+}
+
+/// exp(−σ t), with a clear medium clear over any distance (σ = 0, t = ∞ gives 1, not NaN).
+#[inline]
+fn beer_lambert(sigma: f32, t: f32) -> f32 {
+    if sigma == 0.0 {
+        1.0
+    } else {
+        (-sigma * t).exp()
     }
 }
 
@@ -103,15 +123,22 @@ mod tests {
     use super::*;
 
     fn medium(sa: [f32; 2], ss: [f32; 2]) -> Homogeneous {
-        let line = |v: [f32; 2]| {
+        // σt and albedo tabulated from σa and σs on a 1 nm grid (both linear in λ)
+        let lambda: Vec<f32> = (400..=700).map(|l| l as f32).collect();
+        let x = |l: f32| (l - 400.0) / 300.0;
+        let at = |v: [f32; 2], l: f32| v[0] + (v[1] - v[0]) * x(l);
+        let table = |f: &dyn Fn(f32) -> f32| {
             Spectrum::Piecewise(std::sync::Arc::new(
-                crate::spectrum::PiecewiseLinear::new(vec![400.0, 700.0], v.to_vec())
-                    .expect("a valid table"),
+                crate::spectrum::PiecewiseLinear::new(
+                    lambda.clone(),
+                    lambda.iter().map(|&l| f(l)).collect(),
+                )
+                .expect("a valid table"),
             ))
         };
         Homogeneous {
-            sigma_a: line(sa),
-            sigma_s: line(ss),
+            sigma_t: table(&|l| at(sa, l) + at(ss, l)),
+            albedo: table(&|l| at(ss, l) / (at(sa, l) + at(ss, l))),
             phase: PhaseFunction::Isotropic,
         }
     }
@@ -160,14 +187,15 @@ mod tests {
             let w = wavelengths(h);
             let u = ((i / 4) as f32 + 0.5) / (n / 4) as f32;
             let flight = m.sample_flight(u, t_max, &w);
+            let weight = flight.weight(&w);
             for j in 0..4 {
                 let member = (h + j) % 4;
                 match flight {
-                    Flight::Pass { weight } => {
+                    Flight::Pass { .. } => {
                         pass[member] += weight[j] as f64;
                         pass2[member] += (weight[j] as f64).powi(2);
                     }
-                    Flight::Scatter { weight, .. } => {
+                    Flight::Scatter { .. } => {
                         scat[member] += weight[j] as f64;
                         scat2[member] += (weight[j] as f64).powi(2);
                     }
@@ -206,15 +234,17 @@ mod tests {
         let x = (w.lambda[0] - 400.0) / 300.0;
         let albedo = (2.0 - x) / (1.0 + 6.0 * x + 2.0 - x);
         for u in [0.1, 0.5, 0.9] {
-            match m.sample_flight(u, 0.3, &w) {
-                Flight::Scatter { weight, .. } => {
+            let flight = m.sample_flight(u, 0.3, &w);
+            let weight = flight.weight(&w);
+            match flight {
+                Flight::Scatter { .. } => {
                     assert!(
                         (weight[0] - albedo).abs() < 1e-5,
                         "{} vs {albedo}",
                         weight[0]
                     )
                 }
-                Flight::Pass { weight } => assert!((weight[0] - 1.0).abs() < 1e-5),
+                Flight::Pass { .. } => assert!((weight[0] - 1.0).abs() < 1e-5),
             }
         }
     }

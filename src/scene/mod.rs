@@ -86,6 +86,13 @@ pub struct Scene {
     pub meters: Vec<Meter>,
     /// The camera's sensor (`[camera.sensor]`): raw values and exposure in the EXR.
     pub camera_sensor: Option<crate::sensor::CameraSensor>,
+    /// Participating media; empty in a scene without any, which renders with the surface
+    /// estimators alone.
+    pub media: Vec<crate::medium::Medium>,
+    /// The media on either side of each shape (indexed as `surfaces`); empty when `media` is.
+    pub medium_interfaces: Vec<crate::medium::MediumInterface>,
+    /// Index into `media` of the medium the camera sits in (None: vacuum).
+    pub camera_medium: Option<u32>,
 }
 
 /// A point where irradiance is measured: position (m) and unit normal of the measured side.

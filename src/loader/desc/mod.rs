@@ -19,10 +19,12 @@ use super::error::Loc;
 
 mod lights;
 mod materials;
+mod media;
 mod shapes;
 
 pub use lights::*;
 pub use materials::*;
+pub use media::*;
 pub use shapes::*;
 
 /// A point or vector given in the scene's length unit, converted to lengths.
@@ -44,6 +46,10 @@ pub struct SceneDesc {
     /// Placements of groups (Mitsuba's `instance`).
     pub instances: Vec<InstanceDesc>,
     pub lights: Vec<LightDesc>,
+    /// Participating media, which shapes name as their interior or exterior.
+    pub media: Vec<MediumDesc>,
+    /// Index into `media` of the medium the camera sits in (None: vacuum).
+    pub camera_medium: Option<usize>,
     /// Irradiance and illuminance meters (`[[sensors]]`), measured by `spectrace measure`.
     pub sensors: Vec<SensorDesc>,
     /// What the loader wants the user to know without refusing the file ("file:line: message"),

@@ -109,6 +109,11 @@ pub struct ShapeDesc {
     pub material: Option<usize>,
     pub two_sided: bool,
     pub emission: Option<EmissionDesc>,
+    /// Indices into `SceneDesc::media` of the media inside and outside the shape (the sides
+    /// its normal points away from and to); None for vacuum. A shape that names neither does
+    /// not change the medium of a ray that crosses it.
+    pub interior: Option<usize>,
+    pub exterior: Option<usize>,
     /// Metres per scene length unit (for OBJ coordinates and unit shapes).
     pub unit_m: f64,
     pub loc: Loc,

@@ -54,6 +54,8 @@ pub(super) struct Cx<'a> {
     /// The property names each element was asked for, by (source, offset): what
     /// [`Cx::check_unreferenced`] holds its properties to.
     pub(super) queried: std::cell::RefCell<HashMap<(usize, usize), Vec<String>>>,
+    /// The media read so far, each once, by the (source, offset) of its `<medium>` element.
+    pub(super) media: std::cell::RefCell<Vec<((usize, usize), crate::loader::desc::MediumDesc)>>,
 }
 
 /// The tags of Mitsuba's plain properties (a nested object such as a texture or a transform is

@@ -31,6 +31,8 @@ pub(super) fn supported(what: &str) -> Vec<&'static str> {
             .chain(["shapegroup", "instance"])
             .collect(),
         // `area` emitters belong to shapes; the others are the emitter readers' registry
+        "medium" => super::media::MEDIA.to_vec(),
+        "phase" => super::media::PHASES.to_vec(),
         "emitter" => std::iter::once("area")
             .chain(super::emitters::EMITTERS.iter().map(|(n, _)| *n))
             .collect(),
@@ -55,6 +57,8 @@ pub(super) fn kinds() -> impl Iterator<Item = &'static str> {
         "bsdf",
         "emitter",
         "shape emitter",
+        "medium",
+        "phase",
         "spectrum",
         "texture",
         "transform",
@@ -68,7 +72,10 @@ const PLUGINS: &[(&str, &[&str])] = &[
     ("sensor", &["perspective", "thinlens", "orthographic"]),
     ("film", &["hdrfilm"]),
     ("sampler", SAMPLERS),
-    ("integrator", &["path", "volpath", "direct", "moment"]),
+    (
+        "integrator",
+        &["path", "volpath", "volpathmis", "direct", "moment"],
+    ),
     ("shape emitter", &["area"]),
     ("spectrum", &["blackbody", "d65"]),
     ("texture", &["checkerboard", "bitmap"]),

@@ -34,6 +34,7 @@ pub(super) fn scene(
         bsdf_depth: Default::default(),
         line_starts: Default::default(),
         queried: Default::default(),
+        media: Default::default(),
     };
     if root.tag != "scene" {
         return Err(cx.err(&root, "the root element must be <scene>"));
@@ -194,12 +195,21 @@ fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
     let mut groups: Vec<GroupDesc> = Vec::new();
     let mut instances = Vec::new();
     let mut lights = Vec::new();
+    let mut volumetric = false;
+    let mut camera_medium = None;
 
     for c in &root.children {
         match c.tag.as_str() {
             "default" => {}
-            "integrator" => integrator_settings(cx, c, &mut integrator)?,
-            "sensor" => camera = Some(sensor(cx, c, &mut film)?),
+            "integrator" => volumetric = integrator_settings(cx, c, &mut integrator)?,
+            "sensor" => {
+                camera = Some(sensor(cx, c, &mut film)?);
+                if let Some(m) = c.children.iter().find(|m| {
+                    matches!(m.tag.as_str(), "ref" | "medium") && m.attr("name") == Some("medium")
+                }) {
+                    camera_medium = Some(super::media::medium_index(cx, m, "sensor medium")?);
+                }
+            }
             "bsdf" => {
                 if let Some(id) = c.attr("id") {
                     let (m, two) = bsdf(cx, c, id)?;
@@ -215,7 +225,15 @@ fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
                 instances.push(instance(cx, c, &groups)?);
             }
             "shape" => shapes.push(shape(cx, c, &mut materials, &material_ids)?),
-            "medium" => return Err(cx.err(c, "participating media (`medium`, e.g. homogeneous) are not supported yet; remove the medium (volpath renders a scene without media as path does)")),
+            // declarations that shapes and sensors refer to by id (read on first use)
+            "medium" => {
+                if c.attr("id").is_none() {
+                    return Err(cx.err(
+                        c,
+                        "a <medium> at the top level needs an id for shapes to refer to",
+                    ));
+                }
+            }
             // an area emitter at the top level is a declaration that shapes refer to by id
             "emitter" if c.attr("type") == Some("area") => {
                 if c.attr("id").is_none() {
@@ -248,6 +266,7 @@ fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
     if weighted {
         integrator.light_selection = LightSelection::Uniform;
     }
+    let media = scene_media(cx, root, volumetric, &mut shapes, &mut camera_medium)?;
     cx.check_unreferenced(root)?;
     let nm = |x: f64| Length::new::<length::nanometer>(x);
     Ok(SceneDesc {
@@ -261,6 +280,8 @@ fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
         groups,
         instances,
         lights,
+        media,
+        camera_medium,
         sensors: Vec::new(),
         notes: owned
             .notes
@@ -300,10 +321,57 @@ fn max_depth(cx: &Cx<'_>, d: &Element) -> R<u32> {
     }
 }
 
-/// An `<integrator>`: `path` (and `volpath`, the same in a scene without media) with
-/// `max_depth`, `rr_depth`; `direct` with its sample counts; `moment` around one of them (its
-/// image plus second moments).
-fn integrator_settings(cx: &Cx<'_>, c: &Element, integrator: &mut IntegratorDesc) -> R<()> {
+/// The media the shapes and the sensor refer to. A top-level medium nobody refers to is an
+/// error (a scene that declares a fog and shows none is a mistake). Mitsuba's `path` and
+/// `direct` integrators ignore media, so under them (`volumetric` false) the media are
+/// dropped, with a note.
+fn scene_media(
+    cx: &Cx<'_>,
+    root: &Element,
+    volumetric: bool,
+    shapes: &mut [ShapeDesc],
+    camera_medium: &mut Option<usize>,
+) -> R<Vec<crate::loader::desc::MediumDesc>> {
+    let read = cx.media.borrow();
+    for c in root.children.iter().filter(|c| c.tag == "medium") {
+        if !read.iter().any(|(k, _)| *k == (c.src, c.pos)) {
+            return Err(cx.err(
+                c,
+                format!(
+                    "medium \"{}\" is declared but no shape or sensor refers to it (give a shape <ref id=\"{}\" name=\"interior\"/>)",
+                    c.attr("id").unwrap_or_default(),
+                    c.attr("id").unwrap_or_default()
+                ),
+            ));
+        }
+    }
+    if read.is_empty() {
+        return Ok(Vec::new());
+    }
+    if !volumetric {
+        let first = &read[0].1;
+        cx.note(
+            root,
+            format!(
+                "the scene's media (first: \"{}\") are ignored: Mitsuba's path and direct integrators render surfaces only (use volpath)",
+                first.name
+            ),
+        );
+        for s in shapes.iter_mut() {
+            s.interior = None;
+            s.exterior = None;
+        }
+        *camera_medium = None;
+        return Ok(Vec::new());
+    }
+    Ok(read.iter().map(|(_, d)| d.clone()).collect())
+}
+
+/// An `<integrator>`: `path`, and `volpath` and `volpathmis` (spectrace's volumetric path
+/// tracer; the same as `path` in a scene without media) with `max_depth`, `rr_depth`;
+/// `direct` with its sample counts; `moment` around one of them (its image plus second
+/// moments). Returns whether the integrator renders media.
+fn integrator_settings(cx: &Cx<'_>, c: &Element, integrator: &mut IntegratorDesc) -> R<bool> {
     let t = c.attr("type").unwrap_or("");
     if t == "moment" {
         let inner = c
@@ -338,9 +406,9 @@ fn integrator_settings(cx: &Cx<'_>, c: &Element, integrator: &mut IntegratorDesc
             emitter_samples,
             bsdf_samples,
         };
-        return Ok(());
+        return Ok(false);
     }
-    if t != "path" && t != "volpath" {
+    if !matches!(t, "path" | "volpath" | "volpathmis") {
         return Err(cx.unsupported(c, "integrator", t));
     }
     if let Some(d) = cx.child(c, "max_depth") {
@@ -363,5 +431,5 @@ fn integrator_settings(cx: &Cx<'_>, c: &Element, integrator: &mut IntegratorDesc
             "hide_emitters = true is not supported: spectrace always shows emitters seen directly",
         ));
     }
-    Ok(())
+    Ok(t != "path")
 }

@@ -31,6 +31,7 @@ pub(super) fn shape(
     let mut material = None;
     let mut two_sided = false;
     let mut emission = None;
+    let (mut interior, mut exterior) = (None, None);
     for c in &s.children {
         match c.tag.as_str() {
             "bsdf" => {
@@ -39,8 +40,14 @@ pub(super) fn shape(
                 two_sided = two;
                 materials.push(m);
             }
-            "ref" if c.attr("name") == Some("interior") || c.attr("name") == Some("exterior") => {
-                return Err(cx.err(c, "participating media (`medium`, e.g. homogeneous) are not supported yet; remove the medium (volpath renders a scene without media as path does)"));
+            "ref" | "medium" if matches!(c.attr("name"), Some("interior") | Some("exterior")) => {
+                let side = c.attr("name").unwrap_or_default();
+                let m = super::media::medium_index(cx, c, &format!("{side}@{}", cx.loc(s).line))?;
+                if side == "interior" {
+                    interior = Some(m);
+                } else {
+                    exterior = Some(m);
+                }
             }
             // a reference to a BSDF, or to an area emitter declared at the top level
             "ref" if cx.resolve(c)?.tag == "emitter" => {
@@ -58,7 +65,12 @@ pub(super) fn shape(
                 two_sided = two;
             }
             "emitter" => emission = Some(area_emitter(cx, c)?),
-            "medium" => return Err(cx.err(c, "participating media (`medium`, e.g. homogeneous) are not supported yet; remove the medium (volpath renders a scene without media as path does)")),
+            "medium" => {
+                return Err(cx.err(
+                    c,
+                    "a shape's <medium> needs name=\"interior\" or name=\"exterior\"",
+                ));
+            }
             _ => {}
         }
     }
@@ -81,6 +93,8 @@ pub(super) fn shape(
         material,
         two_sided,
         emission,
+        interior,
+        exterior,
         unit_m: 1.0,
         loc: cx.loc(s),
     })

@@ -138,6 +138,8 @@ pub(super) fn scene(cx: &mut Cx<'_>, raw: RawScene) -> R<SceneDesc> {
         groups,
         instances,
         lights,
+        media: Vec::new(),
+        camera_medium: None,
         sensors: raw
             .sensors
             .iter()

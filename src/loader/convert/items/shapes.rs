@@ -131,6 +131,8 @@ pub(super) fn shape(
         material,
         two_sided: s.two_sided.as_ref().is_some_and(|b| *b.get_ref()),
         emission,
+        interior: None,
+        exterior: None,
         unit_m: cx.unit_m,
         loc: cx.src.span(&sp),
     })

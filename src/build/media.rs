@@ -1,0 +1,104 @@
+//! Media: their descriptions made render-ready (coefficients tabulated on a 1 nm grid over the
+//! scene's wavelength range and checked there), and the media on either side of each shape.
+
+use std::sync::Arc;
+
+use crate::loader::desc::{Coefficients, MediumDesc, MediumKind, SceneDesc, ShapeDesc};
+use crate::medium::{Homogeneous, Medium, MediumInterface};
+use crate::spectrum::{PiecewiseLinear, Spectrum, WavelengthRange};
+
+/// The scene's media; an error names the field and the wavelength where a coefficient is
+/// negative or not finite, or an albedo leaves [0, 1].
+pub(super) fn medium(d: &MediumDesc, range: WavelengthRange) -> Result<Medium, (String, String)> {
+    match &d.kind {
+        MediumKind::Homogeneous {
+            coefficients,
+            phase,
+        } => {
+            let (sigma_t, albedo) = match coefficients {
+                Coefficients::Extinction { sigma_t, albedo } => {
+                    check(sigma_t, range, "sigma_t", f32::INFINITY)?;
+                    check(albedo, range, "albedo", 1.0)?;
+                    (sigma_t.clone(), albedo.clone())
+                }
+                Coefficients::AbsorptionScattering { sigma_a, sigma_s } => {
+                    check(sigma_a, range, "sigma_a", f32::INFINITY)?;
+                    check(sigma_s, range, "sigma_s", f32::INFINITY)?;
+                    let t = |l: f32| sigma_a.eval(l) + sigma_s.eval(l);
+                    let a = |l: f32| {
+                        let t = t(l);
+                        if t > 0.0 { sigma_s.eval(l) / t } else { 0.0 }
+                    };
+                    (tabulate(range, t), tabulate(range, a))
+                }
+            };
+            Ok(Medium::Homogeneous(Homogeneous {
+                sigma_t,
+                albedo,
+                phase: *phase,
+            }))
+        }
+    }
+}
+
+/// The media on either side of each shape of the scene (groups' shapes have none), or an
+/// empty table for a scene without media.
+pub(super) fn interfaces(desc: &SceneDesc, surfaces: usize) -> Vec<MediumInterface> {
+    if desc.media.is_empty() {
+        return Vec::new();
+    }
+    let of = |s: &ShapeDesc| MediumInterface {
+        interior: s.interior.map(|m| m as u32),
+        exterior: s.exterior.map(|m| m as u32),
+        transition: s.interior.is_some() || s.exterior.is_some(),
+    };
+    let mut v: Vec<MediumInterface> = desc.shapes.iter().map(of).collect();
+    v.resize(surfaces, MediumInterface::default());
+    v
+}
+
+/// Every whole nanometre of the range (and its ends).
+fn grid(range: WavelengthRange) -> Vec<f32> {
+    let (lo, hi) = (range.min_nm, range.max_nm);
+    let mut v = vec![lo];
+    let mut l = lo.floor() + 1.0;
+    while l < hi {
+        v.push(l);
+        l += 1.0;
+    }
+    if hi > lo {
+        v.push(hi);
+    }
+    v
+}
+
+fn tabulate(range: WavelengthRange, f: impl Fn(f32) -> f32) -> Spectrum {
+    let lambda = grid(range);
+    let value = lambda.iter().map(|&l| f(l)).collect();
+    match PiecewiseLinear::new(lambda, value) {
+        Ok(t) => Spectrum::Piecewise(Arc::new(t)),
+        // a range of one wavelength: its value
+        Err(_) => Spectrum::Constant(f(range.min_nm)),
+    }
+}
+
+/// Checks `s` at every nanometre of the range: finite, at least 0 and at most `max`.
+fn check(
+    s: &Spectrum,
+    range: WavelengthRange,
+    field: &str,
+    max: f32,
+) -> Result<(), (String, String)> {
+    for l in grid(range) {
+        let v = s.eval(l);
+        if !v.is_finite() || v < 0.0 || v > max {
+            let why = if max.is_finite() && v > max {
+                format!("must be at most {max}")
+            } else {
+                "must be finite and not negative".to_string()
+            };
+            return Err((field.to_string(), format!("is {v} at {l} nm; it {why}")));
+        }
+    }
+    Ok(())
+}
