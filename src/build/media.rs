@@ -3,8 +3,8 @@
 
 use std::sync::Arc;
 
-use crate::loader::desc::{Coefficients, MediumDesc, MediumKind, SceneDesc, ShapeDesc};
-use crate::medium::{Homogeneous, Medium, MediumInterface};
+use crate::loader::desc::{Coefficients, MediumDesc, MediumKind, SceneDesc, ShapeDesc, VolumeDesc};
+use crate::medium::{Grid, Heterogeneous, Homogeneous, Medium, MediumInterface, Volume};
 use crate::spectrum::{PiecewiseLinear, Spectrum, WavelengthRange};
 
 /// The scene's media; an error names the field and the wavelength where a coefficient is
@@ -37,6 +37,68 @@ pub(super) fn medium(d: &MediumDesc, range: WavelengthRange) -> Result<Medium, (
                 albedo,
                 phase: *phase,
             }))
+        }
+        MediumKind::Heterogeneous {
+            density,
+            albedo,
+            scale,
+            phase,
+        } => {
+            let (density, to_local, max) = volume(density, range, "sigma_t")?;
+            let (albedo, _, _) = volume(albedo, range, "albedo")?;
+            let scale = *scale as f32;
+            Ok(Medium::Heterogeneous(Heterogeneous {
+                density,
+                albedo,
+                scale,
+                phase: *phase,
+                to_local,
+                majorant: scale * max,
+            }))
+        }
+    }
+}
+
+/// A volume, the map from world space to its frame, and the largest value it takes.
+fn volume(
+    d: &VolumeDesc,
+    range: WavelengthRange,
+    field: &str,
+) -> Result<(Volume, glam::Mat4, f32), (String, String)> {
+    let place = |steps| {
+        super::shapes::steps(steps, 1.0, false)
+            .map(|t| t.inverse_matrix())
+            .map_err(|e| (format!("{field}.to_world"), e))
+    };
+    match d {
+        VolumeDesc::Constant { value, to_world } => {
+            check(value, range, field, f32::INFINITY)?;
+            let max = grid(range)
+                .into_iter()
+                .map(|l| value.eval(l))
+                .fold(0.0, f32::max);
+            Ok((Volume::Constant(value.clone()), place(to_world)?, max))
+        }
+        VolumeDesc::Grid {
+            res,
+            channels,
+            values,
+            wrap,
+            to_world,
+            file,
+        } => {
+            let g = Grid::new(*res, *channels, values, *wrap)
+                .map_err(|e| (field.to_string(), format!("{}: {e}", file.display())))?;
+            let max = g.max();
+            let to_local = place(to_world)?;
+            Ok((
+                Volume::Grid {
+                    grid: Arc::new(g),
+                    to_local,
+                },
+                to_local,
+                max,
+            ))
         }
     }
 }

@@ -29,7 +29,7 @@ use crate::geometry::shape::Intersection;
 use crate::geometry::{Ray, spawn_ray, spawn_ray_to};
 use crate::light::LightSample;
 use crate::material::{Material, TransportMode};
-use crate::medium::{Flight, live_average};
+use crate::medium::live_average;
 use crate::sampler::Sampler;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
@@ -84,41 +84,37 @@ pub(super) fn radiance<const N: usize>(
         // 1. The medium up to the hit: a scattering event or a pass (pbrt-v4 §14.2.1).
         if let Some(m) = path.medium {
             let t_max = hit.as_ref().map_or(f32::INFINITY, |h| h.t);
-            match scene.media[m as usize].sample_flight(s.get_1d(), t_max, w) {
-                Flight::Scatter { t, f, pdf } => {
-                    if pdf[0] <= 0.0 || path.depth == it.max_depth {
-                        break;
-                    }
-                    path.beta *= f / pdf[0];
-                    path.r_u *= pdf / pdf[0];
-                    path.depth += 1;
-                    let p = ray.at(t);
-                    let phase = scene.media[m as usize].phase();
-                    let wo = -ray.d;
-                    // next-event estimation from the medium point
-                    let u = s.get_2d();
-                    l += next_event(it, Vertex::Medium { p, wo, phase }, &path, w, u);
-                    // phase-function sampling (exact: value over pdf is 1)
-                    let ps = phase.sample(wo, s.get_2d());
-                    path.r_l = path.r_u / ps.pdf;
-                    path.prev_p = p;
-                    path.prev_n = Vec3::ZERO;
-                    path.specular = false;
-                    ray = Ray::new(p, ps.wi);
-                    if !roulette(it, &mut path, w, s) {
-                        break;
-                    }
-                    continue;
-                }
-                Flight::Pass { tr, pdf } => {
-                    if pdf[0] <= 0.0 {
-                        break;
-                    }
-                    path.beta *= tr / pdf[0];
-                    path.r_u *= pdf / pdf[0];
-                    path.r_l /= pdf[0];
-                }
+            let medium = &scene.media[m as usize];
+            let walk = medium.walk(ray.o, ray.d, t_max, w, &mut || s.get_1d());
+            path.beta *= walk.beta;
+            path.r_u *= walk.r_u;
+            if !path.beta.is_finite() || path.beta.is_zero() {
+                break;
             }
+            if let Some(t) = walk.t {
+                if path.depth == it.max_depth {
+                    break;
+                }
+                path.depth += 1;
+                let p = ray.at(t);
+                let phase = medium.phase();
+                let wo = -ray.d;
+                // next-event estimation from the medium point
+                let u = s.get_2d();
+                l += next_event(it, Vertex::Medium { p, wo, phase }, &path, w, u, s);
+                // phase-function sampling (exact: value over pdf is 1)
+                let ps = phase.sample(wo, s.get_2d());
+                path.r_l = path.r_u / ps.pdf;
+                path.prev_p = p;
+                path.prev_n = Vec3::ZERO;
+                path.specular = false;
+                ray = Ray::new(p, ps.wi);
+                if !roulette(it, &mut path, w, s) {
+                    break;
+                }
+                continue;
+            }
+            path.r_l *= walk.r_l;
         }
         // 2. Escaped: the lights at infinity.
         let Some(hit) = hit else {
@@ -196,7 +192,7 @@ pub(super) fn radiance<const N: usize>(
                 sh: &sh,
                 wo,
             };
-            l += next_event(it, v, &path, w, u);
+            l += next_event(it, v, &path, w, u, s);
         }
         let Some((bs, next)) = sh.scatter(&hit, wo, w, s, TransportMode::Radiance, &mut path.beta)
         else {
@@ -292,6 +288,7 @@ fn next_event<const N: usize>(
     path: &Path<N>,
     w: &SampledWavelengths<N>,
     u: glam::Vec2,
+    s: &mut Sampler,
 ) -> SampledSpectrum<N> {
     let scene = it.scene;
     let zero = SampledSpectrum::zero();
@@ -332,7 +329,7 @@ fn next_event<const N: usize>(
     if f.is_zero() {
         return zero;
     }
-    let tr = it.shadow_transmittance(origin, &ls, w);
+    let tr = it.shadow_transmittance(origin, &ls, w, s);
     if tr.is_zero() {
         return zero;
     }
@@ -370,13 +367,15 @@ impl Integrator<'_> {
 
     /// The transmittance from `origin` (point, error bound, offset normal, the medium the
     /// shadow ray starts in) to the light sample `ls`, per wavelength: Beer–Lambert through
-    /// every medium on the way, times the undeviated transmission of the `null` and
+    /// every homogeneous medium on the way, ratio tracking (numbers from `s`) through every
+    /// heterogeneous one, times the undeviated transmission of the `null` and
     /// `thindielectric` surfaces it crosses; 0 if any other surface is in the way.
     pub(crate) fn shadow_transmittance<const N: usize>(
         &self,
         origin: (Vec3, Vec3, Vec3, Option<u32>),
         ls: &LightSample<N>,
         w: &SampledWavelengths<N>,
+        s: &mut Sampler,
     ) -> SampledSpectrum<N> {
         let scene = self.scene;
         let (p, p_error, n, mut medium) = origin;
@@ -393,7 +392,7 @@ impl Integrator<'_> {
             let hit = scene.accel.intersect(&scene.shapes, &ray);
             if let Some(m) = medium {
                 let t = hit.as_ref().map_or(ray.t_max, |h| h.t);
-                tr *= scene.media[m as usize].transmittance(ray.o, ray.d, t, w);
+                tr *= scene.media[m as usize].transmittance(ray.o, ray.d, t, w, &mut || s.get_1d());
             }
             let Some(hit) = hit else {
                 return tr;

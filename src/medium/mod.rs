@@ -14,9 +14,13 @@
 //! decided by the geometric normal (Mitsuba 3's `target_medium`). A shape that names neither
 //! leaves the ray's medium unchanged.
 
+pub mod grid;
+pub mod heterogeneous;
 pub mod homogeneous;
 pub mod phase;
 
+pub use grid::{Grid, Volume, Wrap};
+pub use heterogeneous::{Heterogeneous, Walk};
 pub use homogeneous::{Flight, Homogeneous};
 pub use phase::{PhaseFunction, PhaseSample};
 
@@ -28,34 +32,58 @@ use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 #[derive(Clone, Debug)]
 pub enum Medium {
     Homogeneous(Homogeneous),
+    Heterogeneous(Heterogeneous),
 }
 
 impl Medium {
-    /// Samples a free flight of at most `t_max` metres from a uniform `u` (see [`Flight`]).
+    /// Samples a free flight along `o + t d` (d unit) of at most `t_max` metres, with uniform
+    /// numbers from `u` (see [`Walk`]).
     #[inline]
-    pub fn sample_flight<const N: usize>(
+    pub fn walk<const N: usize>(
         &self,
-        u: f32,
+        o: Vec3,
+        d: Vec3,
         t_max: f32,
         w: &SampledWavelengths<N>,
-    ) -> Flight<N> {
+        u: &mut impl FnMut() -> f32,
+    ) -> Walk<N> {
         match self {
-            Medium::Homogeneous(m) => m.sample_flight(u, t_max, w),
+            Medium::Homogeneous(m) => match m.sample_flight(u(), t_max, w) {
+                Flight::Scatter { t, f, pdf } => Walk {
+                    t: Some(t),
+                    beta: f / pdf[0],
+                    r_u: pdf / pdf[0],
+                    r_l: SampledSpectrum::splat(1.0),
+                },
+                // the walk's density of passing is Tr; next-event estimation's has no such
+                // factor (it evaluates Tr exactly)
+                Flight::Pass { tr, pdf } => Walk {
+                    t: None,
+                    beta: tr / pdf[0],
+                    r_u: pdf / pdf[0],
+                    r_l: SampledSpectrum::splat(1.0 / pdf[0]),
+                },
+            },
+            Medium::Heterogeneous(m) => m.walk(o, d, t_max, w, u),
         }
     }
 
-    /// Transmittance over the segment of `t` metres starting at `o` in direction `d` (unit):
-    /// exact for homogeneous media.
+    /// The transmittance over `o + t d`, t in [0, `t_max`] metres: exact for a homogeneous
+    /// medium, an unbiased ratio-tracking estimate (from `u`) for a heterogeneous one. It is
+    /// also, per wavelength, the density with which the walk crosses the segment (its pdf
+    /// of passing), which next-event estimation's MIS weight needs.
     #[inline]
     pub fn transmittance<const N: usize>(
         &self,
-        _o: Vec3,
-        _d: Vec3,
-        t: f32,
+        o: Vec3,
+        d: Vec3,
+        t_max: f32,
         w: &SampledWavelengths<N>,
+        u: &mut impl FnMut() -> f32,
     ) -> SampledSpectrum<N> {
         match self {
-            Medium::Homogeneous(m) => m.transmittance(t, w),
+            Medium::Homogeneous(m) => m.transmittance(t_max, w),
+            Medium::Heterogeneous(m) => m.transmittance(o, d, t_max, w, u),
         }
     }
 
@@ -64,6 +92,7 @@ impl Medium {
     pub fn phase(&self) -> PhaseFunction {
         match self {
             Medium::Homogeneous(m) => m.phase,
+            Medium::Heterogeneous(m) => m.phase,
         }
     }
 }

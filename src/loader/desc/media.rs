@@ -1,8 +1,13 @@
 //! Participating media as the scene file describes them (see [`crate::medium`] for the
 //! conventions): coefficients per metre as spectra over wavelength in nm.
 
-use crate::medium::PhaseFunction;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use crate::medium::{PhaseFunction, Wrap};
 use crate::spectrum::Spectrum;
+
+use super::TransformStep;
 
 use super::super::error::Loc;
 
@@ -20,6 +25,36 @@ pub enum MediumKind {
     Homogeneous {
         coefficients: Coefficients,
         phase: PhaseFunction,
+    },
+    /// Extinction `scale` × `density`(p, λ) in m⁻¹ and albedo `albedo`(p, λ), inside the unit
+    /// cube of the density volume's frame (Mitsuba's `heterogeneous`).
+    Heterogeneous {
+        density: VolumeDesc,
+        albedo: VolumeDesc,
+        /// m⁻¹.
+        scale: f64,
+        phase: PhaseFunction,
+    },
+}
+
+/// A quantity in space: a spectrum, or a voxel grid over the unit cube of its frame.
+#[derive(Clone, Debug)]
+pub enum VolumeDesc {
+    Constant {
+        value: Spectrum,
+        /// Places the unit cube (the extent of a medium whose density this is), in metres.
+        to_world: Vec<TransformStep>,
+    },
+    Grid {
+        /// Voxels along x, y, z; `values` holds x fastest, then y, then z, `channels` (1 or 3,
+        /// an RGB colour) per voxel.
+        res: [usize; 3],
+        channels: usize,
+        values: Arc<Vec<f32>>,
+        wrap: Wrap,
+        to_world: Vec<TransformStep>,
+        /// The file it was read from, for messages.
+        file: PathBuf,
     },
 }
 

@@ -1,5 +1,6 @@
-//! Mitsuba media: `<medium type="homogeneous">` with its `<phase>` (`isotropic`, `hg`,
-//! `rayleigh`), declared at the top level with an id, or inside a shape or sensor with a
+//! Mitsuba media: `<medium type="homogeneous">` and `"heterogeneous"` (its volumes
+//! `gridvolume`, read from `.vol` files, and `constvolume`) with its `<phase>` (`isotropic`,
+//! `hg`, `rayleigh`), declared at the top level with an id, or inside a shape or sensor with a
 //! `name` (`interior`, `exterior`, or a sensor's `medium`).
 //!
 //! Units: Mitsuba's coefficients are per scene unit, which spectrace reads as metres, so
@@ -7,13 +8,18 @@
 //! and an `<rgb>` is upsampled within [0, 1] (Jakob–Hanika), as Mitsuba's spectral variants
 //! read a volume's colour.
 
+use std::sync::Arc;
+
 use super::cx::{Cx, R};
 use super::xml::Element;
-use crate::loader::desc::{Coefficients, MediumDesc, MediumKind};
-use crate::medium::PhaseFunction;
+use crate::loader::desc::{Coefficients, MediumDesc, MediumKind, TransformStep, VolumeDesc};
+use crate::medium::{PhaseFunction, Wrap};
 
 /// The media spectrace reads, for messages and the plugin list.
-pub(super) const MEDIA: &[&str] = &["homogeneous"];
+pub(super) const MEDIA: &[&str] = &["homogeneous", "heterogeneous"];
+
+/// The volumes spectrace reads.
+pub(super) const VOLUMES: &[&str] = &["gridvolume", "constvolume"];
 
 /// The phase functions spectrace reads.
 pub(super) const PHASES: &[&str] = &["isotropic", "hg", "rayleigh"];
@@ -41,6 +47,7 @@ fn medium(cx: &Cx<'_>, e: &Element, name: &str) -> R<MediumDesc> {
     let t = e.attr("type").ok_or_else(|| cx.err(e, "missing type"))?;
     let kind = match t {
         "homogeneous" => homogeneous(cx, e)?,
+        "heterogeneous" => heterogeneous(cx, e)?,
         other => return Err(cx.unsupported(e, "medium", other)),
     };
     Ok(MediumDesc {
@@ -82,6 +89,138 @@ fn homogeneous(cx: &Cx<'_>, e: &Element) -> R<MediumKind> {
         coefficients: Coefficients::Extinction { sigma_t, albedo },
         phase: phase(cx, e)?,
     })
+}
+
+/// `heterogeneous`: `sigma_t` (a volume, or a number, spectrum or colour over the unit cube;
+/// default 1) × `scale` (default 1), `albedo` (a volume or a value; default 0.75), a phase
+/// function. The medium fills the unit cube of `sigma_t`'s frame.
+fn heterogeneous(cx: &Cx<'_>, e: &Element) -> R<MediumKind> {
+    for hint in ["sample_emitters", "has_spectral_extinction"] {
+        let _ = cx.child(e, hint);
+    }
+    let scale = cx.opt_float(e, "scale")?.unwrap_or(1.0);
+    if !(scale.is_finite() && scale >= 0.0) {
+        let at = cx.child(e, "scale").unwrap_or(e);
+        return Err(cx.err(
+            at,
+            format!("scale must be finite and not negative, not {scale}"),
+        ));
+    }
+    let density = volume(cx, e, "sigma_t", 1.0)?;
+    let albedo = volume(cx, e, "albedo", 0.75)?;
+    if let VolumeDesc::Grid { values, file, .. } = &albedo {
+        let max = values.iter().copied().fold(0.0f32, f32::max);
+        if max > 1.0 {
+            cx.note(
+                cx.child(e, "albedo").unwrap_or(e),
+                format!(
+                    "the albedo grid {} holds values up to {max}: above 1 scattering creates energy; read as Mitsuba reads it",
+                    file.display()
+                ),
+            );
+        }
+    }
+    Ok(MediumKind::Heterogeneous {
+        density,
+        albedo,
+        scale,
+        phase: phase(cx, e)?,
+    })
+}
+
+/// The volume property `name` of `e`: a `<volume>` (`gridvolume`, `constvolume`), or a
+/// number, spectrum or colour, constant over the unit cube.
+fn volume(cx: &Cx<'_>, e: &Element, name: &str, default: f32) -> R<VolumeDesc> {
+    let Some(c) = cx.child(e, name) else {
+        return Ok(VolumeDesc::Constant {
+            value: crate::spectrum::Spectrum::Constant(default),
+            to_world: Vec::new(),
+        });
+    };
+    let c = cx.resolve(c)?;
+    if c.tag != "volume" {
+        return Ok(VolumeDesc::Constant {
+            value: cx.spectrum(c, false)?,
+            to_world: Vec::new(),
+        });
+    }
+    let mut to_world = match c.children.iter().find(|t| t.tag == "transform") {
+        Some(t) => cx.transform(t)?,
+        None => Vec::new(),
+    };
+    match c.attr("type").unwrap_or("") {
+        "constvolume" => Ok(VolumeDesc::Constant {
+            value: cx.spectrum_prop(c, "value", 1.0, false)?,
+            to_world,
+        }),
+        "gridvolume" => {
+            let file = cx
+                .string(c, "filename")
+                .ok_or_else(|| cx.err(c, "a gridvolume needs a filename (a .vol file)"))?;
+            let path = cx.resolve_file(&file);
+            let at = cx.child(c, "filename").unwrap_or(c);
+            let vol = super::vol::read(&path).map_err(|m| cx.err(at, m))?;
+            let wrap = match cx.string(c, "wrap_mode").as_deref() {
+                None | Some("clamp") => Wrap::Clamp,
+                Some("repeat") => Wrap::Repeat,
+                Some("mirror") => Wrap::Mirror,
+                Some(other) => {
+                    let at = cx.child(c, "wrap_mode").unwrap_or(c);
+                    return Err(cx.err(
+                        at,
+                        format!("wrap_mode \"{other}\" is not one of clamp, repeat, mirror"),
+                    ));
+                }
+            };
+            if let Some(f) = cx.string(c, "filter_type")
+                && f != "trilinear"
+            {
+                let at = cx.child(c, "filter_type").unwrap_or(c);
+                return Err(cx.err(
+                    at,
+                    format!("filter_type \"{f}\" is not supported; spectrace interpolates grids trilinearly"),
+                ));
+            }
+            if cx.string(c, "raw").as_deref() == Some("true") && vol.channels == 3 {
+                let at = cx.child(c, "raw").unwrap_or(c);
+                return Err(cx.err(
+                    at,
+                    "raw = true on a three-channel grid is not supported: spectrace reads its colours as sRGB",
+                ));
+            }
+            let _ = cx.child(c, "accel");
+            if cx.string(c, "use_grid_bbox").as_deref() == Some("true") {
+                let [lo, hi] = vol.bounds;
+                let size = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+                to_world.insert(
+                    0,
+                    TransformStep::Translate(lo.map(|v| {
+                        crate::units::Length::new::<crate::units::length::meter>(f64::from(v))
+                    })),
+                );
+                to_world.insert(0, TransformStep::Scale(size.map(f64::from)));
+            }
+            if vol.channels != 1 && vol.channels != 3 {
+                return Err(cx.err(
+                    at,
+                    format!(
+                        "{}: {} channels; a grid has 1 (a value) or 3 (a colour)",
+                        path.display(),
+                        vol.channels
+                    ),
+                ));
+            }
+            Ok(VolumeDesc::Grid {
+                res: vol.res,
+                channels: vol.channels,
+                values: Arc::new(vol.values),
+                wrap,
+                to_world,
+                file: path,
+            })
+        }
+        other => Err(cx.unsupported(c, "volume", other)),
+    }
 }
 
 /// The medium's `<phase>` child (isotropic when it has none).

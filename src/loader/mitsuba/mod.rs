@@ -31,6 +31,7 @@ mod shapes;
 mod spectra;
 mod textures;
 mod transform;
+mod vol;
 mod xml;
 
 use std::collections::HashMap;

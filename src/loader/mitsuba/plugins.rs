@@ -33,6 +33,7 @@ pub(super) fn supported(what: &str) -> Vec<&'static str> {
         // `area` emitters belong to shapes; the others are the emitter readers' registry
         "medium" => super::media::MEDIA.to_vec(),
         "phase" => super::media::PHASES.to_vec(),
+        "volume" => super::media::VOLUMES.to_vec(),
         "emitter" => std::iter::once("area")
             .chain(super::emitters::EMITTERS.iter().map(|(n, _)| *n))
             .collect(),
@@ -59,6 +60,7 @@ pub(super) fn kinds() -> impl Iterator<Item = &'static str> {
         "shape emitter",
         "medium",
         "phase",
+        "volume",
         "spectrum",
         "texture",
         "transform",
