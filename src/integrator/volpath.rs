@@ -329,7 +329,7 @@ fn next_event<const N: usize>(
     if f.is_zero() {
         return zero;
     }
-    let tr = it.shadow_transmittance(origin, &ls, w, s);
+    let (tr, pass) = it.shadow_transmittance(origin, &ls, w, s);
     if tr.is_zero() {
         return zero;
     }
@@ -338,7 +338,7 @@ fn next_event<const N: usize>(
         live_average(path.r_u * p_light, w)
     } else {
         live_average(
-            path.r_u * (tr * scatter_pdf + SampledSpectrum::splat(p_light)),
+            path.r_u * (pass * scatter_pdf + SampledSpectrum::splat(p_light)),
             w,
         )
     };
@@ -369,14 +369,17 @@ impl Integrator<'_> {
     /// shadow ray starts in) to the light sample `ls`, per wavelength: Beer–Lambert through
     /// every homogeneous medium on the way, ratio tracking (numbers from `s`) through every
     /// heterogeneous one, times the undeviated transmission of the `null` and
-    /// `thindielectric` surfaces it crosses; 0 if any other surface is in the way.
+    /// `thindielectric` surfaces it crosses; 0 if any other surface is in the way. Second,
+    /// per wavelength, the density with which the walk would cross the same way (the
+    /// media's densities of passing, see [`crate::medium::Medium::transmittance`], times
+    /// the sheets' transmission).
     pub(crate) fn shadow_transmittance<const N: usize>(
         &self,
         origin: (Vec3, Vec3, Vec3, Option<u32>),
         ls: &LightSample<N>,
         w: &SampledWavelengths<N>,
         s: &mut Sampler,
-    ) -> SampledSpectrum<N> {
+    ) -> (SampledSpectrum<N>, SampledSpectrum<N>) {
         let scene = self.scene;
         let (p, p_error, n, mut medium) = origin;
         let toward = |p: Vec3, p_error: Vec3, n: Vec3| {
@@ -388,22 +391,28 @@ impl Integrator<'_> {
         };
         let mut ray = toward(p, p_error, n);
         let mut tr = SampledSpectrum::splat(1.0);
+        let mut pass = SampledSpectrum::splat(1.0);
+        let zero = (SampledSpectrum::zero(), SampledSpectrum::zero());
         for _ in 0..MAX_CROSSINGS {
             let hit = scene.accel.intersect(&scene.shapes, &ray);
             if let Some(m) = medium {
                 let t = hit.as_ref().map_or(ray.t_max, |h| h.t);
-                tr *= scene.media[m as usize].transmittance(ray.o, ray.d, t, w, &mut || s.get_1d());
+                let (t_seg, p_seg) =
+                    scene.media[m as usize].transmittance(ray.o, ray.d, t, w, &mut || s.get_1d());
+                tr *= t_seg;
+                pass *= p_seg;
             }
             let Some(hit) = hit else {
-                return tr;
+                return (tr, pass);
             };
-            let pass = match scene.surfaces[hit.shape as usize].material {
+            let sheet = match scene.surfaces[hit.shape as usize].material {
                 Some(mat) => scene.materials[mat as usize].null_transmission(hit.n_geom.dot(ray.d)),
                 None => 0.0,
             };
-            tr *= pass;
+            tr *= sheet;
+            pass *= sheet;
             if tr.is_zero() {
-                return tr;
+                return zero;
             }
             medium = self.medium_after(&hit, ray.d, medium);
             let n = if hit.n_geom.dot(ray.d) < 0.0 {
@@ -413,6 +422,6 @@ impl Integrator<'_> {
             };
             ray = toward(hit.p, hit.p_error, n);
         }
-        SampledSpectrum::zero()
+        zero
     }
 }

@@ -18,6 +18,9 @@ pub struct RawScene {
     pub integrator: Option<S<RawIntegrator>>,
     #[serde(default)]
     pub materials: BTreeMap<S<String>, S<RawMaterial>>,
+    /// Participating media (`[media.NAME]`), read by `convert/items/media.rs` from their keys.
+    #[serde(default)]
+    pub media: BTreeMap<S<String>, S<RawMaterial>>,
     #[serde(default)]
     pub shapes: Vec<S<RawShape>>,
     #[serde(default)]
@@ -82,6 +85,8 @@ pub struct RawCamera {
     pub f_number: Option<S<Value>>,
     pub focus_distance: Option<S<Value>>,
     pub view_width: Option<S<Value>>,
+    /// The name of the medium the camera sits in (`[media.NAME]`).
+    pub medium: Option<S<String>>,
     /// `[camera.sensor]`: spectral sensitivities, exposure and white balance.
     pub sensor: Option<S<RawCameraSensor>>,
 }
@@ -145,6 +150,9 @@ pub struct RawShape {
     pub emission: Option<S<RawEmission>>,
     pub vertices: Option<S<Vec<S<Value>>>>,
     pub faces: Option<S<Vec<S<Value>>>>,
+    /// Names of the media inside and outside the shape (`[media.NAME]`).
+    pub interior: Option<S<String>>,
+    pub exterior: Option<S<String>>,
 }
 
 #[derive(Deserialize, Debug)]

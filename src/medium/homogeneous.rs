@@ -67,6 +67,13 @@ impl Homogeneous {
         self.sigma_t.sample(w)
     }
 
+    /// Whether the medium only absorbs at the wavelengths `w` (albedo 0 at each): then free
+    /// flights are not sampled and the transmittance is applied as a weight.
+    #[inline]
+    pub fn absorbs_only<const N: usize>(&self, w: &SampledWavelengths<N>) -> bool {
+        self.albedo.sample(w).is_zero()
+    }
+
     /// Beer–Lambert transmittance exp(−σt(λ) t) over `t` metres.
     #[inline]
     pub fn transmittance<const N: usize>(
@@ -79,7 +86,8 @@ impl Homogeneous {
 
     /// Samples a free flight of at most `t_max` metres (may be infinite) from a uniform `u`:
     /// t = −ln(1 − u)/σt(λ₀), a scattering event if t < `t_max`. A medium with σt(λ₀) = 0 is
-    /// passed through.
+    /// passed through; one that only absorbs is passed with its transmittance as the weight
+    /// (and densities 1).
     #[inline]
     pub fn sample_flight<const N: usize>(
         &self,
@@ -88,6 +96,15 @@ impl Homogeneous {
         w: &SampledWavelengths<N>,
     ) -> Flight<N> {
         let sigma_t = self.sigma_t(w);
+        if self.absorbs_only(w) {
+            // nothing scatters: the transmittance is the weight, and no distance is sampled
+            // (zero variance; the density of passing is 1 for every hero)
+            let tr = sigma_t.map(|s| beer_lambert(s, t_max));
+            return Flight::Pass {
+                tr,
+                pdf: SampledSpectrum::splat(1.0),
+            };
+        }
         let hero = sigma_t[0];
         let t = if hero > 0.0 {
             -(1.0 - u).max(f32::MIN_POSITIVE).ln() / hero

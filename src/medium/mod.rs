@@ -68,10 +68,11 @@ impl Medium {
         }
     }
 
-    /// The transmittance over `o + t d`, t in [0, `t_max`] metres: exact for a homogeneous
-    /// medium, an unbiased ratio-tracking estimate (from `u`) for a heterogeneous one. It is
-    /// also, per wavelength, the density with which the walk crosses the segment (its pdf
-    /// of passing), which next-event estimation's MIS weight needs.
+    /// The transmittance over `o + t d`, t in [0, `t_max`] metres (exact for a homogeneous
+    /// medium, an unbiased ratio-tracking estimate from `u` for a heterogeneous one), and, per
+    /// wavelength, the density with which [`Medium::walk`] crosses the same segment with that
+    /// wavelength as the hero, which next-event estimation's MIS weight needs: the
+    /// transmittance itself, or 1 where no distance is sampled (a medium that only absorbs).
     #[inline]
     pub fn transmittance<const N: usize>(
         &self,
@@ -80,10 +81,20 @@ impl Medium {
         t_max: f32,
         w: &SampledWavelengths<N>,
         u: &mut impl FnMut() -> f32,
-    ) -> SampledSpectrum<N> {
+    ) -> (SampledSpectrum<N>, SampledSpectrum<N>) {
         match self {
-            Medium::Homogeneous(m) => m.transmittance(t_max, w),
-            Medium::Heterogeneous(m) => m.transmittance(o, d, t_max, w, u),
+            Medium::Homogeneous(m) => {
+                let tr = m.transmittance(t_max, w);
+                if m.absorbs_only(w) {
+                    (tr, SampledSpectrum::splat(1.0))
+                } else {
+                    (tr, tr)
+                }
+            }
+            Medium::Heterogeneous(m) => {
+                let tr = m.transmittance(o, d, t_max, w, u);
+                (tr, tr)
+            }
         }
     }
 

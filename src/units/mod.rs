@@ -12,7 +12,7 @@ pub mod quantities;
 
 pub use quantities::f64::*;
 pub use quantities::{
-    angle, area, illuminance, irradiance, length, luminance, luminous_flux, luminous_intensity,
-    power, radiance, radiant_intensity, solid_angle, spectral_radiance, thermodynamic_temperature,
-    time,
+    angle, area, attenuation, illuminance, irradiance, length, luminance, luminous_flux,
+    luminous_intensity, power, radiance, radiant_intensity, solid_angle, spectral_radiance,
+    thermodynamic_temperature, time,
 };

@@ -8,12 +8,14 @@
 use std::fmt;
 
 use super::quantities::{
-    angle, area, illuminance, irradiance, length, luminance, luminous_flux, luminous_intensity,
-    power, radiance, radiant_intensity, solid_angle, spectral_radiance, thermodynamic_temperature,
+    angle, area, attenuation, illuminance, irradiance, length, luminance, luminous_flux,
+    luminous_intensity, power, radiance, radiant_intensity, solid_angle, spectral_radiance,
+    thermodynamic_temperature,
 };
 use super::{
-    Angle, Area, Illuminance, Irradiance, Length, Luminance, LuminousFlux, LuminousIntensity,
-    Power, Radiance, RadiantIntensity, SolidAngle, SpectralRadiance, ThermodynamicTemperature,
+    Angle, Area, Attenuation, Illuminance, Irradiance, Length, Luminance, LuminousFlux,
+    LuminousIntensity, Power, Radiance, RadiantIntensity, SolidAngle, SpectralRadiance,
+    ThermodynamicTemperature,
 };
 
 /// The physical dimension (and kind) of a quantity string.
@@ -29,6 +31,7 @@ pub enum Dimension {
     Irradiance,
     Radiance,
     SpectralRadiance,
+    Attenuation,
     LuminousFlux,
     LuminousIntensity,
     Illuminance,
@@ -49,6 +52,9 @@ impl Dimension {
             Dimension::Irradiance => "an irradiance (e.g. \"1000 W/m^2\")",
             Dimension::Radiance => "a radiance (e.g. \"10 W/m^2/sr\")",
             Dimension::SpectralRadiance => "a spectral radiance (e.g. \"0.01 W/m^2/sr/nm\")",
+            Dimension::Attenuation => {
+                "an attenuation coefficient (e.g. \"0.5 1/m\", \"2 1/mm\", \"0.1 cm^-1\")"
+            }
             Dimension::LuminousFlux => "a luminous flux (e.g. \"1200 lm\")",
             Dimension::LuminousIntensity => "a luminous intensity (e.g. \"100 cd\")",
             Dimension::Illuminance => "an illuminance (e.g. \"10 lx\")",
@@ -111,6 +117,15 @@ pub const UNITS: &[UnitSymbol] = &[
     u("W/m^2/sr/nm", D::SpectralRadiance, 1e9),
     u("W/m²/sr/nm", D::SpectralRadiance, 1e9),
     u("W/(m^2 sr nm)", D::SpectralRadiance, 1e9),
+    u("1/m", D::Attenuation, 1.0),
+    u("m^-1", D::Attenuation, 1.0),
+    u("m⁻¹", D::Attenuation, 1.0),
+    u("1/cm", D::Attenuation, 1e2),
+    u("cm^-1", D::Attenuation, 1e2),
+    u("cm⁻¹", D::Attenuation, 1e2),
+    u("1/mm", D::Attenuation, 1e3),
+    u("mm^-1", D::Attenuation, 1e3),
+    u("mm⁻¹", D::Attenuation, 1e3),
     u("lm", D::LuminousFlux, 1.0),
     u("klm", D::LuminousFlux, 1e3),
     u("cd", D::LuminousIntensity, 1.0),
@@ -281,6 +296,7 @@ parse_impl! {
     Irradiance, Irradiance, irradiance::watt_per_square_meter;
     Radiance, Radiance, radiance::watt_per_square_meter_steradian;
     SpectralRadiance, SpectralRadiance, spectral_radiance::watt_per_square_meter_steradian_meter;
+    Attenuation, Attenuation, attenuation::per_meter;
     LuminousFlux, LuminousFlux, luminous_flux::lumen;
     LuminousIntensity, LuminousIntensity, luminous_intensity::candela;
     Illuminance, Illuminance, illuminance::lux;

@@ -123,6 +123,12 @@ q!(spectral_radiance, SpectralRadiance, "spectral radiance", [N1, P1, N3, Z0, Z0
     watt_per_square_meter_steradian_nanometer: 1.0E9, "W·m⁻²·sr⁻¹·nm⁻¹",
         "watt per square meter steradian nanometer", "watts per square meter steradian nanometer";
 });
+q!(attenuation, Attenuation, "attenuation coefficient (absorption, scattering, extinction per length)",
+   [N1, Z0, Z0, Z0, Z0, Z0, Z0], dyn uom::Kind, {
+    per_meter: 1.0, "m⁻¹", "per meter", "per meter";
+    per_centimeter: 1.0E2, "cm⁻¹", "per centimeter", "per centimeter";
+    per_millimeter: 1.0E3, "mm⁻¹", "per millimeter", "per millimeter";
+});
 q!(luminous_flux, LuminousFlux, "luminous flux", [Z0, Z0, Z0, Z0, Z0, Z0, P1], dyn super::LuminousFluxKind, {
     lumen: 1.0, "lm", "lumen", "lumens";
 });
@@ -160,6 +166,7 @@ system! {
         mod irradiance::Irradiance,
         mod radiance::Radiance,
         mod spectral_radiance::SpectralRadiance,
+        mod attenuation::Attenuation,
         mod luminous_flux::LuminousFlux,
         mod illuminance::Illuminance,
         mod luminance::Luminance,

@@ -116,7 +116,8 @@ impl Cx<'_> {
                 Err(er) => Err(self.err(e, er.to_string())),
             };
         }
-        rgb2spec::albedo(rgb).map_err(|er| self.err(e, er.to_string()))
+        // Mitsuba's table lookup, not spectrace's refined fit (see `albedo_table`)
+        rgb2spec::albedo_table(rgb).map_err(|er| self.err(e, er.to_string()))
     }
 
     /// A `<spectrum type="…">`: `blackbody` (absolute Planck radiance) or `d65` (Mitsuba's

@@ -35,7 +35,7 @@ fn kind(cx: &Cx<'_>, c: &RawCamera, sp: &Range<usize>) -> R<CameraKind> {
         .as_ref()
         .map(|k| k.get_ref().as_str())
         .unwrap_or("perspective");
-    let all = present!(c; kind, eye, target, up, fov, fov_axis, focal_length, sensor_width, f_number, focus_distance, view_width);
+    let all = present!(c; kind, eye, target, up, fov, fov_axis, focal_length, sensor_width, f_number, focus_distance, view_width, medium);
     Ok(match kind_s {
         "perspective" => {
             cx.only(
@@ -44,6 +44,7 @@ fn kind(cx: &Cx<'_>, c: &RawCamera, sp: &Range<usize>) -> R<CameraKind> {
                 &all,
                 &[
                     "kind",
+                    "medium",
                     "eye",
                     "target",
                     "up",
@@ -64,6 +65,7 @@ fn kind(cx: &Cx<'_>, c: &RawCamera, sp: &Range<usize>) -> R<CameraKind> {
                 &all,
                 &[
                     "kind",
+                    "medium",
                     "eye",
                     "target",
                     "up",

@@ -5,6 +5,7 @@ mod film;
 mod integrator;
 mod lights;
 mod materials;
+mod media;
 mod sensors;
 mod shapes;
 
@@ -92,13 +93,14 @@ pub(super) fn scene(cx: &mut Cx<'_>, raw: RawScene) -> R<SceneDesc> {
         materials.push(material(cx, name, m, &range, &raw.materials)?);
     }
     let material_names: Vec<&str> = raw.materials.keys().map(|k| k.get_ref().as_str()).collect();
-    let shapes = raw
+    let mut shapes = raw
         .shapes
         .iter()
         .enumerate()
         .map(|(i, s)| shape(cx, format!("shapes[{i}]"), s, &material_names))
         .collect::<R<Vec<_>>>()?;
     let (groups, instances) = groups_and_instances(cx, &raw, &material_names)?;
+    let (media, camera_medium) = scene_media(cx, &raw, &mut shapes, &range)?;
     let lights = raw
         .lights
         .iter()
@@ -138,8 +140,8 @@ pub(super) fn scene(cx: &mut Cx<'_>, raw: RawScene) -> R<SceneDesc> {
         groups,
         instances,
         lights,
-        media: Vec::new(),
-        camera_medium: None,
+        media,
+        camera_medium,
         sensors: raw
             .sensors
             .iter()
@@ -233,4 +235,67 @@ fn groups_and_instances(
         });
     }
     Ok((groups, instances))
+}
+
+/// The media (`[media.NAME]`) and the names that refer to them: each shape's `interior` and
+/// `exterior`, the camera's `medium`. A name no medium has, a medium nothing refers to, and a
+/// medium named in a group's shape are errors.
+fn scene_media(
+    cx: &Cx<'_>,
+    raw: &RawScene,
+    shapes: &mut [ShapeDesc],
+    range: &[Length; 2],
+) -> R<(Vec<MediumDesc>, Option<usize>)> {
+    let media = raw
+        .media
+        .iter()
+        .map(|(n, m)| media::medium(cx, n, m, range))
+        .collect::<R<Vec<_>>>()?;
+    let names: Vec<&str> = raw.media.keys().map(|k| k.get_ref().as_str()).collect();
+    let mut used = vec![false; names.len()];
+    let mut index = |v: &S<String>, field: String| -> R<usize> {
+        let i = cx.kind_index(v.get_ref(), &v.span(), &field, "medium", &names)?;
+        used[i] = true;
+        Ok(i)
+    };
+    for (i, (s, d)) in raw.shapes.iter().zip(shapes.iter_mut()).enumerate() {
+        if let Some(v) = &s.get_ref().interior {
+            d.interior = Some(index(v, format!("shapes[{i}].interior"))?);
+        }
+        if let Some(v) = &s.get_ref().exterior {
+            d.exterior = Some(index(v, format!("shapes[{i}].exterior"))?);
+        }
+    }
+    let camera_medium = match raw
+        .camera
+        .as_ref()
+        .and_then(|c| c.get_ref().medium.as_ref())
+    {
+        Some(v) => Some(index(v, "camera.medium".into())?),
+        None => None,
+    };
+    for (name, g) in &raw.groups {
+        for (i, s) in g.get_ref().shapes.iter().enumerate() {
+            if let Some(v) = s
+                .get_ref()
+                .interior
+                .as_ref()
+                .or(s.get_ref().exterior.as_ref())
+            {
+                return Err(cx.err(
+                    &v.span(),
+                    format!("groups.{}.shapes[{i}]", name.get_ref()),
+                    "a group's shapes cannot bound media yet; place the shape in [[shapes]]",
+                ));
+            }
+        }
+    }
+    if let Some((k, _)) = raw.media.iter().zip(&used).find(|(_, u)| !**u) {
+        return Err(cx.err(
+            &k.0.span(),
+            format!("media.{}", k.0.get_ref()),
+            "no shape names this medium as its interior or exterior, and the camera is not in it",
+        ));
+    }
+    Ok((media, camera_medium))
 }

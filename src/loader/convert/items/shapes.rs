@@ -97,16 +97,24 @@ pub(super) fn shape(
 ) -> R<ShapeDesc> {
     let sp = s.span();
     let s = s.get_ref();
-    let all = present!(s; kind, material, file, center, radius, transform, two_sided, emission, vertices, faces);
+    let all = present!(s; kind, material, file, center, radius, transform, two_sided, emission, vertices, faces, interior, exterior);
     let names: Vec<&str> = SHAPES.iter().map(|k| k.name).collect();
     let field = format!("{f}.type");
     let ty = cx.required(&s.kind, &sp, &field, &names.join(", "))?;
     let k = &SHAPES[cx.kind_index(ty.get_ref(), &ty.span(), &field, "shape", &names)?];
-    let allowed: Vec<&str> = ["kind", "material", "transform", "two_sided", "emission"]
-        .iter()
-        .chain(k.keys)
-        .copied()
-        .collect();
+    let allowed: Vec<&str> = [
+        "kind",
+        "material",
+        "transform",
+        "two_sided",
+        "emission",
+        "interior",
+        "exterior",
+    ]
+    .iter()
+    .chain(k.keys)
+    .copied()
+    .collect();
     cx.only(k.what, &f, &all, &allowed)?;
     let kind = (k.read)(cx, s, &sp, &f)?;
     let transform = match &s.transform {
