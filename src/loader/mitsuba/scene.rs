@@ -54,7 +54,11 @@ pub(super) fn scene(
         let (Some(n), Some(v)) = (c.attr("name"), c.attr("value")) else {
             return Err(cx.err(c, "a <default> needs name and value"));
         };
-        cx.params.insert(n.to_string(), v.to_string());
+        // the first definition wins, as in Mitsuba 3.9.1 (a scene's default before an include
+        // that defaults the same name keeps the scene's)
+        cx.params
+            .entry(n.to_string())
+            .or_insert_with(|| v.to_string());
     }
     cx.substitute(&mut root)?;
     for c in &root.children {
