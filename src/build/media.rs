@@ -18,8 +18,10 @@ pub(super) fn medium(d: &MediumDesc, range: WavelengthRange) -> Result<Medium, (
             let (sigma_t, albedo) = match coefficients {
                 Coefficients::Extinction { sigma_t, albedo } => {
                     check(sigma_t, range, "sigma_t", f32::INFINITY)?;
-                    check(albedo, range, "albedo", 1.0)?;
-                    (sigma_t.clone(), albedo.clone())
+                    if let VolumeDesc::Constant { value, .. } = albedo {
+                        check(value, range, "albedo", 1.0)?;
+                    }
+                    (sigma_t.clone(), volume(albedo, range, "albedo")?.0)
                 }
                 Coefficients::AbsorptionScattering { sigma_a, sigma_s } => {
                     check(sigma_a, range, "sigma_a", f32::INFINITY)?;
@@ -29,7 +31,7 @@ pub(super) fn medium(d: &MediumDesc, range: WavelengthRange) -> Result<Medium, (
                         let t = t(l);
                         if t > 0.0 { sigma_s.eval(l) / t } else { 0.0 }
                     };
-                    (tabulate(range, t), tabulate(range, a))
+                    (tabulate(range, t), Volume::Constant(tabulate(range, a)))
                 }
             };
             Ok(Medium::Homogeneous(Homogeneous {
@@ -53,7 +55,8 @@ pub(super) fn medium(d: &MediumDesc, range: WavelengthRange) -> Result<Medium, (
                 scale,
                 phase: *phase,
                 to_local,
-                majorant: scale * max,
+                // a margin over the bound for the rounding of interpolation
+                majorant: scale * max * (1.0 + 1e-5),
             }))
         }
     }

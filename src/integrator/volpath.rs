@@ -109,6 +109,7 @@ pub(super) fn radiance<const N: usize>(
                 path.prev_n = Vec3::ZERO;
                 path.specular = false;
                 ray = Ray::new(p, ps.wi);
+                crossings = 0;
                 if !roulette(it, &mut path, w, s) {
                     break;
                 }
@@ -145,7 +146,8 @@ pub(super) fn radiance<const N: usize>(
         };
         // 4. Index-matched crossings (`null`, a thin sheet's transmission): not a scattering
         // event; the ray goes on in the medium on the other side.
-        let pass = sh.bsdf.material.null_transmission(hit.n_geom.dot(ray.d));
+        // the sheet's R at the shading normal's incidence, as shadow rays evaluate it
+        let pass = sh.bsdf.material.null_transmission(hit.n_shading.dot(ray.d));
         if pass > 0.0 {
             // a thin sheet: transmission with probability 1 − R (weight 1; next-event
             // estimation's density has no such factor), else its mirror reflection, a delta
@@ -168,7 +170,9 @@ pub(super) fn radiance<const N: usize>(
             }
             path.depth += 1;
             path.specular = true;
-            let d = ray.d - 2.0 * ray.d.dot(sh.frame.n) * sh.frame.n;
+            let n = hit.n_shading;
+            let d = ray.d - 2.0 * ray.d.dot(n) * n;
+            path.medium = it.medium_after(&hit, d, path.medium);
             ray = spawn_ray(hit.p, hit.p_error, sh.n_geom_toward(d), d);
             crossings = 0;
             if !roulette(it, &mut path, w, s) {
@@ -198,6 +202,12 @@ pub(super) fn radiance<const N: usize>(
         else {
             break;
         };
+        // terminated wavelengths carry nothing (their values may be anything)
+        for j in 1..N {
+            if w.pdf[j] == 0.0 {
+                path.beta[j] = 0.0;
+            }
+        }
         if bs.transmission {
             path.eta_scale *= bs.eta * bs.eta;
         }
@@ -225,7 +235,7 @@ fn emitted<const N: usize>(
     p_light: f32,
     w: &SampledWavelengths<N>,
 ) -> SampledSpectrum<N> {
-    let d = if path.specular {
+    let d = if path.specular || p_light <= 0.0 {
         live_average(path.r_u, w)
     } else {
         live_average(path.r_u + path.r_l * p_light, w)
@@ -406,7 +416,9 @@ impl Integrator<'_> {
                 return (tr, pass);
             };
             let sheet = match scene.surfaces[hit.shape as usize].material {
-                Some(mat) => scene.materials[mat as usize].null_transmission(hit.n_geom.dot(ray.d)),
+                Some(mat) => {
+                    scene.materials[mat as usize].null_transmission(hit.n_shading.dot(ray.d))
+                }
                 None => 0.0,
             };
             tr *= sheet;

@@ -45,6 +45,9 @@ impl PhaseFunction {
         let cos = (-wo.dot(wi)).clamp(-1.0, 1.0);
         match self {
             PhaseFunction::Isotropic => 1.0 / (4.0 * PI),
+            // below G_ISOTROPIC sampled as isotropic, so evaluated as isotropic too: the
+            // sample's value over its pdf stays 1 (within 3|g| < 0.3 % of the true lobe)
+            PhaseFunction::HenyeyGreenstein { g } if g.abs() < G_ISOTROPIC => 1.0 / (4.0 * PI),
             PhaseFunction::HenyeyGreenstein { g } => henyey_greenstein(cos, g),
             PhaseFunction::Rayleigh => 3.0 / (16.0 * PI) * (1.0 + cos * cos),
         }
