@@ -9,7 +9,9 @@
 //! segments is the balance heuristic (Veach 1997 §9.2.4; Wilkie et al. 2014; Miller, Georgiev
 //! and Jarosz 2019 §5). [`Flight::weight`] does it for one segment alone.
 
-use super::PhaseFunction;
+use glam::Vec3;
+
+use super::{PhaseFunction, Volume};
 use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
 
 /// A homogeneous medium. Coefficients are per metre.
@@ -17,8 +19,9 @@ use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
 pub struct Homogeneous {
     /// Extinction coefficient σt(λ) = σa + σs, m⁻¹ (λ in nm).
     pub sigma_t: Spectrum,
-    /// Single-scattering albedo σs/σt, dimensionless in [0, 1].
-    pub albedo: Spectrum,
+    /// Single-scattering albedo σs/σt, dimensionless in [0, 1]: a spectrum, or a volume
+    /// (Mitsuba's `homogeneous` takes a textured albedo with a constant extinction).
+    pub albedo: Volume,
     /// The phase function of its scattering.
     pub phase: PhaseFunction,
 }
@@ -71,7 +74,10 @@ impl Homogeneous {
     /// flights are not sampled and the transmittance is applied as a weight.
     #[inline]
     pub fn absorbs_only<const N: usize>(&self, w: &SampledWavelengths<N>) -> bool {
-        self.albedo.sample(w).is_zero()
+        match &self.albedo {
+            Volume::Constant(a) => a.sample(w).is_zero(),
+            Volume::Grid { .. } => false,
+        }
     }
 
     /// Beer–Lambert transmittance exp(−σt(λ) t) over `t` metres.
@@ -84,7 +90,8 @@ impl Homogeneous {
         self.sigma_t(w).map(|s| beer_lambert(s, t))
     }
 
-    /// Samples a free flight of at most `t_max` metres (may be infinite) from a uniform `u`:
+    /// Samples a free flight along `o + t d` (d unit) of at most `t_max` metres (may be
+    /// infinite) from a uniform `u`:
     /// t = −ln(1 − u)/σt(λ₀), a scattering event if t < `t_max`. A medium with σt(λ₀) = 0 is
     /// passed through; one that only absorbs is passed with its transmittance as the weight
     /// (and densities 1).
@@ -92,6 +99,8 @@ impl Homogeneous {
     pub fn sample_flight<const N: usize>(
         &self,
         u: f32,
+        o: Vec3,
+        d: Vec3,
         t_max: f32,
         w: &SampledWavelengths<N>,
     ) -> Flight<N> {
@@ -113,7 +122,7 @@ impl Homogeneous {
         };
         if t < t_max {
             let tr = sigma_t.map(|s| (-s * t).exp());
-            let sigma_s = sigma_t * self.albedo.sample(w);
+            let sigma_s = sigma_t * self.albedo.eval(o + d * t, w);
             return Flight::Scatter {
                 t,
                 f: tr * sigma_s,
@@ -155,7 +164,7 @@ mod tests {
         };
         Homogeneous {
             sigma_t: table(&|l| at(sa, l) + at(ss, l)),
-            albedo: table(&|l| at(ss, l) / (at(sa, l) + at(ss, l))),
+            albedo: Volume::Constant(table(&|l| at(ss, l) / (at(sa, l) + at(ss, l)))),
             phase: PhaseFunction::Isotropic,
         }
     }
@@ -203,7 +212,7 @@ mod tests {
             let h = i % 4;
             let w = wavelengths(h);
             let u = ((i / 4) as f32 + 0.5) / (n / 4) as f32;
-            let flight = m.sample_flight(u, t_max, &w);
+            let flight = m.sample_flight(u, Vec3::ZERO, Vec3::Z, t_max, &w);
             let weight = flight.weight(&w);
             for j in 0..4 {
                 let member = (h + j) % 4;
@@ -251,7 +260,7 @@ mod tests {
         let x = (w.lambda[0] - 400.0) / 300.0;
         let albedo = (2.0 - x) / (1.0 + 6.0 * x + 2.0 - x);
         for u in [0.1, 0.5, 0.9] {
-            let flight = m.sample_flight(u, 0.3, &w);
+            let flight = m.sample_flight(u, Vec3::ZERO, Vec3::Z, 0.3, &w);
             let weight = flight.weight(&w);
             match flight {
                 Flight::Scatter { .. } => {

@@ -48,7 +48,7 @@ impl Medium {
         u: &mut impl FnMut() -> f32,
     ) -> Walk<N> {
         match self {
-            Medium::Homogeneous(m) => match m.sample_flight(u(), t_max, w) {
+            Medium::Homogeneous(m) => match m.sample_flight(u(), o, d, t_max, w) {
                 Flight::Scatter { t, f, pdf } => Walk {
                     t: Some(t),
                     beta: f / pdf[0],

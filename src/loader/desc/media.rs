@@ -61,9 +61,12 @@ pub enum VolumeDesc {
 /// A homogeneous medium's coefficients, as the file gives them.
 #[derive(Clone, Debug)]
 pub enum Coefficients {
-    /// Extinction σt(λ), m⁻¹, and single-scattering albedo σs/σt in [0, 1] (Mitsuba's
-    /// `sigma_t` × `scale` and `albedo`).
-    Extinction { sigma_t: Spectrum, albedo: Spectrum },
+    /// Extinction σt(λ), m⁻¹, and single-scattering albedo σs/σt in [0, 1], a spectrum or a
+    /// volume (Mitsuba's `sigma_t` × `scale` and `albedo`).
+    Extinction {
+        sigma_t: Spectrum,
+        albedo: VolumeDesc,
+    },
     /// Absorption σa(λ) and scattering σs(λ), m⁻¹.
     AbsorptionScattering {
         sigma_a: Spectrum,

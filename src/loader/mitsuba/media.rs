@@ -72,19 +72,17 @@ fn homogeneous(cx: &Cx<'_>, e: &Element) -> R<MediumKind> {
             format!("scale must be finite and not negative, not {scale}"),
         ));
     }
-    for (name, c) in ["sigma_t", "albedo"].map(|n| (n, cx.child(e, n))) {
-        if let Some(c) = c.filter(|c| c.tag == "volume") {
-            let what = c.attr("type").unwrap_or("?");
-            return Err(cx.err(
-                c,
-                format!("{name} as a <volume type=\"{what}\"> is not supported yet; give a <float>, <spectrum> or <rgb>"),
-            ));
-        }
+    if let Some(c) = cx.child(e, "sigma_t").filter(|c| c.tag == "volume") {
+        return Err(cx.err(
+            c,
+            "a homogeneous medium's sigma_t is one value or spectrum; a <volume> extinction makes it heterogeneous",
+        ));
     }
     let sigma_t = cx
         .spectrum_prop(e, "sigma_t", 1.0, false)?
         .scaled(scale as f32);
-    let albedo = cx.spectrum_prop(e, "albedo", 0.75, false)?;
+    let albedo = volume(cx, e, "albedo", 0.75)?;
+    note_albedo_above_one(cx, e, &albedo);
     Ok(MediumKind::Homogeneous {
         coefficients: Coefficients::Extinction { sigma_t, albedo },
         phase: phase(cx, e)?,
@@ -108,7 +106,20 @@ fn heterogeneous(cx: &Cx<'_>, e: &Element) -> R<MediumKind> {
     }
     let density = volume(cx, e, "sigma_t", 1.0)?;
     let albedo = volume(cx, e, "albedo", 0.75)?;
-    if let VolumeDesc::Grid { values, file, .. } = &albedo {
+    note_albedo_above_one(cx, e, &albedo);
+    Ok(MediumKind::Heterogeneous {
+        density,
+        albedo,
+        scale,
+        phase: phase(cx, e)?,
+    })
+}
+
+/// A note when an albedo grid holds values above 1 (Mitsuba's own test grid does): such a
+/// medium creates energy, and is read as Mitsuba reads it. A constant albedo above 1 is an
+/// error (in the build step).
+fn note_albedo_above_one(cx: &Cx<'_>, e: &Element, albedo: &VolumeDesc) {
+    if let VolumeDesc::Grid { values, file, .. } = albedo {
         let max = values.iter().copied().fold(0.0f32, f32::max);
         if max > 1.0 {
             cx.note(
@@ -120,12 +131,6 @@ fn heterogeneous(cx: &Cx<'_>, e: &Element) -> R<MediumKind> {
             );
         }
     }
-    Ok(MediumKind::Heterogeneous {
-        density,
-        albedo,
-        scale,
-        phase: phase(cx, e)?,
-    })
 }
 
 /// The volume property `name` of `e`: a `<volume>` (`gridvolume`, `constvolume`), or a

@@ -95,7 +95,13 @@ pub(super) fn medium(
         };
         let albedo = cx.spectrum(a, &format!("{f}.albedo"), SpectrumUse::Reflectance)?;
         at_most_one(cx, &albedo, a, &format!("{f}.albedo"), range)?;
-        Coefficients::Extinction { sigma_t, albedo }
+        Coefficients::Extinction {
+            sigma_t,
+            albedo: VolumeDesc::Constant {
+                value: albedo,
+                to_world: Vec::new(),
+            },
+        }
     } else {
         if let Some(v) = keys.get("albedo") {
             return Err(cx.err(&v.span(), format!("{f}.albedo"), "albedo goes with sigma_t"));
