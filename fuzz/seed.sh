@@ -17,3 +17,4 @@ seed obj $(find scenes tests benchmarks -name '*.obj')
 seed ply $(find scenes tests benchmarks -name '*.ply')
 seed spectrum_csv spectra/*.csv $(find tests -name '*.csv')
 seed photometric scenes/luminaires/*
+seed vol $(find tests -name '*.vol')

@@ -32,6 +32,8 @@ mod spectra;
 mod textures;
 mod transform;
 mod vol;
+
+pub use vol::{VolFile, parse as parse_vol};
 mod xml;
 
 use std::collections::HashMap;

@@ -12,7 +12,7 @@ const HEADER: usize = 48;
 const MAX_VALUES: u64 = 1 << 31;
 
 /// A grid file's contents.
-pub(super) struct VolFile {
+pub struct VolFile {
     pub res: [usize; 3],
     pub channels: usize,
     /// The bounds the file declares: minimum and maximum corner.
@@ -27,7 +27,8 @@ pub(super) fn read(path: &Path) -> Result<VolFile, String> {
     parse(&bytes).map_err(|e| format!("{}: {e}", path.display()))
 }
 
-fn parse(b: &[u8]) -> Result<VolFile, String> {
+/// Parses the bytes of a `.vol` file (see the module's doc); errors say what is wrong.
+pub fn parse(b: &[u8]) -> Result<VolFile, String> {
     if b.len() < HEADER || &b[0..3] != b"VOL" {
         return Err("not a Mitsuba .vol grid (it does not start with \"VOL\")".into());
     }

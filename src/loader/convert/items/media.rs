@@ -154,7 +154,13 @@ pub(super) fn medium(
 fn coefficient(cx: &Cx<'_>, v: &S<Value>, field: &str) -> R<Spectrum> {
     let per_m = |q: Attenuation| q.get::<attenuation::per_meter>() as f32;
     match v.get_ref() {
-        Value::String(_) => Ok(Spectrum::Constant(per_m(cx.quantity::<Attenuation>(v, field)?))),
+        Value::String(_) => {
+            let q = per_m(cx.quantity::<Attenuation>(v, field)?);
+            if q < 0.0 {
+                return Err(cx.err(&v.span(), field, "must not be negative: a coefficient is at least 0"));
+            }
+            Ok(Spectrum::Constant(q))
+        }
         Value::Table(t) => {
             let get = |k: &str| -> R<S<Value>> {
                 t.get(k).map(|x| S::new(v.span(), x.clone())).ok_or_else(|| {
@@ -166,6 +172,13 @@ fn coefficient(cx: &Cx<'_>, v: &S<Value>, field: &str) -> R<Spectrum> {
             }
             let shape = cx.spectrum(&get("spectrum")?, &format!("{field}.spectrum"), SpectrumUse::Reflectance)?;
             let scale = cx.quantity::<Attenuation>(&get("scale")?, &format!("{field}.scale"))?;
+            if scale.get::<attenuation::per_meter>() < 0.0 {
+                return Err(cx.err(
+                    &v.span(),
+                    format!("{field}.scale"),
+                    "must not be negative: a coefficient is at least 0",
+                ));
+            }
             Ok(shape.scaled(per_m(scale)))
         }
         other => Err(cx.err(

@@ -254,7 +254,22 @@ fn scene_media(
     let names: Vec<&str> = raw.media.keys().map(|k| k.get_ref().as_str()).collect();
     let mut used = vec![false; names.len()];
     let mut index = |v: &S<String>, field: String| -> R<usize> {
-        let i = cx.kind_index(v.get_ref(), &v.span(), &field, "medium", &names)?;
+        let name = v.get_ref().as_str();
+        let Some(i) = names.iter().position(|n| *n == name) else {
+            return Err(cx.err(
+                &v.span(),
+                field,
+                format!(
+                    "no medium is named \"{name}\"{}; the scene's media: {}",
+                    crate::params::did_you_mean(name, names.iter().copied()),
+                    if names.is_empty() {
+                        "none (declare one as [media.NAME])".to_string()
+                    } else {
+                        names.join(", ")
+                    }
+                ),
+            ));
+        };
         used[i] = true;
         Ok(i)
     };
