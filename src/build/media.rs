@@ -3,13 +3,45 @@
 
 use std::sync::Arc;
 
+use crate::loader::LoadError;
 use crate::loader::desc::{Coefficients, MediumDesc, MediumKind, SceneDesc, ShapeDesc, VolumeDesc};
 use crate::medium::{Grid, Heterogeneous, Homogeneous, Medium, MediumInterface, Volume};
 use crate::spectrum::{PiecewiseLinear, Spectrum, WavelengthRange};
 
-/// The scene's media; an error names the field and the wavelength where a coefficient is
+/// The scene's media and the media on either side of each of its `surfaces` shapes. Media are
+/// rendered by `path` alone so far: any other integrator is an error rather than a render that
+/// ignores them.
+pub(super) fn scene_media(
+    desc: &SceneDesc,
+    range: WavelengthRange,
+    surfaces: usize,
+) -> Result<(Vec<Medium>, Vec<MediumInterface>), LoadError> {
+    let err =
+        |m: &MediumDesc, field: String, msg: String| LoadError::new(&desc.path, m.loc, field, msg);
+    let media = desc
+        .media
+        .iter()
+        .map(|m| medium(m, range).map_err(|(f, e)| err(m, format!("media.{}.{f}", m.name), e)))
+        .collect::<Result<Vec<_>, _>>()?;
+    if let Some(m) = desc.media.first()
+        && desc.integrator.kind != crate::scene::IntegratorKind::Path
+    {
+        return Err(err(
+            m,
+            "integrator".into(),
+            format!(
+                "media (\"{}\") are rendered by the path integrator only so far; {} would ignore them",
+                m.name,
+                desc.integrator.kind.name()
+            ),
+        ));
+    }
+    Ok((media, interfaces(desc, surfaces)))
+}
+
+/// A medium made render-ready; an error names the field and the wavelength where a coefficient is
 /// negative or not finite, or an albedo leaves [0, 1].
-pub(super) fn medium(d: &MediumDesc, range: WavelengthRange) -> Result<Medium, (String, String)> {
+fn medium(d: &MediumDesc, range: WavelengthRange) -> Result<Medium, (String, String)> {
     match &d.kind {
         MediumKind::Homogeneous {
             coefficients,
@@ -108,7 +140,7 @@ fn volume(
 
 /// The media on either side of each shape of the scene (groups' shapes have none), or an
 /// empty table for a scene without media.
-pub(super) fn interfaces(desc: &SceneDesc, surfaces: usize) -> Vec<MediumInterface> {
+fn interfaces(desc: &SceneDesc, surfaces: usize) -> Vec<MediumInterface> {
     if desc.media.is_empty() {
         return Vec::new();
     }

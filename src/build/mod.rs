@@ -96,27 +96,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         .collect();
     let light_tree = crate::light::LightTree::build(&light_bounds, &light_power);
     let camera = camera(desc).map_err(|e| err(desc.camera.loc, "camera".into(), e))?;
-    let media = desc
-        .media
-        .iter()
-        .map(|m| {
-            media::medium(m, range).map_err(|(f, e)| err(m.loc, format!("media.{}.{f}", m.name), e))
-        })
-        .collect::<Result<Vec<_>, _>>()?;
-    let medium_interfaces = media::interfaces(desc, surfaces.len());
-    if let Some(m) = desc.media.first()
-        && desc.integrator.kind != crate::scene::IntegratorKind::Path
-    {
-        return Err(err(
-            m.loc,
-            "integrator".into(),
-            format!(
-                "media (\"{}\") are rendered by the path integrator only so far; {} would ignore them",
-                m.name,
-                desc.integrator.kind.name()
-            ),
-        ));
-    }
+    let (media, medium_interfaces) = media::scene_media(desc, range, surfaces.len())?;
     let f = &desc.film;
     let infinite_lights = (0..lights.len() as u32)
         .filter(|&i| lights[i as usize].is_at_infinity())
@@ -150,24 +130,28 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         wavelengths: range,
         bounds,
         meters: desc.sensors.iter().map(meter).collect(),
-        camera_sensor: match &desc.camera.sensor {
-            None => None,
-            Some(s) => Some(
-                crate::sensor::CameraSensor::new(
-                    s.name.clone(),
-                    s.curves.clone(),
-                    s.iso,
-                    s.shutter.get::<crate::units::time::second>(),
-                    s.f_number,
-                    s.white_balance.clone(),
-                )
-                .map_err(|e| err(desc.camera.loc, "camera.sensor".into(), e))?,
-            ),
-        },
+        camera_sensor: camera_sensor(desc)
+            .map_err(|e| err(desc.camera.loc, "camera.sensor".into(), e))?,
         media,
         medium_interfaces,
         camera_medium: desc.camera_medium.map(|m| m as u32),
     })
+}
+
+/// The camera's sensor, if the scene gives one.
+fn camera_sensor(desc: &SceneDesc) -> Result<Option<crate::sensor::CameraSensor>, String> {
+    let Some(s) = &desc.camera.sensor else {
+        return Ok(None);
+    };
+    crate::sensor::CameraSensor::new(
+        s.name.clone(),
+        s.curves.clone(),
+        s.iso,
+        s.shutter.get::<crate::units::time::second>(),
+        s.f_number,
+        s.white_balance.clone(),
+    )
+    .map(Some)
 }
 
 /// A meter's points in metres: a grid's at the centres of its cells.

@@ -41,6 +41,7 @@ pub mod fresnel;
 mod lambert;
 mod mask;
 pub mod microfacet;
+mod null;
 mod perturb;
 mod phong;
 mod plastic;
@@ -54,6 +55,7 @@ pub use conductor::{Conductor, RoughConductor};
 pub use dielectric::Dielectric;
 pub use lambert::Lambert;
 pub use mask::Mask;
+pub use null::thin_reflectance;
 pub use perturb::{BumpMap, LocalSurface, NormalMap};
 pub use phong::Phong;
 pub use plastic::{Plastic, RoughCoating, fresnel_diffuse_reflectance};
@@ -273,19 +275,6 @@ impl Material {
         self.at(Vec2::ZERO, w).sample(wo, w, uc, u, mode)
     }
 
-    /// The fraction of light that crosses the surface undeviated at incidence cosine `cos`
-    /// (Mitsuba's `eval_null_transmission`): 1 for `null`, 1 − R for `thindielectric` (R its
-    /// reflectance with inner reflections), 0 for every other material (a shadow ray stops
-    /// there). Wavelength-independent.
-    #[inline]
-    pub fn null_transmission(&self, cos: f32) -> f32 {
-        match self {
-            Material::Null => 1.0,
-            Material::ThinDielectric { eta } => 1.0 - thin_reflectance(cos.abs(), *eta),
-            _ => 0.0,
-        }
-    }
-
     /// Whether the material has only delta lobes (smooth dielectric, smooth conductor), so that
     /// light sampling (next-event estimation) is pointless.
     #[inline]
@@ -397,12 +386,4 @@ impl Material {
             | Material::Plastic(_) => false,
         }
     }
-}
-
-/// A thin dielectric sheet's reflectance with its inner reflections, R = 2F/(1 + F), for the
-/// Fresnel reflectance F at incidence cosine `cos` (in [0, 1]) and relative index `eta`.
-#[inline]
-pub fn thin_reflectance(cos: f32, eta: f32) -> f32 {
-    let f = fresnel::fresnel_dielectric(cos, eta);
-    2.0 * f / (1.0 + f)
 }

@@ -38,6 +38,17 @@ pub(super) fn medium_index(cx: &Cx<'_>, e: &Element, name: &str) -> R<usize> {
     Ok(media.len() - 1)
 }
 
+/// The medium a `<sensor>` sits in (its `<ref name="medium">` or nested `<medium
+/// name="medium">`), if any.
+pub(super) fn sensor_medium(cx: &Cx<'_>, sensor: &Element) -> R<Option<usize>> {
+    sensor
+        .children
+        .iter()
+        .find(|m| matches!(m.tag.as_str(), "ref" | "medium") && m.attr("name") == Some("medium"))
+        .map(|m| medium_index(cx, m, "sensor medium"))
+        .transpose()
+}
+
 /// A `<medium>` element; `name` identifies it in messages.
 fn medium(cx: &Cx<'_>, e: &Element, name: &str) -> R<MediumDesc> {
     let e = cx.resolve(e)?;
@@ -250,4 +261,50 @@ fn phase(cx: &Cx<'_>, e: &Element) -> R<PhaseFunction> {
         }
         other => Err(cx.unsupported(p, "phase", other)),
     }
+}
+
+/// The media the shapes and the sensor refer to. A top-level medium nobody refers to is an
+/// error (a scene that declares a fog and shows none is a mistake). Mitsuba's `path` and
+/// `direct` integrators ignore media, so under them (`volumetric` false) the media are
+/// dropped, with a note.
+pub(super) fn scene_media(
+    cx: &Cx<'_>,
+    root: &Element,
+    volumetric: bool,
+    shapes: &mut [crate::loader::desc::ShapeDesc],
+    camera_medium: &mut Option<usize>,
+) -> R<Vec<crate::loader::desc::MediumDesc>> {
+    let read = cx.media.borrow();
+    for c in root.children.iter().filter(|c| c.tag == "medium") {
+        if !read.iter().any(|(k, _)| *k == (c.src, c.pos)) {
+            return Err(cx.err(
+                c,
+                format!(
+                    "medium \"{}\" is declared but no shape or sensor refers to it (give a shape <ref id=\"{}\" name=\"interior\"/>)",
+                    c.attr("id").unwrap_or_default(),
+                    c.attr("id").unwrap_or_default()
+                ),
+            ));
+        }
+    }
+    if read.is_empty() {
+        return Ok(Vec::new());
+    }
+    if !volumetric {
+        let first = &read[0].1;
+        cx.note(
+            root,
+            format!(
+                "the scene's media (first: \"{}\") are ignored: Mitsuba's path and direct integrators render surfaces only (use volpath)",
+                first.name
+            ),
+        );
+        for s in shapes.iter_mut() {
+            s.interior = None;
+            s.exterior = None;
+        }
+        *camera_medium = None;
+        return Ok(Vec::new());
+    }
+    Ok(read.iter().map(|(_, d)| d.clone()).collect())
 }

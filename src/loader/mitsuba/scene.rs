@@ -208,11 +208,7 @@ fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
             "integrator" => volumetric = integrator_settings(cx, c, &mut integrator)?,
             "sensor" => {
                 camera = Some(sensor(cx, c, &mut film)?);
-                if let Some(m) = c.children.iter().find(|m| {
-                    matches!(m.tag.as_str(), "ref" | "medium") && m.attr("name") == Some("medium")
-                }) {
-                    camera_medium = Some(super::media::medium_index(cx, m, "sensor medium")?);
-                }
+                camera_medium = super::media::sensor_medium(cx, c)?;
             }
             "bsdf" => {
                 if let Some(id) = c.attr("id") {
@@ -270,7 +266,7 @@ fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
     if weighted {
         integrator.light_selection = LightSelection::Uniform;
     }
-    let media = scene_media(cx, root, volumetric, &mut shapes, &mut camera_medium)?;
+    let media = super::media::scene_media(cx, root, volumetric, &mut shapes, &mut camera_medium)?;
     cx.check_unreferenced(root)?;
     let nm = |x: f64| Length::new::<length::nanometer>(x);
     Ok(SceneDesc {
@@ -323,52 +319,6 @@ fn max_depth(cx: &Cx<'_>, d: &Element) -> R<u32> {
         )),
         n => Ok((n - 1) as u32),
     }
-}
-
-/// The media the shapes and the sensor refer to. A top-level medium nobody refers to is an
-/// error (a scene that declares a fog and shows none is a mistake). Mitsuba's `path` and
-/// `direct` integrators ignore media, so under them (`volumetric` false) the media are
-/// dropped, with a note.
-fn scene_media(
-    cx: &Cx<'_>,
-    root: &Element,
-    volumetric: bool,
-    shapes: &mut [ShapeDesc],
-    camera_medium: &mut Option<usize>,
-) -> R<Vec<crate::loader::desc::MediumDesc>> {
-    let read = cx.media.borrow();
-    for c in root.children.iter().filter(|c| c.tag == "medium") {
-        if !read.iter().any(|(k, _)| *k == (c.src, c.pos)) {
-            return Err(cx.err(
-                c,
-                format!(
-                    "medium \"{}\" is declared but no shape or sensor refers to it (give a shape <ref id=\"{}\" name=\"interior\"/>)",
-                    c.attr("id").unwrap_or_default(),
-                    c.attr("id").unwrap_or_default()
-                ),
-            ));
-        }
-    }
-    if read.is_empty() {
-        return Ok(Vec::new());
-    }
-    if !volumetric {
-        let first = &read[0].1;
-        cx.note(
-            root,
-            format!(
-                "the scene's media (first: \"{}\") are ignored: Mitsuba's path and direct integrators render surfaces only (use volpath)",
-                first.name
-            ),
-        );
-        for s in shapes.iter_mut() {
-            s.interior = None;
-            s.exterior = None;
-        }
-        *camera_medium = None;
-        return Ok(Vec::new());
-    }
-    Ok(read.iter().map(|(_, d)| d.clone()).collect())
 }
 
 /// An `<integrator>`: `path`, and `volpath` and `volpathmis` (spectrace's volumetric path
