@@ -46,7 +46,11 @@ fn medium(d: &MediumDesc, range: WavelengthRange) -> Result<Medium, (String, Str
         MediumKind::Homogeneous {
             coefficients,
             phase,
+            emission,
         } => {
+            if let Some(e) = emission {
+                check(e, range, "emission", f32::INFINITY)?;
+            }
             let (sigma_t, albedo) = match coefficients {
                 Coefficients::Extinction { sigma_t, albedo } => {
                     check(sigma_t, range, "sigma_t", f32::INFINITY)?;
@@ -70,6 +74,7 @@ fn medium(d: &MediumDesc, range: WavelengthRange) -> Result<Medium, (String, Str
                 sigma_t,
                 albedo,
                 phase: *phase,
+                emission: emission.clone(),
             }))
         }
         MediumKind::Heterogeneous {

@@ -39,6 +39,11 @@ pub struct Walk<const N: usize> {
     pub beta: SampledSpectrum<N>,
     pub r_u: SampledSpectrum<N>,
     pub r_l: SampledSpectrum<N>,
+    /// The medium's emission collected on the way, as a value and, per wavelength, the
+    /// density of the event that collected it had that wavelength been the hero (both
+    /// relative to the path before this flight): the path adds β·value / avg(r_u·density).
+    /// Next-event estimation does not sample media, so no other technique weighs in.
+    pub emitted: Option<(SampledSpectrum<N>, SampledSpectrum<N>)>,
 }
 
 impl Heterogeneous {
@@ -98,6 +103,7 @@ impl Heterogeneous {
             beta: one,
             r_u: one,
             r_l: one,
+            emitted: None,
         };
         let Some((t0, t1)) = self.clip(o, d, t_max) else {
             return walk;

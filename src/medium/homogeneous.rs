@@ -24,6 +24,8 @@ pub struct Homogeneous {
     pub albedo: Volume,
     /// The phase function of its scattering.
     pub phase: PhaseFunction,
+    /// Emitted radiance Le(λ), W·m⁻²·sr⁻¹·nm⁻¹ (source term σa·Le); None: none.
+    pub emission: Option<Spectrum>,
 }
 
 /// The outcome of a free flight sampled along a segment of length `t_max`, per wavelength of
@@ -77,6 +79,37 @@ impl Homogeneous {
         match &self.albedo {
             Volume::Constant(a) => a.sample(w).is_zero(),
             Volume::Grid { .. } => false,
+        }
+    }
+
+    /// The medium's emission collected along the free flight `flight` sampled over
+    /// `o + t d`, t < `t_max`, as a value and its density per wavelength (see
+    /// [`super::Walk::emitted`]): the exact integral ∫ Tr σa Le over the segment when nothing
+    /// scatters (no distance was sampled), else the collision estimator at a scattering event
+    /// (Tr(t)·σa(t)·Le over the density σt·Tr(t)), and nothing at a pass.
+    pub fn emitted<const N: usize>(
+        &self,
+        flight: &Flight<N>,
+        o: Vec3,
+        d: Vec3,
+        t_max: f32,
+        w: &SampledWavelengths<N>,
+    ) -> Option<(SampledSpectrum<N>, SampledSpectrum<N>)> {
+        let le = self.emission.as_ref()?.sample(w);
+        let sigma_t = self.sigma_t(w);
+        match *flight {
+            Flight::Scatter { t, pdf, .. } => {
+                let albedo = self.albedo.eval(o + d * t, w);
+                let sigma_a = sigma_t - sigma_t * albedo;
+                let tr = sigma_t.map(|s| beer_lambert(s, t));
+                Some((tr * sigma_a * le, pdf))
+            }
+            Flight::Pass { pdf, .. } if self.absorbs_only(w) => {
+                // ∫₀^t_max e^{−σa s} σa Le ds = Le (1 − e^{−σa t_max})
+                let tr = sigma_t.map(|s| beer_lambert(s, t_max));
+                Some((le * (SampledSpectrum::splat(1.0) - tr), pdf))
+            }
+            Flight::Pass { .. } => None,
         }
     }
 
@@ -166,6 +199,7 @@ mod tests {
             sigma_t: table(&|l| at(sa, l) + at(ss, l)),
             albedo: Volume::Constant(table(&|l| at(ss, l) / (at(sa, l) + at(ss, l)))),
             phase: PhaseFunction::Isotropic,
+            emission: None,
         }
     }
 

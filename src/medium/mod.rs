@@ -48,22 +48,28 @@ impl Medium {
         u: &mut impl FnMut() -> f32,
     ) -> Walk<N> {
         match self {
-            Medium::Homogeneous(m) => match m.sample_flight(u(), o, d, t_max, w) {
-                Flight::Scatter { t, f, pdf } => Walk {
-                    t: Some(t),
-                    beta: f / pdf[0],
-                    r_u: pdf / pdf[0],
-                    r_l: SampledSpectrum::splat(1.0),
-                },
-                // the walk's density of passing is Tr; next-event estimation's has no such
-                // factor (it evaluates Tr exactly)
-                Flight::Pass { tr, pdf } => Walk {
-                    t: None,
-                    beta: tr / pdf[0],
-                    r_u: pdf / pdf[0],
-                    r_l: SampledSpectrum::splat(1.0 / pdf[0]),
-                },
-            },
+            Medium::Homogeneous(m) => {
+                let flight = m.sample_flight(u(), o, d, t_max, w);
+                let emitted = m.emitted(&flight, o, d, t_max, w);
+                match flight {
+                    Flight::Scatter { t, f, pdf } => Walk {
+                        t: Some(t),
+                        beta: f / pdf[0],
+                        r_u: pdf / pdf[0],
+                        r_l: SampledSpectrum::splat(1.0),
+                        emitted,
+                    },
+                    // the walk's density of passing is Tr; next-event estimation's has no
+                    // such factor (it evaluates Tr exactly)
+                    Flight::Pass { tr, pdf } => Walk {
+                        t: None,
+                        beta: tr / pdf[0],
+                        r_u: pdf / pdf[0],
+                        r_l: SampledSpectrum::splat(1.0 / pdf[0]),
+                        emitted,
+                    },
+                }
+            }
             Medium::Heterogeneous(m) => m.walk(o, d, t_max, w, u),
         }
     }

@@ -196,6 +196,13 @@ fn medium_step<const N: usize>(
     };
     let medium = &it.scene.media[m as usize];
     let walk = medium.walk(ray.o, ray.d, t_max, w, &mut || s.get_1d());
+    // the medium's own emission, found by the walk alone
+    if let Some((f, pdf)) = walk.emitted {
+        let d = live_average(path.r_u * pdf, w);
+        if d > 0.0 {
+            *l += path.beta * f / d;
+        }
+    }
     path.beta *= walk.beta;
     path.r_u *= walk.r_u;
     if !path.beta.is_finite() || path.beta.is_zero() {

@@ -25,6 +25,9 @@ pub enum MediumKind {
     Homogeneous {
         coefficients: Coefficients,
         phase: PhaseFunction,
+        /// The radiance the medium emits, W·m⁻²·sr⁻¹·nm⁻¹: its source term is σa·Le, so that a
+        /// medium thick enough glows at Le (Kirchhoff). None: it does not emit.
+        emission: Option<Spectrum>,
     },
     /// Extinction `scale` × `density`(p, λ) in m⁻¹ and albedo `albedo`(p, λ), inside the unit
     /// cube of the density volume's frame (Mitsuba's `heterogeneous`).

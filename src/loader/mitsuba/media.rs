@@ -95,6 +95,7 @@ fn homogeneous(cx: &Cx<'_>, e: &Element) -> R<MediumKind> {
     let albedo = volume(cx, e, "albedo", 0.75)?;
     note_albedo_above_one(cx, e, &albedo);
     Ok(MediumKind::Homogeneous {
+        emission: None,
         coefficients: Coefficients::Extinction { sigma_t, albedo },
         phase: phase(cx, e)?,
     })

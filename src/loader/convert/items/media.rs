@@ -28,6 +28,7 @@ use crate::units::{Attenuation, attenuation};
 /// The keys of a homogeneous medium.
 const KEYS: &[&str] = &[
     "type",
+    "emission",
     "sigma_a",
     "sigma_s",
     "sigma_t",
@@ -145,6 +146,10 @@ pub(super) fn medium(
         kind: MediumKind::Homogeneous {
             coefficients,
             phase,
+            emission: keys
+                .get("emission")
+                .map(|v| emission(cx, v, &format!("{f}.emission")))
+                .transpose()?,
         },
         loc: cx.src.span(&sp),
     })
@@ -188,6 +193,41 @@ fn coefficient(cx: &Cx<'_>, v: &S<Value>, field: &str) -> R<Spectrum> {
                 "expected an attenuation coefficient (e.g. \"0.5 1/m\") or {{ spectrum = …, scale = \"1 1/mm\" }}, found {}",
                 kind(other)
             ),
+        )),
+    }
+}
+
+/// The emitted radiance Le in W·m⁻²·sr⁻¹·nm⁻¹: a spectral radiance (`"0.01 W/m^2/sr/nm"`),
+/// the same at every wavelength, or `{ spectrum = <spectrum>, scale = <spectral radiance> }`.
+fn emission(cx: &Cx<'_>, v: &S<Value>, field: &str) -> R<Spectrum> {
+    use crate::units::SpectralRadiance;
+    use crate::units::spectral_radiance::watt_per_square_meter_steradian_nanometer as per_nm;
+    let value = |q: SpectralRadiance, f: &str| -> R<f32> {
+        let x = q.get::<per_nm>() as f32;
+        if x < 0.0 {
+            return Err(cx.err(&v.span(), f, "an emission cannot be negative"));
+        }
+        Ok(x)
+    };
+    match v.get_ref() {
+        Value::String(_) => Ok(Spectrum::Constant(value(cx.quantity(v, field)?, field)?)),
+        Value::Table(t) => {
+            if let Some(k) = t.keys().find(|k| *k != "spectrum" && *k != "scale") {
+                return Err(cx.err(&v.span(), format!("{field}.{k}"), "an emission table takes spectrum and scale"));
+            }
+            let get = |k: &str| -> R<S<Value>> {
+                t.get(k)
+                    .map(|x| S::new(v.span(), x.clone()))
+                    .ok_or_else(|| cx.err(&v.span(), format!("{field}.{k}"), "missing"))
+            };
+            let shape = cx.spectrum(&get("spectrum")?, &format!("{field}.spectrum"), SpectrumUse::Emission)?;
+            let f = format!("{field}.scale");
+            Ok(shape.scaled(value(cx.quantity(&get("scale")?, &f)?, &f)?))
+        }
+        other => Err(cx.err(
+            &v.span(),
+            field,
+            format!("expected a spectral radiance (e.g. \"0.01 W/m^2/sr/nm\") or {{ spectrum = …, scale = … }}, found {}", kind(other)),
         )),
     }
 }

@@ -122,11 +122,20 @@ pub(super) fn scene(cx: &mut Cx<'_>, raw: RawScene) -> R<SceneDesc> {
             "the camera sees nothing: the scene has no shapes and no environment light",
         ));
     }
-    if lights.is_empty() && !shapes.iter().any(|s| s.emission.is_some()) {
+    let emitting_medium = media.iter().any(|m| {
+        matches!(
+            m.kind,
+            MediumKind::Homogeneous {
+                emission: Some(_),
+                ..
+            }
+        )
+    });
+    if lights.is_empty() && !shapes.iter().any(|s| s.emission.is_some()) && !emitting_medium {
         return Err(cx.err(
             &WHOLE_FILE,
             "lights",
-            "the scene has no light source: add a [[lights]] entry or an `emission` to a shape",
+            "the scene has no light source: add a [[lights]] entry, or an `emission` to a shape or a medium",
         ));
     }
     Ok(SceneDesc {
