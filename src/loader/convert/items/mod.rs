@@ -122,22 +122,7 @@ pub(super) fn scene(cx: &mut Cx<'_>, raw: RawScene) -> R<SceneDesc> {
             "the camera sees nothing: the scene has no shapes and no environment light",
         ));
     }
-    let emitting_medium = media.iter().any(|m| {
-        matches!(
-            m.kind,
-            MediumKind::Homogeneous {
-                emission: Some(_),
-                ..
-            }
-        )
-    });
-    if lights.is_empty() && !shapes.iter().any(|s| s.emission.is_some()) && !emitting_medium {
-        return Err(cx.err(
-            &WHOLE_FILE,
-            "lights",
-            "the scene has no light source: add a [[lights]] entry, or an `emission` to a shape or a medium",
-        ));
-    }
+    has_light_source(cx, &lights, &shapes, &media)?;
     Ok(SceneDesc {
         path: cx.file.to_path_buf(),
         wavelength_range: range,
@@ -322,4 +307,30 @@ fn scene_media(
         ));
     }
     Ok((media, camera_medium))
+}
+
+/// A scene needs something that emits: a light, a shape's emission or an emitting medium.
+fn has_light_source(
+    cx: &Cx<'_>,
+    lights: &[LightDesc],
+    shapes: &[ShapeDesc],
+    media: &[MediumDesc],
+) -> R<()> {
+    let emitting_medium = media.iter().any(|m| {
+        matches!(
+            m.kind,
+            MediumKind::Homogeneous {
+                emission: Some(_),
+                ..
+            }
+        )
+    });
+    if lights.is_empty() && !shapes.iter().any(|s| s.emission.is_some()) && !emitting_medium {
+        return Err(cx.err(
+            &WHOLE_FILE,
+            "lights",
+            "the scene has no light source: add a [[lights]] entry, or an `emission` to a shape or a medium",
+        ));
+    }
+    Ok(())
 }
