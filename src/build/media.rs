@@ -24,13 +24,16 @@ pub(super) fn scene_media(
         .map(|m| medium(m, range).map_err(|(f, e)| err(m, format!("media.{}.{f}", m.name), e)))
         .collect::<Result<Vec<_>, _>>()?;
     if let Some(m) = desc.media.first()
-        && desc.integrator.kind != crate::scene::IntegratorKind::Path
+        && !matches!(
+            desc.integrator.kind,
+            crate::scene::IntegratorKind::Path | crate::scene::IntegratorKind::Light
+        )
     {
         return Err(err(
             m,
             "integrator".into(),
             format!(
-                "media (\"{}\") are rendered by the path integrator only so far; {} would ignore them",
+                "media (\"{}\") are rendered by the path and light integrators only so far; {} would ignore them",
                 m.name,
                 desc.integrator.kind.name()
             ),

@@ -35,6 +35,9 @@ pub fn trace<const N: usize>(
     s: &mut Sampler,
     splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, SampledSpectrum<N>),
 ) {
+    if !it.scene.media.is_empty() {
+        return super::light_media::trace(it, margin, w, s, splat);
+    }
     let scene = it.scene;
     let (u1, u2) = (s.get_2d(), s.get_2d());
     // the light chosen with u1.x, reused for the point on it
@@ -141,6 +144,22 @@ pub fn escaped<const N: usize>(
     w: &SampledWavelengths<N>,
 ) -> SampledSpectrum<N> {
     let scene = it.scene;
+    if !scene.media.is_empty() {
+        // through the camera's medium and any index-matched surfaces on the way; ratio
+        // tracking's numbers keyed on the ray (this function takes no sampler)
+        let key = ray.d.x.to_bits()
+            ^ ray.d.y.to_bits().rotate_left(11)
+            ^ ray.d.z.to_bits().rotate_left(22);
+        let mut s = crate::sampler::Sampler::new(key, ray.o.x.to_bits(), ray.o.y.to_bits(), 0);
+        let origin = (ray.o, Vec3::ZERO, Vec3::ZERO, scene.camera_medium);
+        let target = super::volpath::ShadowTarget::Direction(ray.d);
+        let (tr, _) = it.shadow_transmittance(origin, target, w, &mut s);
+        let mut l = SampledSpectrum::zero();
+        for &i in &scene.infinite_lights {
+            l += scene.lights[i as usize].escaped(ray.d, w);
+        }
+        return l * tr;
+    }
     // only whether the ray leaves the scene matters: an any-hit query
     if scene.accel.occluded(&scene.shapes, ray) {
         return SampledSpectrum::zero();

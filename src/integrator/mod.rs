@@ -9,6 +9,7 @@
 pub mod bdpt;
 mod direct;
 pub mod light;
+mod light_media;
 pub mod meter;
 mod path;
 mod volpath;

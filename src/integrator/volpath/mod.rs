@@ -38,6 +38,8 @@ pub(super) const MAX_CROSSINGS: u32 = 256;
 
 mod nee;
 
+pub(crate) use nee::ShadowTarget;
+
 use nee::{Vertex, next_event};
 
 /// The state of a camera path between vertices.

@@ -80,7 +80,7 @@ pub(super) fn next_event<const N: usize>(
     if f.is_zero() {
         return zero;
     }
-    let (tr, pass) = it.shadow_transmittance(origin, &ls, w, s);
+    let (tr, pass) = it.shadow_transmittance(origin, ShadowTarget::light(&ls), w, s);
     if tr.is_zero() {
         return zero;
     }
@@ -100,7 +100,57 @@ pub(super) fn next_event<const N: usize>(
     }
 }
 
+/// Where a shadow ray goes: a point (on a surface with its error bound and normal, or zero
+/// for a point in space) or a direction to infinity.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum ShadowTarget {
+    Point { p: Vec3, p_error: Vec3, n: Vec3 },
+    Direction(Vec3),
+}
+
+impl ShadowTarget {
+    /// The light sample's point, or its direction for a light at infinity.
+    pub(crate) fn light<const N: usize>(ls: &LightSample<N>) -> Self {
+        if ls.distance.is_finite() {
+            ShadowTarget::Point {
+                p: ls.p,
+                p_error: ls.p_error,
+                n: ls.n,
+            }
+        } else {
+            ShadowTarget::Direction(ls.wi)
+        }
+    }
+}
+
 impl Integrator<'_> {
+    /// The medium at the point `p` (found along the ray from `p` in direction `d`: the side
+    /// facing `p` of the first shape that bounds a medium; vacuum if none does). For points
+    /// whose medium no path state tells, such as a light's.
+    pub(crate) fn medium_at(&self, p: Vec3, p_error: Vec3, n: Vec3, d: Vec3) -> Option<u32> {
+        let scene = self.scene;
+        let mut ray = spawn_ray(p, p_error, n, d);
+        for _ in 0..MAX_CROSSINGS {
+            let hit = scene.accel.intersect(&scene.shapes, &ray)?;
+            if let Some(mi) = scene.medium_interfaces.get(hit.shape as usize)
+                && mi.transition
+            {
+                return if hit.n_geom.dot(ray.d) > 0.0 {
+                    mi.interior
+                } else {
+                    mi.exterior
+                };
+            }
+            let n = if hit.n_geom.dot(ray.d) < 0.0 {
+                -hit.n_geom
+            } else {
+                hit.n_geom
+            };
+            ray = spawn_ray(hit.p, hit.p_error, n, ray.d);
+        }
+        None
+    }
+
     /// The medium a ray leaving `hit` in direction `d` travels in, given the one it arrived
     /// in.
     #[inline]
@@ -127,18 +177,19 @@ impl Integrator<'_> {
     pub(crate) fn shadow_transmittance<const N: usize>(
         &self,
         origin: (Vec3, Vec3, Vec3, Option<u32>),
-        ls: &LightSample<N>,
+        target: ShadowTarget,
         w: &SampledWavelengths<N>,
         s: &mut Sampler,
     ) -> (SampledSpectrum<N>, SampledSpectrum<N>) {
         let scene = self.scene;
         let (p, p_error, n, mut medium) = origin;
-        let toward = |p: Vec3, p_error: Vec3, n: Vec3| {
-            if ls.distance.is_finite() {
-                spawn_ray_to(p, p_error, n, ls.p, ls.p_error, ls.n)
-            } else {
-                spawn_ray(p, p_error, n, ls.wi)
-            }
+        let toward = |p: Vec3, p_error: Vec3, n: Vec3| match target {
+            ShadowTarget::Point {
+                p: q,
+                p_error: e,
+                n: m,
+            } => spawn_ray_to(p, p_error, n, q, e, m),
+            ShadowTarget::Direction(d) => spawn_ray(p, p_error, n, d),
         };
         let mut ray = toward(p, p_error, n);
         let mut tr = SampledSpectrum::splat(1.0);
