@@ -88,6 +88,42 @@ impl Heterogeneous {
         (sigma_t, sigma_t * self.albedo.eval(p, w))
     }
 
+    /// Visits the tentative collisions of the majorant along `o + t d` within the medium's box
+    /// and [0, `t_max`] (rate σ̄, numbers from `u`), with σt there, until `visit` returns
+    /// false or the segment ends.
+    fn track<const N: usize>(
+        &self,
+        o: Vec3,
+        d: Vec3,
+        t_max: f32,
+        w: &SampledWavelengths<N>,
+        u: &mut impl FnMut() -> f32,
+        mut visit: impl FnMut(
+            f32,
+            SampledSpectrum<N>,
+            SampledSpectrum<N>,
+            &mut dyn FnMut() -> f32,
+        ) -> bool,
+    ) {
+        let Some((t0, t1)) = self.clip(o, d, t_max) else {
+            return;
+        };
+        if self.majorant <= 0.0 {
+            return;
+        }
+        let mut t = t0;
+        loop {
+            t += -(1.0 - u()).max(f32::MIN_POSITIVE).ln() / self.majorant;
+            if t >= t1 {
+                return;
+            }
+            let (sigma_t, sigma_s) = self.coefficients(o + d * t, w);
+            if !visit(t, sigma_t, sigma_s, u) {
+                return;
+            }
+        }
+    }
+
     /// Delta tracking along `o + t d` up to `t_max` with uniform numbers from `u`.
     pub fn walk<const N: usize>(
         &self,
@@ -105,38 +141,29 @@ impl Heterogeneous {
             r_l: one,
             emitted: None,
         };
-        let Some((t0, t1)) = self.clip(o, d, t_max) else {
-            return walk;
-        };
-        if self.majorant <= 0.0 {
-            return walk;
-        }
-        let mut t = t0;
-        loop {
-            t += -(1.0 - u()).max(f32::MIN_POSITIVE).ln() / self.majorant;
-            if t >= t1 {
-                return walk;
-            }
-            let (sigma_t, sigma_s) = self.coefficients(o + d * t, w);
+        let majorant = self.majorant;
+        self.track(o, d, t_max, w, u, |t, sigma_t, sigma_s, u| {
             // a real collision with probability σt(λ₀)/σ̄: density T̄·σt(λ₀) per metre, value
             // T̄·σs (T̄ the majorant's transmittance, the same for every wavelength)
-            if u() * self.majorant < sigma_t[0] {
+            if u() * majorant < sigma_t[0] {
                 walk.t = Some(t);
                 walk.beta *= sigma_s / sigma_t[0];
                 walk.r_u *= sigma_t / sigma_t[0];
-                return walk;
+                return false;
             }
             // null: density T̄·σn(λ₀), value T̄·σn; next-event estimation samples the same
             // point with density T̄·σ̄
-            let sigma_n = (SampledSpectrum::splat(self.majorant) - sigma_t).map(|v| v.max(0.0));
+            let sigma_n = (SampledSpectrum::splat(majorant) - sigma_t).map(|v| v.max(0.0));
             if sigma_n[0] <= 0.0 {
                 walk.beta = SampledSpectrum::zero();
-                return walk;
+                return false;
             }
             walk.beta *= sigma_n / sigma_n[0];
             walk.r_u *= sigma_n / sigma_n[0];
-            walk.r_l *= self.majorant / sigma_n[0];
-        }
+            walk.r_l *= majorant / sigma_n[0];
+            true
+        });
+        walk
     }
 
     /// Ratio tracking along `o + t d` over [0, `t_max`]: an unbiased estimate of the
@@ -150,24 +177,11 @@ impl Heterogeneous {
         u: &mut impl FnMut() -> f32,
     ) -> SampledSpectrum<N> {
         let mut tr = SampledSpectrum::splat(1.0);
-        let Some((t0, t1)) = self.clip(o, d, t_max) else {
-            return tr;
-        };
-        if self.majorant <= 0.0 {
-            return tr;
-        }
-        let mut t = t0;
-        loop {
-            t += -(1.0 - u()).max(f32::MIN_POSITIVE).ln() / self.majorant;
-            if t >= t1 {
-                return tr;
-            }
-            let (sigma_t, _) = self.coefficients(o + d * t, w);
-            tr *= (SampledSpectrum::splat(self.majorant) - sigma_t)
-                .map(|v| (v / self.majorant).max(0.0));
-            if tr.is_zero() {
-                return tr;
-            }
-        }
+        let majorant = self.majorant;
+        self.track(o, d, t_max, w, u, |_, sigma_t, _, _| {
+            tr *= (SampledSpectrum::splat(majorant) - sigma_t).map(|v| (v / majorant).max(0.0));
+            !tr.is_zero()
+        });
+        tr
     }
 }

@@ -72,17 +72,7 @@ fn medium(cx: &Cx<'_>, e: &Element, name: &str) -> R<MediumDesc> {
 /// phase function (default isotropic). `sample_emitters` and `has_spectral_extinction` are
 /// sampling hints that do not change the image; they are read and not needed.
 fn homogeneous(cx: &Cx<'_>, e: &Element) -> R<MediumKind> {
-    for hint in ["sample_emitters", "has_spectral_extinction"] {
-        let _ = cx.child(e, hint);
-    }
-    let scale = cx.opt_float(e, "scale")?.unwrap_or(1.0);
-    if !(scale.is_finite() && scale >= 0.0) {
-        let at = cx.child(e, "scale").unwrap_or(e);
-        return Err(cx.err(
-            at,
-            format!("scale must be finite and not negative, not {scale}"),
-        ));
-    }
+    let scale = scale(cx, e)?;
     if let Some(c) = cx.child(e, "sigma_t").filter(|c| c.tag == "volume") {
         return Err(cx.err(
             c,
@@ -105,6 +95,21 @@ fn homogeneous(cx: &Cx<'_>, e: &Element) -> R<MediumKind> {
 /// default 1) × `scale` (default 1), `albedo` (a volume or a value; default 0.75), a phase
 /// function. The medium fills the unit cube of `sigma_t`'s frame.
 fn heterogeneous(cx: &Cx<'_>, e: &Element) -> R<MediumKind> {
+    let scale = scale(cx, e)?;
+    let density = volume(cx, e, "sigma_t", 1.0)?;
+    let albedo = volume(cx, e, "albedo", 0.75)?;
+    note_albedo_above_one(cx, e, &albedo);
+    Ok(MediumKind::Heterogeneous {
+        density,
+        albedo,
+        scale,
+        phase: phase(cx, e)?,
+    })
+}
+
+/// A medium's `scale` (1 by default; finite and not negative), its sampling hints
+/// `sample_emitters` and `has_spectral_extinction` read (they do not change the image).
+fn scale(cx: &Cx<'_>, e: &Element) -> R<f64> {
     for hint in ["sample_emitters", "has_spectral_extinction"] {
         let _ = cx.child(e, hint);
     }
@@ -116,15 +121,7 @@ fn heterogeneous(cx: &Cx<'_>, e: &Element) -> R<MediumKind> {
             format!("scale must be finite and not negative, not {scale}"),
         ));
     }
-    let density = volume(cx, e, "sigma_t", 1.0)?;
-    let albedo = volume(cx, e, "albedo", 0.75)?;
-    note_albedo_above_one(cx, e, &albedo);
-    Ok(MediumKind::Heterogeneous {
-        density,
-        albedo,
-        scale,
-        phase: phase(cx, e)?,
-    })
+    Ok(scale)
 }
 
 /// A note when an albedo grid holds values above 1 (Mitsuba's own test grid does): such a
