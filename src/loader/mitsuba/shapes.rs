@@ -280,6 +280,12 @@ pub(super) fn shapegroup(
                         "a shape inside a shapegroup cannot emit (Mitsuba refuses it too); place the emitter outside the group",
                     ));
                 }
+                if s.interior.is_some() || s.exterior.is_some() {
+                    return Err(cx.err(
+                        c,
+                        "a shape inside a shapegroup cannot bound a medium yet; place the shape outside the group",
+                    ));
+                }
                 shapes.push(s);
             }
             other => {
