@@ -73,11 +73,16 @@ fn medium(d: &MediumDesc, range: WavelengthRange) -> Result<Medium, (String, Str
                     (tabulate(range, t), Volume::Constant(tabulate(range, a)))
                 }
             };
+            let absorbing = match &albedo {
+                Volume::Constant(a) => grid(range).into_iter().all(|l| a.eval(l) == 0.0),
+                Volume::Grid { .. } => false,
+            };
             Ok(Medium::Homogeneous(Homogeneous {
                 sigma_t,
                 albedo,
                 phase: *phase,
                 emission: emission.clone(),
+                absorbing,
             }))
         }
         MediumKind::Heterogeneous {
@@ -155,7 +160,6 @@ fn interfaces(desc: &SceneDesc, surfaces: usize) -> Vec<MediumInterface> {
     let of = |s: &ShapeDesc| MediumInterface {
         interior: s.interior.map(|m| m as u32),
         exterior: s.exterior.map(|m| m as u32),
-        transition: s.interior.is_some() || s.exterior.is_some(),
     };
     let mut v: Vec<MediumInterface> = desc.shapes.iter().map(of).collect();
     v.resize(surfaces, MediumInterface::default());

@@ -72,20 +72,20 @@ impl Heterogeneous {
         (t0 < t1).then_some((t0, t1))
     }
 
-    /// σt and σs at the world point `p`, m⁻¹.
+    /// σt at the world point `p`, m⁻¹ (0 outside the medium's box). The albedo is looked up
+    /// only where a collision is real.
     #[inline]
-    pub fn coefficients<const N: usize>(
+    pub fn sigma_t<const N: usize>(
         &self,
         p: Vec3,
         w: &SampledWavelengths<N>,
-    ) -> (SampledSpectrum<N>, SampledSpectrum<N>) {
+    ) -> SampledSpectrum<N> {
         let local = self.to_local.transform_point3(p);
         let inside = local.cmpge(Vec3::ZERO).all() && local.cmple(Vec3::ONE).all();
         if !inside {
-            return (SampledSpectrum::zero(), SampledSpectrum::zero());
+            return SampledSpectrum::zero();
         }
-        let sigma_t = self.density.eval(p, w) * self.scale;
-        (sigma_t, sigma_t * self.albedo.eval(p, w))
+        self.density.eval(p, w) * self.scale
     }
 
     /// Visits the tentative collisions of the majorant along `o + t d` within the medium's box
@@ -98,12 +98,7 @@ impl Heterogeneous {
         t_max: f32,
         w: &SampledWavelengths<N>,
         u: &mut impl FnMut() -> f32,
-        mut visit: impl FnMut(
-            f32,
-            SampledSpectrum<N>,
-            SampledSpectrum<N>,
-            &mut dyn FnMut() -> f32,
-        ) -> bool,
+        mut visit: impl FnMut(f32, SampledSpectrum<N>, &mut dyn FnMut() -> f32) -> bool,
     ) {
         let Some((t0, t1)) = self.clip(o, d, t_max) else {
             return;
@@ -117,8 +112,7 @@ impl Heterogeneous {
             if t >= t1 {
                 return;
             }
-            let (sigma_t, sigma_s) = self.coefficients(o + d * t, w);
-            if !visit(t, sigma_t, sigma_s, u) {
+            if !visit(t, self.sigma_t(o + d * t, w), u) {
                 return;
             }
         }
@@ -142,12 +136,12 @@ impl Heterogeneous {
             emitted: None,
         };
         let majorant = self.majorant;
-        self.track(o, d, t_max, w, u, |t, sigma_t, sigma_s, u| {
+        self.track(o, d, t_max, w, u, |t, sigma_t, u| {
             // a real collision with probability σt(λ₀)/σ̄: density T̄·σt(λ₀) per metre, value
             // T̄·σs (T̄ the majorant's transmittance, the same for every wavelength)
             if u() * majorant < sigma_t[0] {
                 walk.t = Some(t);
-                walk.beta *= sigma_s / sigma_t[0];
+                walk.beta *= sigma_t * self.albedo.eval(o + d * t, w) / sigma_t[0];
                 walk.r_u *= sigma_t / sigma_t[0];
                 return false;
             }
@@ -178,7 +172,7 @@ impl Heterogeneous {
     ) -> SampledSpectrum<N> {
         let mut tr = SampledSpectrum::splat(1.0);
         let majorant = self.majorant;
-        self.track(o, d, t_max, w, u, |_, sigma_t, _, _| {
+        self.track(o, d, t_max, w, u, |_, sigma_t, _| {
             tr *= (SampledSpectrum::splat(majorant) - sigma_t).map(|v| (v / majorant).max(0.0));
             !tr.is_zero()
         });

@@ -26,6 +26,10 @@ pub struct Homogeneous {
     pub phase: PhaseFunction,
     /// Emitted radiance Le(λ), W·m⁻²·sr⁻¹·nm⁻¹ (source term σa·Le); None: none.
     pub emission: Option<Spectrum>,
+    /// Whether the albedo is 0 at every wavelength of the scene's range (decided once by the
+    /// build step): then nothing scatters, free flights are not sampled and the transmittance
+    /// is the weight.
+    pub absorbing: bool,
 }
 
 /// The outcome of a free flight sampled along a segment of length `t_max`, per wavelength of
@@ -72,14 +76,11 @@ impl Homogeneous {
         self.sigma_t.sample(w)
     }
 
-    /// Whether the medium only absorbs at the wavelengths `w` (albedo 0 at each): then free
-    /// flights are not sampled and the transmittance is applied as a weight.
+    /// Whether the medium only absorbs (see [`Homogeneous::absorbing`]): then free flights are
+    /// not sampled and the transmittance is applied as a weight.
     #[inline]
-    pub fn absorbs_only<const N: usize>(&self, w: &SampledWavelengths<N>) -> bool {
-        match &self.albedo {
-            Volume::Constant(a) => a.sample(w).is_zero(),
-            Volume::Grid { .. } => false,
-        }
+    pub fn absorbs_only(&self) -> bool {
+        self.absorbing
     }
 
     /// The medium's emission collected along the free flight `flight` sampled over
@@ -104,7 +105,7 @@ impl Homogeneous {
                 let tr = sigma_t.map(|s| beer_lambert(s, t));
                 Some((tr * sigma_a * le, pdf))
             }
-            Flight::Pass { pdf, .. } if self.absorbs_only(w) => {
+            Flight::Pass { pdf, .. } if self.absorbs_only() => {
                 // ∫₀^t_max e^{−σa s} σa Le ds = Le (1 − e^{−σa t_max})
                 let tr = sigma_t.map(|s| beer_lambert(s, t_max));
                 Some((le * (SampledSpectrum::splat(1.0) - tr), pdf))
@@ -138,7 +139,7 @@ impl Homogeneous {
         w: &SampledWavelengths<N>,
     ) -> Flight<N> {
         let sigma_t = self.sigma_t(w);
-        if self.absorbs_only(w) {
+        if self.absorbs_only() {
             // nothing scatters: the transmittance is the weight, and no distance is sampled
             // (zero variance; the density of passing is 1 for every hero)
             let tr = sigma_t.map(|s| beer_lambert(s, t_max));
@@ -200,6 +201,7 @@ mod tests {
             albedo: Volume::Constant(table(&|l| at(ss, l) / (at(sa, l) + at(ss, l)))),
             phase: PhaseFunction::Isotropic,
             emission: None,
+            absorbing: false,
         }
     }
 

@@ -91,7 +91,7 @@ impl Medium {
         match self {
             Medium::Homogeneous(m) => {
                 let tr = m.transmittance(t_max, w);
-                if m.absorbs_only(w) {
+                if m.absorbs_only() {
                     (tr, SampledSpectrum::splat(1.0))
                 } else {
                     (tr, tr)
@@ -122,17 +122,21 @@ pub struct MediumInterface {
     pub interior: Option<u32>,
     /// The side the geometric normal points to.
     pub exterior: Option<u32>,
-    /// Whether the shape names any medium; a shape that does not leaves a ray's medium as it
-    /// was.
-    pub transition: bool,
 }
 
 impl MediumInterface {
+    /// Whether the shape names any medium; a shape that does not leaves a ray's medium as it
+    /// was.
+    #[inline]
+    pub fn is_transition(&self) -> bool {
+        self.interior.is_some() || self.exterior.is_some()
+    }
+
     /// The medium a ray leaving the surface (geometric normal `n`) in direction `d` travels
     /// in, given the one it arrived in (`current`).
     #[inline]
     pub fn target(&self, n: Vec3, d: Vec3, current: Option<u32>) -> Option<u32> {
-        if !self.transition {
+        if !self.is_transition() {
             current
         } else if n.dot(d) > 0.0 {
             self.exterior

@@ -133,7 +133,7 @@ impl Integrator<'_> {
         for _ in 0..MAX_CROSSINGS {
             let hit = scene.accel.intersect(&scene.shapes, &ray)?;
             if let Some(mi) = scene.medium_interfaces.get(hit.shape as usize)
-                && mi.transition
+                && mi.is_transition()
             {
                 return if hit.n_geom.dot(ray.d) > 0.0 {
                     mi.interior
@@ -141,11 +141,7 @@ impl Integrator<'_> {
                     mi.exterior
                 };
             }
-            let n = if hit.n_geom.dot(ray.d) < 0.0 {
-                -hit.n_geom
-            } else {
-                hit.n_geom
-            };
+            let n = flip_toward(hit.n_geom, ray.d);
             ray = spawn_ray(hit.p, hit.p_error, n, ray.d);
         }
         None
@@ -219,13 +215,15 @@ impl Integrator<'_> {
                 return zero;
             }
             medium = self.medium_after(&hit, ray.d, medium);
-            let n = if hit.n_geom.dot(ray.d) < 0.0 {
-                -hit.n_geom
-            } else {
-                hit.n_geom
-            };
+            let n = flip_toward(hit.n_geom, ray.d);
             ray = toward(hit.p, hit.p_error, n);
         }
         zero
     }
+}
+
+/// `n` flipped to the side of `d`, for offsetting a ray that leaves a surface along `d`.
+#[inline]
+fn flip_toward(n: Vec3, d: Vec3) -> Vec3 {
+    if n.dot(d) < 0.0 { -n } else { n }
 }
