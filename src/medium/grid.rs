@@ -16,17 +16,7 @@ use glam::{Mat4, Vec3};
 
 use crate::spectrum::rgb2spec::SigmoidPolynomial;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
-
-/// What happens to coordinates outside [0, 1] of a grid's frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Wrap {
-    /// The border voxels extend outward (Mitsuba's default).
-    Clamp,
-    /// The grid tiles space.
-    Repeat,
-    /// The grid tiles space mirrored at every border.
-    Mirror,
-}
+pub use crate::texture::Wrap;
 
 /// A voxel grid. Values are dimensionless; a medium scales them.
 #[derive(Clone, Debug)]
@@ -151,16 +141,7 @@ impl Grid {
     }
 
     fn wrap_index(&self, i: i64, axis: usize) -> usize {
-        let n = self.res[axis] as i64;
-        let i = match self.wrap {
-            Wrap::Clamp => i.clamp(0, n - 1),
-            Wrap::Repeat => i.rem_euclid(n),
-            Wrap::Mirror => {
-                let m = i.rem_euclid(2 * n);
-                if m < n { m } else { 2 * n - 1 - m }
-            }
-        };
-        i as usize
+        self.wrap.index(i, self.res[axis])
     }
 }
 

@@ -30,6 +30,23 @@ pub enum Wrap {
     Clamp,
 }
 
+impl Wrap {
+    /// The index in 0..`n` (n > 0) that coordinate index `i` reads under this wrap mode
+    /// (image textures and volume grids alike).
+    #[inline]
+    pub fn index(self, i: i64, n: usize) -> usize {
+        let n = n as i64;
+        (match self {
+            Wrap::Repeat => i.rem_euclid(n),
+            Wrap::Clamp => i.clamp(0, n - 1),
+            Wrap::Mirror => {
+                let k = i.rem_euclid(2 * n);
+                if k < n { k } else { 2 * n - 1 - k }
+            }
+        }) as usize
+    }
+}
+
 /// Why pixels cannot become a texture.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum BitmapError {
@@ -138,15 +155,7 @@ impl Bitmap {
 
     #[inline]
     fn wrap_index(&self, i: i64, n: usize) -> usize {
-        let n = n as i64;
-        (match self.wrap {
-            Wrap::Repeat => i.rem_euclid(n),
-            Wrap::Clamp => i.clamp(0, n - 1),
-            Wrap::Mirror => {
-                let k = i.rem_euclid(2 * n);
-                if k < n { k } else { 2 * n - 1 - k }
-            }
-        }) as usize
+        self.wrap.index(i, n)
     }
 
     #[inline]

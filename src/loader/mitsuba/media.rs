@@ -174,18 +174,7 @@ fn volume(cx: &Cx<'_>, e: &Element, name: &str, default: f32) -> R<VolumeDesc> {
             let path = cx.resolve_file(&file);
             let at = cx.child(c, "filename").unwrap_or(c);
             let vol = super::vol::read(&path).map_err(|m| cx.err(at, m))?;
-            let wrap = match cx.string(c, "wrap_mode").as_deref() {
-                None | Some("clamp") => Wrap::Clamp,
-                Some("repeat") => Wrap::Repeat,
-                Some("mirror") => Wrap::Mirror,
-                Some(other) => {
-                    let at = cx.child(c, "wrap_mode").unwrap_or(c);
-                    return Err(cx.err(
-                        at,
-                        format!("wrap_mode \"{other}\" is not one of clamp, repeat, mirror"),
-                    ));
-                }
-            };
+            let wrap = cx.wrap_mode(c, Wrap::Clamp)?;
             if let Some(f) = cx.string(c, "filter_type")
                 && f != "trilinear"
             {

@@ -71,19 +71,7 @@ impl Cx<'_> {
                         ));
                     }
                 };
-                let wrap = match self.string(t, "wrap_mode").as_deref() {
-                    None | Some("repeat") => Wrap::Repeat,
-                    Some("mirror") => Wrap::Mirror,
-                    Some("clamp") => Wrap::Clamp,
-                    Some(o) => {
-                        return Err(self.err(
-                            at("wrap_mode"),
-                            format!(
-                                "wrap_mode \"{o}\" is not one of \"repeat\", \"mirror\", \"clamp\""
-                            ),
-                        ));
-                    }
-                };
+                let wrap = self.wrap_mode(t, Wrap::Repeat)?;
                 let raw = match self.string(t, "raw").as_deref() {
                     None | Some("false") => false,
                     Some("true") => true,
@@ -104,5 +92,25 @@ impl Cx<'_> {
             }
             other => Err(self.unsupported(t, "texture", other)),
         }
+    }
+}
+
+impl Cx<'_> {
+    /// `e`'s `wrap_mode` (`repeat`, `mirror`, `clamp`; `default` when absent), as bitmaps and
+    /// grid volumes read it.
+    pub(super) fn wrap_mode(&self, e: &Element, default: Wrap) -> R<Wrap> {
+        Ok(match self.string(e, "wrap_mode").as_deref() {
+            None => default,
+            Some("repeat") => Wrap::Repeat,
+            Some("mirror") => Wrap::Mirror,
+            Some("clamp") => Wrap::Clamp,
+            Some(o) => {
+                let at = self.child(e, "wrap_mode").unwrap_or(e);
+                return Err(self.err(
+                    at,
+                    format!("wrap_mode \"{o}\" is not one of \"repeat\", \"mirror\", \"clamp\""),
+                ));
+            }
+        })
     }
 }
