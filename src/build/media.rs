@@ -26,14 +26,16 @@ pub(super) fn scene_media(
     if let Some(m) = desc.media.first()
         && !matches!(
             desc.integrator.kind,
-            crate::scene::IntegratorKind::Path | crate::scene::IntegratorKind::Light
+            crate::scene::IntegratorKind::Path
+                | crate::scene::IntegratorKind::Light
+                | crate::scene::IntegratorKind::Bdpt
         )
     {
         return Err(err(
             m,
             "integrator".into(),
             format!(
-                "media (\"{}\") are rendered by the path and light integrators only so far; {} would ignore them",
+                "media (\"{}\") are rendered by the path, light and bdpt integrators only; {} would ignore them",
                 m.name,
                 desc.integrator.kind.name()
             ),

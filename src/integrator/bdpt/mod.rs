@@ -21,10 +21,18 @@
 //!   s = 0, t = 2, as in pbrt; delta lobes and delta lights take part where they can.
 //! - **Transport.** Camera vertices evaluate f in radiance mode (with η² at refractions), light
 //!   vertices in importance mode with the adjoint shading-normal correction (Veach 1997 §5.3).
+//! - **Media.** In a scene with media the subpaths are `media.rs`'s walks: free flights by the
+//!   hero's extinction, medium vertices with the phase function as their BSDF, `null` and
+//!   sheet crossings that are not vertices. Every connection carries the transmittance between
+//!   its ends (ratio tracking through heterogeneous media, reading its own sampler range), and
+//!   each strategy divides by the average over the live wavelengths of its two subpaths'
+//!   flight density ratios (the balance heuristic over hero choices, Miller, Georgiev and
+//!   Jarosz 2019). The strategies' MIS weights leave the flights' densities out (`vertex.rs`).
 //! - **Debugging.** A [`Strategy`] restricts a render to one (s, t), weighted or not: the
 //!   weighted images of all strategies sum to the full render, and each unweighted one converges
 //!   to the same image where it can sample the paths.
 
+mod media;
 mod vertex;
 mod walk;
 
@@ -67,6 +75,10 @@ impl<const N: usize> Scratch<'_, N> {
 /// lens point for t = 1), four per subpath vertex after the walks' dimensions.
 const CONNECT_DIMS: u32 = 1 << 16;
 
+/// First sampler dimension of the connections' ratio tracking through heterogeneous media:
+/// 1024 dimensions for each (s, t).
+const TRACK_DIMS: u32 = 1 << 20;
+
 /// What one BDPT sample's camera-side strategies (t ≥ 2) carry along its camera ray,
 /// W·m⁻²·sr⁻¹·nm⁻¹: the strategies without a dispersive vertex at the sample's wavelengths, the
 /// others at the hero alone (`hero_only`, the wavelengths with the secondaries terminated).
@@ -95,6 +107,10 @@ pub fn sample<'a, const N: usize>(
 ) -> Radiance<N> {
     let max_depth = it.max_depth as usize;
     let conn = s.clone().at_dimension(CONNECT_DIMS);
+    let mut glow = media::Glow {
+        all: SampledSpectrum::zero(),
+        hero: SampledSpectrum::zero(),
+    };
     walk::camera_subpath(
         it,
         ray,
@@ -102,6 +118,7 @@ pub fn sample<'a, const N: usize>(
         s,
         max_depth.saturating_add(2),
         &mut scratch.camera,
+        &mut glow,
     );
     walk::light_subpath(
         it,
@@ -117,9 +134,10 @@ pub fn sample<'a, const N: usize>(
     );
     let mut hero_only = *w;
     hero_only.terminate_secondary();
+    // a medium's own emission, which only the camera walk finds
     let mut out = Radiance {
-        all: SampledSpectrum::zero(),
-        hero: SampledSpectrum::zero(),
+        all: glow.all,
+        hero: glow.hero,
         hero_only,
     };
     for t in 1..=camera.len() {
@@ -153,10 +171,10 @@ pub fn sample<'a, const N: usize>(
 /// The contribution of strategy (s, t), MIS-weighted if `weighted`, and for t = 1 the raster
 /// position where it lands. None when the strategy yields nothing for these subpaths.
 #[allow(clippy::too_many_arguments)]
-fn connect<const N: usize>(
+fn connect<'a, const N: usize>(
     it: &Integrator<'_>,
-    light: &[Vertex<'_, N>],
-    camera: &[Vertex<'_, N>],
+    light: &[Vertex<'a, N>],
+    camera: &[Vertex<'a, N>],
     s: usize,
     t: usize,
     w: &SampledWavelengths<N>,
@@ -164,48 +182,122 @@ fn connect<const N: usize>(
     margin: f32,
     weighted: bool,
 ) -> Option<(SampledSpectrum<N>, Option<Vec2>)> {
-    let scene = it.scene;
-    let mut sampled = None;
-    let mut raster = None;
-    let l = if s == 0 {
+    // the connection's own ratio tracking reads a range of its own
+    let mut track = conn
+        .clone()
+        .at_dimension(TRACK_DIMS + (((s as u32) * 128 + t as u32) << 10));
+    let ends = Ends {
+        light,
+        camera,
+        s,
+        t,
+        w,
+    };
+    let (l, sampled, raster) = if s == 0 {
         // the camera subpath's last vertex is on an emitter
         let pt = &camera[t - 1];
-        pt.beta * pt.le(it, &camera[t - 2], w)
+        (pt.beta * pt.le(it, &camera[t - 2], w), None, None)
     } else if t == 1 {
-        // the light subpath's last vertex seen by the camera through a sampled lens point
-        let qs = &light[s - 1];
-        if !qs.connectible(it) {
-            return None;
-        }
         let u = conn
             .clone()
             .at_dimension(CONNECT_DIMS + 4 * s as u32 + 2)
             .get_2d();
-        let c = scene.camera.connect(qs.p, u, margin)?;
-        let v = Vertex::new(
+        let (l, v, raster) = ends.to_lens(it, u, margin, &mut track)?;
+        (l, Some(v), Some(raster))
+    } else if s == 1 {
+        let u = conn
+            .clone()
+            .at_dimension(CONNECT_DIMS + 4 * t as u32)
+            .get_2d();
+        let (l, v) = ends.to_light(it, u, &mut track)?;
+        (l, Some(v), None)
+    } else {
+        (ends.edge(it, &mut track)?, None, None)
+    };
+    if l.is_zero() {
+        return None;
+    }
+    // the balance heuristic over hero choices of both subpaths' free flights (1 without media)
+    let spectral = if it.scene.media.is_empty() {
+        1.0
+    } else {
+        let r_camera = sampled
+            .filter(|_| t == 1)
+            .map_or(camera[t - 1].r_u, |v| v.r_u);
+        let r_light = match (s, sampled) {
+            (0, _) => SampledSpectrum::splat(1.0),
+            (1, Some(v)) => v.r_u,
+            _ => light[s - 1].r_u,
+        };
+        let d = crate::medium::live_average(r_camera * r_light, w);
+        if !(d > 0.0) {
+            return None;
+        }
+        1.0 / d
+    };
+    let mis = if weighted {
+        mis_weight(it, light, camera, sampled.as_ref(), s, t, w)
+    } else {
+        1.0
+    };
+    Some((l * (mis * spectral), raster))
+}
+
+/// The two subpaths and a strategy's use of them, for the connections below.
+struct Ends<'b, 'a, const N: usize> {
+    light: &'b [Vertex<'a, N>],
+    camera: &'b [Vertex<'a, N>],
+    s: usize,
+    t: usize,
+    w: &'b SampledWavelengths<N>,
+}
+
+impl<'a, const N: usize> Ends<'_, 'a, N> {
+    /// t = 1: the light subpath's last vertex seen by the camera through the lens point it
+    /// samples from `u`: the contribution (W·m⁻²·sr⁻¹·nm⁻¹ times the pixel count), the lens
+    /// vertex, and the raster position.
+    fn to_lens(
+        &self,
+        it: &Integrator<'_>,
+        u: Vec2,
+        margin: f32,
+        track: &mut Sampler,
+    ) -> Option<(SampledSpectrum<N>, Vertex<'a, N>, Vec2)> {
+        let qs = &self.light[self.s - 1];
+        if !qs.connectible(it) {
+            return None;
+        }
+        let c = it.scene.camera.connect(qs.p, u, margin)?;
+        let mut v = Vertex::new(
             Kind::Camera,
             c.p_lens,
             SampledSpectrum::splat(c.weight),
             0.0,
         );
-        let l =
-            qs.beta * qs.f(c.wi, w, TransportMode::Importance) * (qs.cos_shading(c.wi) * c.weight);
-        if l.is_zero() || !visible(it, qs, &v) {
+        v.medium = it.scene.camera_medium;
+        let l = qs.beta
+            * qs.f(c.wi, self.w, TransportMode::Importance)
+            * (qs.cos_shading(c.wi) * c.weight);
+        if l.is_zero() {
             return None;
         }
-        raster = Some(c.raster);
-        sampled = Some(v);
-        l
-    } else if s == 1 {
-        // next-event estimation from the camera subpath's last vertex
-        let pt = &camera[t - 1];
+        let tr = reach(it, qs, &v, self.w, track)?;
+        Some((l * tr, v, c.raster))
+    }
+
+    /// s = 1: next-event estimation from the camera subpath's last vertex with the light
+    /// point it samples from `u`: the contribution and the light vertex.
+    fn to_light(
+        &self,
+        it: &Integrator<'_>,
+        u: Vec2,
+        track: &mut Sampler,
+    ) -> Option<(SampledSpectrum<N>, Vertex<'a, N>)> {
+        let (scene, w) = (it.scene, self.w);
+        let pt = &self.camera[self.t - 1];
         if !pt.connectible(it) {
             return None;
         }
-        let u = conn
-            .clone()
-            .at_dimension(CONNECT_DIMS + 4 * t as u32)
-            .get_2d();
         let (li, p_sel, ux) = it.lights.pick_reuse(u.x)?;
         let light = &scene.lights[li];
         let ls = light.sample_li(&scene.shapes, pt.p, w, Vec2::new(ux, u.y))?;
@@ -227,14 +319,16 @@ fn connect<const N: usize>(
         v.d = ls.wi;
         v.pdf_fwd = v.pdf_light_origin(it, pt);
         let l = pt.beta * pt.f(ls.wi, w, TransportMode::Radiance) * v.beta * pt.cos_shading(ls.wi);
-        if l.is_zero() || !visible(it, pt, &v) {
+        if l.is_zero() {
             return None;
         }
-        sampled = Some(v);
-        l
-    } else {
-        // an edge between the two subpaths' last vertices
-        let (qs, pt) = (&light[s - 1], &camera[t - 1]);
+        let tr = reach(it, pt, &v, w, track)?;
+        Some((l * tr, v))
+    }
+
+    /// s, t ≥ 2: an edge between the two subpaths' last vertices.
+    fn edge(&self, it: &Integrator<'_>, track: &mut Sampler) -> Option<SampledSpectrum<N>> {
+        let (qs, pt) = (&self.light[self.s - 1], &self.camera[self.t - 1]);
         if !qs.connectible(it) || !pt.connectible(it) {
             return None;
         }
@@ -246,24 +340,32 @@ fn connect<const N: usize>(
         let wi = d / d2.sqrt();
         let g = pt.cos_shading(wi) * qs.cos_shading(wi) / d2;
         let l = qs.beta
-            * qs.f(-wi, w, TransportMode::Importance)
-            * pt.f(wi, w, TransportMode::Radiance)
+            * qs.f(-wi, self.w, TransportMode::Importance)
+            * pt.f(wi, self.w, TransportMode::Radiance)
             * pt.beta
             * g;
-        if l.is_zero() || !visible(it, pt, qs) {
+        if l.is_zero() {
             return None;
         }
-        l
-    };
-    if l.is_zero() {
-        return None;
+        Some(l * reach(it, pt, qs, self.w, track)?)
     }
-    let mis = if weighted {
-        mis_weight(it, light, camera, sampled.as_ref(), s, t, w)
-    } else {
-        1.0
-    };
-    Some((l * mis, raster))
+}
+
+/// What reaches `b` from `a` along the segment between them, per wavelength: 1 where nothing
+/// blocks it in a scene without media; with media, the transmittance through them and the
+/// `null` and sheet surfaces on the way (`media::transmittance`). None if blocked.
+fn reach<const N: usize>(
+    it: &Integrator<'_>,
+    a: &Vertex<'_, N>,
+    b: &Vertex<'_, N>,
+    w: &SampledWavelengths<N>,
+    track: &mut Sampler,
+) -> Option<SampledSpectrum<N>> {
+    if it.scene.media.is_empty() {
+        return visible(it, a, b).then(|| SampledSpectrum::splat(1.0));
+    }
+    let tr = media::transmittance(it, a, b, w, track);
+    (!tr.is_zero()).then_some(tr)
 }
 
 /// Whether nothing blocks the segment between `a` and `b` (either may be at infinity, but not

@@ -3,12 +3,19 @@
 //!
 //! Every density here is per unit **area** at the vertex it produces (per unit solid angle
 //! for a vertex at infinity, whose "position" is a direction), so that the ratios of the MIS
-//! weights compare like with like.
+//! weights compare like with like. A vertex in a medium is a point in space: its area density
+//! is the solid-angle density over d², with no cosine. The free flights' densities (σ·Tr) are
+//! left out of these densities, as pbrt-v3's `BDPT` leaves them out (Pharr, Jakob and
+//! Humphreys 2016, §16.3.4): the MIS weights are then a function of the path's geometry alone,
+//! the same for every strategy and every hero wavelength, so they still sum to one over the
+//! strategies and the estimate stays unbiased; the flights' own spectral MIS is each
+//! vertex's [`Vertex::r_u`].
 
 use glam::{Vec2, Vec3};
 
 use super::super::{Integrator, Shading};
 use crate::material::TransportMode;
+use crate::medium::{MediumInterface, PhaseFunction};
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
 /// What a vertex is.
@@ -23,6 +30,9 @@ pub(super) enum Kind {
     Light { light: u32 },
     /// A surface hit of either subpath; an emitting surface also carries its light.
     Surface { emitter: Option<u32> },
+    /// A scattering event in a participating medium (its phase function plays the BSDF's
+    /// part, with no cosine).
+    Medium { phase: PhaseFunction },
     /// A camera ray that left the scene: the end of a camera subpath on the lights at
     /// infinity, in direction [`Vertex::d`].
     Escaped,
@@ -59,6 +69,16 @@ pub(super) struct Vertex<'a, const N: usize> {
     pub pdf_rev: f32,
     /// Whether the vertex scattered by a delta lobe (it cannot be connected to).
     pub delta: bool,
+    /// Per wavelength k, the density of the subpath's free flights up to this vertex had k
+    /// been the hero, over the hero's own (`volpath`'s `r_u`; 1 without media). A strategy
+    /// divides its contribution by the average over the live wavelengths of the product of
+    /// its two subpaths' ratios: the balance heuristic over hero choices.
+    pub r_u: SampledSpectrum<N>,
+    /// The medium the vertex is in (a medium vertex, the lens), or the one the ray that
+    /// reached it travelled in (a surface); None for vacuum.
+    pub medium: Option<u32>,
+    /// The media on either side of the surface (a surface vertex; none elsewhere).
+    pub interface: MediumInterface,
 }
 
 impl<'a, const N: usize> Vertex<'a, N> {
@@ -77,7 +97,15 @@ impl<'a, const N: usize> Vertex<'a, N> {
             pdf_fwd,
             pdf_rev: 0.0,
             delta: false,
+            r_u: SampledSpectrum::splat(1.0),
+            medium: None,
+            interface: MediumInterface::default(),
         }
+    }
+
+    /// The medium a ray leaving this vertex in direction `d` travels in.
+    pub fn medium_toward(&self, d: Vec3) -> Option<u32> {
+        self.interface.target(self.ng, d, self.medium)
     }
 
     /// Whether the vertex lies at infinity (escaped camera rays, lights at infinity).
@@ -85,7 +113,7 @@ impl<'a, const N: usize> Vertex<'a, N> {
         match self.kind {
             Kind::Escaped => true,
             Kind::Light { light } => it.scene.lights[light as usize].is_at_infinity(),
-            Kind::Camera | Kind::Surface { .. } => false,
+            Kind::Camera | Kind::Surface { .. } | Kind::Medium { .. } => false,
         }
     }
 
@@ -111,7 +139,7 @@ impl<'a, const N: usize> Vertex<'a, N> {
     /// lobe, a camera, or a light that does not emit in a single direction.
     pub fn connectible(&self, it: &Integrator<'_>) -> bool {
         match self.kind {
-            Kind::Camera => true,
+            Kind::Camera | Kind::Medium { .. } => true,
             // not a light that emits in one direction only (collimated: directional, beam)
             Kind::Light { light } => {
                 let l = &it.scene.lights[light as usize];
@@ -136,13 +164,17 @@ impl<'a, const N: usize> Vertex<'a, N> {
 
     /// The BSDF value f (sr⁻¹, no cosine) at a surface vertex for light arriving from `wo` (its
     /// subpath's previous vertex) and leaving toward `wi` (unit, world), times the adjoint
-    /// shading-normal correction for importance transport (Veach 1997 §5.3). Zero elsewhere.
+    /// shading-normal correction for importance transport (Veach 1997 §5.3); the phase
+    /// function's value at a medium vertex (sr⁻¹). Zero elsewhere.
     pub fn f(
         &self,
         wi: Vec3,
         w: &SampledWavelengths<N>,
         mode: TransportMode,
     ) -> SampledSpectrum<N> {
+        if let Kind::Medium { phase } = self.kind {
+            return SampledSpectrum::splat(phase.eval(self.wo, wi));
+        }
         let Some(sh) = &self.shading else {
             return SampledSpectrum::zero();
         };
@@ -154,7 +186,8 @@ impl<'a, const N: usize> Vertex<'a, N> {
         }
     }
 
-    /// |cos θ| between the shading normal and `wi` at a surface vertex; 1 elsewhere.
+    /// |cos θ| between the shading normal and `wi` at a surface vertex; 1 elsewhere (a medium
+    /// vertex has no cosine).
     pub fn cos_shading(&self, wi: Vec3) -> f32 {
         match &self.shading {
             Some(sh) => sh.frame.n.dot(wi).abs(),
@@ -222,6 +255,10 @@ impl<'a, const N: usize> Vertex<'a, N> {
         let pdf_sa = match self.kind {
             Kind::Light { .. } | Kind::Escaped => return self.pdf_light(it, next),
             Kind::Camera => it.scene.camera.pdf_we(self.p, wn),
+            Kind::Medium { phase } => match prev {
+                Some(prev) => phase.eval(self.dir_to(it, prev), wn),
+                None => return 0.0,
+            },
             Kind::Surface { .. } => {
                 let (Some(sh), Some(prev)) = (&self.shading, prev) else {
                     return 0.0;

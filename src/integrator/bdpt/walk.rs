@@ -6,6 +6,7 @@
 
 use glam::Vec2;
 
+use super::media::{self, Glow};
 use super::vertex::{Kind, Vertex};
 use crate::geometry::{Ray, spawn_ray};
 use crate::integrator::Integrator;
@@ -25,12 +26,13 @@ const BOUNCE_DIMS: u32 = 8;
 /// sky-lit diffuse scene (`tests/reference/constant_env`) the camera side's early roulette
 /// doubled the noise; on the light side alone it keeps the gain there and the noise here
 /// (`scripts/bench_bdpt.py`, `scripts/derive_thresholds.py --integrator bdpt`).
-const RR_DEPTH: u32 = 2;
+pub(super) const RR_DEPTH: u32 = 2;
 
 /// The camera subpath for `ray` (already sampled by the caller with its lens point): the lens
 /// vertex, then up to `max_vertices − 1` surface hits, ending at an escaped ray (lights at
 /// infinity) if the walk leaves the scene. W_e/p = 1 for a camera ray sampled by importance,
-/// so the throughput starts at 1.
+/// so the throughput starts at 1. In a scene with media the walk is `media.rs`'s, and the
+/// media's own emission it passes goes to `glow`.
 pub(super) fn camera_subpath<'a, const N: usize>(
     it: &'a Integrator<'a>,
     ray: Ray,
@@ -38,6 +40,7 @@ pub(super) fn camera_subpath<'a, const N: usize>(
     s: &mut Sampler,
     max_vertices: usize,
     path: &mut Vec<Vertex<'a, N>>,
+    glow: &mut Glow<N>,
 ) {
     path.clear();
     if max_vertices == 0 {
@@ -48,8 +51,14 @@ pub(super) fn camera_subpath<'a, const N: usize>(
     // an orthographic camera is a delta in direction: no t = 1 strategy can reach it, and MIS
     // must not count one
     v.delta = matches!(it.scene.camera, crate::geometry::Camera::Orthographic(_));
+    v.medium = it.scene.camera_medium;
     path.push(v);
     let pdf_dir = it.scene.camera.pdf_we(ray.o, ray.d);
+    if !it.scene.media.is_empty() {
+        let mode = TransportMode::Radiance;
+        media::walk(it, ray, w, s, beta, pdf_dir, mode, max_vertices, path, glow);
+        return;
+    }
     walk(
         it,
         ray,
@@ -110,6 +119,9 @@ pub(super) fn light_subpath<'a, const N: usize>(
     };
     v.d = -e.d;
     v.uv = e.uv;
+    if !scene.media.is_empty() {
+        v.medium = it.medium_at(e.o, e.o_error, e.n, e.d);
+    }
     path.push(v);
     let beta = e.weight() * (1.0 / p_sel);
     if beta.is_zero() {
@@ -124,6 +136,26 @@ pub(super) fn light_subpath<'a, const N: usize>(
     // (converted by |cos θ| at the hit in `walk` through `Vertex::pdf_light`), else the
     // direction's solid-angle density
     let pdf_dir = if parallel { e.pdf_pos } else { e.pdf_dir };
+    if !scene.media.is_empty() {
+        let mut glow = Glow {
+            all: SampledSpectrum::zero(),
+            hero: SampledSpectrum::zero(),
+        };
+        let mode = TransportMode::Importance;
+        media::walk(
+            it,
+            ray,
+            w,
+            s,
+            beta,
+            pdf_dir,
+            mode,
+            max_vertices,
+            path,
+            &mut glow,
+        );
+        return;
+    }
     walk(
         it,
         ray,
