@@ -251,3 +251,31 @@ fn light_tracing_refuses_an_orthographic_camera() {
     let (ok, err) = spectrace(&dir, &[&base[..], &["--integrator", "bdpt"]].concat());
     assert!(ok, "{err}");
 }
+
+/// An integrator that does not render media, chosen on the command line for a scene with media:
+/// a clear error, no image (it would render the scene as if the media were not there).
+#[test]
+fn an_integrator_without_media_refuses_a_scene_with_media() {
+    let dir = tmpdir("media-whitted");
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes/media.toml")
+        .display()
+        .to_string();
+    let base = [
+        "render",
+        scene.as_str(),
+        "-o",
+        "o.exr",
+        "--quiet",
+        "--spp",
+        "1",
+    ];
+    for integrator in ["whitted", "direct"] {
+        let (ok, err) = spectrace(&dir, &[&base[..], &["--integrator", integrator]].concat());
+        assert!(
+            !ok && err.contains("participating media") && err.contains(integrator),
+            "{integrator}: {err}"
+        );
+        assert!(!dir.join("o.exr").exists(), "no image after an error");
+    }
+}

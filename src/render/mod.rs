@@ -126,6 +126,11 @@ pub enum RenderError {
     Resume(String),
     #[error("--target-error needs passes of camera samples; the light integrator has none")]
     TargetErrorLight,
+    #[error(
+        "the scene has participating media, which the `{0}` integrator does not render; use path, \
+         light or bdpt"
+    )]
+    Media(&'static str),
 }
 
 /// Writes a checkpoint of the render's state (reports its own failures: the render goes on).
@@ -216,6 +221,15 @@ pub fn render_with(
     ctl: Control<'_>,
 ) -> Result<(Film, RenderStats), RenderError> {
     let start = Instant::now();
+    // an integrator chosen over the scene's own must not drop its media
+    if !scene.media.is_empty()
+        && !matches!(
+            opts.integrator,
+            IntegratorKind::Path | IntegratorKind::Light | IntegratorKind::Bdpt
+        )
+    {
+        return Err(RenderError::Media(opts.integrator.name()));
+    }
     let (w, h) = (scene.film.width, scene.film.height);
     let film = Film::new(
         w,
