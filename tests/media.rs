@@ -382,42 +382,8 @@ fn check_spectrum(text: &str, want: &dyn Fn(f64) -> f64, what: &str, integrator:
 /// medium's transmittance 36 % high (bdpt at seed 3: mean within 0.1 %, tiles within 2.1 %).
 #[test]
 fn light_tracing_and_bdpt_through_media_agree_with_path() {
-    let text = r#"
-[camera]
-eye = [0, 1.2, -4]
-target = [0, 0.3, 0]
-fov = "40 deg"
-[film]
-width = 48
-height = 48
-spp = 256
-[integrator]
-max_depth = 16
-[media.fog]
-sigma_s = { spectrum = { samples = [[360, 3.0], [830, 0.5]] }, scale = "1 1/m" }
-sigma_a = "0.3 1/m"
-phase = { type = "hg", g = 0.4 }
-[materials.clear]
-type = "null"
-[materials.floor]
-type = "diffuse"
-reflectance = 0.6
-[[shapes]]
-type = "sphere"
-center = [0, 0.6, 0]
-radius = 0.6
-material = "clear"
-interior = "fog"
-[[shapes]]
-type = "rectangle"
-material = "floor"
-transform = [{ scale = 4 }, { rotate = { axis = [1, 0, 0], angle = "-90 deg" } }]
-[[shapes]]
-type = "rectangle"
-transform = [{ scale = 0.4 }, { rotate = { axis = [1, 0, 0], angle = "90 deg" } }, { translate = [0.5, 2.2, 0.2] }]
-emission = { spectrum = "cie-d65", radiance = "30 W/m^2/sr" }
-"#;
-    let mut scene = scene_from(text);
+    let text = support::media::fog_ball("type = \"null\"", 0.8, [0.5, 2.2, 0.2], 30.0, 256);
+    let mut scene = scene_from(&text);
     let render = |scene: &spectrace::scene::Scene, seed: u32| {
         let (img, stats) = render_with(scene, |o| o.seed = seed);
         assert_eq!(stats.nan_samples + stats.inf_samples, 0);

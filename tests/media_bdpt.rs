@@ -8,48 +8,22 @@ mod support;
 use glam::DVec2;
 use spectrace::film::Image;
 use spectrace::scene::{IntegratorKind, Scene};
+use support::prism::{A, C, MESH, through};
 use support::render::{render_with, scene_from};
 
 /// A glass ball (index 1.5, not dispersive) holding a spectrally scattering and absorbing fog
 /// (σs 3 → 0.5 m⁻¹ across the spectrum, σa 0.3 m⁻¹, Henyey–Greenstein g = 0.4) on a diffuse
 /// floor, lit by an area lamp to one side and behind, so that the ball's shadow and caustic
 /// fall on floor the camera sees directly. Ball centre (0, 0.6, 0), radius 0.6.
-const GLASS_FOG: &str = r#"
-[camera]
-eye = [0, 1.2, -4]
-target = [0, 0.3, 0]
-fov = "40 deg"
-[film]
-width = 48
-height = 48
-spp = 512
-[integrator]
-max_depth = 16
-[media.fog]
-sigma_s = { spectrum = { samples = [[360, 3.0], [830, 0.5]] }, scale = "1 1/m" }
-sigma_a = "0.3 1/m"
-phase = { type = "hg", g = 0.4 }
-[materials.glass]
-type = "dielectric"
-ior = 1.5
-[materials.floor]
-type = "diffuse"
-reflectance = 0.6
-[[shapes]]
-type = "sphere"
-center = [0, 0.6, 0]
-radius = 0.6
-material = "glass"
-interior = "fog"
-[[shapes]]
-type = "rectangle"
-material = "floor"
-transform = [{ scale = 4 }, { rotate = { axis = [1, 0, 0], angle = "-90 deg" } }]
-[[shapes]]
-type = "rectangle"
-transform = [{ scale = 1.2 }, { rotate = { axis = [1, 0, 0], angle = "90 deg" } }, { translate = [1.6, 2.2, 1.6] }]
-emission = { spectrum = "cie-d65", radiance = "4 W/m^2/sr" }
-"#;
+fn glass_fog() -> String {
+    support::media::fog_ball(
+        "type = \"dielectric\"\nior = 1.5",
+        2.4,
+        [1.6, 2.2, 1.6],
+        4.0,
+        512,
+    )
+}
 
 fn render(scene: &mut Scene, kind: IntegratorKind, seed: u32, spp: u32) -> Image {
     scene.integrator.kind = kind;
@@ -111,7 +85,7 @@ fn tile(
 #[test]
 fn bdpt_path_and_light_agree_on_a_medium_inside_glass() {
     let seed = 1;
-    let mut scene = scene_from(GLASS_FOG);
+    let mut scene = scene_from(&glass_fog());
     let bdpt = render(&mut scene, IntegratorKind::Bdpt, seed, 512);
     let path = render(&mut scene, IntegratorKind::Path, seed, 2048);
     let light = render(&mut scene, IntegratorKind::Light, seed, 2048);
@@ -149,28 +123,8 @@ fn bdpt_path_and_light_agree_on_a_medium_inside_glass() {
     assert!(bad.is_empty(), "{}", bad.join("\n"));
 }
 
-/// N-BK7 (SCHOTT), λ in nm, evaluated here independently of the renderer.
-fn n_bk7(l_nm: f64) -> f64 {
-    let l2 = (l_nm * 1e-3).powi(2);
-    let b = [1.03961212, 0.231792344, 1.01046945];
-    let c = [0.00600069867, 0.0200179144, 103.560653];
-    (1.0 + (0..3).map(|i| b[i] * l2 / (l2 - c[i])).sum::<f64>()).sqrt()
-}
-
-/// Refraction of unit `d` at a surface with unit normal `n` facing the incoming side, η = n₁/n₂.
-fn refract(d: DVec2, n: DVec2, eta: f64) -> DVec2 {
-    let cos_i = -d.dot(n);
-    let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
-    assert!(k > 0.0, "total internal reflection");
-    eta * d + (eta * cos_i - k.sqrt()) * n
-}
-
-// The prism of `tests/prism.rs` in the xy plane (metres), apex up, 10 cm deep in z: A, B on the
-// base, C the apex. The beam's axis meets the left face AC at its midpoint at 19.32° above
-// horizontal (minimum deviation for the d line).
-const A: DVec2 = DVec2::new(-0.05, 0.0);
-const B: DVec2 = DVec2::new(0.05, 0.0);
-const C: DVec2 = DVec2::new(0.0, 0.0866025);
+// The prism of `tests/prism.rs` (`support::prism`): the beam's axis meets the left face AC at
+// its midpoint at 19.32° above horizontal (minimum deviation for the d line).
 const BEAM_DEG: f64 = 19.32;
 /// The beam's radius, m.
 const BEAM_R: f64 = 0.5e-3;
@@ -195,12 +149,8 @@ fn sigma_a(l: f64) -> f64 {
 /// right face BC.
 fn inside(l: f64, u: f64) -> f64 {
     let d = DVec2::new(BEAM_DEG.to_radians().cos(), BEAM_DEG.to_radians().sin());
-    let o = (A + C) * 0.5 - d + d.perp() * u;
-    let n_left = DVec2::new(-(C - A).y, (C - A).x).normalize();
-    let entry = o + d * ((A - o).dot(n_left) / d.dot(n_left));
-    let t = refract(d, n_left, 1.0 / n_bk7(l));
-    let n_right = DVec2::new((C - B).y, -(C - B).x).normalize();
-    (B - entry).dot(n_right) / t.dot(n_right)
+    let (entry, exit, _) = through((A + C) * 0.5 + d.perp() * u, d, l);
+    (exit - entry).length()
 }
 
 /// The beam's transmittance through the tinting glass at wavelength `l`: exp(−σa ℓ) averaged
@@ -225,14 +175,7 @@ fn rainbow(integrator: IntegratorKind, tint: bool, spp: u32, seed: u32) -> Image
     let m = (A + C) * 0.5;
     let beam = m - d * 0.3;
     // the screen faces the d line's exit ray, centred on it 0.5 m on
-    let n_right = DVec2::new((C - B).y, -(C - B).x).normalize();
-    let t = refract(
-        d,
-        DVec2::new(-(C - A).y, (C - A).x).normalize(),
-        1.0 / n_bk7(587.56),
-    );
-    let e = m + t * ((B - m).dot(n_right) / t.dot(n_right));
-    let out = refract(t, -n_right, n_bk7(587.56));
+    let (_, e, out) = through(m, d, 587.56);
     let (s, eye) = (e + out * 0.5, e + out * 0.25);
     // the clear prism holds a medium too, of σa = 0, so that both renders take the same
     // random walk and read the same random numbers
@@ -268,9 +211,7 @@ reflectance = 0.8
 type = "mesh"
 material = "bk7"
 interior = "tint"
-vertices = [[-0.05, 0, 0.05], [0.05, 0, 0.05], [0, 0.0866025, 0.05], [-0.05, 0, -0.05], [0.05, 0, -0.05], [0, 0.0866025, -0.05]]
-faces = [[0, 1, 2], [3, 5, 4], [0, 3, 4], [0, 4, 1], [0, 2, 5], [0, 5, 3], [1, 4, 5], [1, 5, 2]]
-[[shapes]]
+{MESH}[[shapes]]
 type = "rectangle"
 material = "screen"
 transform = [{{ scale = 0.1 }}, {{ look_at = {{ eye = [{sx}, {sy}, 0], target = [{tx}, {ty}, 0], up = [0, 0, 1] }} }}]

@@ -6,43 +6,18 @@
 mod support;
 
 use glam::{DVec2, Vec2};
+use support::prism::{A, C, MESH, through};
 use support::render::{render_with, scene_from};
 
-/// N-BK7 (SCHOTT), λ in nm, evaluated here independently of the renderer.
-fn n_bk7(l_nm: f64) -> f64 {
-    let l2 = (l_nm * 1e-3).powi(2);
-    let b = [1.03961212, 0.231792344, 1.01046945];
-    let c = [0.00600069867, 0.0200179144, 103.560653];
-    (1.0 + (0..3).map(|i| b[i] * l2 / (l2 - c[i])).sum::<f64>()).sqrt()
-}
-
-/// Refraction of unit `d` at a surface with unit normal `n` facing the incoming side, η = n₁/n₂.
-fn refract(d: DVec2, n: DVec2, eta: f64) -> DVec2 {
-    let cos_i = -d.dot(n);
-    let k = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
-    assert!(k > 0.0, "total internal reflection");
-    eta * d + (eta * cos_i - k.sqrt()) * n
-}
-
-// Geometry in the xy plane (metres): prism A(−0.05, 0), B(0.05, 0), C(0, 0.0866025) with the
-// beam entering the left face AC at its midpoint at 19.32° above horizontal (minimum deviation
-// for the d line), and a screen 0.5 m beyond the exit point, perpendicular to the d-line exit
-// ray.
-const A: DVec2 = DVec2::new(-0.05, 0.0);
-const B: DVec2 = DVec2::new(0.05, 0.0);
-const C: DVec2 = DVec2::new(0.0, 0.0866025);
+// The beam's axis meets the left face AC at its midpoint at 19.32° above horizontal (minimum
+// deviation for the d line), and a screen stands 0.5 m beyond the exit point, perpendicular to
+// the d-line exit ray.
 
 /// Exit point and direction of the beam's central ray at wavelength `l`.
 fn trace(l: f64) -> (DVec2, DVec2) {
     let d = DVec2::new(19.32f64.to_radians().cos(), 19.32f64.to_radians().sin());
-    let m = (A + C) * 0.5;
-    let n_left = DVec2::new(-(C - A).y, (C - A).x).normalize(); // outward (−0.866, 0.5)
-    let n = n_bk7(l);
-    let t = refract(d, n_left, 1.0 / n);
-    let n_right = DVec2::new((C - B).y, -(C - B).x).normalize(); // outward (0.866, 0.5)
-    let s = (B - m).dot(n_right) / t.dot(n_right);
-    let e = m + t * s;
-    (e, refract(t, -n_right, n))
+    let (_, exit, out) = through((A + C) * 0.5, d, l);
+    (exit, out)
 }
 
 /// (wavelength nm, where its spot lands on the screen plane (m), the spot's summed band
@@ -78,9 +53,7 @@ reflectance = 0.8
 [[shapes]]
 type = "mesh"
 material = "bk7"
-vertices = [[-0.05, 0, 0.05], [0.05, 0, 0.05], [0, 0.0866025, 0.05], [-0.05, 0, -0.05], [0.05, 0, -0.05], [0, 0.0866025, -0.05]]
-faces = [[0, 1, 2], [3, 5, 4], [0, 3, 4], [0, 4, 1], [0, 2, 5], [0, 5, 3], [1, 4, 5], [1, 5, 2]]
-[[shapes]]
+{MESH}[[shapes]]
 type = "rectangle"
 material = "screen"
 transform = [{{ scale = 0.1 }}, {{ look_at = {{ eye = [{sx}, {sy}, 0], target = [{tx}, {ty}, 0], up = [0, 0, 1] }} }}]

@@ -236,15 +236,7 @@ fn light_tracing_refuses_an_orthographic_camera() {
         .join("tests/reference/orthographic/scene.xml")
         .display()
         .to_string();
-    let base = [
-        "render",
-        scene.as_str(),
-        "-o",
-        "o.exr",
-        "--quiet",
-        "--spp",
-        "1",
-    ];
+    let base = one_sample(&scene);
     let (ok, err) = spectrace(&dir, &[&base[..], &["--integrator", "light"]].concat());
     assert!(!ok && err.contains("orthographic camera"), "{err}");
     assert!(!dir.join("o.exr").exists(), "no image after an error");
@@ -261,15 +253,7 @@ fn an_integrator_without_media_refuses_a_scene_with_media() {
         .join("scenes/media.toml")
         .display()
         .to_string();
-    let base = [
-        "render",
-        scene.as_str(),
-        "-o",
-        "o.exr",
-        "--quiet",
-        "--spp",
-        "1",
-    ];
+    let base = one_sample(&scene);
     for integrator in ["whitted", "direct"] {
         let (ok, err) = spectrace(&dir, &[&base[..], &["--integrator", integrator]].concat());
         assert!(
@@ -278,4 +262,9 @@ fn an_integrator_without_media_refuses_a_scene_with_media() {
         );
         assert!(!dir.join("o.exr").exists(), "no image after an error");
     }
+}
+
+/// The arguments that render `scene` at 1 spp into `o.exr`, quietly.
+fn one_sample(scene: &str) -> [&str; 7] {
+    ["render", scene, "-o", "o.exr", "--quiet", "--spp", "1"]
 }

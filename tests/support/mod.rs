@@ -53,7 +53,9 @@ impl Csv {
 /// A small deterministic generator (SplitMix64) for Monte Carlo checks.
 pub mod cli;
 pub mod idiff;
+pub mod media;
 pub mod photometric;
+pub mod prism;
 pub mod render;
 
 pub struct Rng(u64);

@@ -20,6 +20,7 @@ use glam::Vec3;
 
 use super::vertex::{Kind, Vertex};
 use super::walk::RR_DEPTH;
+use crate::geometry::shape::Intersection;
 use crate::geometry::{Ray, spawn_ray};
 use crate::integrator::Integrator;
 use crate::integrator::volpath::{MAX_CROSSINGS, ShadowTarget};
@@ -47,6 +48,22 @@ struct State<const N: usize> {
     eta_scale: f32,
     /// Whether a dispersive vertex lies behind.
     dispersive: bool,
+    /// `null` and sheet crossings since the last vertex.
+    crossings: u32,
+    mode: TransportMode,
+    max_vertices: usize,
+    /// The starting throughput's largest component (light subpaths' roulette).
+    beta0: f32,
+}
+
+/// What the walk does after a step.
+enum Step {
+    /// Trace the (new) ray.
+    Next,
+    /// Go on to the surface hit.
+    On,
+    /// The subpath ends.
+    End,
 }
 
 /// As `walk.rs`'s walk (same arguments and contract), through media; a camera walk
@@ -75,50 +92,19 @@ pub(super) fn walk<'a, const N: usize>(
         pdf_dir,
         eta_scale: 1.0,
         dispersive: false,
+        crossings: 0,
+        mode,
+        max_vertices,
+        beta0: beta.max_component(),
     };
-    let beta0 = beta.max_component();
-    let mut crossings = 0u32;
     while path.len() < max_vertices {
         let hit = scene.accel.intersect(&scene.shapes, &st.ray);
         // 1. The medium up to the hit: a medium vertex, or on to the hit.
-        if let Some(m) = st.medium {
-            let md = &scene.media[m as usize];
-            let t_max = hit.as_ref().map_or(f32::INFINITY, |h| h.t);
-            let flight = md.walk(st.ray.o, st.ray.d, t_max, w, &mut || s.get_1d());
-            if let (Some((f, pdf)), TransportMode::Radiance) = (flight.emitted, mode) {
-                add_glow(it, glow, &st, f, pdf, w, path.len() + 1);
-            }
-            st.beta *= flight.beta;
-            st.r_u *= flight.r_u;
-            if !st.beta.is_finite() || st.beta.is_zero() {
-                return;
-            }
-            if let Some(t) = flight.t {
-                let mut v = Vertex::new(
-                    Kind::Medium { phase: md.phase() },
-                    st.ray.at(t),
-                    st.beta,
-                    0.0,
-                );
-                v.wo = -st.ray.d;
-                v.medium = st.medium;
-                push(it, path, v, &st);
-                if path.len() == max_vertices {
-                    return;
-                }
-                let phase = md.phase();
-                let ps = phase.sample(v.wo, s.get_2d());
-                let cur = path.len() - 1;
-                let rev = phase.eval(ps.wi, v.wo);
-                path[cur - 1].pdf_rev = v.convert(it, rev, &path[cur - 1]);
-                st.pdf_dir = ps.pdf;
-                st.ray = Ray::new(v.p, ps.wi);
-                crossings = 0;
-                if !roulette(it, &mut st, mode, beta0, path.len(), w, s) {
-                    return;
-                }
-                continue;
-            }
+        let t_max = hit.as_ref().map_or(f32::INFINITY, |h| h.t);
+        match flight(it, &mut st, t_max, w, s, path, glow) {
+            Step::Next => continue,
+            Step::End => return,
+            Step::On => {}
         }
         let Some(hit) = hit else {
             // a camera ray leaving the scene ends on the lights at infinity
@@ -130,88 +116,156 @@ pub(super) fn walk<'a, const N: usize>(
             }
             return;
         };
-        let shading = it.shading(&hit, st.ray.d, w);
-        // 2. Index-matched surfaces and a sheet's transmission: crossed, not vertices.
-        let pass = shading.as_ref().map_or(0.0, |sh| {
-            sh.bsdf
-                .material
-                .null_transmission(hit.n_shading.dot(st.ray.d))
-        });
-        if let Some(sh) = &shading
-            && pass > 0.0
-            && (matches!(sh.bsdf.material, Material::Null) || s.get_1d() < pass)
-        {
-            crossings += 1;
-            if crossings > MAX_CROSSINGS {
-                return;
-            }
-            st.medium = it.medium_after(&hit, st.ray.d, st.medium);
-            let n = sh.n_geom_toward(st.ray.d);
-            st.ray = spawn_ray(hit.p, hit.p_error, n, st.ray.d);
-            continue;
+        // 2. A surface: crossed, or a vertex.
+        match surface(it, &mut st, &hit, w, s, path) {
+            Step::Next | Step::On => {}
+            Step::End => return,
         }
-        // 3. A surface vertex.
-        let mut v = Vertex::new(
-            Kind::Surface {
-                emitter: scene.surfaces[hit.shape as usize].light,
-            },
-            hit.p,
-            st.beta,
-            0.0,
-        );
-        v.p_error = hit.p_error;
-        v.ng = hit.n_geom;
-        v.uv = hit.uv;
-        v.wo = -st.ray.d;
-        v.shading = shading;
-        v.medium = st.medium;
-        v.interface = scene
-            .medium_interfaces
-            .get(hit.shape as usize)
-            .copied()
-            .unwrap_or_default();
-        push(it, path, v, &st);
-        let Some(sh) = v.shading else {
-            return;
+    }
+}
+
+/// The free flight through the ray's medium up to `t_max`: a medium vertex whose phase
+/// function gives the next ray (`Step::Next`), on to the hit (`Step::On`), or the end.
+fn flight<'a, const N: usize>(
+    it: &Integrator<'_>,
+    st: &mut State<N>,
+    t_max: f32,
+    w: &SampledWavelengths<N>,
+    s: &mut Sampler,
+    path: &mut Vec<Vertex<'a, N>>,
+    glow: &mut Glow<N>,
+) -> Step {
+    let Some(m) = st.medium else {
+        return Step::On;
+    };
+    let md = &it.scene.media[m as usize];
+    let flight = md.walk(st.ray.o, st.ray.d, t_max, w, &mut || s.get_1d());
+    if let (Some((f, pdf)), TransportMode::Radiance) = (flight.emitted, st.mode) {
+        add_glow(it, glow, st, f, pdf, w, path.len() + 1);
+    }
+    st.beta *= flight.beta;
+    st.r_u *= flight.r_u;
+    if !st.beta.is_finite() || st.beta.is_zero() {
+        return Step::End;
+    }
+    let Some(t) = flight.t else {
+        return Step::On;
+    };
+    let phase = md.phase();
+    let mut v = Vertex::new(Kind::Medium { phase }, st.ray.at(t), st.beta, 0.0);
+    v.wo = -st.ray.d;
+    v.medium = st.medium;
+    push(it, path, v, st);
+    if path.len() == st.max_vertices {
+        return Step::End;
+    }
+    let ps = phase.sample(v.wo, s.get_2d());
+    let cur = path.len() - 1;
+    let rev = phase.eval(ps.wi, v.wo);
+    path[cur - 1].pdf_rev = v.convert(it, rev, &path[cur - 1]);
+    st.pdf_dir = ps.pdf;
+    st.ray = Ray::new(v.p, ps.wi);
+    st.crossings = 0;
+    if roulette(it, st, path.len(), w, s) {
+        Step::Next
+    } else {
+        Step::End
+    }
+}
+
+/// The surface at `hit`: an index-matched surface or a sheet's transmission crossed (not a
+/// vertex), else a surface vertex, scattered by a sheet's mirror reflection (a delta vertex of
+/// weight 1) or by its BSDF. `Step::Next` goes on with the new ray.
+fn surface<'a, const N: usize>(
+    it: &'a Integrator<'a>,
+    st: &mut State<N>,
+    hit: &Intersection,
+    w: &SampledWavelengths<N>,
+    s: &mut Sampler,
+    path: &mut Vec<Vertex<'a, N>>,
+) -> Step {
+    let scene = it.scene;
+    let shading = it.shading(hit, st.ray.d, w);
+    let pass = shading.as_ref().map_or(0.0, |sh| {
+        sh.bsdf
+            .material
+            .null_transmission(hit.n_shading.dot(st.ray.d))
+    });
+    if let Some(sh) = &shading
+        && pass > 0.0
+        && (matches!(sh.bsdf.material, Material::Null) || s.get_1d() < pass)
+    {
+        st.crossings += 1;
+        if st.crossings > MAX_CROSSINGS {
+            return Step::End;
+        }
+        st.medium = it.medium_after(hit, st.ray.d, st.medium);
+        let n = sh.n_geom_toward(st.ray.d);
+        st.ray = spawn_ray(hit.p, hit.p_error, n, st.ray.d);
+        return Step::Next;
+    }
+    let mut v = Vertex::new(
+        Kind::Surface {
+            emitter: scene.surfaces[hit.shape as usize].light,
+        },
+        hit.p,
+        st.beta,
+        0.0,
+    );
+    v.p_error = hit.p_error;
+    v.ng = hit.n_geom;
+    v.uv = hit.uv;
+    v.wo = -st.ray.d;
+    v.shading = shading;
+    v.medium = st.medium;
+    v.interface = scene
+        .medium_interfaces
+        .get(hit.shape as usize)
+        .copied()
+        .unwrap_or_default();
+    push(it, path, v, st);
+    let Some(sh) = v.shading else {
+        return Step::End;
+    };
+    if path.len() == st.max_vertices {
+        return Step::End;
+    }
+    let cur = path.len() - 1;
+    if pass > 0.0 {
+        // the sheet's mirror reflection
+        path[cur].delta = true;
+        path[cur - 1].pdf_rev = 0.0;
+        st.pdf_dir = 0.0;
+        let n = hit.n_shading;
+        let d = st.ray.d - 2.0 * st.ray.d.dot(n) * n;
+        st.ray = spawn_ray(hit.p, hit.p_error, sh.n_geom_toward(d), d);
+    } else {
+        let wo = sh.frame.to_local(-st.ray.d);
+        // a dispersive hit samples with the hero alone (see `walk.rs`)
+        st.dispersive |= sh.bsdf.is_dispersive();
+        let mut wl = *w;
+        let Some((bs, next)) = sh.scatter(hit, wo, &mut wl, s, st.mode, &mut st.beta) else {
+            return Step::End;
         };
-        if path.len() == max_vertices {
-            return;
-        }
-        let cur = path.len() - 1;
-        if pass > 0.0 {
-            // the sheet's mirror reflection: a delta vertex of weight 1
+        let (fwd, rev) = if bs.specular {
             path[cur].delta = true;
-            path[cur - 1].pdf_rev = 0.0;
-            st.pdf_dir = 0.0;
-            let n = hit.n_shading;
-            let d = st.ray.d - 2.0 * st.ray.d.dot(n) * n;
-            st.ray = spawn_ray(hit.p, hit.p_error, sh.n_geom_toward(d), d);
+            (0.0, 0.0)
         } else {
-            let wo = sh.frame.to_local(-st.ray.d);
-            // a dispersive hit samples with the hero alone (see `walk.rs`)
-            st.dispersive |= sh.bsdf.is_dispersive();
-            let mut wl = *w;
-            let Some((bs, next)) = sh.scatter(&hit, wo, &mut wl, s, mode, &mut st.beta) else {
-                return;
-            };
-            let (fwd, rev) = if bs.specular {
-                path[cur].delta = true;
-                (0.0, 0.0)
-            } else {
-                (bs.pdf, sh.bsdf.pdf(bs.wi, wo, w, TransportMode::Radiance))
-            };
-            st.pdf_dir = fwd;
-            path[cur - 1].pdf_rev = v.convert(it, rev, &path[cur - 1]);
-            if bs.transmission {
-                st.eta_scale *= bs.eta * bs.eta;
-            }
-            st.ray = next;
+            (bs.pdf, sh.bsdf.pdf(bs.wi, wo, w, TransportMode::Radiance))
+        };
+        st.pdf_dir = fwd;
+        path[cur - 1].pdf_rev = v.convert(it, rev, &path[cur - 1]);
+        if bs.transmission {
+            st.eta_scale *= bs.eta * bs.eta;
         }
-        st.medium = it.medium_after(&hit, st.ray.d, st.medium);
-        crossings = 0;
-        if !roulette(it, &mut st, mode, beta0, path.len(), w, s) {
-            return;
-        }
+        st.ray = next;
+    }
+    st.medium = it.medium_after(hit, st.ray.d, st.medium);
+    st.crossings = 0;
+    if roulette(it, st, path.len(), w, s) {
+        Step::Next
+    } else {
+        Step::End
     }
 }
 
@@ -273,8 +327,6 @@ fn add_glow<const N: usize>(
 fn roulette<const N: usize>(
     it: &Integrator<'_>,
     st: &mut State<N>,
-    mode: TransportMode,
-    beta0: f32,
     vertices: usize,
     w: &SampledWavelengths<N>,
     s: &mut Sampler,
@@ -284,10 +336,10 @@ fn roulette<const N: usize>(
         return false;
     }
     let avg = live_average(st.r_u, w);
-    let (rr, start) = match mode {
+    let (rr, start) = match st.mode {
         TransportMode::Radiance => ((st.beta * st.eta_scale).max_component() / avg, it.rr_depth),
         TransportMode::Importance => (
-            st.beta.max_component() / (beta0 * avg),
+            st.beta.max_component() / (st.beta0 * avg),
             it.rr_depth.min(RR_DEPTH),
         ),
     };

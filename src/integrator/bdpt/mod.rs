@@ -32,18 +32,19 @@
 //!   weighted images of all strategies sum to the full render, and each unweighted one converges
 //!   to the same image where it can sample the paths.
 
+mod connect;
 mod media;
 mod vertex;
 mod walk;
 
-use glam::{Vec2, Vec3};
+use glam::Vec2;
 
 use super::Integrator;
-use crate::geometry::{Ray, spawn_ray, spawn_ray_to};
-use crate::material::TransportMode;
+use crate::geometry::Ray;
 use crate::sampler::Sampler;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
-use vertex::{Kind, Vertex};
+use connect::Ends;
+use vertex::Vertex;
 
 /// One connection strategy alone, for debugging and tests: `s` light vertices, `t` camera
 /// vertices, with its MIS weight or without (then it is an unbiased estimator by itself of the
@@ -241,145 +242,6 @@ fn connect<'a, const N: usize>(
         1.0
     };
     Some((l * (mis * spectral), raster))
-}
-
-/// The two subpaths and a strategy's use of them, for the connections below.
-struct Ends<'b, 'a, const N: usize> {
-    light: &'b [Vertex<'a, N>],
-    camera: &'b [Vertex<'a, N>],
-    s: usize,
-    t: usize,
-    w: &'b SampledWavelengths<N>,
-}
-
-impl<'a, const N: usize> Ends<'_, 'a, N> {
-    /// t = 1: the light subpath's last vertex seen by the camera through the lens point it
-    /// samples from `u`: the contribution (W·m⁻²·sr⁻¹·nm⁻¹ times the pixel count), the lens
-    /// vertex, and the raster position.
-    fn to_lens(
-        &self,
-        it: &Integrator<'_>,
-        u: Vec2,
-        margin: f32,
-        track: &mut Sampler,
-    ) -> Option<(SampledSpectrum<N>, Vertex<'a, N>, Vec2)> {
-        let qs = &self.light[self.s - 1];
-        if !qs.connectible(it) {
-            return None;
-        }
-        let c = it.scene.camera.connect(qs.p, u, margin)?;
-        let mut v = Vertex::new(
-            Kind::Camera,
-            c.p_lens,
-            SampledSpectrum::splat(c.weight),
-            0.0,
-        );
-        v.medium = it.scene.camera_medium;
-        let l = qs.beta
-            * qs.f(c.wi, self.w, TransportMode::Importance)
-            * (qs.cos_shading(c.wi) * c.weight);
-        if l.is_zero() {
-            return None;
-        }
-        let tr = reach(it, qs, &v, self.w, track)?;
-        Some((l * tr, v, c.raster))
-    }
-
-    /// s = 1: next-event estimation from the camera subpath's last vertex with the light
-    /// point it samples from `u`: the contribution and the light vertex.
-    fn to_light(
-        &self,
-        it: &Integrator<'_>,
-        u: Vec2,
-        track: &mut Sampler,
-    ) -> Option<(SampledSpectrum<N>, Vertex<'a, N>)> {
-        let (scene, w) = (it.scene, self.w);
-        let pt = &self.camera[self.t - 1];
-        if !pt.connectible(it) {
-            return None;
-        }
-        let (li, p_sel, ux) = it.lights.pick_reuse(u.x)?;
-        let light = &scene.lights[li];
-        let ls = light.sample_li(&scene.shapes, pt.p, w, Vec2::new(ux, u.y))?;
-        if ls.li.is_zero() || !(ls.pdf > 0.0) {
-            return None;
-        }
-        let mut v = Vertex::new(
-            Kind::Light { light: li as u32 },
-            ls.p,
-            ls.li * (1.0 / (p_sel * ls.pdf)),
-            0.0,
-        );
-        v.p_error = ls.p_error;
-        v.ng = if ls.distance.is_finite() {
-            ls.n
-        } else {
-            Vec3::ZERO
-        };
-        v.d = ls.wi;
-        v.pdf_fwd = v.pdf_light_origin(it, pt);
-        let l = pt.beta * pt.f(ls.wi, w, TransportMode::Radiance) * v.beta * pt.cos_shading(ls.wi);
-        if l.is_zero() {
-            return None;
-        }
-        let tr = reach(it, pt, &v, w, track)?;
-        Some((l * tr, v))
-    }
-
-    /// s, t ≥ 2: an edge between the two subpaths' last vertices.
-    fn edge(&self, it: &Integrator<'_>, track: &mut Sampler) -> Option<SampledSpectrum<N>> {
-        let (qs, pt) = (&self.light[self.s - 1], &self.camera[self.t - 1]);
-        if !qs.connectible(it) || !pt.connectible(it) {
-            return None;
-        }
-        let d = qs.p - pt.p;
-        let d2 = d.length_squared();
-        if !(d2 > 0.0) {
-            return None;
-        }
-        let wi = d / d2.sqrt();
-        let g = pt.cos_shading(wi) * qs.cos_shading(wi) / d2;
-        let l = qs.beta
-            * qs.f(-wi, self.w, TransportMode::Importance)
-            * pt.f(wi, self.w, TransportMode::Radiance)
-            * pt.beta
-            * g;
-        if l.is_zero() {
-            return None;
-        }
-        Some(l * reach(it, pt, qs, self.w, track)?)
-    }
-}
-
-/// What reaches `b` from `a` along the segment between them, per wavelength: 1 where nothing
-/// blocks it in a scene without media; with media, the transmittance through them and the
-/// `null` and sheet surfaces on the way (`media::transmittance`). None if blocked.
-fn reach<const N: usize>(
-    it: &Integrator<'_>,
-    a: &Vertex<'_, N>,
-    b: &Vertex<'_, N>,
-    w: &SampledWavelengths<N>,
-    track: &mut Sampler,
-) -> Option<SampledSpectrum<N>> {
-    if it.scene.media.is_empty() {
-        return visible(it, a, b).then(|| SampledSpectrum::splat(1.0));
-    }
-    let tr = media::transmittance(it, a, b, w, track);
-    (!tr.is_zero()).then_some(tr)
-}
-
-/// Whether nothing blocks the segment between `a` and `b` (either may be at infinity, but not
-/// both).
-fn visible<const N: usize>(it: &Integrator<'_>, a: &Vertex<'_, N>, b: &Vertex<'_, N>) -> bool {
-    let scene = it.scene;
-    let ray = if b.at_infinity(it) {
-        spawn_ray(a.p, a.p_error, a.ng, b.d)
-    } else if a.at_infinity(it) {
-        spawn_ray(b.p, b.p_error, b.ng, a.d)
-    } else {
-        spawn_ray_to(a.p, a.p_error, a.ng, b.p, b.p_error, b.ng)
-    };
-    !scene.accel.occluded(&scene.shapes, &ray)
 }
 
 /// The power-heuristic MIS weight of strategy (s, t) for the path it built, by the
