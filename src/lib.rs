@@ -31,6 +31,7 @@ pub mod medium;
 pub mod output;
 pub mod params;
 pub mod plot;
+pub mod polarisation;
 pub mod render;
 pub mod sampler;
 pub mod sampling;

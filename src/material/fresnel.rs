@@ -9,6 +9,8 @@
 
 use glam::Vec3;
 
+use crate::polarisation::Complex;
+
 /// (R_s, R_p) for light hitting an interface of relative index `eta = n_t/n_i` with
 /// cos θᵢ = `cos_theta_i`.
 ///
@@ -63,68 +65,6 @@ pub fn fresnel_dielectric_pair(cos_i: f32, cos_t: f32, eta: f32) -> f32 {
     0.5 * (rs * rs + rp * rp)
 }
 
-/// A complex number, only for the conductor Fresnel equations.
-#[derive(Clone, Copy, Debug)]
-struct Complex {
-    re: f32,
-    im: f32,
-}
-
-impl Complex {
-    #[inline]
-    fn new(re: f32, im: f32) -> Self {
-        Self { re, im }
-    }
-    #[inline]
-    fn add(self, o: Self) -> Self {
-        Self::new(self.re + o.re, self.im + o.im)
-    }
-    #[inline]
-    fn sub(self, o: Self) -> Self {
-        Self::new(self.re - o.re, self.im - o.im)
-    }
-    #[inline]
-    fn mul(self, o: Self) -> Self {
-        Self::new(
-            self.re * o.re - self.im * o.im,
-            self.re * o.im + self.im * o.re,
-        )
-    }
-    #[inline]
-    fn scale(self, s: f32) -> Self {
-        Self::new(self.re * s, self.im * s)
-    }
-    #[inline]
-    fn norm2(self) -> f32 {
-        self.re * self.re + self.im * self.im
-    }
-    /// |a/b|², without forming the quotient.
-    #[inline]
-    fn ratio_norm2(a: Self, b: Self) -> f32 {
-        let d = b.norm2();
-        if d == 0.0 { 1.0 } else { a.norm2() / d }
-    }
-    #[inline]
-    fn div(self, o: Self) -> Self {
-        let d = o.norm2();
-        Self::new(
-            (self.re * o.re + self.im * o.im) / d,
-            (self.im * o.re - self.re * o.im) / d,
-        )
-    }
-    /// Principal square root (Re ≥ 0).
-    #[inline]
-    fn sqrt(self) -> Self {
-        let r = self.norm2().sqrt();
-        if r == 0.0 {
-            return Self::new(0.0, 0.0);
-        }
-        let re = (0.5 * (r + self.re)).max(0.0).sqrt();
-        let im = (0.5 * (r - self.re)).max(0.0).sqrt();
-        Self::new(re, if self.im < 0.0 { -im } else { im })
-    }
-}
-
 /// Unpolarised reflectance of a conductor of complex relative index `eta + i·k` (both already
 /// divided by the outside medium's index) for light from outside with cos θᵢ = `cos_theta_i`.
 ///
@@ -143,14 +83,14 @@ pub fn fresnel_conductor(cos_theta_i: f32, eta: f32, k: f32) -> f32 {
     let cos_i = cos_theta_i.clamp(0.0, 1.0);
     let sin2_i = 1.0 - cos_i * cos_i;
     let eta_c = Complex::new(eta, k);
-    let eta2 = eta_c.mul(eta_c);
-    let sin2_t = Complex::new(sin2_i, 0.0).div(eta2);
-    let cos_t = Complex::new(1.0, 0.0).sub(sin2_t).sqrt();
+    let eta2 = eta_c * eta_c;
+    let sin2_t = Complex::new(sin2_i, 0.0) / eta2;
+    let cos_t = (Complex::new(1.0, 0.0) - sin2_t).sqrt();
     let ci = Complex::new(cos_i, 0.0);
-    let eta_cos_t = eta_c.mul(cos_t);
+    let eta_cos_t = eta_c * cos_t;
     let eta_cos_i = eta_c.scale(cos_i);
-    let rs = Complex::ratio_norm2(ci.sub(eta_cos_t), ci.add(eta_cos_t));
-    let rp = Complex::ratio_norm2(eta_cos_i.sub(cos_t), eta_cos_i.add(cos_t));
+    let rs = Complex::ratio_norm2(ci - eta_cos_t, ci + eta_cos_t);
+    let rp = Complex::ratio_norm2(eta_cos_i - cos_t, eta_cos_i + cos_t);
     0.5 * (rs + rp)
 }
 
