@@ -5,7 +5,7 @@
 //! EXR channels: `X`, `Y`, `Z` (CIE 1931, `Y` = luminance in cd/m²); `R`, `G`, `B` (linear
 //! sRGB/Rec. 709 primaries, D65, same absolute scale); `L` (radiance integrated over the film's
 //! wavelength range, W·m⁻²·sr⁻¹); spectral files add `S0.<λ>nm` channels (mean spectral radiance
-//! of each bin, W·m⁻²·sr⁻¹·nm⁻¹).
+//! of each bin, W·m⁻²·sr⁻¹·nm⁻¹). A polarised render adds its Stokes components ([`stokes_channels`]).
 //!
 //! PNG tone curve: linear RGB is divided by the saturating luminance of an ISO-100 camera,
 //! L_max = 1.2 · 2^EV₁₀₀ cd/m² (the saturation-based sensitivity of ISO 12232), clamped to
@@ -139,6 +139,79 @@ pub fn to_mitsuba_scale(img: &mut Image) {
     for p in img.xyz_m2.iter_mut() {
         *p = p.map(|v| v * k * k);
     }
+    for p in img.stokes.iter_mut() {
+        *p = p.map(|c| c.map(|v| v * k));
+    }
+}
+
+/// A polarised render's channels (none for an unpolarised image), S0 being the image itself:
+/// `S1.X`, `S1.Y`, `S1.Z`, `S1.R`, `S1.G`, `S1.B` and the same for `S2` and `S3` (the Stokes
+/// components as XYZ and linear sRGB on the image's scale; frame: the basis vector points
+/// right in the image, S1 > 0 horizontal, S2 > 0 polarised along the diagonal up and to the
+/// right, S3 > 0 right-circular, Mitsuba 3's `stokes` conventions); `DoLP` (degree of linear
+/// polarisation of the luminance, √(S1² + S2²)/S0 of Y, 0 where Y is 0); `AoLP` (its angle in
+/// degrees, counter-clockwise from the image's horizontal, in (−90, 90]); `pol0.Y`, `pol45.Y`,
+/// `pol90.Y`, `pol135.Y` (the luminance behind an ideal linear analyser at that angle, as a
+/// polarisation camera's four sub-pixels see it: ½(S0 + S1 cos 2θ + S2 sin 2θ)); with the
+/// header text stating them.
+pub fn stokes_channels(img: &Image) -> (Vec<(String, Vec<f32>)>, String) {
+    if img.stokes.is_empty() {
+        return (Vec::new(), String::new());
+    }
+    let n = img.width * img.height;
+    let mut out = Vec::new();
+    for c in 0..3 {
+        let rgb: Vec<[f64; 3]> = (0..n)
+            .map(|i| crate::colour::spaces::xyz_to_srgb(img.stokes[i][c].map(f64::from)))
+            .collect();
+        for (a, name) in ["X", "Y", "Z"].iter().enumerate() {
+            let v = (0..n).map(|i| img.stokes[i][c][a]).collect();
+            out.push((format!("S{}.{name}", c + 1), v));
+        }
+        for (a, name) in ["R", "G", "B"].iter().enumerate() {
+            let v = rgb.iter().map(|p| p[a] as f32).collect();
+            out.push((format!("S{}.{name}", c + 1), v));
+        }
+    }
+    let y = |i: usize| {
+        let s = &img.stokes[i];
+        (img.xyz[i][1] as f64, s[0][1] as f64, s[1][1] as f64)
+    };
+    let dolp = (0..n)
+        .map(|i| {
+            let (s0, s1, s2) = y(i);
+            if s0 > 0.0 {
+                (s1.hypot(s2) / s0) as f32
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let aolp = (0..n)
+        .map(|i| {
+            let (_, s1, s2) = y(i);
+            let a = 0.5 * s2.atan2(s1).to_degrees();
+            (if a <= -90.0 { a + 180.0 } else { a }) as f32
+        })
+        .collect();
+    out.push(("DoLP".into(), dolp));
+    out.push(("AoLP".into(), aolp));
+    for deg in [0u32, 45, 90, 135] {
+        let (s, c) = (2.0 * (deg as f64).to_radians()).sin_cos();
+        let v = (0..n)
+            .map(|i| {
+                let (s0, s1, s2) = y(i);
+                (0.5 * (s0 + s1 * c + s2 * s)) as f32
+            })
+            .collect();
+        out.push((format!("pol{deg}.Y"), v));
+    }
+    let text = "S1.*,S2.*,S3.*: Stokes components as X,Y,Z and R,G,B on the image's scale (basis: \
+                the image's horizontal; S1>0 horizontal, S2>0 +45deg (up-right), S3>0 right \
+                circular); DoLP: degree of linear polarisation of Y (dimensionless); AoLP: its \
+                angle in degrees, counter-clockwise from the horizontal; pol0.Y,pol45.Y,pol90.Y,\
+                pol135.Y: Y behind an ideal linear analyser at that angle";
+    (out, text.to_string())
 }
 
 /// Writes the EXR (spectral when the image has bins).
@@ -269,7 +342,14 @@ pub fn write_exr_state(
             channels.push(Channel { name, data });
         }
     }
+    let (stokes, stokes_text) = stokes_channels(img);
+    for (name, data) in &stokes {
+        channels.push(Channel { name, data });
+    }
     let mut attrs = header(info);
+    if !stokes.is_empty() {
+        attrs.push(("spectrace:stokes", AttrValue::Text(stokes_text)));
+    }
     if let Some((_, text)) = &sensor {
         attrs.push(("spectrace:sensor", AttrValue::Text(text.clone())));
     }

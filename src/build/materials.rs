@@ -4,8 +4,8 @@
 use super::textures;
 use crate::loader::desc::{MaterialKind, TextureDesc};
 use crate::material::{
-    Blend, BumpMap, Conductor, Dielectric, Lambert, Mask, Material, NormalMap, Phong, Plastic,
-    RoughConductor, RoughDielectric, TexturedLobes,
+    Blend, BumpMap, Conductor, Dielectric, Element, Lambert, Mask, Material, NormalMap, Phong,
+    Plastic, RoughConductor, RoughDielectric, TexturedLobes,
 };
 
 /// The render-side material for `k`; an error (for the user, without a location) if a
@@ -57,6 +57,19 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
                 .with_distribution(*distribution),
         ),
         MaterialKind::Null => Material::Null,
+        MaterialKind::Polariser {
+            angle,
+            transmittance,
+            polarizing,
+        } => Material::Element(Element::Polariser {
+            theta: angle.get::<crate::units::angle::radian>() as f32,
+            transmittance: *transmittance as f32,
+            polarizing: *polarizing,
+        }),
+        MaterialKind::Retarder { angle, retardance } => Material::Element(Element::Retarder {
+            theta: angle.get::<crate::units::angle::radian>() as f32,
+            delta: retardance.get::<crate::units::angle::radian>() as f32,
+        }),
         MaterialKind::Mask { opacity, inner } => mask(opacity, inner)?,
         MaterialKind::Blend { weight, a, b } => blend(weight, a, b)?,
         MaterialKind::Textured {

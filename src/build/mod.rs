@@ -97,6 +97,8 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
     let light_tree = crate::light::LightTree::build(&light_bounds, &light_power);
     let camera = camera(desc).map_err(|e| err(desc.camera.loc, "camera".into(), e))?;
     let (media, medium_interfaces) = media::scene_media(desc, range, surfaces.len())?;
+    let polarised =
+        desc.integrator.polarised || materials.iter().any(crate::material::Material::polarises);
     let f = &desc.film;
     let infinite_lights = (0..lights.len() as u32)
         .filter(|&i| lights[i as usize].is_at_infinity())
@@ -126,6 +128,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
             rr_depth: desc.integrator.rr_depth,
             light_selection: desc.integrator.light_selection,
             moment: desc.integrator.moment,
+            polarised,
         },
         wavelengths: range,
         bounds,

@@ -67,7 +67,12 @@ pub fn merge(args: MergeArgs) -> Result<(), CliError> {
                 };
                 let (w, h) = (img.width as u32, img.height as u32);
                 let f = Filter::from_desc(&FilterDesc::BOX);
-                film = Some(Film::new(w, h, f, range, k.bins));
+                // a polarised render's parts carry its Stokes sums
+                let polarised = img
+                    .words
+                    .iter()
+                    .any(|(c, _)| c.starts_with(&format!("{STATE_PREFIX}s1X.")));
+                film = Some(Film::new(w, h, f, range, k.bins).with_stokes(polarised));
                 key = Some(k);
             }
             Some(first) if *first != k => {

@@ -323,7 +323,8 @@ fn resume_or_start<'a>(
                 scene.film.filter.clone(),
                 scene.wavelengths,
                 spectral_bins,
-            );
+            )
+            .with_stokes(scene.integrator.polarised);
             (ck.snapshot(f)?, None)
         }
         None => {

@@ -140,6 +140,10 @@ pub struct Image {
     /// Second moment of the camera samples' XYZ, the mean of their squares, (cd/m²)² (zero
     /// for light-tracing splats); its excess over the squared mean is the sample variance.
     pub xyz_m2: Vec<[f32; 3]>,
+    /// A polarised render's Stokes components S1, S2, S3 per pixel as CIE XYZ (cd/m², the
+    /// same estimator as `xyz`, which is S0), in the camera's frame (S1 > 0: polarised
+    /// horizontally in the image; Mitsuba 3's `stokes` conventions); empty otherwise.
+    pub stokes: Vec<[[f32; 3]; 3]>,
 }
 
 /// The whole film: settings and the accumulated sums of every pixel.
@@ -152,6 +156,8 @@ pub struct Film {
     pub bins: Option<Bins>,
     sums: Vec<PixelSums>,
     spectral: Vec<Exact>,
+    /// Σ XYZ of S1, S2, S3, 9 per pixel (a polarised render; empty otherwise).
+    stokes: Vec<Exact>,
 }
 
 impl Film {
@@ -176,18 +182,35 @@ impl Film {
             bins,
             sums: vec![PixelSums::default(); n],
             spectral: vec![Exact::ZERO; n * nb],
+            stokes: Vec::new(),
         }
+    }
+
+    /// The film with Stokes sums (S1–S3) when `polarised`, for a polarised render.
+    pub fn with_stokes(mut self, polarised: bool) -> Self {
+        self.stokes = if polarised {
+            vec![Exact::ZERO; 9 * self.sums.len()]
+        } else {
+            Vec::new()
+        };
+        self
+    }
+
+    /// Whether the film holds Stokes sums.
+    pub fn polarised(&self) -> bool {
+        !self.stokes.is_empty()
     }
 
     /// An empty tile for the rectangle at (x0, y0) of the given size.
     pub fn tile(&self, x0: u32, y0: u32, width: u32, height: u32) -> Tile {
-        Tile::new(
+        let t = Tile::new(
             x0,
             y0,
             width,
             height,
             self.bins.as_ref().map_or(0, |b| b.count),
-        )
+        );
+        if self.polarised() { t.with_stokes() } else { t }
     }
 
     /// Adds a tile's sums and sample counts into the film. Sums are exact, so the order of
@@ -202,6 +225,11 @@ impl Film {
                 for k in 0..nb {
                     self.spectral[dst * nb + k].add(t.spectral[src * nb + k]);
                 }
+                if !self.stokes.is_empty() && !t.stokes.is_empty() {
+                    for k in 0..9 {
+                        self.stokes[dst * 9 + k].add(t.stokes[src * 9 + k]);
+                    }
+                }
             }
         }
     }
@@ -215,6 +243,7 @@ impl Film {
             self.range,
             self.bins.as_ref().map_or(0, |b| b.count as u32),
         )
+        .with_stokes(self.polarised())
     }
 
     /// Adds another film's sums and sample counts (same size and bins) into this one.
@@ -224,6 +253,9 @@ impl Film {
             a.add_sums(b);
         }
         for (a, b) in self.spectral.iter_mut().zip(&other.spectral) {
+            a.add(*b);
+        }
+        for (a, b) in self.stokes.iter_mut().zip(&other.stokes) {
             a.add(*b);
         }
     }
@@ -264,6 +296,7 @@ impl Film {
         let mut band = Vec::with_capacity(n);
         let mut xyz_m2 = Vec::with_capacity(n);
         let mut spectral = vec![Vec::with_capacity(n); nb];
+        let mut stokes = Vec::with_capacity(if self.polarised() { n } else { 0 });
         for (i, s) in self.sums.iter().enumerate() {
             let inv = if s.count > 0 {
                 1.0 / s.count as f64
@@ -278,6 +311,12 @@ impl Film {
             for (k, sp) in spectral.iter_mut().enumerate() {
                 sp.push((self.spectral[i * nb + k].to_f64() * inv) as f32);
             }
+            if self.polarised() {
+                let e = |k: usize| (self.stokes[i * 9 + k].to_f64() * inv) as f32;
+                stokes.push(std::array::from_fn(|c| {
+                    std::array::from_fn(|a| e(3 * c + a))
+                }));
+            }
         }
         Image {
             width: self.width as usize,
@@ -288,6 +327,7 @@ impl Film {
             spectral,
             bins: self.bins.clone(),
             xyz_m2,
+            stokes,
         }
     }
 }

@@ -4,7 +4,8 @@
 //!
 //! Channels, each `width × height` words, row-major: `<prefix>X.w0` … `<prefix>X.w5` (the six
 //! words of an [`Exact`], least significant first) for the sums `X`, `Y`, `Z` (cd/m²), `L`
-//! (W·m⁻²·sr⁻¹), `m2X`, `m2Y`, `m2Z` ((cd/m²)²) and `S<k>` (bin k, W·m⁻²·sr⁻¹·nm⁻¹), and
+//! (W·m⁻²·sr⁻¹), `m2X`, `m2Y`, `m2Z` ((cd/m²)²), `S<k>` (bin k, W·m⁻²·sr⁻¹·nm⁻¹), a polarised
+//! film's `s1X` … `s3Z` (the XYZ of Stokes S1–S3, cd/m²), and
 //! `<prefix>count.w0`, `.w1` (the sample count, a u64). Files use the prefix [`STATE_PREFIX`]
 //! for a film's sums (and `spectrace.pass.` for a `bdpt` checkpoint's unfinished pass).
 
@@ -13,13 +14,19 @@ use super::{Exact, Film};
 /// Prefix of the state channels' names.
 pub const STATE_PREFIX: &str = "spectrace.sum.";
 
-/// Names of the sums, in order: X, Y, Z, L, m2X, m2Y, m2Z, then the bins.
-fn sum_names(nbins: usize) -> Vec<String> {
+/// Names of the sums, in order: X, Y, Z, L, m2X, m2Y, m2Z, the bins, then (a polarised
+/// film) the Stokes components' XYZ `s1X` … `s3Z`.
+fn sum_names(nbins: usize, stokes: bool) -> Vec<String> {
     let mut v: Vec<String> = ["X", "Y", "Z", "L", "m2X", "m2Y", "m2Z"]
         .iter()
         .map(|s| s.to_string())
         .collect();
     v.extend((0..nbins).map(|k| format!("S{k}")));
+    if stokes {
+        for c in 1..=3 {
+            v.extend(["X", "Y", "Z"].map(|a| format!("s{c}{a}")));
+        }
+    }
     v
 }
 
@@ -35,7 +42,8 @@ impl Film {
             0..=2 => p.xyz[q],
             3 => p.band,
             4..=6 => p.xyz_sq[q - 4],
-            _ => self.spectral[i * self.nbins() + q - 7],
+            _ if q < 7 + self.nbins() => self.spectral[i * self.nbins() + q - 7],
+            _ => self.stokes[i * 9 + q - 7 - self.nbins()],
         }
     }
 
@@ -46,7 +54,8 @@ impl Film {
             0..=2 => &mut p.xyz[q],
             3 => &mut p.band,
             4..=6 => &mut p.xyz_sq[q - 4],
-            _ => &mut self.spectral[i * nb + q - 7],
+            _ if q < 7 + nb => &mut self.spectral[i * nb + q - 7],
+            _ => &mut self.stokes[i * 9 + q - 7 - nb],
         }
     }
 
@@ -54,7 +63,7 @@ impl Film {
     pub fn state_channels(&self, prefix: &str) -> Vec<(String, Vec<u32>)> {
         let n = (self.width * self.height) as usize;
         let mut out = Vec::new();
-        for (q, name) in sum_names(self.nbins()).iter().enumerate() {
+        for (q, name) in sum_names(self.nbins(), self.polarised()).iter().enumerate() {
             let mut planes: Vec<Vec<u32>> = (0..6).map(|_| Vec::with_capacity(n)).collect();
             for i in 0..n {
                 for (plane, w) in planes.iter_mut().zip(self.sum(q, i).to_words()) {
@@ -98,7 +107,7 @@ impl Film {
             }
         };
         let mut planes = Vec::new();
-        for name in sum_names(self.nbins()) {
+        for name in sum_names(self.nbins(), self.polarised()) {
             let words: Vec<&[u32]> = (0..6)
                 .map(|k| find(format!("{prefix}{name}.w{k}")))
                 .collect::<Result<_, _>>()?;
@@ -121,7 +130,7 @@ impl Film {
     /// Whether two films hold the same sums and counts, bit for bit.
     #[cfg(test)]
     pub fn same_sums(&self, other: &Film) -> bool {
-        self.sums == other.sums && self.spectral == other.spectral
+        self.sums == other.sums && self.spectral == other.spectral && self.stokes == other.stokes
     }
 }
 

@@ -14,6 +14,9 @@ pub struct Tile {
     /// Σ per-bin estimates, `bins × pixels` (empty without spectral output).
     pub spectral: Vec<Exact>,
     nbins: usize,
+    /// Σ XYZ estimates of S1, S2, S3 (cd/m²), 9 per pixel, of a polarised render (empty
+    /// otherwise; see [`Tile::add_stokes`]).
+    pub stokes: Vec<Exact>,
 }
 
 impl Tile {
@@ -27,7 +30,47 @@ impl Tile {
             pixels: vec![PixelSums::default(); n],
             spectral: vec![Exact::ZERO; n * nbins],
             nbins,
+            stokes: Vec::new(),
         }
+    }
+
+    /// The tile with room for the Stokes sums of a polarised render.
+    pub fn with_stokes(mut self) -> Self {
+        self.stokes = vec![Exact::ZERO; 9 * self.pixels.len()];
+        self
+    }
+
+    /// Adds one polarised sample: its Stokes vector `st` (S0–S3 in the camera's frame,
+    /// W·m⁻²·sr⁻¹·nm⁻¹ per wavelength), S0 as [`Tile::add`] adds radiance and S1–S3 as XYZ
+    /// by the same estimator (their CIE-weighted sums, which may be negative). Returns false,
+    /// adding nothing, if any component is NaN or infinite at a live wavelength.
+    #[inline]
+    pub fn add_stokes<const N: usize>(
+        &mut self,
+        x: u32,
+        y: u32,
+        w: &SampledWavelengths<N>,
+        st: &[SampledSpectrum<N>; 4],
+        bins: Option<&Bins>,
+    ) -> bool {
+        let mut xyz = [[0.0f64; 3]; 3];
+        for (k, v) in xyz.iter_mut().enumerate() {
+            match SampleSums::new(w, &st[k + 1], None) {
+                Some(s) => *v = s.xyz,
+                None => return false,
+            }
+        }
+        if !self.add(x, y, w, &st[0], bins) {
+            return false;
+        }
+        let i = ((y - self.y0) * self.width + (x - self.x0)) as usize;
+        for (e, v) in self.stokes[9 * i..9 * i + 9]
+            .iter_mut()
+            .zip(xyz.iter().flatten())
+        {
+            e.add_f64(*v);
+        }
+        true
     }
 
     /// Adds one sample's radiance (W·m⁻²·sr⁻¹·nm⁻¹ at each wavelength) to pixel (x, y) in image

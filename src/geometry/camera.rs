@@ -359,6 +359,11 @@ impl Camera {
         self.parts().0.vector(Vec3::Z).normalize_or_zero()
     }
 
+    /// Unit world-space up direction (camera +y): the image's vertical.
+    pub fn up(&self) -> Vec3 {
+        self.parts().0.vector(Vec3::Y).normalize_or_zero()
+    }
+
     /// Image size in pixels (width, height).
     pub fn resolution(&self) -> (u32, u32) {
         let film = self.parts().1;

@@ -7,6 +7,7 @@
 //! drops them (their pdf is 0).
 
 pub mod bdpt;
+mod carrier;
 mod direct;
 pub mod light;
 mod light_media;
@@ -171,6 +172,27 @@ impl<'a> Integrator<'a> {
                 bsdf_samples,
             } => direct::radiance(self, ray, w, s, emitter_samples, bsdf_samples),
         }
+    }
+}
+
+impl Integrator<'_> {
+    /// Whether camera rays carry Stokes vectors ([`Integrator::stokes`]): the scene renders
+    /// polarised.
+    #[inline]
+    pub fn polarised(&self) -> bool {
+        self.scene.integrator.polarised
+    }
+
+    /// The Stokes vector (S0–S3, W·m⁻²·sr⁻¹·nm⁻¹ per wavelength) arriving along the camera ray
+    /// `ray`, in the camera's frame (see `path::stokes`): the polarised path tracer. The
+    /// render refuses polarised scenes under other integrators and with media.
+    pub fn stokes<const N: usize>(
+        &self,
+        ray: Ray,
+        w: &mut SampledWavelengths<N>,
+        s: &mut Sampler,
+    ) -> [SampledSpectrum<N>; 4] {
+        path::stokes(self, ray, w, s)
     }
 }
 

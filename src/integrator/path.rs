@@ -3,13 +3,19 @@
 //! lights and delta BSDFs handled exactly, lights chosen in proportion to their power.
 //! Any hit on a dispersive interface terminates the secondary wavelengths, before a lobe is
 //! chosen (Wilkie et al. 2014 §4.2; pbrt-v4 §14.1.3).
+//!
+//! The estimator is generic over what the path carries ([`Carrier`]): a spectrum of throughputs
+//! ([`radiance`]) or a Mueller matrix per wavelength ([`stokes`], the polarised mode), each a
+//! monomorphised copy of one loop, with the same samples and scalar weights.
 
 use glam::Vec3;
 
+use super::carrier::{Carrier, Polarised};
 use super::{Integrator, Shading};
 use crate::geometry::Ray;
 use crate::geometry::shape::Intersection;
 use crate::material::TransportMode;
+use crate::polarisation::{Stokes, rotate_stokes_basis, stokes_basis};
 use crate::sampler::Sampler;
 use crate::sampling::power_heuristic;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
@@ -21,7 +27,35 @@ pub(super) fn radiance<const N: usize>(
     w: &mut SampledWavelengths<N>,
     s: &mut Sampler,
 ) -> SampledSpectrum<N> {
-    trace(it, ray, w, s, None)
+    trace::<N, SampledSpectrum<N>>(it, ray, w, s, None)
+}
+
+/// The Stokes vector (S0, …, S3) of the light arriving along `ray`, per wavelength
+/// (W·m⁻²·sr⁻¹·nm⁻¹), in the camera's frame: the basis vector `ray.d × up` (up the camera's
+/// +y in world space; horizontal in the image), as Mitsuba 3's `stokes` integrator reports it,
+/// so S1 > 0 is light polarised horizontally in the image.
+pub(super) fn stokes<const N: usize>(
+    it: &Integrator<'_>,
+    ray: Ray,
+    w: &mut SampledWavelengths<N>,
+    s: &mut Sampler,
+) -> [SampledSpectrum<N>; 4] {
+    let d = ray.d.normalize();
+    let sum = trace::<N, Polarised<N>>(it, ray, w, s, None);
+    // the path's Stokes vectors are in the implicit basis of the beam along −d
+    let target = d.cross(it.scene.camera.up()).try_normalize();
+    let r = target.map(|t| rotate_stokes_basis(-d, stokes_basis(-d), t));
+    let mut out = [SampledSpectrum::<N>::zero(); 4];
+    for (j, st) in sum.iter().enumerate() {
+        let st: Stokes = match &r {
+            Some(r) => *r * *st,
+            None => *st,
+        };
+        for (k, o) in out.iter_mut().enumerate() {
+            o[j] = st.0[k];
+        }
+    }
+    out
 }
 
 /// Radiance along `ray`, which a sampling step at `ray.o` (normal `n`) chose with density
@@ -36,22 +70,22 @@ pub(super) fn radiance_after_sample<const N: usize>(
     w: &mut SampledWavelengths<N>,
     s: &mut Sampler,
 ) -> SampledSpectrum<N> {
-    trace(it, ray, w, s, Some((pdf, n)))
+    trace::<N, SampledSpectrum<N>>(it, ray, w, s, Some((pdf, n)))
 }
 
 /// The path tracer; `first` is the density of the first direction and the normal at its
 /// origin when it was sampled against light sampling (None: a camera ray, weighted 1).
 #[inline(always)]
-fn trace<const N: usize>(
+fn trace<const N: usize, C: Carrier<N>>(
     it: &Integrator<'_>,
     mut ray: Ray,
     w: &mut SampledWavelengths<N>,
     s: &mut Sampler,
     first: Option<(f32, Vec3)>,
-) -> SampledSpectrum<N> {
+) -> C::Sum {
     let scene = it.scene;
-    let mut l = SampledSpectrum::<N>::zero();
-    let mut beta = SampledSpectrum::<N>::splat(1.0);
+    let mut l = C::zero_sum();
+    let mut beta = C::one();
     // the previous vertex (point, shading normal, the BSDF sample's density), for MIS of
     // emitters hit by BSDF sampling
     let mut prev_p = ray.o;
@@ -87,7 +121,7 @@ fn trace<const N: usize>(
                         * light.pdf_li(&scene.shapes, prev_p, ray.d, hit.p, hit.n_geom);
                     power_heuristic(1.0, prev_pdf, 1.0, pl)
                 };
-                l += beta * le * wgt;
+                beta.add_unpolarised(&mut l, le * wgt);
             }
         }
         if depth == it.max_depth {
@@ -121,10 +155,11 @@ fn trace<const N: usize>(
         }
 
         // BSDF sampling.
-        let Some((bs, next)) = sh.scatter(&hit, wo, w, s, TransportMode::Radiance, &mut beta)
-        else {
+        let mut wt = SampledSpectrum::splat(1.0);
+        let Some((bs, next)) = sh.scatter(&hit, wo, w, s, TransportMode::Radiance, &mut wt) else {
             break;
         };
+        beta = beta.scattered(&sh, (wo, bs.wi), w, wt);
         if bs.transmission {
             eta_scale *= bs.eta * bs.eta;
         }
@@ -141,15 +176,15 @@ fn trace<const N: usize>(
         // scenes of low albedo lit by a sky cost more than the time saved (measured in
         // BENCHMARKS.md). Its dimension is read at every bounce, used or not.
         let u_rr = s.get_1d();
-        let rr = (beta * eta_scale).max_component();
+        let rr = (beta.scalar() * eta_scale).max_component();
         if rr < 1.0 && depth >= it.rr_depth {
             let q = (1.0 - rr).max(0.0);
             if u_rr < q {
                 break;
             }
-            beta /= 1.0 - q;
+            beta = beta.divided(1.0 - q);
         }
-        if beta.is_zero() {
+        if beta.scalar().is_zero() {
             break;
         }
     }
@@ -160,13 +195,13 @@ fn trace<const N: usize>(
 /// (the previous vertex's point, shading normal and BSDF density) MIS-weights it against
 /// light sampling there (None after a specular bounce or for a camera ray: weight 1).
 #[inline(always)]
-fn add_escaped<const N: usize>(
+fn add_escaped<const N: usize, C: Carrier<N>>(
     it: &Integrator<'_>,
     d: Vec3,
     prev: Option<(Vec3, Vec3, f32)>,
-    beta: SampledSpectrum<N>,
+    beta: C,
     w: &SampledWavelengths<N>,
-    l: &mut SampledSpectrum<N>,
+    l: &mut C::Sum,
 ) {
     let scene = it.scene;
     for &i in &scene.infinite_lights {
@@ -184,7 +219,7 @@ fn add_escaped<const N: usize>(
                 power_heuristic(1.0, prev_pdf, 1.0, pl)
             }
         };
-        *l += beta * le * wgt;
+        beta.add_unpolarised(l, le * wgt);
     }
 }
 
@@ -194,15 +229,15 @@ fn add_escaped<const N: usize>(
 /// Reads one 2D sample (the light choice reuses its first coordinate).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn add_next_event<const N: usize>(
+fn add_next_event<const N: usize, C: Carrier<N>>(
     it: &Integrator<'_>,
     hit: &Intersection,
     sh: &Shading<'_, N>,
     wo: Vec3,
-    beta: SampledSpectrum<N>,
+    beta: C,
     w: &SampledWavelengths<N>,
     s: &mut Sampler,
-    l: &mut SampledSpectrum<N>,
+    l: &mut C::Sum,
 ) {
     let scene = it.scene;
     let u = s.get_2d();
@@ -220,7 +255,7 @@ fn add_next_event<const N: usize>(
                 } else {
                     power_heuristic(1.0, p_light, 1.0, bsdf_pdf)
                 };
-                *l += beta * f * ls.li * (wgt / p_light);
+                beta.add_scattered(l, sh, (wo, wi), w, f * ls.li * (wgt / p_light));
             }
         }
     }

@@ -128,6 +128,8 @@ pub struct RawIntegrator {
     pub bsdf_samples: Option<S<Value>>,
     /// Also write second moments (`m2.X`, `m2.Y`, `m2.Z`), as Mitsuba's `moment`.
     pub second_moment: Option<S<bool>>,
+    /// Render polarised: every path carries Stokes vectors, the image gains S1–S3 channels.
+    pub polarised: Option<S<bool>>,
 }
 
 /// A material's keys, `type` and the kind's own, read by the kind's reader

@@ -51,6 +51,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::Dielectric(_)
             | Material::Conductor(_)
             | Material::Null
+            | Material::Element(_)
             | Material::ThinDielectric { .. } => SampledSpectrum::zero(),
             Material::RoughDielectric(m) => m.eval(wo, wi, w, mode),
             Material::RoughConductor(m) => m.eval(wo, wi, w),
@@ -74,6 +75,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::Dielectric(_)
             | Material::Conductor(_)
             | Material::Null
+            | Material::Element(_)
             | Material::ThinDielectric { .. } => 0.0,
             Material::RoughDielectric(m) => m.pdf(wo, wi, w),
             Material::RoughConductor(m) => m.pdf(wo, wi),
@@ -104,6 +106,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::Dielectric(_)
             | Material::Conductor(_)
             | Material::Null
+            | Material::Element(_)
             | Material::ThinDielectric { .. } => (SampledSpectrum::zero(), 0.0),
             Material::RoughDielectric(m) => m.eval_pdf(wo, wi, w, mode),
             Material::RoughConductor(m) => m.eval_pdf(wo, wi, w),
@@ -169,6 +172,16 @@ impl<const N: usize> Bsdf<'_, N> {
             // straight through: f·|cos θᵢ|/pdf = 1
             Material::Null => (wo.z != 0.0).then(|| BsdfSample {
                 f: SampledSpectrum::splat(1.0 / wo.z.abs()),
+                wi: -wo,
+                pdf: 1.0,
+                specular: true,
+                transmission: true,
+                dispersive: false,
+                eta: 1.0,
+            }),
+            // straight through, passing the unpolarised fraction
+            Material::Element(e) => (wo.z != 0.0).then(|| BsdfSample {
+                f: SampledSpectrum::splat(e.transmittance() / wo.z.abs()),
                 wi: -wo,
                 pdf: 1.0,
                 specular: true,

@@ -36,6 +36,7 @@ mod blend;
 mod bsdf;
 mod conductor;
 mod dielectric;
+mod element;
 mod erf;
 pub mod fresnel;
 mod lambert;
@@ -45,6 +46,7 @@ mod null;
 mod perturb;
 mod phong;
 mod plastic;
+mod polarised;
 mod rough_dielectric;
 mod textured;
 
@@ -53,12 +55,14 @@ pub use bsdf::Bsdf;
 use bsdf::UNPERTURBED;
 pub use conductor::{Conductor, RoughConductor};
 pub use dielectric::Dielectric;
+pub use element::Element;
 pub use lambert::Lambert;
 pub use mask::Mask;
 pub use null::thin_reflectance;
 pub use perturb::{BumpMap, LocalSurface, NormalMap};
 pub use phong::Phong;
 pub use plastic::{Plastic, RoughCoating, fresnel_diffuse_reflectance};
+pub use polarised::Polarising;
 pub use rough_dielectric::RoughDielectric;
 pub use textured::TexturedLobes;
 
@@ -132,6 +136,9 @@ pub enum Material {
     /// Mitsuba's `null`: no surface for light, which passes straight through (a delta
     /// transmission of weight 1 that still counts as a scattering event, as in Mitsuba).
     Null,
+    /// Mitsuba's `polarizer` and `retarder`: a thin polarising element crossed undeviated (see
+    /// [`Element`]); in an unpolarised render, a grey filter.
+    Element(Element),
     /// Mitsuba's `mask`: with probability 1 − opacity light passes straight through, else the
     /// nested material scatters it (see [`Mask`]).
     Mask(Box<Mask>),
@@ -212,6 +219,7 @@ impl Material {
             | Material::Conductor(_)
             | Material::RoughConductor(_)
             | Material::ThinDielectric { .. }
+            | Material::Element(_)
             | Material::Null => SampledSpectrum::zero(),
         };
         Bsdf {
@@ -288,6 +296,7 @@ impl Material {
             Material::Dielectric(_)
             | Material::Conductor(_)
             | Material::Null
+            | Material::Element(_)
             | Material::ThinDielectric { .. } => true,
             Material::Diffuse(_)
             | Material::Phong(_)
@@ -313,6 +322,7 @@ impl Material {
             // a thin sheet sends light on undeviated, and the rest do not transmit
             Material::ThinDielectric { .. }
             | Material::Null
+            | Material::Element(_)
             | Material::Diffuse(_)
             | Material::Phong(_)
             | Material::Conductor(_)
@@ -329,7 +339,11 @@ impl Material {
         match self {
             Material::RoughConductor(m) => m.alpha_u != m.alpha_v,
             Material::RoughDielectric(m) => m.alpha_u != m.alpha_v,
-            Material::NormalMap(_) | Material::BumpMap(_) | Material::Textured(_) => true,
+            // an element's axes are in the frame of ∂p/∂u
+            Material::NormalMap(_)
+            | Material::BumpMap(_)
+            | Material::Textured(_)
+            | Material::Element(_) => true,
             Material::Mask(m) => m.inner.needs_tangent(),
             Material::Blend(m) => m.a.needs_tangent() || m.b.needs_tangent(),
             Material::Diffuse(_)
@@ -358,6 +372,7 @@ impl Material {
             | Material::Plastic(_)
             | Material::ThinDielectric { .. }
             | Material::Null
+            | Material::Element(_)
             | Material::Blend(_)
             | Material::Textured(_) => false,
         }
@@ -376,6 +391,7 @@ impl Material {
             Material::Dielectric(_)
             | Material::RoughDielectric(_)
             | Material::Null
+            | Material::Element(_)
             | Material::ThinDielectric { .. } => true,
             // a mask's pass-through does not distinguish the sides
             Material::Mask(_)

@@ -5,13 +5,14 @@ use super::{Material, fresnel};
 
 impl Material {
     /// The fraction of light that crosses the surface undeviated at incidence cosine `cos`
-    /// (Mitsuba's `eval_null_transmission`): 1 for `null`, 1 − R for `thindielectric` (R its
+    /// (Mitsuba's `eval_null_transmission`): 1 for `null`, an element's unpolarised transmittance, 1 − R for `thindielectric` (R its
     /// reflectance with inner reflections), 0 for every other material (a shadow ray stops
     /// there). Wavelength-independent.
     #[inline]
     pub fn null_transmission(&self, cos: f32) -> f32 {
         match self {
             Material::Null => 1.0,
+            Material::Element(e) => e.transmittance(),
             Material::ThinDielectric { eta } => 1.0 - thin_reflectance(cos.abs(), *eta),
             _ => 0.0,
         }

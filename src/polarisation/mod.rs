@@ -134,6 +134,16 @@ pub fn rotated_element(theta: f32, m: &Mueller) -> Mueller {
     r.transpose() * *m * r
 }
 
+/// The implicit Stokes basis of a beam travelling along `forward` (unit): a unit vector
+/// perpendicular to it, a fixed function of the direction (the first tangent of
+/// [`Frame::from_normal`](crate::geometry::Frame::from_normal)), as Mitsuba's `stokes_basis`.
+/// Polarised transport expresses every beam's Stokes vector in this basis, so Mueller matrices
+/// along a path chain by plain products.
+#[inline]
+pub fn stokes_basis(forward: Vec3) -> Vec3 {
+    crate::geometry::Frame::from_normal(forward).s
+}
+
 /// The rotator that re-expresses a Stokes vector travelling along `forward` (unit) in the
 /// basis `current` as one in the basis `target` (both unit and perpendicular to `forward`).
 pub fn rotate_stokes_basis(forward: Vec3, current: Vec3, target: Vec3) -> Mueller {

@@ -131,6 +131,11 @@ pub enum RenderError {
          light or bdpt"
     )]
     Media(&'static str),
+    #[error(
+        "the scene renders polarised (it holds a polariser or retarder, or asks for Stokes \
+         vectors), which only the path integrator does, in scenes without media; `{0}` was asked{1}"
+    )]
+    Polarised(&'static str, &'static str),
 }
 
 /// Writes a checkpoint of the render's state (reports its own failures: the render goes on).
@@ -230,6 +235,16 @@ pub fn render_with(
     {
         return Err(RenderError::Media(opts.integrator.name()));
     }
+    if scene.integrator.polarised
+        && (opts.integrator != IntegratorKind::Path || !scene.media.is_empty())
+    {
+        let media = if scene.media.is_empty() {
+            ""
+        } else {
+            " in a scene with media"
+        };
+        return Err(RenderError::Polarised(opts.integrator.name(), media));
+    }
     let (w, h) = (scene.film.width, scene.film.height);
     let film = Film::new(
         w,
@@ -237,7 +252,8 @@ pub fn render_with(
         scene.film.filter.clone(),
         scene.wavelengths,
         opts.spectral_bins,
-    );
+    )
+    .with_stokes(scene.integrator.polarised);
     let mut integrator = Integrator::new(scene, opts.integrator, opts.max_depth);
     integrator.strategy = opts.strategy;
     let lambda = WavelengthSampler::visible(scene.wavelengths);

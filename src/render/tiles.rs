@@ -147,6 +147,10 @@ fn trace_tile(
 ) -> (Tile, u64, u64) {
     let nb = bins.map_or(0, |b| b.count);
     let mut tile = crate::film::Tile::new(x0, y0, tw, th, nb);
+    let polarised = ctx.integrator.polarised();
+    if polarised {
+        tile = tile.with_stokes();
+    }
     let (mut nan, mut inf) = (0, 0);
     for y in y0..y0 + th {
         for x in x0..x0 + tw {
@@ -160,8 +164,14 @@ fn trace_tile(
                     y,
                     i,
                 );
-                let l = ctx.integrator.radiance(ray, &mut wl, &mut s);
-                if !tile.add(x, y, &wl, &l, bins) {
+                let (l, added) = if polarised {
+                    let st = ctx.integrator.stokes(ray, &mut wl, &mut s);
+                    (st[0], tile.add_stokes(x, y, &wl, &st, bins))
+                } else {
+                    let l = ctx.integrator.radiance(ray, &mut wl, &mut s);
+                    (l, tile.add(x, y, &wl, &l, bins))
+                };
+                if !added {
                     match non_finite(&wl, &l) {
                         Some(NonFinite::NaN) => nan += 1,
                         _ => inf += 1,

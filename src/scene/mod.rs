@@ -54,6 +54,10 @@ pub struct IntegratorSettings {
     pub light_selection: LightSelection,
     /// Write second moments (see [`crate::loader::desc::IntegratorDesc::moment`]).
     pub moment: bool,
+    /// Render polarised: paths carry a Stokes vector per wavelength
+    /// (`integrator::stokes`) and the film sums S1–S3 beside S0. Set by the scene's integrator
+    /// or by any polarising element among its materials.
+    pub polarised: bool,
 }
 
 /// A render-ready scene. Shapes are in world space, metres.

@@ -29,6 +29,20 @@ pub enum MaterialKind {
     },
     /// No surface: light passes straight through (Mitsuba's `null`).
     Null,
+    /// A thin linear polariser (Mitsuba's `polarizer`): transmission axis turned by `angle`,
+    /// `transmittance` in [0, 1] on polarised light along it; not `polarizing`, a grey filter of
+    /// ½·transmittance.
+    Polariser {
+        angle: Angle,
+        transmittance: f64,
+        polarizing: bool,
+    },
+    /// A thin linear retarder (Mitsuba's `retarder`): fast axis turned by `angle`, retardance
+    /// (the phase delay of the slow axis) `retardance` at normal incidence.
+    Retarder {
+        angle: Angle,
+        retardance: Angle,
+    },
     /// A partly transparent surface (Mitsuba's `mask`): `opacity` (a number or a grey image)
     /// of the nested material, the rest straight through.
     Mask {

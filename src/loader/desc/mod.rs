@@ -145,6 +145,10 @@ pub struct IntegratorDesc {
     /// Also write each pixel's second moment (the mean of the squared sample values), as
     /// Mitsuba's `moment` integrator does around another one.
     pub moment: bool,
+    /// Render polarised (Stokes vectors along paths, S0–S3 written), as Mitsuba's `stokes`
+    /// integrator in a polarised variant asks; a scene holding a polarising element renders
+    /// polarised whatever this says.
+    pub polarised: bool,
 }
 
 /// Default `rr_depth`, Mitsuba 3's: paths keep their first five surface hits.

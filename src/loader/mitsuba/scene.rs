@@ -191,6 +191,7 @@ fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
         // decided after the emitters are read (below)
         light_selection: LightSelection::Tree,
         moment: false,
+        polarised: false,
     };
     let mut camera = None;
     let mut materials: Vec<MaterialDesc> = Vec::new();
@@ -324,7 +325,7 @@ fn max_depth(cx: &Cx<'_>, d: &Element) -> R<u32> {
 /// An `<integrator>`: `path`, and `volpath` and `volpathmis` (spectrace's volumetric path
 /// tracer; the same as `path` in a scene without media) with `max_depth`, `rr_depth`;
 /// `direct` with its sample counts; `moment` around one of them (its image plus second
-/// moments). Returns whether the integrator renders media.
+/// moments); `stokes` around one of them (a polarised render). Returns whether the integrator renders media.
 fn integrator_settings(cx: &Cx<'_>, c: &Element, integrator: &mut IntegratorDesc) -> R<bool> {
     let t = c.attr("type").unwrap_or("");
     if t == "moment" {
@@ -334,6 +335,17 @@ fn integrator_settings(cx: &Cx<'_>, c: &Element, integrator: &mut IntegratorDesc
             .find(|i| i.tag == "integrator")
             .ok_or_else(|| cx.err(c, "a moment integrator needs a nested <integrator>"))?;
         integrator.moment = true;
+        return integrator_settings(cx, inner, integrator);
+    }
+    // Mitsuba's `stokes` (polarised variants only): its sub-integrator's image and the Stokes
+    // vector S0–S3 in the sensor's frame
+    if t == "stokes" {
+        let inner = c
+            .children
+            .iter()
+            .find(|i| i.tag == "integrator")
+            .ok_or_else(|| cx.err(c, "a stokes integrator needs a nested <integrator>"))?;
+        integrator.polarised = true;
         return integrator_settings(cx, inner, integrator);
     }
     if t == "direct" {

@@ -9,6 +9,7 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
         rr_depth: DEFAULT_RR_DEPTH,
         light_selection: LightSelection::Tree,
         moment: false,
+        polarised: false,
     };
     let Some(i) = i else { return Ok(d) };
     let i = i.get_ref();
@@ -66,6 +67,7 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
         }
     }
     d.moment = i.second_moment.as_ref().is_some_and(|b| *b.get_ref());
+    d.polarised = i.polarised.as_ref().is_some_and(|b| *b.get_ref());
     if let Some(m) = &i.max_depth {
         d.max_depth = cx.int(m, "integrator.max_depth", 1, 1024)? as u32;
     }

@@ -112,6 +112,9 @@ pub(in crate::loader::mitsuba) const BSDFS: &[(&str, Reader)] = &[
     // light passes straight through; each crossing still counts toward max_depth
     ("null", |cx, b, n, _| plain(cx, b, n, MaterialKind::Null)),
     ("thindielectric", thindielectric),
+    // thin polarising elements crossed undeviated: a scene holding one renders polarised
+    ("polarizer", element),
+    ("retarder", element),
     // Mitsuba's opacity mask around one nested BSDF (whose twosided flag it keeps)
     ("mask", |cx, b, n, _| mask(cx, b, n)),
     // Mitsuba's blend of two nested BSDFs by `weight` (0.5; 0 is the first, 1 the second)
@@ -181,6 +184,57 @@ fn thindielectric(cx: &Cx<'_>, b: &Element, name: &str, _: &str) -> R<(MaterialD
     let kind = MaterialKind::ThinDielectric {
         int_ior: ior_of(cx, b, "int_ior", 1.5046)?,
         exterior_ior: ior_of(cx, b, "ext_ior", 1.000277)?,
+    };
+    plain(cx, b, name, kind)
+}
+
+/// `polarizer` (`theta` in degrees, default 0; `transmittance`, 1; `polarizing`, true) and
+/// `retarder` (`theta`, 0; `delta`, the retardance in degrees, 90): constant values only.
+fn element(cx: &Cx<'_>, b: &Element, name: &str, t: &str) -> R<(MaterialDesc, bool)> {
+    use crate::units::{Angle, angle::degree};
+    let number = |key: &str, default: f64| -> R<f64> {
+        match cx.child(b, key) {
+            None => Ok(default),
+            Some(c) if c.tag == "texture" => Err(cx.err(
+                c,
+                format!("a {t}'s {key} must be a constant (a texture is not supported)"),
+            )),
+            Some(c) => cx.float(c),
+        }
+    };
+    let theta = Angle::new::<degree>(number("theta", 0.0)?);
+    let kind = if t == "polarizer" {
+        let transmittance = number("transmittance", 1.0)?;
+        if !(0.0..=1.0).contains(&transmittance) {
+            let c = cx.child(b, "transmittance").unwrap_or(b);
+            return Err(cx.err(
+                c,
+                format!("a polarizer's transmittance must lie in [0, 1], not {transmittance}"),
+            ));
+        }
+        let polarizing = match cx.child(b, "polarizing") {
+            None => true,
+            Some(c) => match c.attr("value") {
+                Some("true") => true,
+                Some("false") => false,
+                v => {
+                    return Err(cx.err(
+                        c,
+                        format!("polarizing must be true or false, not {}", v.unwrap_or("")),
+                    ));
+                }
+            },
+        };
+        MaterialKind::Polariser {
+            angle: theta,
+            transmittance,
+            polarizing,
+        }
+    } else {
+        MaterialKind::Retarder {
+            angle: theta,
+            retardance: Angle::new::<degree>(number("delta", 90.0)?),
+        }
     };
     plain(cx, b, name, kind)
 }

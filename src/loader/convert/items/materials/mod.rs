@@ -9,6 +9,7 @@ mod blend;
 mod conductor;
 mod dielectric;
 mod diffuse;
+mod element;
 mod mask;
 mod null;
 mod perturb;
@@ -44,6 +45,8 @@ const KINDS: &[Kind] = &[
     plastic::KIND,
     thin_dielectric::KIND,
     null::KIND,
+    element::POLARISER,
+    element::RETARDER,
     mask::KIND,
     blend::KIND,
     perturb::NORMAL_MAP,

@@ -1,0 +1,295 @@
+//! What a scattering event does to polarisation: the Mueller matrix of a [`Bsdf`] for a pair
+//! of directions, for the polarised path tracer (`integrator::stokes`).
+//!
+//! Design: the polarised estimator keeps the unpolarised one's sampling and scalar weights
+//! (f·|cos θ|/pdf per wavelength, from [`Bsdf::sample`] and [`Bsdf::eval_pdf`]) and multiplies
+//! them by a *normalised* Mueller matrix P = M/M₀₀, whose (0, 0) entry is 1. For every
+//! material M₀₀ is the reflectance or transmittance for unpolarised light that the scalar
+//! weight already holds (Fresnel's (R_s + R_p)/2, a polariser's ½), so f·P is the material's
+//! Mueller BSDF and one code path samples both modes: a scene without polarising materials
+//! renders S0 with the very samples of the unpolarised render.
+//!
+//! Frames (Mitsuba 3's conventions, `polarisation`'s module doc): light arrives travelling
+//! along −`wi` and leaves along `wo` (both local, pointing away from the surface). Each P is
+//! returned re-expressed in the *implicit* world bases of its two beams,
+//! [`stokes_basis`]`(−wi_world)` on input and `stokes_basis(wo_world)` on output, so that a
+//! path's Mueller matrices chain by plain products.
+//!
+//! Models: Fresnel reflection and transmission with their phases for smooth dielectrics (per
+//! wavelength, so dispersion and the retardance of total internal reflection are kept) and
+//! conductors (complex n(λ)); rough conductors and dielectrics the same Fresnel matrices at the
+//! microfacet normal (the half vector), in the frame of the microfacet's plane of incidence
+//! (Mitsuba's `roughconductor` and `roughdielectric`); `polarizer` and `retarder` as Mitsuba's.
+//! Diffuse-like lobes (Lambert, Phong, plastic, a blend) depolarise; light passing straight
+//! through (`null`, a mask's opening, a thin sheet) keeps its state. A thin sheet's reflection
+//! takes a single interface's normalised Fresnel matrix (its multiple reflections' partial
+//! polarisation is not modelled).
+
+use glam::Vec3;
+
+use super::{Bsdf, Material, UNPERTURBED};
+use crate::geometry::Frame;
+use crate::polarisation::{Complex, Mueller, fresnel, rotate_stokes_basis, stokes_basis};
+use crate::spectrum::SampledWavelengths;
+
+/// The normalised Mueller matrix of a scattering event (see the module doc).
+#[derive(Clone, Copy, Debug)]
+pub enum Polarising<const N: usize> {
+    /// The light leaves unpolarised: only P₀₀ = 1 (diffuse-like lobes).
+    Depolarise,
+    /// The light keeps its state: P is the identity (straight through).
+    Keep,
+    /// P per wavelength, P₀₀ = 1, in the implicit world bases of the two beams.
+    Matrix([Mueller; N]),
+}
+
+impl<const N: usize> Bsdf<'_, N> {
+    /// The normalised Mueller matrix (see the module doc) for light arriving along −`wi` and
+    /// leaving along `wo` (local to `frame`, the shading frame), at the wavelengths `w`. For a
+    /// dispersive material only the hero's matrix is meaningful (the others are copies).
+    pub fn mueller(
+        &self,
+        frame: &Frame,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> Polarising<N> {
+        of(self.material, frame, &self.perturb, wo, wi, w)
+    }
+}
+
+/// A perturbed material's nested one in the perturbed frame (`perturb`, local to `frame`).
+fn perturbed<const N: usize>(
+    inner: &Material,
+    frame: &Frame,
+    perturb: &Frame,
+    wo: Vec3,
+    wi: Vec3,
+    w: &SampledWavelengths<N>,
+) -> Polarising<N> {
+    let f = Frame {
+        s: frame.to_world(perturb.s),
+        t: frame.to_world(perturb.t),
+        n: frame.to_world(perturb.n),
+    };
+    of(
+        inner,
+        &f,
+        &UNPERTURBED,
+        perturb.to_local(wo),
+        perturb.to_local(wi),
+        w,
+    )
+}
+
+/// [`Bsdf::mueller`] of material `m`; `perturb` is a normal or bump map's frame (local to
+/// `frame`) for the perturbed material `m` holds.
+fn of<const N: usize>(
+    m: &Material,
+    frame: &Frame,
+    perturb: &Frame,
+    wo: Vec3,
+    wi: Vec3,
+    w: &SampledWavelengths<N>,
+) -> Polarising<N> {
+    let straight = (wo + wi).length_squared() < 1e-10;
+    match m {
+        Material::Diffuse(_) | Material::Phong(_) | Material::Plastic(_) | Material::Blend(_) => {
+            Polarising::Depolarise
+        }
+        Material::Null => Polarising::Keep,
+        Material::Mask(_) | Material::ThinDielectric { .. } if straight => Polarising::Keep,
+        Material::Mask(k) => of(&k.inner, frame, perturb, wo, wi, w),
+        Material::Textured(k) => of(&k.inner, frame, perturb, wo, wi, w),
+        Material::NormalMap(k) => perturbed(&k.inner, frame, perturb, wo, wi, w),
+        Material::BumpMap(k) => perturbed(&k.inner, frame, perturb, wo, wi, w),
+        Material::ThinDielectric { eta } => {
+            let (e, c) = side(wi.z, *eta);
+            let m = fresnel::reflection(c, Complex::new(e, 0.0));
+            interface(frame, Vec3::Z, wo, wi, |_| m, false).with(w)
+        }
+        Material::Dielectric(d) => {
+            let reflect = wi.z * wo.z > 0.0;
+            let dispersive = d.int_ior.is_dispersive();
+            interface(
+                frame,
+                Vec3::Z,
+                wo,
+                wi,
+                |l| dielectric(wi.z, d.eta(l), reflect),
+                dispersive,
+            )
+            .with(w)
+        }
+        Material::RoughDielectric(d) => {
+            let reflect = wi.z * wo.z > 0.0;
+            let dispersive = d.int_ior.is_dispersive();
+            let eta = |l: f32| d.int_ior.eval(l) / d.ext_ior;
+            // the microfacet normal: the half vector, generalised for refraction by the hero's
+            // index (Walter et al. 2007, eq. 16); its sign does not matter
+            let e0 = eta(w.lambda[0]);
+            let (ni, no) = if wi.z > 0.0 { (1.0, e0) } else { (e0, 1.0) };
+            let h = if reflect {
+                wi + wo
+            } else {
+                -(wi * ni + wo * no)
+            };
+            let Some(h) = h.try_normalize() else {
+                return Polarising::Depolarise;
+            };
+            let h = if h.z < 0.0 { -h } else { h };
+            let cos = wi.dot(h);
+            interface(
+                frame,
+                h,
+                wo,
+                wi,
+                |l| dielectric(cos, eta(l), reflect),
+                dispersive,
+            )
+            .with(w)
+        }
+        Material::Conductor(c) => {
+            let eta = |l: f32| {
+                let (n, k) = c.ior.eval(l);
+                Complex::new(n / c.ext_ior, k / c.ext_ior)
+            };
+            let cos = wi.z;
+            interface(
+                frame,
+                Vec3::Z,
+                wo,
+                wi,
+                |l| fresnel::reflection(cos, eta(l)),
+                false,
+            )
+            .with(w)
+        }
+        Material::RoughConductor(c) => {
+            let eta = |l: f32| {
+                let (n, k) = c.ior.eval(l);
+                Complex::new(n / c.ext_ior, k / c.ext_ior)
+            };
+            let Some(h) = (wi + wo).try_normalize() else {
+                return Polarising::Depolarise;
+            };
+            let cos = wi.dot(h);
+            interface(
+                frame,
+                h,
+                wo,
+                wi,
+                |l| fresnel::reflection(cos, eta(l)),
+                false,
+            )
+            .with(w)
+        }
+        Material::Element(e) => {
+            let (m, basis) = e.mueller(wo);
+            let Some(p) = normalised(m) else {
+                return Polarising::Keep;
+            };
+            Polarising::Matrix([to_world(frame, &p, wo, wi, basis, basis); N])
+        }
+    }
+}
+
+/// (η seen from the side light arrives from, |cos θᵢ|) for relative index `eta` (inside over
+/// outside) and the signed cosine of the arriving light's side `cos` (> 0: outside).
+#[inline]
+fn side(cos: f32, eta: f32) -> (f32, f32) {
+    if cos >= 0.0 {
+        (eta, cos)
+    } else {
+        (1.0 / eta, -cos)
+    }
+}
+
+/// The Fresnel matrix of a dielectric interface of relative index `eta` (inside over outside)
+/// for light arriving at signed cosine `cos` (> 0: from outside): reflection or transmission.
+fn dielectric(cos: f32, eta: f32, reflect: bool) -> Mueller {
+    let (e, c) = side(cos, eta);
+    if reflect {
+        fresnel::reflection(c, Complex::new(e, 0.0))
+    } else {
+        fresnel::transmission(c, e)
+    }
+}
+
+/// An interface's matrices before they are put per wavelength: `m(λ)` in the frame of the
+/// plane of incidence about the (local) normal `n`, and whether they differ per wavelength
+/// only at the hero (dispersive: the secondaries are terminated).
+struct Interface<'a, F: Fn(f32) -> Mueller> {
+    frame: &'a Frame,
+    s_in: Vec3,
+    s_out: Vec3,
+    wo: Vec3,
+    wi: Vec3,
+    m: F,
+    hero_only: bool,
+}
+
+fn interface<F: Fn(f32) -> Mueller>(
+    frame: &Frame,
+    n: Vec3,
+    wo: Vec3,
+    wi: Vec3,
+    m: F,
+    hero_only: bool,
+) -> Interface<'_, F> {
+    // s bases perpendicular to the plane of incidence on both beams (Mitsuba's
+    // `cross(n, -wo_hat)`, `cross(n, wi_hat)`); at normal incidence any common axis
+    let (s_in, s_out) = match (n.cross(-wi).try_normalize(), n.cross(wo).try_normalize()) {
+        (Some(a), Some(b)) => (a, b),
+        _ => {
+            let a = Frame::from_normal(n).s;
+            (a, a)
+        }
+    };
+    Interface {
+        frame,
+        s_in,
+        s_out,
+        wo,
+        wi,
+        m,
+        hero_only,
+    }
+}
+
+impl<F: Fn(f32) -> Mueller> Interface<'_, F> {
+    /// The normalised matrices at the wavelengths `w`, in world implicit bases.
+    fn with<const N: usize>(self, w: &SampledWavelengths<N>) -> Polarising<N> {
+        let one = |l: f32| -> Mueller {
+            match normalised((self.m)(l)) {
+                Some(p) => to_world(self.frame, &p, self.wo, self.wi, self.s_in, self.s_out),
+                None => Mueller::IDENTITY,
+            }
+        };
+        let hero = one(w.lambda[0]);
+        Polarising::Matrix(std::array::from_fn(|j| {
+            if j == 0 || self.hero_only || w.pdf[j] == 0.0 {
+                hero
+            } else {
+                one(w.lambda[j])
+            }
+        }))
+    }
+}
+
+/// M/M₀₀, or None when M₀₀ is not positive (the event carries nothing).
+#[inline]
+fn normalised(m: Mueller) -> Option<Mueller> {
+    let a = m.0[0][0];
+    (a > 0.0 && a.is_finite()).then(|| m.scale(1.0 / a))
+}
+
+/// `p`, acting from the basis `s_in` of the beam along −`wi` to `s_out` of the beam along `wo`
+/// (all local to `frame`), re-expressed in the implicit world bases of the two beams.
+fn to_world(frame: &Frame, p: &Mueller, wo: Vec3, wi: Vec3, s_in: Vec3, s_out: Vec3) -> Mueller {
+    let f_in = frame.to_world(-wi).normalize();
+    let f_out = frame.to_world(wo).normalize();
+    let r_in = rotate_stokes_basis(f_in, frame.to_world(s_in), stokes_basis(f_in));
+    let r_out = rotate_stokes_basis(f_out, frame.to_world(s_out), stokes_basis(f_out));
+    r_out * *p * r_in.transpose()
+}
