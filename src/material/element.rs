@@ -5,16 +5,16 @@
 
 use glam::Vec3;
 
-use crate::polarisation::{Mueller, elements, rotate_stokes_basis, rotated_element};
+use crate::polarisation::{Mueller, elements, rotate_stokes_basis, rotated_element, stokes_basis};
 
 /// A thin optical element in the plane of a surface, oriented by its shading frame (the
 /// frame's first tangent follows ∂p/∂u, as Mitsuba's does).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Element {
-    /// An ideal linear polariser whose transmission axis is turned by `theta` (radians,
-    /// counter-clockwise seen against the light) from the axis `forward × y` (the local first
-    /// tangent's line at normal incidence), as Mitsuba's `polarizer` defines it (see
-    /// [`Element::mueller`]), times `transmittance` (in [0, 1]).
+    /// An ideal linear polariser whose absorption axis is the local +y turned by `theta`
+    /// (radians) toward +x in the surface's plane, so that at normal incidence it passes light
+    /// polarised along the local x axis turned by −`theta` about the normal (see
+    /// [`Element::mueller`]), times `transmittance` (in [0, 1]). Mitsuba 3.9.1's `polarizer`.
     /// Not `polarizing`: a grey filter of ½·transmittance that keeps the light's polarisation
     /// (Mitsuba's `polarizing = false`).
     Polariser {
@@ -23,8 +23,9 @@ pub enum Element {
         polarizing: bool,
     },
     /// An ideal linear retarder, fast axis turned by `theta` (radians) from the local first
-    /// tangent, retardance `delta` (radians) at normal incidence, scaled by |cos θ| at oblique
-    /// incidence (Mitsuba's `retarder`: "a cosine falloff").
+    /// tangent (clockwise seen against the light), retardance `delta` (radians) at normal
+    /// incidence, scaled by |cos θ| at oblique incidence (Mitsuba 3.9.1's `retarder`: "a cosine
+    /// falloff").
     Retarder { theta: f32, delta: f32 },
 }
 
@@ -40,12 +41,14 @@ impl Element {
     }
 
     /// The element's Mueller matrix for light travelling along `forward` (local shading frame,
-    /// unit), and the Stokes basis vector (local, perpendicular to `forward`) it acts in, on
-    /// both sides. Mitsuba's `polarizer`: the ideal polariser turned by θ in the basis
-    /// `forward × a` with `a` the local +y projected perpendicular to `forward` (the tilted
-    /// polariser of Korger et al. 2013), times the transmittance. Mitsuba's `retarder`: the ideal
-    /// retarder of retardance δ·|cos θ| turned by θ in the basis of the local +x (here projected
-    /// perpendicular to `forward`, the same at normal incidence).
+    /// unit), and the Stokes basis vector (local) it acts in, on both sides; as Mitsuba 3.9.1
+    /// computes them (measured against its `scalar_spectral_polarized` BSDFs to 10⁻⁷ at oblique
+    /// incidence). The polariser: the ideal polariser in the basis `forward × a`, with `a` the
+    /// absorption axis (sin θ, cos θ, 0) projected perpendicular to `forward` (the tilted
+    /// polariser of Korger et al. 2013), times the transmittance. The retarder: the ideal
+    /// retarder of retardance δ·|cos θᵢ| turned by −θ about `forward`, in the basis of the local
+    /// +x as it stands (a frame change by the angle between +x and the target basis, as
+    /// Mitsuba's `rotate_stokes_basis` takes it, exact at normal incidence).
     pub fn mueller(&self, forward: Vec3) -> (Mueller, Vec3) {
         match *self {
             Element::Polariser {
@@ -60,14 +63,20 @@ impl Element {
                         perpendicular(Vec3::X, forward),
                     );
                 }
-                let a = perpendicular(Vec3::Y, forward);
+                let (sin, cos) = theta.sin_cos();
+                let a = perpendicular(Vec3::new(sin, cos, 0.0), forward);
                 let basis = forward.cross(a);
-                let m = rotated_element(theta, &elements::linear_polariser());
-                (m.scale(transmittance), basis)
+                (elements::linear_polariser().scale(transmittance), basis)
             }
             Element::Retarder { theta, delta } => {
-                let m = elements::linear_retarder(delta * forward.z.abs());
-                (rotated_element(theta, &m), perpendicular(Vec3::X, forward))
+                let m =
+                    rotated_element(-theta, &elements::linear_retarder(delta * forward.z.abs()));
+                // Mitsuba turns the basis from +x to the local implicit basis first, an angle
+                // between vectors that are not both perpendicular to the beam at oblique
+                // incidence; the same two steps give its matrix
+                let b = stokes_basis(forward);
+                let r = rotate_stokes_basis(forward, Vec3::X, b);
+                (r * m * r.transpose(), b)
             }
         }
     }

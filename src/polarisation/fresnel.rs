@@ -30,7 +30,11 @@ pub fn amplitudes(cos_i: f32, eta: Complex) -> (Complex, Complex, Complex) {
 }
 
 /// The Mueller matrix of specular reflection (dimensionless; (0, 0) is the unpolarised
-/// reflectance): with R_s = |r_s|², R_p = |r_p|² and the retardance δ = arg r_p − arg r_s,
+/// reflectance): with R_s = |r_s|², R_p = |r_p|² and the retardance δ = arg r_s − arg r_p
+/// (the sign Mitsuba 3.9.1's `specular_reflection` computes, measured: for a conductor of
+/// η = 0.27 + 2.78i at cos θᵢ = 0.5 its element (2, 3) is −0.712, and −0.428 for total
+/// internal reflection at η = 1/1.5, cos θᵢ = 0.3; so that S3's handedness reads as in its
+/// polarised renders),
 /// ```text
 /// | (R_s+R_p)/2  (R_s−R_p)/2        0             0        |
 /// | (R_s−R_p)/2  (R_s+R_p)/2        0             0        |
@@ -44,7 +48,7 @@ pub fn reflection(cos_i: f32, eta: Complex) -> Mueller {
     let (r_s, r_p) = (rs.norm2(), rp.norm2());
     let c = (r_s * r_p).sqrt();
     let (sin_d, cos_d) = if c > 0.0 {
-        (rp.arg() - rs.arg()).sin_cos()
+        (rs.arg() - rp.arg()).sin_cos()
     } else {
         (0.0, 0.0)
     };

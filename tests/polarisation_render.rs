@@ -1,0 +1,222 @@
+//! Polarised rendering (issue 28) against closed forms: Malus's law through two polarisers,
+//! the Fresnel equations' s/p split of light reflected by glass (Brewster's angle included), a
+//! quarter-wave plate turning linear light circular, and a scene without polarising materials,
+//! whose polarised render must be its unpolarised render with S1 = S2 = S3 = 0.
+
+mod support;
+
+use support::render::{mean, render_with, scene_from};
+
+/// A uniform environment of 1 W·m⁻²·sr⁻¹ (flat spectrum) seen by an orthographic camera along
+/// +z through `shapes` (TOML), 4 × 4 pixels.
+fn through(materials: &str, shapes: &str, spp: u32) -> spectrace::film::Image {
+    let text = format!(
+        r#"
+[camera]
+type = "orthographic"
+eye = [0, 0, 0]
+target = [0, 0, 1]
+view_width = 0.5
+[film]
+width = 4
+height = 4
+spp = {spp}
+[integrator]
+max_depth = 8
+{materials}
+{shapes}
+[[lights]]
+type = "environment"
+radiance = "1 W/m^2/sr"
+"#
+    );
+    let scene = scene_from(&text);
+    assert!(
+        scene.integrator.polarised,
+        "a scene with polarisers renders polarised"
+    );
+    render_with(&scene, |_| {}).0
+}
+
+/// Band radiance (W·m⁻²·sr⁻¹) and the ratios S1/S0, S2/S0, S3/S0 of Y, image means.
+fn stokes_ratios(img: &spectrace::film::Image) -> (f64, [f64; 3]) {
+    let y = mean(img.xyz.iter().map(|p| p[1]));
+    let s = |k: usize| mean(img.stokes.iter().map(|p| p[k][1])) / y;
+    (mean(img.band.iter().copied()), [s(0), s(1), s(2)])
+}
+
+/// Unpolarised light through polarisers at 0 and θ: L·½cos²θ (Malus), the light leaving
+/// polarised along the last one.
+#[test]
+fn malus_law_through_two_polarisers() {
+    for deg in [0.0f64, 30.0, 60.0, 90.0] {
+        let img = through(
+            &format!(
+                "[materials.p0]\ntype = \"polariser\"\n[materials.p1]\ntype = \"polariser\"\nangle = \"{deg} deg\""
+            ),
+            r#"
+[[shapes]]
+type = "rectangle"
+material = "p0"
+transform = [{ translate = [0, 0, 1] }]
+[[shapes]]
+type = "rectangle"
+material = "p1"
+transform = [{ translate = [0, 0, 2] }]
+"#,
+            4096,
+        );
+        let (l, s) = stokes_ratios(&img);
+        let want = 0.5 * deg.to_radians().cos().powi(2);
+        println!("θ = {deg}°: L {l:.6} (Malus {want:.6}), S1/S0 {:.6}", s[0]);
+        assert!(
+            (l - want).abs() <= 1e-3 * 0.5 + 1e-7,
+            "θ = {deg}°: {l} vs {want}"
+        );
+        if deg < 90.0 {
+            // polarised along the camera-side polariser, the same line for every θ
+            assert!(
+                (s[0].hypot(s[1]) - 1.0).abs() < 1e-4,
+                "fully polarised: {s:?}"
+            );
+            assert!(s[2].abs() < 1e-5, "no circular part: {s:?}");
+        }
+    }
+}
+
+/// A polariser at 0° then a quarter-wave retarder at 45°: circular light, |S3| = S0, at the
+/// polariser's ½L.
+#[test]
+fn quarter_wave_plate_turns_linear_light_circular() {
+    let img = through(
+        r#"
+[materials.p]
+type = "polariser"
+[materials.q]
+type = "retarder"
+angle = "45 deg"
+retardance = "90 deg"
+"#,
+        r#"
+[[shapes]]
+type = "rectangle"
+material = "q"
+transform = [{ translate = [0, 0, 1] }]
+[[shapes]]
+type = "rectangle"
+material = "p"
+transform = [{ translate = [0, 0, 2] }]
+"#,
+        1024,
+    );
+    let (l, s) = stokes_ratios(&img);
+    println!("L {l:.6}, S/S0 {s:?}");
+    assert!((l - 0.5).abs() < 1e-3 * 0.5);
+    assert!((s[2].abs() - 1.0).abs() < 1e-4, "{s:?}");
+    assert!(s[0].abs() < 1e-4 && s[1].abs() < 1e-4, "{s:?}");
+}
+
+/// Reflectances of s and p light at a dielectric of index `n` (from vacuum) at incidence
+/// angle `theta`: Fresnel's equations.
+fn fresnel_sp(n: f64, theta: f64) -> (f64, f64) {
+    let ci = theta.cos();
+    let ct = (1.0 - (theta.sin() / n).powi(2)).sqrt();
+    let rs = (ci - n * ct) / (ci + n * ct);
+    let rp = (n * ci - ct) / (n * ci + ct);
+    (rs * rs, rp * rp)
+}
+
+/// Unpolarised light reflected by glass (n = 1.5) at incidence θ: S0 = ½(R_s + R_p)·L (within
+/// 4 standard errors of the reflection's random choice) and S1/S0 = (R_s − R_p)/(R_s + R_p)
+/// (to 10⁻³) with the s direction horizontal in the image; at Brewster's angle atan(n) the
+/// reflection is purely s-polarised.
+#[test]
+fn glass_reflects_s_light_and_only_s_light_at_brewster() {
+    let n = 1.5f64;
+    for theta in [30.0f64.to_radians(), n.atan(), 70.0f64.to_radians()] {
+        let (sin, cos) = theta.sin_cos();
+        let text = format!(
+            r#"
+[camera]
+type = "orthographic"
+eye = [{ex}, 0, {ez}]
+target = [0, 0, 0]
+up = [0, 0, 1]
+view_width = 0.2
+[film]
+width = 4
+height = 4
+spp = 4096
+[integrator]
+max_depth = 8
+polarised = true
+[materials.glass]
+type = "dielectric"
+ior = {n}
+[materials.black]
+type = "diffuse"
+reflectance = 0
+[[shapes]]
+type = "rectangle"
+material = "glass"
+transform = [{{ scale = 100 }}]
+[[shapes]]
+type = "rectangle"
+material = "black"
+transform = [{{ scale = 100 }}, {{ translate = [0, 0, -1] }}]
+[[lights]]
+type = "environment"
+radiance = "1 W/m^2/sr"
+"#,
+            ex = -5.0 * sin,
+            ez = 5.0 * cos,
+        );
+        let scene = scene_from(&text);
+        let img = render_with(&scene, |_| {}).0;
+        let (l, s) = stokes_ratios(&img);
+        let (rs, rp) = fresnel_sp(n, theta);
+        let want = 0.5 * (rs + rp);
+        let dolp = (rs - rp) / (rs + rp);
+        println!(
+            "θ {:.3}°: S0 {l:.6} (Fresnel {want:.6}), S1/S0 {:.6} (Fresnel {dolp:.6})",
+            theta.to_degrees(),
+            s[0]
+        );
+        // the reflection is chosen with probability F = want per sample: binomial noise
+        let samples = (img.width * img.height) as f64 * 4096.0;
+        let se = want * ((1.0 - want) / (want * samples)).sqrt();
+        assert!((l - want).abs() < 4.0 * se, "S0 {l} vs {want} ± {se}");
+        assert!((s[0] - dolp).abs() < 1e-3, "S1/S0 {} vs {dolp}", s[0]);
+        assert!(s[1].abs() < 1e-4 && s[2].abs() < 1e-4, "{s:?}");
+    }
+}
+
+/// The Cornell box (diffuse only) rendered polarised: S0 is the unpolarised render (the same
+/// samples and weights; every bounce depolarises) and S1 = S2 = S3 = 0.
+#[test]
+fn a_scene_without_polarising_materials_renders_the_same_s0() {
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/cornell.toml"),
+    )
+    .expect("cornell.toml");
+    let unpolarised = scene_from(&text);
+    let polarised = scene_from(&text.replace("max_depth = 16", "max_depth = 16\npolarised = true"));
+    assert!(polarised.integrator.polarised && !unpolarised.integrator.polarised);
+    let small = |o: &mut spectrace::render::RenderOptions| {
+        o.spp = 8;
+        o.seed = 5;
+    };
+    let (a, _) = render_with(&unpolarised, small);
+    let (b, _) = render_with(&polarised, small);
+    assert!(a.stokes.is_empty());
+    let mut worst = 0.0f64;
+    for (i, (p, q)) in a.xyz.iter().zip(&b.xyz).enumerate() {
+        for c in 0..3 {
+            let d = (p[c] - q[c]).abs() as f64 / (p[c].abs() as f64).max(1e-3);
+            worst = worst.max(d);
+        }
+        assert!(b.stokes[i].iter().flatten().all(|&v| v == 0.0), "pixel {i}");
+    }
+    println!("worst relative difference {worst:.2e}");
+    assert!(worst < 1e-4, "{worst}");
+}
