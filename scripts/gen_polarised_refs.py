@@ -6,8 +6,9 @@
 
 The scenes are mitsuba-data's, copied unchanged into tests/reference/mitsuba-data/docs/scenes/
 (see its README). Two rewrites, which tests/polarised_reference.rs applies identically:
-- the polariser scenes' include `include/shape_scene.xml`: the film 960 × 720 becomes
-  WIDTH × HEIGHT, and its integrator is wrapped in Mitsuba's `stokes` integrator, so that the
+- the includes (`include/shape_scene.xml` of the polariser scenes, `include/matpreview.xml` and
+  `matpreview_stokes.xml` of the pplastic scenes): the film 960 × 720 becomes WIDTH × HEIGHT,
+  and an integrator not yet inside Mitsuba's `stokes` integrator is wrapped in one, so that the
   references hold S1–S3 besides S0 (the image the scene renders as it stands is S0);
 - `integrator_stokes_cbox.xml` is loaded with `res` = CBOX_RES (its own parameter).
 
@@ -32,7 +33,9 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DOCS = os.path.join(ROOT, "tests", "reference", "mitsuba-data", "docs", "scenes")
 OUT = os.path.join(ROOT, "tests", "reference", "polarised")
 SCENES = ["bsdf_polarizer_middle", "bsdf_polarizer_aligned", "bsdf_polarizer_absorbing",
-          "integrator_stokes_cbox"]
+          "integrator_stokes_cbox", "bsdf_pplastic", "bsdf_pplastic_diffuse",
+          "bsdf_pplastic_diffuse_stokes", "bsdf_pplastic_specular", "bsdf_pplastic_specular_stokes"]
+INCLUDES = ["shape_scene.xml", "matpreview.xml", "matpreview_stokes.xml"]
 WIDTH, HEIGHT, CBOX_RES = 120, 90, 128
 TILE = 30
 CBOX_TILE = 32
@@ -47,18 +50,22 @@ def stokes_include(text):
     """The include with the film reduced and its integrator inside `stokes` (see the doc)."""
     text = re.sub(r'name="width" value="960"', f'name="width" value="{WIDTH}"', text)
     text = re.sub(r'name="height" value="720"', f'name="height" value="{HEIGHT}"', text)
-    return re.sub(r'(<integrator type="\$integrator">.*?</integrator>)',
-                  r'<integrator type="stokes">\1</integrator>', text, flags=re.S)
+    if 'type="stokes"' in text:
+        return text
+    return re.sub(r'(<integrator type="[^"]*"\s*/>|<integrator type="[^"]*">.*?</integrator>)',
+                  r'<integrator type="stokes">\1</integrator>', text, count=1, flags=re.S)
 
 
-def render(name, inc_name):
+def render(name, inc_names):
     params = {}
     if name == "integrator_stokes_cbox":
         path, params, tile = os.path.join(DOCS, name + ".xml"), {"res": CBOX_RES}, CBOX_TILE
         tmp = None
     else:
         with open(os.path.join(DOCS, name + ".xml")) as f:
-            text = f.read().replace("include/shape_scene.xml", "include/" + inc_name)
+            text = f.read()
+        for inc, tmp_name in inc_names.items():
+            text = text.replace("include/" + inc, "include/" + tmp_name)
         tmp = path = os.path.join(DOCS, "_tmp_" + name + ".xml")
         with open(path, "w") as f:
             f.write(text)
@@ -102,16 +109,20 @@ def main():
     global SPP, SEEDS
     if os.environ.get("QUICK"):
         SPP, SEEDS = 4, 2
-    with open(os.path.join(DOCS, "include", "shape_scene.xml")) as f:
-        include = stokes_include(f.read())
-    fd, inc_path = tempfile.mkstemp(suffix=".xml", dir=os.path.join(DOCS, "include"))
-    with os.fdopen(fd, "w") as f:
-        f.write(include)
+    tmp = {}
     try:
+        for inc in INCLUDES:
+            with open(os.path.join(DOCS, "include", inc)) as f:
+                include = stokes_include(f.read())
+            fd, inc_path = tempfile.mkstemp(suffix=".xml", dir=os.path.join(DOCS, "include"))
+            with os.fdopen(fd, "w") as f:
+                f.write(include)
+            tmp[inc] = inc_path
         for name in sys.argv[1:] or SCENES:
-            render(name, os.path.basename(inc_path))
+            render(name, {k: os.path.basename(v) for k, v in tmp.items()})
     finally:
-        os.remove(inc_path)
+        for v in tmp.values():
+            os.remove(v)
 
 
 if __name__ == "__main__":

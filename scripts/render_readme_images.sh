@@ -18,3 +18,4 @@ render furnace path 16
 render radiometry path 16
 render phong whitted 16
 render textures path 16
+render polarisation path 64

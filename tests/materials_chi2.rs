@@ -257,6 +257,29 @@ fn cases() -> Vec<Case> {
             });
         }
     }
+    // Mitsuba's polarising plastic: its glossy lobe (Beckmann α = 0.06, the documentation
+    // scenes') and GGX α = 0.3, beside the cosine-weighted diffuse part
+    for (alpha, kind, grid) in [
+        (0.06, Distribution::Beckmann, FINE),
+        (0.3, Distribution::Ggx, COARSE),
+    ] {
+        for &t in &angles {
+            let m = spectrace::material::PPlastic::new(
+                Spectrum::Constant(0.3).into(),
+                0.3,
+                1.0,
+                1.49,
+                spectrace::material::microfacet::Microfacet::new(alpha, kind),
+            );
+            v.push(Case {
+                name: format!("PPlastic {kind:?} α={alpha} θo={t}"),
+                material: Material::PPlastic(m),
+                wo: dir(t, phi, false),
+                w: wavelengths(550.0),
+                grid,
+            });
+        }
+    }
     v
 }
 

@@ -156,3 +156,160 @@ fn a_fresnel_rhomb_is_a_quarter_wave_retarder_at_its_design_wavelength() {
         }
     }
 }
+
+/// Every material's Mueller matrix in the polarised mode is physically realisable (Cloude's
+/// criterion, `elements::realisable`) for random pairs of directions and wavelengths: smooth
+/// and rough N-BK7 (reflection, transmission, total internal reflection), smooth and rough
+/// gold, Mitsuba's polarising plastic, a polariser and a retarder at oblique incidence.
+#[test]
+fn every_material_mueller_matrix_is_realisable() {
+    use glam::Vec3;
+    use spectrace::geometry::Frame;
+    use spectrace::material::microfacet::{Distribution, Microfacet};
+    use spectrace::material::{
+        Conductor, Dielectric, Element, Material, PPlastic, Polarising, RoughConductor,
+        RoughDielectric,
+    };
+    use spectrace::spectrum::{SampledWavelengths, Spectrum};
+    let bk7 = match lookup("glass:N-BK7") {
+        Ok(Named::Dielectric(g)) => g.ior,
+        other => panic!("{other:?}"),
+    };
+    let gold = match lookup("metal:Au") {
+        Ok(Named::Conductor(m)) => m.ior,
+        other => panic!("{other:?}"),
+    };
+    let materials = [
+        Material::Dielectric(Dielectric::new(bk7.clone(), 1.0)),
+        Material::RoughDielectric(RoughDielectric::new(bk7, 1.0, 0.3)),
+        Material::Conductor(Conductor::new(gold.clone(), 1.0)),
+        Material::RoughConductor(RoughConductor::new(gold, 1.0, 0.2)),
+        Material::PPlastic(PPlastic::new(
+            Spectrum::Constant(0.4).into(),
+            0.4,
+            1.0,
+            1.49,
+            Microfacet::new(0.1, Distribution::Beckmann),
+        )),
+        Material::Element(Element::Polariser {
+            theta: 0.4,
+            transmittance: 0.9,
+            polarizing: true,
+        }),
+        Material::Element(Element::Retarder {
+            theta: 0.7,
+            delta: 1.2,
+        }),
+    ];
+    let mut k = 7u64;
+    let mut u = || {
+        k = k
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((k >> 40) as f32 + 0.5) / (1u64 << 24) as f32
+    };
+    let frame = Frame::from_normal(Vec3::new(0.2, -0.3, 0.93).normalize());
+    let mut checked = 0;
+    for m in &materials {
+        for _ in 0..400 {
+            let dir = |a: f32, b: f32, below: bool| {
+                let z = if below { -a } else { a };
+                let r = (1.0 - a * a).max(0.0).sqrt();
+                let p = std::f32::consts::TAU * b;
+                Vec3::new(r * p.cos(), r * p.sin(), z)
+            };
+            let w = SampledWavelengths {
+                lambda: [400.0 + 300.0 * u(), 550.0, 480.0, 650.0],
+                pdf: [1.0 / 470.0; 4],
+            };
+            let bsdf = m.at(glam::Vec2::ZERO, &w);
+            let wo = dir(u().max(0.05), u(), u() < 0.3);
+            // a sampled direction (delta lobes), else any on either side
+            let wi = match bsdf.sample(
+                wo,
+                &w,
+                u(),
+                glam::Vec2::new(u(), u()),
+                spectrace::material::TransportMode::Radiance,
+            ) {
+                Some(s) if u() < 0.7 => s.wi,
+                _ => dir(u().max(0.05), u(), u() < 0.5),
+            };
+            if let Polarising::Matrix(p) = bsdf.mueller(&frame, wo, wi, &w) {
+                for (j, mj) in p.iter().enumerate() {
+                    assert!(
+                        (mj.0[0][0] - 1.0).abs() < 1e-4,
+                        "{m:?}: normalised, (0, 0) = {}",
+                        mj.0[0][0]
+                    );
+                    assert!(
+                        elements::realisable(mj, 1e-4),
+                        "{m:?} wo {wo} wi {wi} λ{j} {}: {mj:?}",
+                        w.lambda[j]
+                    );
+                }
+                checked += 1;
+            }
+        }
+    }
+    assert!(checked > 1500, "{checked} matrices checked");
+}
+
+/// Mitsuba's polarising plastic gives finite sample weights and Mueller matrices everywhere,
+/// grazing directions included, with and without its diffuse term.
+#[test]
+fn pplastic_samples_and_matrices_are_finite() {
+    use glam::{Vec2, Vec3};
+    use spectrace::geometry::Frame;
+    use spectrace::material::microfacet::{Distribution, Microfacet};
+    use spectrace::material::{Material, PPlastic, Polarising, TransportMode};
+    use spectrace::spectrum::{SampledWavelengths, Spectrum};
+    let w = SampledWavelengths {
+        lambda: [550.0, 450.0, 650.0, 500.0],
+        pdf: [1.0 / 470.0; 4],
+    };
+    let frame = Frame::from_normal(Vec3::Z);
+    for rho in [0.0, 0.3] {
+        let m = Material::PPlastic(PPlastic::new(
+            Spectrum::Constant(rho).into(),
+            rho,
+            1.0,
+            1.49,
+            Microfacet::new(0.06, Distribution::Beckmann),
+        ));
+        let bsdf = m.at(Vec2::ZERO, &w);
+        let n = 200;
+        for a in 0..n {
+            for b in 0..n {
+                let cos = ((a as f32 + 0.5) / n as f32).powi(4);
+                let wo = Vec3::new((1.0 - cos * cos).sqrt(), 0.0, cos);
+                let u = Vec2::new((b as f32 + 0.5) / n as f32, (a * 7 % n) as f32 / n as f32);
+                let Some(s) = bsdf.sample(
+                    wo,
+                    &w,
+                    (b * 13 % n) as f32 / n as f32,
+                    u,
+                    TransportMode::Radiance,
+                ) else {
+                    continue;
+                };
+                let wt = s.f[0] * s.wi.z.abs() / s.pdf;
+                assert!(
+                    wt.is_finite(),
+                    "ρ {rho}, wo {wo}, wi {}: f {:?} pdf {}",
+                    s.wi,
+                    s.f,
+                    s.pdf
+                );
+                if let Polarising::Matrix(p) = bsdf.mueller(&frame, wo, s.wi, &w) {
+                    assert!(
+                        p.iter()
+                            .all(|m| m.0.iter().flatten().all(|v| v.is_finite())),
+                        "ρ {rho}, wo {wo}, wi {}: {p:?}",
+                        s.wi
+                    );
+                }
+            }
+        }
+    }
+}

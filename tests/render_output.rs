@@ -264,6 +264,35 @@ fn an_integrator_without_media_refuses_a_scene_with_media() {
     }
 }
 
+/// A polarised scene (it holds polarisers) under an integrator that carries no Stokes vectors
+/// is refused with the reason, not rendered as if the polarisers were grey filters; under
+/// `path` it writes the Stokes channels.
+#[test]
+fn a_polarised_scene_renders_under_path_only() {
+    let dir = tmpdir("polarised");
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes/polarisation.toml")
+        .display()
+        .to_string();
+    let base = one_sample(&scene);
+    for integrator in ["bdpt", "light", "whitted", "direct"] {
+        let (ok, err) = spectrace(&dir, &[&base[..], &["--integrator", integrator]].concat());
+        assert!(
+            !ok && err.contains("renders polarised") && err.contains(integrator),
+            "{integrator}: {err}"
+        );
+        assert!(!dir.join("o.exr").exists(), "no image after an error");
+    }
+    let (ok, err) = spectrace(&dir, &base);
+    assert!(ok, "{err}");
+    let img = spectrace::image_io::read_exr(&dir.join("o.exr")).expect("the image");
+    for c in [
+        "S1.Y", "S2.Y", "S3.Y", "DoLP", "AoLP", "pol0.Y", "pol45.Y", "pol90.Y", "pol135.Y",
+    ] {
+        assert!(img.channels.iter().any(|(n, _)| n == c), "no {c}");
+    }
+}
+
 /// The arguments that render `scene` at 1 spp into `o.exr`, quietly.
 fn one_sample(scene: &str) -> [&str; 7] {
     ["render", scene, "-o", "o.exr", "--quiet", "--spp", "1"]

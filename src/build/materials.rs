@@ -3,9 +3,10 @@
 
 use super::textures;
 use crate::loader::desc::{MaterialKind, TextureDesc};
+use crate::material::microfacet::Microfacet;
 use crate::material::{
-    Blend, BumpMap, Conductor, Dielectric, Element, Lambert, Mask, Material, NormalMap, Phong,
-    Plastic, RoughConductor, RoughDielectric, TexturedLobes,
+    Blend, BumpMap, Conductor, Dielectric, Element, Lambert, Mask, Material, NormalMap, PPlastic,
+    Phong, Plastic, RoughConductor, RoughDielectric, TexturedLobes,
 };
 
 /// The render-side material for `k`; an error (for the user, without a location) if a
@@ -110,6 +111,24 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
                 *nonlinear,
                 roughness.map(|a| (a as f32, *distribution)),
             )?)
+        }
+        MaterialKind::PPlastic {
+            diffuse,
+            specular,
+            int_ior,
+            exterior_ior,
+            roughness,
+            distribution,
+        } => {
+            let diffuse = textures::texture(diffuse)?;
+            let mean = diffuse.mean();
+            Material::PPlastic(PPlastic::new(
+                diffuse,
+                mean,
+                *specular as f32,
+                (*int_ior / *exterior_ior) as f32,
+                Microfacet::anisotropic(roughness[0] as f32, roughness[1] as f32, *distribution),
+            ))
         }
     })
 }

@@ -56,6 +56,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::RoughDielectric(m) => m.eval(wo, wi, w, mode),
             Material::RoughConductor(m) => m.eval(wo, wi, w),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).0,
+            Material::PPlastic(m) => m.eval_pdf(wo, wi, self.albedo).0,
             Material::Mask(m) => self.masked(m).eval(wo, wi, w, mode) * self.weight,
             Material::Blend(m) => self.blend_eval_pdf(m, wo, wi, w, mode).0,
             Material::NormalMap(_) | Material::BumpMap(_) => {
@@ -80,6 +81,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::RoughDielectric(m) => m.pdf(wo, wi, w),
             Material::RoughConductor(m) => m.pdf(wo, wi),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).1,
+            Material::PPlastic(m) => m.eval_pdf(wo, wi, self.albedo).1,
             Material::Mask(m) => self.masked(m).pdf(wo, wi, w, _mode) * self.weight,
             Material::Blend(m) => self.blend_eval_pdf(m, wo, wi, w, _mode).1,
             Material::NormalMap(_) | Material::BumpMap(_) => {
@@ -111,6 +113,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::RoughDielectric(m) => m.eval_pdf(wo, wi, w, mode),
             Material::RoughConductor(m) => m.eval_pdf(wo, wi, w),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo),
+            Material::PPlastic(m) => m.eval_pdf(wo, wi, self.albedo),
             Material::Mask(m) => {
                 let (f, pdf) = self.masked(m).eval_pdf(wo, wi, w, mode);
                 (f * self.weight, pdf * self.weight)
@@ -142,6 +145,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::Conductor(m) => m.sample(wo, w),
             Material::RoughConductor(m) => m.sample(wo, w, u),
             Material::Plastic(m) => m.sample(wo, self.albedo, uc, u),
+            Material::PPlastic(m) => m.sample(wo, self.albedo, uc, u),
             Material::ThinDielectric { eta } => {
                 let c = wo.z.abs();
                 if c == 0.0 {

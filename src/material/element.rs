@@ -92,13 +92,15 @@ impl Element {
 
 impl super::Material {
     /// Whether the material holds a polarising element (a polariser that polarises, a
-    /// retarder), which an unpolarised render would misrepresent: such a scene renders
-    /// polarised.
+    /// retarder) or Mitsuba's polarising plastic, which an unpolarised render would
+    /// misrepresent: such a scene renders polarised.
     pub fn polarises(&self) -> bool {
         use super::Material as M;
         match self {
             M::Element(Element::Polariser { polarizing, .. }) => *polarizing,
             M::Element(Element::Retarder { .. }) => true,
+            // Mitsuba's polarising plastic exists for polarised renders
+            M::PPlastic(_) => true,
             M::Mask(m) => m.inner.polarises(),
             M::Blend(m) => m.a.polarises() || m.b.polarises(),
             M::NormalMap(m) => m.inner.polarises(),

@@ -47,6 +47,7 @@ mod perturb;
 mod phong;
 mod plastic;
 mod polarised;
+mod pplastic;
 mod rough_dielectric;
 mod textured;
 
@@ -63,6 +64,7 @@ pub use perturb::{BumpMap, LocalSurface, NormalMap};
 pub use phong::Phong;
 pub use plastic::{Plastic, RoughCoating, fresnel_diffuse_reflectance};
 pub use polarised::Polarising;
+pub use pplastic::PPlastic;
 pub use rough_dielectric::RoughDielectric;
 pub use textured::TexturedLobes;
 
@@ -126,6 +128,8 @@ pub enum Material {
     Conductor(Conductor),
     RoughConductor(RoughConductor),
     Plastic(Plastic),
+    /// Mitsuba's `pplastic`: a polarising plastic (see [`PPlastic`]).
+    PPlastic(PPlastic),
     /// Mitsuba's `thindielectric`: a sheet of index `eta` (relative to the outside) too thin to
     /// offset a ray. Reflectance with the sheet's inner reflections, R = 2F/(1 + F) for the
     /// Fresnel reflectance F at the incidence angle, else straight through: two delta lobes
@@ -174,6 +178,7 @@ impl Material {
         let albedo = match self {
             Material::Diffuse(m) => m.reflectance.sample(uv, w),
             Material::Plastic(m) => m.diffuse.sample(uv, w),
+            Material::PPlastic(m) => m.diffuse.sample(uv, w),
             Material::Mask(m) => {
                 return Bsdf {
                     weight: m.opacity.sample(uv, w)[0].clamp(0.0, 1.0),
@@ -302,7 +307,8 @@ impl Material {
             | Material::Phong(_)
             | Material::RoughDielectric(_)
             | Material::RoughConductor(_)
-            | Material::Plastic(_) => false,
+            | Material::Plastic(_)
+            | Material::PPlastic(_) => false,
         }
     }
 
@@ -327,7 +333,8 @@ impl Material {
             | Material::Phong(_)
             | Material::Conductor(_)
             | Material::RoughConductor(_)
-            | Material::Plastic(_) => false,
+            | Material::Plastic(_)
+            | Material::PPlastic(_) => false,
         }
     }
 
@@ -339,6 +346,7 @@ impl Material {
         match self {
             Material::RoughConductor(m) => m.alpha_u != m.alpha_v,
             Material::RoughDielectric(m) => m.alpha_u != m.alpha_v,
+            Material::PPlastic(m) => m.distribution.alpha_u != m.distribution.alpha_v,
             // an element's axes are in the frame of ∂p/∂u
             Material::NormalMap(_)
             | Material::BumpMap(_)
@@ -370,6 +378,7 @@ impl Material {
             | Material::Conductor(_)
             | Material::RoughConductor(_)
             | Material::Plastic(_)
+            | Material::PPlastic(_)
             | Material::ThinDielectric { .. }
             | Material::Null
             | Material::Element(_)
@@ -399,7 +408,8 @@ impl Material {
             | Material::Phong(_)
             | Material::Conductor(_)
             | Material::RoughConductor(_)
-            | Material::Plastic(_) => false,
+            | Material::Plastic(_)
+            | Material::PPlastic(_) => false,
         }
     }
 }

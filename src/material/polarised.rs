@@ -23,14 +23,15 @@
 //! Diffuse-like lobes (Lambert, Phong, plastic, a blend) depolarise; light passing straight
 //! through (`null`, a mask's opening, a thin sheet) keeps its state. A thin sheet's reflection
 //! takes a single interface's normalised Fresnel matrix (its multiple reflections' partial
-//! polarisation is not modelled).
+//! polarisation is not modelled). Mitsuba's `pplastic` sums a specular and a diffuse matrix
+//! ([`pplastic`]).
 
 use glam::Vec3;
 
 use super::{Bsdf, Material, UNPERTURBED};
 use crate::geometry::Frame;
 use crate::polarisation::{Complex, Mueller, fresnel, rotate_stokes_basis, stokes_basis};
-use crate::spectrum::SampledWavelengths;
+use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
 /// The normalised Mueller matrix of a scattering event (see the module doc).
 #[derive(Clone, Copy, Debug)]
@@ -54,7 +55,14 @@ impl<const N: usize> Bsdf<'_, N> {
         wi: Vec3,
         w: &SampledWavelengths<N>,
     ) -> Polarising<N> {
-        of(self.material, frame, &self.perturb, wo, wi, w)
+        of(
+            self.material,
+            frame,
+            &self.perturb,
+            (wo, wi),
+            self.albedo,
+            w,
+        )
     }
 }
 
@@ -63,8 +71,8 @@ fn perturbed<const N: usize>(
     inner: &Material,
     frame: &Frame,
     perturb: &Frame,
-    wo: Vec3,
-    wi: Vec3,
+    (wo, wi): (Vec3, Vec3),
+    rho: SampledSpectrum<N>,
     w: &SampledWavelengths<N>,
 ) -> Polarising<N> {
     let f = Frame {
@@ -72,24 +80,18 @@ fn perturbed<const N: usize>(
         t: frame.to_world(perturb.t),
         n: frame.to_world(perturb.n),
     };
-    of(
-        inner,
-        &f,
-        &UNPERTURBED,
-        perturb.to_local(wo),
-        perturb.to_local(wi),
-        w,
-    )
+    let dirs = (perturb.to_local(wo), perturb.to_local(wi));
+    of(inner, &f, &UNPERTURBED, dirs, rho, w)
 }
 
 /// [`Bsdf::mueller`] of material `m`; `perturb` is a normal or bump map's frame (local to
-/// `frame`) for the perturbed material `m` holds.
+/// `frame`) for the perturbed material `m` holds; `rho` the diffuse reflectance at the hit.
 fn of<const N: usize>(
     m: &Material,
     frame: &Frame,
     perturb: &Frame,
-    wo: Vec3,
-    wi: Vec3,
+    (wo, wi): (Vec3, Vec3),
+    rho: SampledSpectrum<N>,
     w: &SampledWavelengths<N>,
 ) -> Polarising<N> {
     let straight = (wo + wi).length_squared() < 1e-10;
@@ -99,10 +101,11 @@ fn of<const N: usize>(
         }
         Material::Null => Polarising::Keep,
         Material::Mask(_) | Material::ThinDielectric { .. } if straight => Polarising::Keep,
-        Material::Mask(k) => of(&k.inner, frame, perturb, wo, wi, w),
-        Material::Textured(k) => of(&k.inner, frame, perturb, wo, wi, w),
-        Material::NormalMap(k) => perturbed(&k.inner, frame, perturb, wo, wi, w),
-        Material::BumpMap(k) => perturbed(&k.inner, frame, perturb, wo, wi, w),
+        Material::Mask(k) => of(&k.inner, frame, perturb, (wo, wi), rho, w),
+        Material::Textured(k) => of(&k.inner, frame, perturb, (wo, wi), rho, w),
+        Material::NormalMap(k) => perturbed(&k.inner, frame, perturb, (wo, wi), rho, w),
+        Material::BumpMap(k) => perturbed(&k.inner, frame, perturb, (wo, wi), rho, w),
+        Material::PPlastic(p) => pplastic(p, frame, (wo, wi), rho),
         Material::ThinDielectric { eta } => {
             let (e, c) = side(wi.z, *eta);
             let m = fresnel::reflection(c, Complex::new(e, 0.0));
@@ -194,6 +197,62 @@ fn of<const N: usize>(
     }
 }
 
+/// Mitsuba's `pplastic` (see [`super::PPlastic`]): the specular lobe's Fresnel reflection about
+/// the half vector, and the diffuse term's two transmissions (in at `wi`, out at `wo`'s
+/// refracted direction) around a depolarising ρ/π, summed per wavelength and normalised.
+fn pplastic<const N: usize>(
+    p: &super::PPlastic,
+    frame: &Frame,
+    (wo, wi): (Vec3, Vec3),
+    rho: SampledSpectrum<N>,
+) -> Polarising<N> {
+    if wo.z <= 0.0 || wi.z <= 0.0 {
+        return Polarising::Depolarise;
+    }
+    let axes = |n: Vec3| match (n.cross(-wi).try_normalize(), n.cross(wo).try_normalize()) {
+        (Some(a), Some(b)) => (a, b),
+        _ => (Vec3::X, Vec3::X),
+    };
+    // the specular lobe: its scalar value times Fresnel's matrix at the half vector
+    let spec = match (wo + wi).try_normalize() {
+        Some(h) if p.specular > 0.0 => {
+            let g1 = |v: Vec3| {
+                if v.dot(h) * v.z <= 0.0 {
+                    0.0
+                } else {
+                    1.0 / (1.0 + p.distribution.lambda(v))
+                }
+            };
+            let value = p.specular * p.distribution.d(h) * g1(wo) * g1(wi) / (4.0 * wo.z * wi.z);
+            let m = fresnel::reflection(wi.dot(h), Complex::new(p.eta, 0.0)).scale(value);
+            let (a, b) = axes(h);
+            to_world(frame, &m, wo, wi, a, b)
+        }
+        _ => Mueller([[0.0; 4]; 4]),
+    };
+    // the diffuse term per unit ρ: out of the surface (from inside at wo's refracted cosine)
+    // after a depolarising scattering after the way in
+    let t_in = fresnel::transmission(wi.z, p.eta);
+    let cos_t = (1.0 - (1.0 - wo.z * wo.z) / (p.eta * p.eta))
+        .max(0.0)
+        .sqrt();
+    let t_out = fresnel::transmission(cos_t, 1.0 / p.eta);
+    let d = Mueller(std::array::from_fn(|r| {
+        std::array::from_fn(|c| t_out.0[r][0] * t_in.0[0][c] * std::f32::consts::FRAC_1_PI)
+    }));
+    let (a, b) = axes(Vec3::Z);
+    let diff = to_world(frame, &d, wo, wi, a, b);
+    Polarising::Matrix(std::array::from_fn(|j| {
+        let mut m = spec;
+        for (row, drow) in m.0.iter_mut().zip(diff.0) {
+            for (v, dv) in row.iter_mut().zip(drow) {
+                *v += rho[j] * dv;
+            }
+        }
+        normalised(m).unwrap_or(Mueller::IDENTITY)
+    }))
+}
+
 /// (η seen from the side light arrives from, |cos θᵢ|) for relative index `eta` (inside over
 /// outside) and the signed cosine of the arriving light's side `cos` (> 0: outside).
 #[inline]
@@ -277,11 +336,18 @@ impl<F: Fn(f32) -> Mueller> Interface<'_, F> {
     }
 }
 
-/// M/M₀₀, or None when M₀₀ is not positive (the event carries nothing).
+/// M/M₀₀, or None when M₀₀ is not positive or an element of the quotient exceeds 1 in
+/// magnitude (the event carries nothing, or next to nothing: a transmission at the critical
+/// angle, where M₀₀ underflows while the other elements do not vanish as fast).
 #[inline]
 fn normalised(m: Mueller) -> Option<Mueller> {
     let a = m.0[0][0];
-    (a > 0.0 && a.is_finite()).then(|| m.scale(1.0 / a))
+    if !(a > 0.0 && a.is_finite()) {
+        return None;
+    }
+    let p = m.scale(1.0 / a);
+    // a physical Mueller matrix has |mᵢⱼ| ≤ m₀₀; a larger element is rounding
+    p.0.iter().flatten().all(|v| v.abs() <= 1.001).then_some(p)
 }
 
 /// `p`, acting from the basis `s_in` of the beam along −`wi` to `s_out` of the beam along `wo`

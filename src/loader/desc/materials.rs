@@ -95,6 +95,18 @@ pub enum MaterialKind {
         roughness: Option<f64>,
         distribution: Distribution,
     },
+    /// Mitsuba's polarising plastic `pplastic` (see `crate::material::PPlastic`): a rough
+    /// specular reflection of roughness [α_u, α_v] plus a diffuse term under two Fresnel
+    /// transmissions.
+    PPlastic {
+        diffuse: TextureDesc,
+        /// A factor on the specular lobe (Mitsuba's `specular_reflectance`), 1 by default.
+        specular: f64,
+        int_ior: f64,
+        exterior_ior: f64,
+        roughness: [f64; 2],
+        distribution: Distribution,
+    },
 }
 
 /// A spectral quantity that may vary over a surface (see `crate::texture`).

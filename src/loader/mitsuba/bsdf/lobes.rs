@@ -1,5 +1,5 @@
 //! Mitsuba's conductors (`conductor`, `roughconductor`: named presets or eta and k) and
-//! plastics (`plastic`, `roughplastic`).
+//! plastics (`plastic`, `roughplastic`, the polarising `pplastic`).
 
 use std::sync::Arc;
 
@@ -10,7 +10,7 @@ use crate::spectrum::ior::ComplexIor;
 use crate::spectrum::named::mitsuba_conductor;
 use crate::spectrum::{PiecewiseLinear, Spectrum};
 
-use super::{alpha, distribution, ior_of, perfect_mirror};
+use super::{alpha, alpha_textures, distribution, ior_of, perfect_mirror};
 
 /// Mitsuba's `conductor` and `roughconductor` (`t`).
 pub(super) fn conductor(cx: &Cx<'_>, b: &Element, t: &str) -> R<MaterialKind> {
@@ -127,5 +127,54 @@ pub(super) fn plastic(cx: &Cx<'_>, b: &Element, t: &str) -> R<MaterialKind> {
             None
         },
         distribution: distribution(cx, b)?,
+    })
+}
+
+/// `pplastic`: `diffuse_reflectance` (0.5), `specular_reflectance` (one number, 1), `int_ior`
+/// (polypropylene, 1.49), `ext_ior` (air), `alpha` or `alpha_u`/`alpha_v` (0.1),
+/// `distribution` (beckmann), as Mitsuba 3.9.1 reads them.
+pub(super) fn pplastic(cx: &Cx<'_>, b: &Element) -> R<MaterialKind> {
+    let specular = match cx.child(b, "specular_reflectance") {
+        None => 1.0,
+        Some(c) => match grey(cx, c)? {
+            Some(v) if v >= 0.0 => v,
+            _ => {
+                return Err(cx.err(
+                    c,
+                    "a pplastic's specular_reflectance must be one number ≥ 0 here (a spectrum or texture is not supported)",
+                ));
+            }
+        },
+    };
+    if alpha_textures(cx, b)?.is_some() {
+        return Err(cx.err(
+            b,
+            "a pplastic's alpha must be a number (a texture is not supported)",
+        ));
+    }
+    Ok(MaterialKind::PPlastic {
+        diffuse: cx.texture_prop(b, "diffuse_reflectance", 0.5)?,
+        specular,
+        int_ior: ior_of(cx, b, "int_ior", 1.49)?,
+        exterior_ior: ior_of(cx, b, "ext_ior", 1.000277)?,
+        roughness: alpha(cx, b)?.unwrap_or([0.1, 0.1]),
+        distribution: distribution(cx, b)?,
+    })
+}
+
+/// A constant factor given as a number, a constant spectrum or a grey `rgb` (three equal
+/// values, which Mitsuba's reflectance upsampling turns into that constant); None otherwise.
+fn grey(cx: &Cx<'_>, c: &Element) -> R<Option<f64>> {
+    if c.tag == "rgb" {
+        let v = cx.floats(c, c.attr("value").unwrap_or(""))?;
+        return Ok(match v.as_slice() {
+            [x] => Some(*x),
+            [r, g, b] if r == g && g == b => Some(*r),
+            _ => None,
+        });
+    }
+    Ok(match cx.spectrum(c, false)? {
+        Spectrum::Constant(v) => Some(v as f64),
+        _ => None,
     })
 }

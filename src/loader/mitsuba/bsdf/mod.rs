@@ -12,7 +12,7 @@ mod lobes;
 mod nested;
 
 use crate::spectrum::PiecewiseLinear;
-use lobes::{conductor, plastic};
+use lobes::{conductor, plastic, pplastic};
 use nested::{blend, mask, perturbed};
 
 /// Mitsuba's named indices of refraction (constants, as Mitsuba tabulates them).
@@ -109,6 +109,8 @@ pub(in crate::loader::mitsuba) const BSDFS: &[(&str, Reader)] = &[
     ("roughplastic", |cx, b, n, t| {
         plain(cx, b, n, plastic(cx, b, t)?)
     }),
+    // the polarising plastic: alpha 0.1, Beckmann, int_ior polypropylene by default
+    ("pplastic", |cx, b, n, _| plain(cx, b, n, pplastic(cx, b)?)),
     // light passes straight through; each crossing still counts toward max_depth
     ("null", |cx, b, n, _| plain(cx, b, n, MaterialKind::Null)),
     ("thindielectric", thindielectric),

@@ -15,6 +15,7 @@ mod null;
 mod perturb;
 mod phong;
 mod plastic;
+mod pplastic;
 mod texture;
 mod thin_dielectric;
 
@@ -43,6 +44,7 @@ const KINDS: &[Kind] = &[
     dielectric::KIND,
     conductor::KIND,
     plastic::KIND,
+    pplastic::KIND,
     thin_dielectric::KIND,
     null::KIND,
     element::POLARISER,
