@@ -53,8 +53,11 @@ fn stokes_include(docs: &Path, name: &str) -> String {
     )
 }
 
-/// Per-pixel XYZ of S0, S1, S2, S3 (12 numbers, on Mitsuba's scale) of one seeded render.
-fn render_stokes(scene: &spectrace::scene::Scene, seed: u32) -> (usize, Vec<[f64; 12]>) {
+/// An image's width and its per-pixel XYZ of S0, S1, S2, S3 (12 numbers, Mitsuba's scale).
+type Render = (usize, Vec<[f64; 12]>);
+
+/// [`Render`] of one seeded render of `scene`.
+fn render_stokes(scene: &spectrace::scene::Scene, seed: u32) -> Render {
     let (mut img, stats) = render_with(scene, |o| {
         o.spp = SPP;
         o.seed = seed;
@@ -87,7 +90,7 @@ fn mitsuba_polarisation_scenes_agree_tile_by_tile() {
             .map(|n| (format!("include/{n}"), stokes_include(&docs, n)))
             .collect();
     let mut failures = Vec::new();
-    let mut cache: HashMap<String, Vec<(usize, Vec<[f64; 12]>)>> = HashMap::new();
+    let mut cache: HashMap<String, Vec<Render>> = HashMap::new();
     for name in [
         "bsdf_polarizer_middle",
         "bsdf_polarizer_aligned",
