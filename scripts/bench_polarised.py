@@ -7,8 +7,8 @@ Usage (from the repository root):
     cargo build --release
     python3 scripts/bench_polarised.py [--spp 64,256] [--repeats 3] [SCENE ...]
 
-Default scenes: the spectral Cornell box `scenes/cornell.toml` (diffuse only: every bounce
-depolarises) and Mitsuba's `integrator_stokes_cbox.xml` (tests/reference/mitsuba-data, at
+Default scenes: the spectral Cornell box `scenes/cornell.toml` at 128 × 128 (diffuse only:
+every bounce depolarises) and Mitsuba's `integrator_stokes_cbox.xml` (tests/reference/mitsuba-data, at
 res 128: two glass spheres and a conductor, so paths carry full Mueller matrices). Each scene is
 rendered with its integrator unpolarised and with `polarised = true` (a TOML copy with the
 key added to `[integrator]`; for the Mitsuba scene its `stokes` wrapper decides, and the
@@ -29,18 +29,25 @@ from bench_common import read_exr, loadavg, cpu_model  # noqa: E402
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 BIN = ROOT / "target" / "release" / "spectrace"
 CBOX = ROOT / "tests/reference/mitsuba-data/docs/scenes/integrator_stokes_cbox.xml"
+RES = 128
 
 
 def variants(scene):
     """(unpolarised, polarised) scene files and extra arguments."""
     text = scene.read_text()
     if scene.suffix == ".toml":
+        # a film of RES × RES (the time per sample does not depend on it, the benchmark's
+        # time does)
+        text = re.sub(r"(?m)^width = \d+", f"width = {RES}", text)
+        text = re.sub(r"(?m)^height = \d+", f"height = {RES}", text)
         pol = re.sub(r"\[integrator\]\n", "[integrator]\npolarised = true\n", text, count=1)
         assert pol != text, "the scene needs an [integrator] table"
         # beside the original, so that its relative paths resolve
+        un = scene.parent / ("_bench_" + scene.name)
+        un.write_text(text)
         p = scene.parent / ("_bench_" + scene.stem + "_polarised.toml")
         p.write_text(pol)
-        return scene, p, []
+        return un, p, []
     un = re.sub(r'<integrator type="stokes">\s*(<integrator.*?</integrator>)\s*</integrator>',
                 r"\1", text, flags=re.S)
     p = scene.parent / ("_bench_unpolarised_" + scene.name)
@@ -51,7 +58,7 @@ def variants(scene):
 def seconds_per_sample(scene, args, spp):
     out = pathlib.Path(tempfile.gettempdir()) / "bench_polarised.exr"
     subprocess.run([str(BIN), "render", str(scene), "-o", str(out), "--quiet", "--spp", str(spp)]
-                   + args, check=True)
+                   + args, check=True, stderr=subprocess.DEVNULL)
     chans, attrs = read_exr(out)
     h, w = chans["Y"].shape[:2]
     return float(attrs["spectrace:renderTimeSeconds"]) / (w * h * spp)

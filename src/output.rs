@@ -152,8 +152,10 @@ pub fn to_mitsuba_scale(img: &mut Image) {
 /// polarisation of the luminance, √(S1² + S2²)/S0 of Y, 0 where Y is 0); `AoLP` (its angle in
 /// degrees, counter-clockwise from the image's horizontal, in (−90, 90]); `pol0.Y`, `pol45.Y`,
 /// `pol90.Y`, `pol135.Y` (the luminance behind an ideal linear analyser at that angle, as a
-/// polarisation camera's four sub-pixels see it: ½(S0 + S1 cos 2θ + S2 sin 2θ)); with the
-/// header text stating them.
+/// polarisation camera's four sub-pixels see it: ½(S0 + S1 cos 2θ + S2 sin 2θ)); in a
+/// spectral file also `S1.<λ>nm`, `S2.<λ>nm`, `S3.<λ>nm` per bin (W·m⁻²·sr⁻¹·nm⁻¹), the
+/// polarised form of the spectral layout (Fichet et al. 2021); with the header text stating
+/// them.
 pub fn stokes_channels(img: &Image) -> (Vec<(String, Vec<f32>)>, String) {
     if img.stokes.is_empty() {
         return (Vec::new(), String::new());
@@ -194,6 +196,17 @@ pub fn stokes_channels(img: &Image) -> (Vec<(String, Vec<f32>)>, String) {
             (if a <= -90.0 { a + 180.0 } else { a }) as f32
         })
         .collect();
+    // a spectral file's polarised channels (the layout's S1–S3 beside its S0)
+    if let Some(bins) = &img.bins
+        && !img.stokes_spectral.is_empty()
+    {
+        for k in 0..3 {
+            for b in 0..bins.count {
+                let name = crate::image_io::stokes_channel_name(k + 1, bins.centre(b));
+                out.push((name, img.stokes_spectral[k * bins.count + b].clone()));
+            }
+        }
+    }
     out.push(("DoLP".into(), dolp));
     out.push(("AoLP".into(), aolp));
     for deg in [0u32, 45, 90, 135] {
@@ -210,7 +223,8 @@ pub fn stokes_channels(img: &Image) -> (Vec<(String, Vec<f32>)>, String) {
                 the image's horizontal; S1>0 horizontal, S2>0 +45deg (up-right), S3>0 right \
                 circular); DoLP: degree of linear polarisation of Y (dimensionless); AoLP: its \
                 angle in degrees, counter-clockwise from the horizontal; pol0.Y,pol45.Y,pol90.Y,\
-                pol135.Y: Y behind an ideal linear analyser at that angle";
+                pol135.Y: Y behind an ideal linear analyser at that angle; S1.<l>nm,S2.<l>nm,\
+                S3.<l>nm: the Stokes components per spectral bin in W.m^-2.sr^-1.nm^-1";
     (out, text.to_string())
 }
 

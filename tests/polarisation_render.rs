@@ -220,3 +220,74 @@ fn a_scene_without_polarising_materials_renders_the_same_s0() {
     println!("worst relative difference {worst:.2e}");
     assert!(worst < 1e-4, "{worst}");
 }
+
+/// Per spectral bin: N-BK7 (dispersive) reflecting unpolarised light at Brewster's angle for
+/// 587.6 nm. In every 10 nm bin S1/S0 is Fresnel's (R_s − R_p)/(R_s + R_p) at the bin's centre
+/// with n from SCHOTT's Sellmeier formula (evaluated here), to 2·10⁻³: 1 at 587.6 nm and less
+/// away from it, where R_p no longer vanishes.
+#[test]
+fn brewster_reflection_per_spectral_bin_follows_the_glass_dispersion() {
+    let theta = support::prism::n_bk7(587.6).atan();
+    let (sin, cos) = theta.sin_cos();
+    let text = format!(
+        r#"
+[camera]
+type = "orthographic"
+eye = [{ex}, 0, {ez}]
+target = [0, 0, 0]
+up = [0, 0, 1]
+view_width = 0.2
+[film]
+width = 4
+height = 4
+spp = 2048
+spectral_bins = 47
+[integrator]
+max_depth = 8
+polarised = true
+[materials.glass]
+type = "dielectric"
+ior = "N-BK7"
+[materials.black]
+type = "diffuse"
+reflectance = 0
+[[shapes]]
+type = "rectangle"
+material = "glass"
+transform = [{{ scale = 100 }}]
+[[shapes]]
+type = "rectangle"
+material = "black"
+transform = [{{ scale = 100 }}, {{ translate = [0, 0, -1] }}]
+[[lights]]
+type = "environment"
+radiance = "1 W/m^2/sr"
+"#,
+        ex = -5.0 * sin,
+        ez = 5.0 * cos,
+    );
+    let scene = scene_from(&text);
+    let img = render_with(&scene, |o| o.spectral_bins = 47).0;
+    let bins = img.bins.clone().expect("bins");
+    assert_eq!(img.stokes_spectral.len(), 3 * bins.count);
+    let mut checked = 0;
+    for b in 0..bins.count {
+        let s0 = mean(img.spectral[b].iter().copied());
+        let s1 = mean(img.stokes_spectral[b].iter().copied());
+        let s2 = mean(img.stokes_spectral[bins.count + b].iter().copied());
+        if s0 <= 0.0 {
+            continue;
+        }
+        let (rs, rp) = fresnel_sp(support::prism::n_bk7(bins.centre(b) as f64), theta);
+        let want = (rs - rp) / (rs + rp);
+        assert!(
+            (s1 / s0 - want).abs() < 2e-3 && (s2 / s0).abs() < 1e-4,
+            "bin at {} nm: S1/S0 {} vs {want}, S2/S0 {}",
+            bins.centre(b),
+            s1 / s0,
+            s2 / s0
+        );
+        checked += 1;
+    }
+    assert!(checked >= 40, "{checked} bins");
+}

@@ -52,6 +52,12 @@ pub fn non_finite<const N: usize>(
     }
 }
 
+/// The number of Stokes sums per pixel of a polarised film with `nbins` spectral bins: the XYZ
+/// of S1, S2, S3, then S1's bins, S2's, S3's.
+pub(crate) fn stokes_stride(nbins: usize) -> usize {
+    9 + 3 * nbins
+}
+
 /// Per-pixel sums of sample estimates, exact ([`Exact`]).
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct PixelSums {
@@ -144,6 +150,9 @@ pub struct Image {
     /// same estimator as `xyz`, which is S0), in the camera's frame (S1 > 0: polarised
     /// horizontally in the image; Mitsuba 3's `stokes` conventions); empty otherwise.
     pub stokes: Vec<[[f32; 3]; 3]>,
+    /// A polarised render's S1, S2, S3 per spectral bin, W·m⁻²·sr⁻¹·nm⁻¹:
+    /// `stokes_spectral[k·bins + b][pixel]` for S(k+1) in bin b; empty without both.
+    pub stokes_spectral: Vec<Vec<f32>>,
 }
 
 /// The whole film: settings and the accumulated sums of every pixel.
@@ -156,7 +165,7 @@ pub struct Film {
     pub bins: Option<Bins>,
     sums: Vec<PixelSums>,
     spectral: Vec<Exact>,
-    /// Σ XYZ of S1, S2, S3, 9 per pixel (a polarised render; empty otherwise).
+    /// Σ of S1, S2, S3, [`stokes_stride`] per pixel (a polarised render; empty otherwise).
     stokes: Vec<Exact>,
 }
 
@@ -188,8 +197,9 @@ impl Film {
 
     /// The film with Stokes sums (S1–S3) when `polarised`, for a polarised render.
     pub fn with_stokes(mut self, polarised: bool) -> Self {
+        let nb = self.bins.as_ref().map_or(0, |b| b.count);
         self.stokes = if polarised {
-            vec![Exact::ZERO; 9 * self.sums.len()]
+            vec![Exact::ZERO; stokes_stride(nb) * self.sums.len()]
         } else {
             Vec::new()
         };
@@ -226,8 +236,9 @@ impl Film {
                     self.spectral[dst * nb + k].add(t.spectral[src * nb + k]);
                 }
                 if !self.stokes.is_empty() && !t.stokes.is_empty() {
-                    for k in 0..9 {
-                        self.stokes[dst * 9 + k].add(t.stokes[src * 9 + k]);
+                    let st = stokes_stride(nb);
+                    for k in 0..st {
+                        self.stokes[dst * st + k].add(t.stokes[src * st + k]);
                     }
                 }
             }
@@ -297,6 +308,12 @@ impl Film {
         let mut xyz_m2 = Vec::with_capacity(n);
         let mut spectral = vec![Vec::with_capacity(n); nb];
         let mut stokes = Vec::with_capacity(if self.polarised() { n } else { 0 });
+        let st = stokes_stride(nb);
+        let mut stokes_spectral = if self.polarised() {
+            vec![Vec::with_capacity(n); 3 * nb]
+        } else {
+            Vec::new()
+        };
         for (i, s) in self.sums.iter().enumerate() {
             let inv = if s.count > 0 {
                 1.0 / s.count as f64
@@ -312,7 +329,10 @@ impl Film {
                 sp.push((self.spectral[i * nb + k].to_f64() * inv) as f32);
             }
             if self.polarised() {
-                let e = |k: usize| (self.stokes[i * 9 + k].to_f64() * inv) as f32;
+                let e = |k: usize| (self.stokes[i * st + k].to_f64() * inv) as f32;
+                for (k, plane) in stokes_spectral.iter_mut().enumerate() {
+                    plane.push(e(9 + k));
+                }
                 stokes.push(std::array::from_fn(|c| {
                     std::array::from_fn(|a| e(3 * c + a))
                 }));
@@ -328,6 +348,7 @@ impl Film {
             bins: self.bins.clone(),
             xyz_m2,
             stokes,
+            stokes_spectral,
         }
     }
 }

@@ -5,7 +5,8 @@
 //! Channels, each `width × height` words, row-major: `<prefix>X.w0` … `<prefix>X.w5` (the six
 //! words of an [`Exact`], least significant first) for the sums `X`, `Y`, `Z` (cd/m²), `L`
 //! (W·m⁻²·sr⁻¹), `m2X`, `m2Y`, `m2Z` ((cd/m²)²), `S<k>` (bin k, W·m⁻²·sr⁻¹·nm⁻¹), a polarised
-//! film's `s1X` … `s3Z` (the XYZ of Stokes S1–S3, cd/m²), and
+//! film's `s1X` … `s3Z` (the XYZ of Stokes S1–S3, cd/m²) and `s1S<k>` … `s3S<k>` (their bins),
+//! and
 //! `<prefix>count.w0`, `.w1` (the sample count, a u64). Files use the prefix [`STATE_PREFIX`]
 //! for a film's sums (and `spectrace.pass.` for a `bdpt` checkpoint's unfinished pass).
 
@@ -15,7 +16,7 @@ use super::{Exact, Film};
 pub const STATE_PREFIX: &str = "spectrace.sum.";
 
 /// Names of the sums, in order: X, Y, Z, L, m2X, m2Y, m2Z, the bins, then (a polarised
-/// film) the Stokes components' XYZ `s1X` … `s3Z`.
+/// film) the Stokes components' XYZ `s1X` … `s3Z` and bins `s1S<k>` … `s3S<k>`.
 fn sum_names(nbins: usize, stokes: bool) -> Vec<String> {
     let mut v: Vec<String> = ["X", "Y", "Z", "L", "m2X", "m2Y", "m2Z"]
         .iter()
@@ -25,6 +26,9 @@ fn sum_names(nbins: usize, stokes: bool) -> Vec<String> {
     if stokes {
         for c in 1..=3 {
             v.extend(["X", "Y", "Z"].map(|a| format!("s{c}{a}")));
+        }
+        for c in 1..=3 {
+            v.extend((0..nbins).map(|k| format!("s{c}S{k}")));
         }
     }
     v
@@ -43,7 +47,7 @@ impl Film {
             3 => p.band,
             4..=6 => p.xyz_sq[q - 4],
             _ if q < 7 + self.nbins() => self.spectral[i * self.nbins() + q - 7],
-            _ => self.stokes[i * 9 + q - 7 - self.nbins()],
+            _ => self.stokes[i * super::stokes_stride(self.nbins()) + q - 7 - self.nbins()],
         }
     }
 
@@ -55,7 +59,7 @@ impl Film {
             3 => &mut p.band,
             4..=6 => &mut p.xyz_sq[q - 4],
             _ if q < 7 + nb => &mut self.spectral[i * nb + q - 7],
-            _ => &mut self.stokes[i * 9 + q - 7 - nb],
+            _ => &mut self.stokes[i * super::stokes_stride(nb) + q - 7 - nb],
         }
     }
 
@@ -175,5 +179,39 @@ mod tests {
             .add_state_channels(STATE_PREFIX, &short)
             .unwrap_err();
         assert!(err.contains("S3.w2") && err.contains("missing"), "{err}");
+    }
+
+    /// A polarised film's Stokes sums (XYZ and bins of S1–S3) round-trip too, and a film
+    /// without them refuses nothing it does not need.
+    #[test]
+    fn polarised_state_channels_round_trip() {
+        let f = Filter::from_desc(&FilterDesc::BOX);
+        let mut a = Film::new(4, 2, f, WavelengthRange::default(), 3).with_stokes(true);
+        let mut tile = a.tile(0, 0, 4, 2);
+        let bins = a.bins.clone();
+        for s in 0..30u32 {
+            let w = SampledWavelengths::<4> {
+                lambda: [420.0, 500.0, 580.0, 660.0].map(|l| l + s as f32),
+                pdf: [0.003; 4],
+            };
+            let k = (1 + s % 3) as f32;
+            let st = [
+                SampledSpectrum([1.0, 2.0, 3.0, 4.0].map(|v| v * k)),
+                SampledSpectrum([0.5, -1.0, 0.25, 2.0].map(|v| v * k)),
+                SampledSpectrum([-0.3, 0.1, 0.2, -1.0].map(|v| v * k)),
+                SampledSpectrum([0.01, 0.0, -0.02, 0.03].map(|v| v * k)),
+            ];
+            assert!(tile.add_stokes(s % 4, s % 2, &w, &st, bins.as_ref()));
+        }
+        a.merge(&tile);
+        let ch = a.state_channels(STATE_PREFIX);
+        assert_eq!(ch.len(), 6 * (7 + 3 + 9 + 9) + 2);
+        let mut b = a.empty_like();
+        assert!(b.polarised());
+        b.add_state_channels(STATE_PREFIX, &ch).unwrap();
+        assert!(a.same_sums(&b));
+        let img = b.image();
+        assert_eq!((img.stokes.len(), img.stokes_spectral.len()), (8, 9));
+        assert!(img.stokes.iter().any(|p| p[0][1] != 0.0));
     }
 }

@@ -14,8 +14,9 @@ pub struct Tile {
     /// Σ per-bin estimates, `bins × pixels` (empty without spectral output).
     pub spectral: Vec<Exact>,
     nbins: usize,
-    /// Σ XYZ estimates of S1, S2, S3 (cd/m²), 9 per pixel, of a polarised render (empty
-    /// otherwise; see [`Tile::add_stokes`]).
+    /// Σ estimates of S1, S2, S3 of a polarised render, [`stokes_stride`] per pixel: their XYZ
+    /// (cd/m²), then each one's spectral bins (W·m⁻²·sr⁻¹·nm⁻¹); empty otherwise (see
+    /// [`Tile::add_stokes`]).
     pub stokes: Vec<Exact>,
 }
 
@@ -36,14 +37,15 @@ impl Tile {
 
     /// The tile with room for the Stokes sums of a polarised render.
     pub fn with_stokes(mut self) -> Self {
-        self.stokes = vec![Exact::ZERO; 9 * self.pixels.len()];
+        self.stokes = vec![Exact::ZERO; stokes_stride(self.nbins) * self.pixels.len()];
         self
     }
 
     /// Adds one polarised sample: its Stokes vector `st` (S0–S3 in the camera's frame,
     /// W·m⁻²·sr⁻¹·nm⁻¹ per wavelength), S0 as [`Tile::add`] adds radiance and S1–S3 as XYZ
-    /// by the same estimator (their CIE-weighted sums, which may be negative). Returns false,
-    /// adding nothing, if any component is NaN or infinite at a live wavelength.
+    /// and spectral bins by the same estimator (their CIE-weighted sums, which may be
+    /// negative). Returns false, adding nothing, if any component is NaN or infinite at a live
+    /// wavelength.
     #[inline]
     pub fn add_stokes<const N: usize>(
         &mut self,
@@ -53,22 +55,26 @@ impl Tile {
         st: &[SampledSpectrum<N>; 4],
         bins: Option<&Bins>,
     ) -> bool {
-        let mut xyz = [[0.0f64; 3]; 3];
-        for (k, v) in xyz.iter_mut().enumerate() {
-            match SampleSums::new(w, &st[k + 1], None) {
-                Some(s) => *v = s.xyz,
-                None => return false,
-            }
-        }
+        let (Some(s1), Some(s2), Some(s3)) = (
+            SampleSums::new(w, &st[1], bins),
+            SampleSums::new(w, &st[2], bins),
+            SampleSums::new(w, &st[3], bins),
+        ) else {
+            return false;
+        };
         if !self.add(x, y, w, &st[0], bins) {
             return false;
         }
+        let (nb, stride) = (self.nbins, stokes_stride(self.nbins));
         let i = ((y - self.y0) * self.width + (x - self.x0)) as usize;
-        for (e, v) in self.stokes[9 * i..9 * i + 9]
-            .iter_mut()
-            .zip(xyz.iter().flatten())
-        {
-            e.add_f64(*v);
+        let px = &mut self.stokes[stride * i..stride * (i + 1)];
+        for (k, s) in [s1, s2, s3].iter().enumerate() {
+            for (e, v) in px[3 * k..3 * k + 3].iter_mut().zip(s.xyz) {
+                e.add_f64(v);
+            }
+            for &(b, v) in s.bins() {
+                px[9 + k * nb + b].add_f64(v);
+            }
         }
         true
     }

@@ -15,7 +15,7 @@
 //! | `exr_write.rs` | [`write_exr`], [`write_spectral_exr`], pixel validation |
 //! | `exr_read.rs` | [`read_exr`] |
 //! | `exr_attrs.rs` | names, text encoding and header attributes ↔ `exr` |
-//! | `spectral_names.rs` | `S0.<λ>nm` channel names (Fichet et al. 2021), [`spectral_channels`] |
+//! | `spectral_names.rs` | `S0.<λ>nm` channel names (Fichet et al. 2021; `S1`–`S3` for a polarised image), [`spectral_channels`] |
 //! | `png_out.rs` | [`write_png_linear`], [`write_png_srgb8`] |
 //! | `rgb_in.rs` | [`read_rgb`]: PNG, EXR, HDR as RGB with their [`Encoding`] |
 //! | `hdr_in.rs` | Radiance RGBE files |
@@ -38,7 +38,9 @@ pub use exr_write::{
 };
 pub use png_out::{write_png_linear, write_png_srgb8};
 pub use rgb_in::{Encoding, RgbImage, read_rgb};
-pub use spectral_names::{EMISSIVE_UNITS, SPECTRAL_LAYOUT_VERSION, spectral_channels};
+pub use spectral_names::{
+    EMISSIVE_UNITS, SPECTRAL_LAYOUT_VERSION, spectral_channels, stokes_channel_name,
+};
 
 /// One float32 channel, row-major, top row first, `width * height` values.
 #[derive(Debug, Clone, Copy)]

@@ -33,6 +33,12 @@ pub(super) fn channel_name(path: &Path, wavelength_nm: f32) -> Result<String, Im
     }
 }
 
+/// The name of Stokes component `k` (1–3) at `wavelength_nm` in the layout's polarised form,
+/// e.g. `S1.550,000000nm` (the same decimals as [`channel_name`] gives S0).
+pub fn stokes_channel_name(k: usize, wavelength_nm: f32) -> String {
+    format!("S{k}.{}nm", format!("{wavelength_nm:.6}").replace('.', ","))
+}
+
 /// The wavelength in nm of an emissive unpolarised channel (`S0.…`), or `None` if `name` is not
 /// one.
 pub(super) fn parse_channel_name(name: &str) -> Option<f32> {
