@@ -68,6 +68,7 @@ transform = [{ translate = [0, 0, 2] }]
         );
         let (l, s) = stokes_ratios(&img);
         let want = 0.5 * deg.to_radians().cos().powi(2);
+
         println!("θ = {deg}°: L {l:.6} (Malus {want:.6}), S1/S0 {:.6}", s[0]);
         assert!(
             (l - want).abs() <= 1e-3 * 0.5 + 1e-7,
@@ -290,4 +291,44 @@ radiance = "1 W/m^2/sr"
         checked += 1;
     }
     assert!(checked >= 40, "{checked} bins");
+}
+
+/// The library API's typed Stokes accessor: behind one polariser unpolarised light of
+/// L = 1 W·m⁻²·sr⁻¹ leaves with half its luminance, fully linearly polarised (DoLP 1); an
+/// unpolarised render has no Stokes vector.
+#[test]
+fn the_api_reads_stokes_vectors() {
+    let text = r#"
+[camera]
+type = "orthographic"
+eye = [0, 0, 0]
+target = [0, 0, 1]
+view_width = 0.5
+[film]
+width = 2
+height = 2
+spp = 256
+[materials.p]
+type = "polariser"
+[[shapes]]
+type = "rectangle"
+material = "p"
+transform = [{ translate = [0, 0, 1] }]
+[[lights]]
+type = "environment"
+radiance = "1 W/m^2/sr"
+"#;
+    let opts = spectrace::Options::default();
+    let scene = spectrace::Scene::from_toml(text).expect("the scene");
+    let img = spectrace::render(&scene, &opts).expect("a render");
+    let (s, dolp) = img.stokes(1, 0).expect("a polarised image");
+    assert!((dolp - 1.0).abs() < 1e-4, "DoLP {dolp}");
+    assert!((s[0].value - img.luminance(1, 0).value).abs() < 1e-9);
+    let clear =
+        spectrace::Scene::from_toml(&text.replace("type = \"polariser\"", "type = \"null\""))
+            .expect("the scene");
+    let bright = spectrace::render(&clear, &opts).expect("a render");
+    assert!(bright.stokes(1, 0).is_none());
+    let ratio = s[0].value / bright.luminance(1, 0).value;
+    assert!((ratio - 0.5).abs() < 2e-3, "{ratio}");
 }

@@ -268,6 +268,27 @@ impl Image {
             .map(|v| Luminance::new::<luminance::candela_per_square_meter>(v as f64))
     }
 
+    /// The Stokes vector of pixel (x, y) of a polarised render as luminances: S0 (the pixel's
+    /// luminance, CIE Y), S1, S2, S3 (their Y, on the same scale; the basis is the image's
+    /// horizontal: S1 > 0 horizontal, S2 > 0 along the diagonal up and to the right, S3 > 0
+    /// right-circular), and the degree of linear polarisation √(S1² + S2²)/S0
+    /// (dimensionless, 0 where S0 is 0). None for an unpolarised render. Panics outside the
+    /// image.
+    ///
+    /// ```no_run
+    /// # let image: spectrace::api::Image = unimplemented!();
+    /// if let Some((s, dolp)) = image.stokes(0, 0) { println!("S1 = {:?}, DoLP {dolp}", s[1]); }
+    /// ```
+    pub fn stokes(&self, x: usize, y: usize) -> Option<([Luminance; 4], f64)> {
+        let i = self.at(x, y);
+        let st = self.inner.stokes.get(i)?;
+        let y0 = self.inner.xyz[i][1] as f64;
+        let (s1, s2) = (st[0][1] as f64, st[1][1] as f64);
+        let cd = |v: f64| Luminance::new::<luminance::candela_per_square_meter>(v);
+        let dolp = if y0 > 0.0 { s1.hypot(s2) / y0 } else { 0.0 };
+        Some(([cd(y0), cd(s1), cd(s2), cd(st[2][1] as f64)], dolp))
+    }
+
     /// Radiance of pixel (x, y) over the scene's wavelength range.
     ///
     /// ```no_run
