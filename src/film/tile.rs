@@ -14,7 +14,7 @@ pub struct Tile {
     /// Σ per-bin estimates, `bins × pixels` (empty without spectral output).
     pub spectral: Vec<Exact>,
     nbins: usize,
-    /// Σ estimates of S1, S2, S3 of a polarised render, [`stokes_stride`] per pixel: their XYZ
+    /// Σ estimates of S1, S2, S3 of a polarised render, `9 + 3 × bins` per pixel: their XYZ
     /// (cd/m²), then each one's spectral bins (W·m⁻²·sr⁻¹·nm⁻¹); empty otherwise (see
     /// [`Tile::add_stokes`]).
     pub stokes: Vec<Exact>,

@@ -34,7 +34,7 @@ pub(super) fn channel_name(path: &Path, wavelength_nm: f32) -> Result<String, Im
 }
 
 /// The name of Stokes component `k` (1–3) at `wavelength_nm` in the layout's polarised form,
-/// e.g. `S1.550,000000nm` (the same decimals as [`channel_name`] gives S0).
+/// e.g. `S1.550,000000nm` (the same decimals as the S0 channels).
 pub fn stokes_channel_name(k: usize, wavelength_nm: f32) -> String {
     format!("S{k}.{}nm", format!("{wavelength_nm:.6}").replace('.', ","))
 }
