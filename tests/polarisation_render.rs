@@ -332,3 +332,148 @@ radiance = "1 W/m^2/sr"
     let ratio = s[0].value / bright.luminance(1, 0).value;
     assert!((ratio - 0.5).abs() < 2e-3, "{ratio}");
 }
+
+/// The retardance of one total internal reflection from inside glass of index n at incidence
+/// θ (Born and Wolf §1.5.4): tan(δ/2) = cos θ √(sin²θ − 1/n²) / sin²θ.
+fn tir_retardance(n: f64, theta: f64) -> f64 {
+    let s2 = theta.sin().powi(2);
+    2.0 * (theta.cos() * (s2 - 1.0 / (n * n)).sqrt() / s2).atan()
+}
+
+/// A Fresnel rhomb of N-BK7, rendered: light from a lamp through a polariser enters an end
+/// face at normal incidence, is totally reflected twice at the design angle θ (one reflection
+/// retards by 45° at 587.6 nm: θ ≈ 55.2°) in the plane z = 0 and leaves the other end face
+/// toward an orthographic camera, whose Stokes basis lies in that plane (the p direction). A
+/// retarder with s and p axes keeps S1 and turns (S2, S3) by its retardance Δ(λ) = 2δ(n(λ), θ)
+/// (Born and Wolf's δ, SCHOTT's Sellmeier n, evaluated here). The light entering is measured by
+/// the same camera looking straight at the polariser (the polariser's own frame is not what
+/// is tested); in every 10 nm bin, S1 out = S1 in and |S3| out = |S2 in·sin Δ|, |S2| out =
+/// |S2 in·cos Δ|, within 10⁻³ of S0: at 45° to s and p, circular at the design wavelength.
+/// Paths are cut after the five scattering events of the direct way through (`max_depth`), so
+/// that the end faces' double partial reflections (relative weight R² ≈ 2·10⁻³, four more total
+/// reflections, another state) do not blur the comparison with their sampling noise.
+#[test]
+fn a_rendered_fresnel_rhomb_turns_linear_light_circular() {
+    let nd = support::prism::n_bk7(587.6);
+    let theta_max = ((2.0 / (1.0 + nd * nd)).sqrt())
+        .asin()
+        .max((1.0 / nd).asin());
+    let (mut lo, mut hi) = (theta_max, 89f64.to_radians());
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if tir_retardance(nd, mid) > std::f64::consts::FRAC_PI_4 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let theta = 0.5 * (lo + hi);
+    let (s, c) = theta.sin_cos();
+    // the parallelepiped: long faces y = ±h, end faces with normal n_e = (sin θ, −cos θ, 0),
+    // long enough that the beam from the entry face's centre leaves the exit face's centre
+    let h = 0.1;
+    let a = h * (1.0 / c + 3.0 * s * s / c - c) / (2.0 * s);
+    let cot = c / s;
+    let ne = [s, -c, 0.0];
+    let at = |p: [f64; 3], t: f64| [p[0] + ne[0] * t, p[1] + ne[1] * t, p[2]];
+    let (entry, exit) = ([-a, 0.0, 0.0], [a, 0.0, 0.0]);
+    let eye = at(exit, 1.0);
+    let pol = at(entry, -0.3);
+    let lamp = at(entry, -0.6);
+    let v = |p: [f64; 3]| format!("[{}, {}, {}]", p[0], p[1], p[2]);
+    let text = format!(
+        r#"
+[camera]
+type = "orthographic"
+eye = {eye}
+target = {exit}
+up = [0, 0, 1]
+view_width = 0.02
+[film]
+width = 4
+height = 4
+spp = 1024
+spectral_bins = 47
+[integrator]
+max_depth = 5
+[materials.glass]
+type = "dielectric"
+ior = "N-BK7"
+[materials.p]
+type = "polariser"
+angle = "45 deg"
+[[shapes]]
+type = "box"
+material = "glass"
+transform = [{{ matrix = [{a}, {hc}, 0, 0, 0, {h}, 0, 0, 0, 0, 0.1, 0, 0, 0, 0, 1] }}]
+[[shapes]]
+type = "rectangle"
+material = "p"
+transform = [{{ scale = 0.2 }}, {{ look_at = {{ eye = {pol}, target = {pol_to}, up = [0, 0, 1] }} }}]
+[[shapes]]
+type = "rectangle"
+transform = [{{ scale = 0.3 }}, {{ look_at = {{ eye = {lamp}, target = {lamp_to}, up = [0, 0, 1] }} }}]
+emission = {{ radiance = "1 W/m^2/sr" }}
+"#,
+        eye = v(eye),
+        exit = v(exit),
+        pol = v(pol),
+        lamp = v(lamp),
+        // both face along the beam: the polariser at normal incidence
+        pol_to = v(at(pol, 1.0)),
+        lamp_to = v(at(lamp, 1.0)),
+        hc = h * cot,
+    );
+    let scene = scene_from(&text);
+    assert!(scene.integrator.polarised);
+    let per_bin = |scene: &spectrace::scene::Scene| {
+        let img = render_with(scene, |o| o.spectral_bins = 47).0;
+        let nb = img.bins.as_ref().expect("bins").count;
+        let m = |p: &Vec<f32>| mean(p.iter().copied());
+        (0..nb)
+            .map(|b| {
+                let s0 = m(&img.spectral[b]);
+                let r = |k: usize| m(&img.stokes_spectral[k * nb + b]) / s0;
+                (
+                    img.bins.as_ref().unwrap().centre(b) as f64,
+                    s0,
+                    [r(0), r(1), r(2)],
+                )
+            })
+            .collect::<Vec<_>>()
+    };
+    let out = per_bin(&scene);
+    // the light entering: the same camera, moved between the polariser and the rhomb, looking
+    // straight at the polariser
+    let cam = at(pol, 0.1);
+    let input_text = text
+        .replacen(
+            &format!("eye = {}", v(eye)),
+            &format!("eye = {}", v(cam)),
+            1,
+        )
+        .replacen(
+            &format!("target = {}", v(exit)),
+            &format!("target = {}", v(pol)),
+            1,
+        );
+    let input = per_bin(&scene_from(&input_text));
+    let mut checked = 0;
+    for ((l, s0, so), (_, i0, si)) in out.iter().zip(&input) {
+        if *s0 <= 0.0 || *i0 <= 0.0 {
+            continue;
+        }
+        let d = 2.0 * tir_retardance(support::prism::n_bk7(*l), theta);
+        let (want2, want3) = ((si[1] * d.cos()).abs(), (si[1] * d.sin()).abs());
+        assert!(
+            (so[0] - si[0]).abs() < 1e-3
+                && (so[1].abs() - want2).abs() < 1e-3
+                && (so[2].abs() - want3).abs() < 1e-3,
+            "{l} nm: in {si:?}, out {so:?}, want S1 {}, |S2| {want2}, |S3| {want3}, S0 out/in {}",
+            si[0],
+            s0 / i0
+        );
+        checked += 1;
+    }
+    assert!(checked >= 40, "{checked} bins");
+}

@@ -209,9 +209,15 @@ fn pplastic<const N: usize>(
     if wo.z <= 0.0 || wi.z <= 0.0 {
         return Polarising::Depolarise;
     }
-    let axes = |n: Vec3| match (n.cross(-wi).try_normalize(), n.cross(wo).try_normalize()) {
-        (Some(a), Some(b)) => (a, b),
-        _ => (Vec3::X, Vec3::X),
+    // the specular lobe's beams share the s axis about h; the diffuse term's two beams are
+    // unrelated, each with its own plane about the normal (a fixed axis near the pole)
+    let own = |n: Vec3, v: Vec3| {
+        let c = n.cross(v);
+        if c.length_squared() > 1e-8 {
+            c.normalize()
+        } else {
+            Frame::from_normal(n).s
+        }
     };
     // the specular lobe: its scalar value times Fresnel's matrix at the half vector
     let spec = match (wo + wi).try_normalize() {
@@ -225,8 +231,8 @@ fn pplastic<const N: usize>(
             };
             let value = p.specular * p.distribution.d(h) * g1(wo) * g1(wi) / (4.0 * wo.z * wi.z);
             let m = fresnel::reflection(wi.dot(h), Complex::new(p.eta, 0.0)).scale(value);
-            let (a, b) = axes(h);
-            to_world(frame, &m, wo, wi, a, b)
+            let a = s_axis(h, wi, wo);
+            to_world(frame, &m, wo, wi, a, a)
         }
         _ => Mueller([[0.0; 4]; 4]),
     };
@@ -240,8 +246,7 @@ fn pplastic<const N: usize>(
     let d = Mueller(std::array::from_fn(|r| {
         std::array::from_fn(|c| t_out.0[r][0] * t_in.0[0][c] * std::f32::consts::FRAC_1_PI)
     }));
-    let (a, b) = axes(Vec3::Z);
-    let diff = to_world(frame, &d, wo, wi, a, b);
+    let diff = to_world(frame, &d, wo, wi, own(Vec3::Z, -wi), own(Vec3::Z, wo));
     Polarising::Matrix(std::array::from_fn(|j| {
         let mut m = spec;
         for (row, drow) in m.0.iter_mut().zip(diff.0) {
@@ -275,6 +280,23 @@ fn dielectric(cos: f32, eta: f32, reflect: bool) -> Mueller {
     }
 }
 
+/// The unit vector perpendicular to the plane of `n` and the beams along −`wi` and `wo`,
+/// from the better conditioned of n × wi and n × wo, or a fixed perpendicular to `n` when both
+/// are near zero (incidence within 0.006° of the normal).
+fn s_axis(n: Vec3, wi: Vec3, wo: Vec3) -> Vec3 {
+    let (a, b) = (n.cross(-wi), n.cross(wo));
+    let c = if a.length_squared() >= b.length_squared() {
+        a
+    } else {
+        b
+    };
+    if c.length_squared() > 1e-8 {
+        c.normalize()
+    } else {
+        Frame::from_normal(n).s
+    }
+}
+
 /// An interface's matrices before they are put per wavelength: `m(λ)` in the frame of the
 /// plane of incidence about the (local) normal `n`, and whether they differ per wavelength
 /// only at the hero (dispersive: the secondaries are terminated).
@@ -296,15 +318,13 @@ fn interface<F: Fn(f32) -> Mueller>(
     m: F,
     hero_only: bool,
 ) -> Interface<'_, F> {
-    // s bases perpendicular to the plane of incidence on both beams (Mitsuba's
-    // `cross(n, -wo_hat)`, `cross(n, wi_hat)`); at normal incidence any common axis
-    let (s_in, s_out) = match (n.cross(-wi).try_normalize(), n.cross(wo).try_normalize()) {
-        (Some(a), Some(b)) => (a, b),
-        _ => {
-            let a = Frame::from_normal(n).s;
-            (a, a)
-        }
-    };
+    // the s basis, perpendicular to the plane of incidence, which the incident, reflected and
+    // refracted beams share (Mitsuba computes `cross(n, -wo_hat)` and `cross(n, wi_hat)`,
+    // parallel for a specular pair): one vector for both sides, so that near normal incidence,
+    // where the cross products are rounding noise, the two cannot disagree and turn the light;
+    // there (and at normal incidence) any common axis, the matrix being nearly invariant
+    let s_in = s_axis(n, wi, wo);
+    let s_out = s_in;
     Interface {
         frame,
         s_in,
