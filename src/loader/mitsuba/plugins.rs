@@ -76,7 +76,14 @@ const PLUGINS: &[(&str, &[&str])] = &[
     ("sampler", SAMPLERS),
     (
         "integrator",
-        &["path", "volpath", "volpathmis", "direct", "moment"],
+        &[
+            "path",
+            "volpath",
+            "volpathmis",
+            "direct",
+            "moment",
+            "stokes",
+        ],
     ),
     ("shape emitter", &["area"]),
     ("spectrum", &["blackbody", "d65"]),
