@@ -71,6 +71,16 @@ impl Image {
         Some((nm, f32_bytes(py, planes.iter().flatten().copied())))
     }
 
+    /// A polarised render's X, Y, Z of S1, S2, S3 per pixel (cd/m², 9 per pixel, rows from the
+    /// top): f32 bytes; None for an unpolarised render.
+    fn stokes_bytes<'py>(&self, py: Python<'py>) -> Option<Bound<'py, PyBytes>> {
+        let st = &self.inner.inner().stokes;
+        if st.is_empty() {
+            return None;
+        }
+        Some(f32_bytes(py, st.iter().flatten().flatten().copied()))
+    }
+
     /// The mean luminance of the region and its standard error, cd/m².
     fn mean_luminance(
         &self,

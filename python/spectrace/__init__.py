@@ -215,6 +215,29 @@ class Image:
         return None if s is None else np.asarray(s[0], dtype=np.float32)
 
     @property
+    def stokes(self) -> Optional[np.ndarray]:
+        """A polarised render's Stokes vector as CIE X, Y, Z, shape (height, width, 4, 3): S0
+        (the image's ``xyz``), S1, S2, S3 on the luminance scale (Y in cd/m²), in the camera's
+        frame (S1 > 0 horizontal, S2 > 0 along the diagonal up and to the right, S3 > 0
+        right-circular). None for an unpolarised render."""
+        s = self._native.stokes_bytes()
+        if s is None:
+            return None
+        s123 = self._plane(s, self.height, self.width, 3, 3)
+        return np.concatenate([self.xyz[:, :, None, :], s123], axis=2)
+
+    @property
+    def dolp(self) -> Optional[np.ndarray]:
+        """Degree of linear polarisation of the luminance, √(S1² + S2²)/S0 of Y
+        (dimensionless, 0 where Y is 0), shape (height, width); None unpolarised."""
+        s = self.stokes
+        if s is None:
+            return None
+        y = s[:, :, :, 1].astype(np.float64)
+        lin = np.hypot(y[:, :, 1], y[:, :, 2])
+        return np.where(y[:, :, 0] > 0, lin / np.where(y[:, :, 0] > 0, y[:, :, 0], 1), 0.0)
+
+    @property
     def spectral(self) -> Optional[np.ndarray]:
         """Mean spectral radiance per bin in W·m⁻²·sr⁻¹·nm⁻¹, shape (height, width, bins);
         its wavelength axis is ``wavelengths``. None without bins."""

@@ -47,6 +47,47 @@ def test_point_light_over_plane():
     assert abs(float(image.luminance.mean(dtype=np.float64)) - value) < 1e-6 * value
 
 
+def test_malus_law_through_two_polarisers():
+    # unpolarised light of 1 W·m⁻²·sr⁻¹ through ideal polarisers at 0° and 60°: ½cos²60° = 1/8
+    # of the light, fully linearly polarised; an unpolarised render has no Stokes vector
+    toml = textwrap.dedent(
+        """
+        [camera]
+        type = "orthographic"
+        eye = [0, 0, 0]
+        target = [0, 0, 1]
+        view_width = 0.5
+        [film]
+        width = 4
+        height = 4
+        [materials.p0]
+        type = "polariser"
+        [materials.p1]
+        type = "polariser"
+        angle = "60 deg"
+        [[shapes]]
+        type = "rectangle"
+        material = "p0"
+        transform = [{ translate = [0, 0, 1] }]
+        [[shapes]]
+        type = "rectangle"
+        material = "p1"
+        transform = [{ translate = [0, 0, 2] }]
+        [[lights]]
+        type = "environment"
+        radiance = "1 W/m^2/sr"
+        """
+    )
+    image = spectrace.render(toml, spp=1024)
+    assert abs(float(image.radiance.mean(dtype=np.float64)) - 0.125) < 0.125 * 2e-3
+    assert image.stokes.shape == (4, 4, 4, 3)
+    assert np.allclose(image.stokes[:, :, 0, :], image.xyz)
+    assert np.all(np.abs(image.dolp - 1.0) < 1e-4)
+    clear_toml = toml.replace('type = "polariser"', 'type = "null"').replace('angle = "60 deg"', "")
+    clear = spectrace.render(clear_toml, spp=16)
+    assert clear.stokes is None and clear.dolp is None
+
+
 def test_luminance_calibration():
     # inside a black sphere that emits 100 cd/m² of D65 every pixel sees 100 cd/m²,
     # with D65's chromaticity (CIE 15: x = 0.31272, y = 0.32903)
