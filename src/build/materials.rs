@@ -63,13 +63,13 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
             transmittance,
             polarizing,
         } => Material::Element(Element::Polariser {
-            theta: angle.get::<crate::units::angle::radian>() as f32,
+            theta: radians(angle),
             transmittance: *transmittance as f32,
             polarizing: *polarizing,
         }),
         MaterialKind::Retarder { angle, retardance } => Material::Element(Element::Retarder {
-            theta: angle.get::<crate::units::angle::radian>() as f32,
-            delta: retardance.get::<crate::units::angle::radian>() as f32,
+            theta: radians(angle),
+            delta: radians(retardance),
         }),
         MaterialKind::Mask { opacity, inner } => mask(opacity, inner)?,
         MaterialKind::Blend { weight, a, b } => blend(weight, a, b)?,
@@ -119,18 +119,39 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
             exterior_ior,
             roughness,
             distribution,
-        } => {
-            let diffuse = textures::texture(diffuse)?;
-            let mean = diffuse.mean();
-            Material::PPlastic(PPlastic::new(
-                diffuse,
-                mean,
-                *specular as f32,
-                (*int_ior / *exterior_ior) as f32,
-                Microfacet::anisotropic(roughness[0] as f32, roughness[1] as f32, *distribution),
-            ))
-        }
+        } => pplastic(
+            diffuse,
+            *specular,
+            *int_ior / *exterior_ior,
+            roughness,
+            *distribution,
+        )?,
     })
+}
+
+/// An angle in radians, as the render side keeps it.
+fn radians(a: &crate::units::Angle) -> f32 {
+    a.get::<crate::units::angle::radian>() as f32
+}
+
+/// `pplastic`: its diffuse texture (and mean, for the lobe choice), relative index `eta` and
+/// microfacets.
+fn pplastic(
+    diffuse: &TextureDesc,
+    specular: f64,
+    eta: f64,
+    roughness: &[f64; 2],
+    distribution: crate::material::microfacet::Distribution,
+) -> Result<Material, String> {
+    let diffuse = textures::texture(diffuse)?;
+    let mean = diffuse.mean();
+    Ok(Material::PPlastic(PPlastic::new(
+        diffuse,
+        mean,
+        specular as f32,
+        eta as f32,
+        Microfacet::anisotropic(roughness[0] as f32, roughness[1] as f32, distribution),
+    )))
 }
 
 /// `mask`: `opacity` (grey) of `inner`, which is no mask or blend.

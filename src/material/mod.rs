@@ -48,6 +48,7 @@ mod phong;
 mod plastic;
 mod polarised;
 mod pplastic;
+mod predicates;
 mod rough_dielectric;
 mod textured;
 
@@ -329,81 +330,6 @@ impl Material {
             Material::ThinDielectric { .. }
             | Material::Null
             | Material::Element(_)
-            | Material::Diffuse(_)
-            | Material::Phong(_)
-            | Material::Conductor(_)
-            | Material::RoughConductor(_)
-            | Material::Plastic(_)
-            | Material::PPlastic(_) => false,
-        }
-    }
-
-    /// Whether the material's value depends on the shading frame's tangent (anisotropic or
-    /// textured roughness, normal and bump maps), so that the frame must follow ∂p/∂u; for
-    /// every other material any tangent gives the same values, and the cheaper frame is used.
-    #[inline]
-    pub fn needs_tangent(&self) -> bool {
-        match self {
-            Material::RoughConductor(m) => m.alpha_u != m.alpha_v,
-            Material::RoughDielectric(m) => m.alpha_u != m.alpha_v,
-            Material::PPlastic(m) => m.distribution.alpha_u != m.distribution.alpha_v,
-            // an element's axes are in the frame of ∂p/∂u
-            Material::NormalMap(_)
-            | Material::BumpMap(_)
-            | Material::Textured(_)
-            | Material::Element(_) => true,
-            Material::Mask(m) => m.inner.needs_tangent(),
-            Material::Blend(m) => m.a.needs_tangent() || m.b.needs_tangent(),
-            Material::Diffuse(_)
-            | Material::Phong(_)
-            | Material::Dielectric(_)
-            | Material::Conductor(_)
-            | Material::Plastic(_)
-            | Material::ThinDielectric { .. }
-            | Material::Null => false,
-        }
-    }
-
-    /// Whether the material evaluates its nested one in a perturbed frame (a normal or bump
-    /// map, possibly inside a mask), which needs the hit's derivatives ([`LocalSurface`]).
-    #[inline]
-    pub fn is_perturbed(&self) -> bool {
-        match self {
-            Material::NormalMap(_) | Material::BumpMap(_) => true,
-            Material::Mask(m) => m.inner.is_perturbed(),
-            Material::Diffuse(_)
-            | Material::Phong(_)
-            | Material::Dielectric(_)
-            | Material::RoughDielectric(_)
-            | Material::Conductor(_)
-            | Material::RoughConductor(_)
-            | Material::Plastic(_)
-            | Material::PPlastic(_)
-            | Material::ThinDielectric { .. }
-            | Material::Null
-            | Material::Element(_)
-            | Material::Blend(_)
-            | Material::Textured(_) => false,
-        }
-    }
-
-    /// Whether light can cross the surface through a lobe that distinguishes its sides
-    /// (dielectrics, `null`, `thindielectric`, a blend holding one): such a material is never
-    /// flipped to face the ray on a two-sided surface.
-    #[inline]
-    pub fn is_transmissive(&self) -> bool {
-        match self {
-            Material::Blend(m) => m.a.is_transmissive() || m.b.is_transmissive(),
-            Material::NormalMap(m) => m.inner.is_transmissive(),
-            Material::BumpMap(m) => m.inner.is_transmissive(),
-            Material::Textured(m) => m.inner.is_transmissive(),
-            Material::Dielectric(_)
-            | Material::RoughDielectric(_)
-            | Material::Null
-            | Material::Element(_)
-            | Material::ThinDielectric { .. } => true,
-            // a mask's pass-through does not distinguish the sides
-            Material::Mask(_)
             | Material::Diffuse(_)
             | Material::Phong(_)
             | Material::Conductor(_)

@@ -29,6 +29,10 @@ use crate::spectrum::{N_WAVELENGTHS, SampledWavelengths, WavelengthSampler};
 
 mod bdpt;
 mod control;
+mod error;
+
+pub use error::RenderError;
+use error::check_integrator;
 mod light;
 pub mod measure;
 mod tiles;
@@ -110,32 +114,6 @@ pub struct RenderStats {
     pub stop: StopReason,
     /// The last estimated relative error of Y, if two passes ended.
     pub rel_error: Option<f64>,
-}
-
-/// Why a render could not start.
-#[derive(Debug, thiserror::Error)]
-pub enum RenderError {
-    #[error("cannot start {threads} render threads: {message}")]
-    Threads { threads: usize, message: String },
-    #[error(
-        "the `{0}` integrator connects paths to the camera's lens, which an orthographic camera \
-         does not have; use a perspective or thin-lens camera"
-    )]
-    Camera(&'static str),
-    #[error("cannot resume: {0}")]
-    Resume(String),
-    #[error("--target-error needs passes of camera samples; the light integrator has none")]
-    TargetErrorLight,
-    #[error(
-        "the scene has participating media, which the `{0}` integrator does not render; use path, \
-         light or bdpt"
-    )]
-    Media(&'static str),
-    #[error(
-        "the scene renders polarised (it holds a polariser or retarder, or asks for Stokes \
-         vectors), which only the path integrator does, in scenes without media; `{0}` was asked{1}"
-    )]
-    Polarised(&'static str, &'static str),
 }
 
 /// Writes a checkpoint of the render's state (reports its own failures: the render goes on).
@@ -226,25 +204,7 @@ pub fn render_with(
     ctl: Control<'_>,
 ) -> Result<(Film, RenderStats), RenderError> {
     let start = Instant::now();
-    // an integrator chosen over the scene's own must not drop its media
-    if !scene.media.is_empty()
-        && !matches!(
-            opts.integrator,
-            IntegratorKind::Path | IntegratorKind::Light | IntegratorKind::Bdpt
-        )
-    {
-        return Err(RenderError::Media(opts.integrator.name()));
-    }
-    if scene.integrator.polarised
-        && (opts.integrator != IntegratorKind::Path || !scene.media.is_empty())
-    {
-        let media = if scene.media.is_empty() {
-            ""
-        } else {
-            " in a scene with media"
-        };
-        return Err(RenderError::Polarised(opts.integrator.name(), media));
-    }
+    check_integrator(scene, opts)?;
     let (w, h) = (scene.film.width, scene.film.height);
     let film = Film::new(
         w,

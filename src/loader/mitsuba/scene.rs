@@ -328,24 +328,19 @@ fn max_depth(cx: &Cx<'_>, d: &Element) -> R<u32> {
 /// moments); `stokes` around one of them (a polarised render). Returns whether the integrator renders media.
 fn integrator_settings(cx: &Cx<'_>, c: &Element, integrator: &mut IntegratorDesc) -> R<bool> {
     let t = c.attr("type").unwrap_or("");
-    if t == "moment" {
+    // `moment` (its image plus second moments) and `stokes` (polarised variants only: the
+    // Stokes vector S0–S3 in the sensor's frame) wrap one integrator
+    if t == "moment" || t == "stokes" {
         let inner = c
             .children
             .iter()
             .find(|i| i.tag == "integrator")
-            .ok_or_else(|| cx.err(c, "a moment integrator needs a nested <integrator>"))?;
-        integrator.moment = true;
-        return integrator_settings(cx, inner, integrator);
-    }
-    // Mitsuba's `stokes` (polarised variants only): its sub-integrator's image and the Stokes
-    // vector S0–S3 in the sensor's frame
-    if t == "stokes" {
-        let inner = c
-            .children
-            .iter()
-            .find(|i| i.tag == "integrator")
-            .ok_or_else(|| cx.err(c, "a stokes integrator needs a nested <integrator>"))?;
-        integrator.polarised = true;
+            .ok_or_else(|| cx.err(c, format!("a {t} integrator needs a nested <integrator>")))?;
+        if t == "moment" {
+            integrator.moment = true;
+        } else {
+            integrator.polarised = true;
+        }
         return integrator_settings(cx, inner, integrator);
     }
     if t == "direct" {

@@ -1,0 +1,58 @@
+//! Why a render does not start: [`RenderError`], and the check that the chosen integrator
+//! renders everything the scene holds.
+
+use crate::integrator::IntegratorKind;
+use crate::scene::Scene;
+
+use super::RenderOptions;
+
+/// Why a render could not start.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    #[error("cannot start {threads} render threads: {message}")]
+    Threads { threads: usize, message: String },
+    #[error(
+        "the `{0}` integrator connects paths to the camera's lens, which an orthographic camera \
+         does not have; use a perspective or thin-lens camera"
+    )]
+    Camera(&'static str),
+    #[error("cannot resume: {0}")]
+    Resume(String),
+    #[error("--target-error needs passes of camera samples; the light integrator has none")]
+    TargetErrorLight,
+    #[error(
+        "the scene has participating media, which the `{0}` integrator does not render; use path, \
+         light or bdpt"
+    )]
+    Media(&'static str),
+    #[error(
+        "the scene renders polarised (it holds a polariser or retarder, or asks for Stokes \
+         vectors), which only the path integrator does, in scenes without media; `{0}` was asked{1}"
+    )]
+    Polarised(&'static str, &'static str),
+}
+
+/// Refuses an integrator that would render the scene as something else: one without media in
+/// a scene with media (it would drop them), one other than `path` in a polarised scene (it
+/// carries no Stokes vectors), or any in a polarised scene with media (not yet rendered).
+pub(super) fn check_integrator(scene: &Scene, opts: &RenderOptions) -> Result<(), RenderError> {
+    if !scene.media.is_empty()
+        && !matches!(
+            opts.integrator,
+            IntegratorKind::Path | IntegratorKind::Light | IntegratorKind::Bdpt
+        )
+    {
+        return Err(RenderError::Media(opts.integrator.name()));
+    }
+    if scene.integrator.polarised
+        && (opts.integrator != IntegratorKind::Path || !scene.media.is_empty())
+    {
+        let media = if scene.media.is_empty() {
+            ""
+        } else {
+            " in a scene with media"
+        };
+        return Err(RenderError::Polarised(opts.integrator.name(), media));
+    }
+    Ok(())
+}
