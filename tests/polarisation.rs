@@ -95,13 +95,6 @@ fn brewster_angle_moves_with_the_index() {
     }
 }
 
-/// The retardance of one total internal reflection from inside glass of index n at incidence
-/// θ (Born and Wolf §1.5.4): tan(δ/2) = cos θ √(sin²θ − 1/n²) / sin²θ.
-fn tir_retardance(n: f64, theta: f64) -> f64 {
-    let s2 = theta.sin().powi(2);
-    2.0 * (theta.cos() * (s2 - 1.0 / (n * n)).sqrt() / s2).atan()
-}
-
 /// A Fresnel rhomb of N-BK7: light linearly polarised at 45° to the plane of incidence meets
 /// two total internal reflections at the design angle (the larger θ at which one reflection
 /// retards by 45° for the d line, n_d = 1.5168: θ ≈ 55.2°; the textbook 54.6° is for
@@ -119,7 +112,7 @@ fn a_fresnel_rhomb_is_a_quarter_wave_retarder_at_its_design_wavelength() {
     let (mut lo, mut hi) = (theta_max, 89f64.to_radians());
     for _ in 0..100 {
         let mid = 0.5 * (lo + hi);
-        if tir_retardance(nd, mid) > std::f64::consts::FRAC_PI_4 {
+        if support::prism::tir_retardance(nd, mid) > std::f64::consts::FRAC_PI_4 {
             lo = mid;
         } else {
             hi = mid;
@@ -138,7 +131,7 @@ fn a_fresnel_rhomb_is_a_quarter_wave_retarder_at_its_design_wavelength() {
         let tir: Mueller = fresnel::reflection(theta.cos() as f32, Complex::new(1.0 / n, 0.0));
         let out = tir * (tir * input);
         let got = out.0[3].abs().atan2(out.0[2]) as f64;
-        let want = 2.0 * tir_retardance(n_bk7(l), theta);
+        let want = 2.0 * support::prism::tir_retardance(n_bk7(l), theta);
         assert!(
             (got / want - 1.0).abs() < 1e-3,
             "{l} nm: retardance {:.4}° vs {:.4}°",

@@ -333,13 +333,6 @@ radiance = "1 W/m^2/sr"
     assert!((ratio - 0.5).abs() < 2e-3, "{ratio}");
 }
 
-/// The retardance of one total internal reflection from inside glass of index n at incidence
-/// θ (Born and Wolf §1.5.4): tan(δ/2) = cos θ √(sin²θ − 1/n²) / sin²θ.
-fn tir_retardance(n: f64, theta: f64) -> f64 {
-    let s2 = theta.sin().powi(2);
-    2.0 * (theta.cos() * (s2 - 1.0 / (n * n)).sqrt() / s2).atan()
-}
-
 /// A Fresnel rhomb of N-BK7, rendered: light from a lamp through a polariser enters an end
 /// face at normal incidence, is totally reflected twice at the design angle θ (one reflection
 /// retards by 45° at 587.6 nm: θ ≈ 55.2°) in the plane z = 0 and leaves the other end face
@@ -361,7 +354,7 @@ fn a_rendered_fresnel_rhomb_turns_linear_light_circular() {
     let (mut lo, mut hi) = (theta_max, 89f64.to_radians());
     for _ in 0..100 {
         let mid = 0.5 * (lo + hi);
-        if tir_retardance(nd, mid) > std::f64::consts::FRAC_PI_4 {
+        if support::prism::tir_retardance(nd, mid) > std::f64::consts::FRAC_PI_4 {
             lo = mid;
         } else {
             hi = mid;
@@ -463,7 +456,7 @@ emission = {{ radiance = "1 W/m^2/sr" }}
         if *s0 <= 0.0 || *i0 <= 0.0 {
             continue;
         }
-        let d = 2.0 * tir_retardance(support::prism::n_bk7(*l), theta);
+        let d = 2.0 * support::prism::tir_retardance(support::prism::n_bk7(*l), theta);
         let (want2, want3) = ((si[1] * d.cos()).abs(), (si[1] * d.sin()).abs());
         assert!(
             (so[0] - si[0]).abs() < 1e-3

@@ -59,7 +59,7 @@ pub struct RoughCoating {
 
 /// Mitsuba's G₁(v, m): 0 unless v is on the side of m that faces the macro-surface, else
 /// 1/(1 + Λ(v)).
-fn g1(d: &Microfacet, v: Vec3, m: Vec3) -> f32 {
+pub(super) fn g1(d: &Microfacet, v: Vec3, m: Vec3) -> f32 {
     if v.dot(m) * v.z <= 0.0 {
         return 0.0;
     }

@@ -28,6 +28,7 @@
 
 use glam::Vec3;
 
+use super::plastic::g1;
 use super::{Bsdf, Material, UNPERTURBED};
 use crate::geometry::Frame;
 use crate::polarisation::{Complex, Mueller, fresnel, rotate_stokes_basis, stokes_basis};
@@ -153,10 +154,7 @@ fn of<const N: usize>(
             .with(w)
         }
         Material::Conductor(c) => {
-            let eta = |l: f32| {
-                let (n, k) = c.ior.eval(l);
-                Complex::new(n / c.ext_ior, k / c.ext_ior)
-            };
+            let eta = |l: f32| conductor_eta(&c.ior, c.ext_ior, l);
             let cos = wi.z;
             interface(
                 frame,
@@ -169,10 +167,7 @@ fn of<const N: usize>(
             .with(w)
         }
         Material::RoughConductor(c) => {
-            let eta = |l: f32| {
-                let (n, k) = c.ior.eval(l);
-                Complex::new(n / c.ext_ior, k / c.ext_ior)
-            };
+            let eta = |l: f32| conductor_eta(&c.ior, c.ext_ior, l);
             let Some(h) = (wi + wo).try_normalize() else {
                 return Polarising::Depolarise;
             };
@@ -195,6 +190,12 @@ fn of<const N: usize>(
             Polarising::Matrix([to_world(frame, &p, wo, wi, basis, basis); N])
         }
     }
+}
+
+/// A conductor's complex index n + ik at `l` nm relative to the outside's index `ext`.
+fn conductor_eta(ior: &crate::spectrum::ior::ComplexIor, ext: f32, l: f32) -> Complex {
+    let (n, k) = ior.eval(l);
+    Complex::new(n / ext, k / ext)
 }
 
 /// Mitsuba's `pplastic` (see [`super::PPlastic`]): the specular lobe's Fresnel reflection about
@@ -222,14 +223,8 @@ fn pplastic<const N: usize>(
     // the specular lobe: its scalar value times Fresnel's matrix at the half vector
     let spec = match (wo + wi).try_normalize() {
         Some(h) if p.specular > 0.0 => {
-            let g1 = |v: Vec3| {
-                if v.dot(h) * v.z <= 0.0 {
-                    0.0
-                } else {
-                    1.0 / (1.0 + p.distribution.lambda(v))
-                }
-            };
-            let value = p.specular * p.distribution.d(h) * g1(wo) * g1(wi) / (4.0 * wo.z * wi.z);
+            let g = g1(&p.distribution, wo, h) * g1(&p.distribution, wi, h);
+            let value = p.specular * p.distribution.d(h) * g / (4.0 * wo.z * wi.z);
             let m = fresnel::reflection(wi.dot(h), Complex::new(p.eta, 0.0)).scale(value);
             let a = s_axis(h, wi, wo);
             to_world(frame, &m, wo, wi, a, a)

@@ -23,6 +23,7 @@ use std::f32::consts::FRAC_1_PI;
 use super::BsdfSample;
 use super::fresnel::{fresnel_dielectric, reflect};
 use super::microfacet::Microfacet;
+use super::plastic::g1;
 use crate::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
 use crate::spectrum::SampledSpectrum;
 use crate::texture::Texture;
@@ -60,15 +61,7 @@ impl PPlastic {
         }
     }
 
-    /// Mitsuba's separable Smith G₁(v, m).
-    fn g1(&self, v: Vec3, m: Vec3) -> f32 {
-        if v.dot(m) * v.z <= 0.0 {
-            return 0.0;
-        }
-        1.0 / (1.0 + self.distribution.lambda(v))
-    }
-
-    /// f(wo, wi) in sr⁻¹ (no cosine) and the sampling density of `wi` (sr⁻¹), for the diffuse
+    /// f(wo, wi) in sr⁻¹ (no cosine), with Mitsuba's separable Smith G₁ (`plastic::g1`) and the sampling density of `wi` (sr⁻¹), for the diffuse
     /// reflectance `rho` at the hit.
     pub fn eval_pdf<const N: usize>(
         &self,
@@ -88,7 +81,7 @@ impl PPlastic {
             return (diffuse, pdf);
         };
         let d = self.distribution.d(h);
-        let (g_o, g_i) = (self.g1(wo, h), self.g1(wi, h));
+        let (g_o, g_i) = (g1(&self.distribution, wo, h), g1(&self.distribution, wi, h));
         let spec = self.specular * fresnel_dielectric(wi.dot(h), self.eta) * d * g_o * g_i
             / (4.0 * wo.z * wi.z);
         // the visible normals seen from wo, times the reflection Jacobian: D·G₁(wo)/(4 cos θₒ)

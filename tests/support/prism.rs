@@ -49,3 +49,10 @@ pub fn through(o: DVec2, d: DVec2, l: f64) -> (DVec2, DVec2, DVec2) {
     let exit = entry + t * ((B - entry).dot(n_right) / t.dot(n_right));
     (entry, exit, refract(t, -n_right, n))
 }
+
+/// The retardance of one total internal reflection from inside glass of index n at incidence
+/// θ (Born and Wolf §1.5.4): tan(δ/2) = cos θ √(sin²θ − 1/n²) / sin²θ.
+pub fn tir_retardance(n: f64, theta: f64) -> f64 {
+    let s2 = theta.sin().powi(2);
+    2.0 * (theta.cos() * (s2 - 1.0 / (n * n)).sqrt() / s2).atan()
+}
