@@ -32,7 +32,7 @@ impl Material {
     }
 
     /// Whether the material evaluates its nested one in a perturbed frame (a normal or bump
-    /// map, possibly inside a mask), which needs the hit's derivatives ([`LocalSurface`]).
+    /// map, possibly inside a mask), which needs the hit's derivatives ([`LocalSurface`](super::LocalSurface)).
     #[inline]
     pub fn is_perturbed(&self) -> bool {
         match self {
