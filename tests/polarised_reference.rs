@@ -20,6 +20,7 @@ mod support;
 use std::collections::HashMap;
 use std::path::Path;
 
+use spectrace::integrator::IntegratorKind;
 use support::render::render_with;
 
 const SEEDS: u32 = 16;
@@ -56,11 +57,12 @@ fn stokes_include(docs: &Path, name: &str) -> String {
 /// An image's width and its per-pixel XYZ of S0, S1, S2, S3 (12 numbers, Mitsuba's scale).
 type Render = (usize, Vec<[f64; 12]>);
 
-/// [`Render`] of one seeded render of `scene`.
-fn render_stokes(scene: &spectrace::scene::Scene, seed: u32) -> Render {
+/// [`Render`] of one seeded render of `scene` by `integrator`.
+fn render_stokes(scene: &spectrace::scene::Scene, integrator: IntegratorKind, seed: u32) -> Render {
     let (mut img, stats) = render_with(scene, |o| {
         o.spp = SPP;
         o.seed = seed;
+        o.integrator = integrator;
     });
     assert_eq!(stats.nan_samples + stats.inf_samples, 0);
     spectrace::output::to_mitsuba_scale(&mut img);
@@ -80,8 +82,41 @@ fn render_stokes(scene: &spectrace::scene::Scene, seed: u32) -> Render {
     (img.width, px)
 }
 
+/// All nine scenes under `path`.
 #[test]
 fn mitsuba_polarisation_scenes_agree_tile_by_tile() {
+    agree(IntegratorKind::Path, &ALL);
+}
+
+/// Bidirectional path tracing with Stokes vectors on both subpaths (`integrator::bdpt`'s
+/// `polarised.rs`): a polariser scene (delta polarisers between camera and light), the
+/// Cornell box (glass, a conductor and diffuse walls: every strategy) and the polarising
+/// plastic (both its terms); all nine with `--ignored` (about 70 s).
+#[test]
+fn mitsuba_polarisation_scenes_agree_under_bdpt() {
+    agree(IntegratorKind::Bdpt, &[ALL[0], ALL[3], ALL[4]]);
+}
+
+/// [`mitsuba_polarisation_scenes_agree_under_bdpt`] on all nine scenes.
+#[test]
+#[ignore]
+fn all_mitsuba_polarisation_scenes_agree_under_bdpt() {
+    agree(IntegratorKind::Bdpt, &ALL);
+}
+
+const ALL: [&str; 9] = [
+    "bsdf_polarizer_middle",
+    "bsdf_polarizer_aligned",
+    "bsdf_polarizer_absorbing",
+    "integrator_stokes_cbox",
+    "bsdf_pplastic",
+    "bsdf_pplastic_diffuse",
+    "bsdf_pplastic_diffuse_stokes",
+    "bsdf_pplastic_specular",
+    "bsdf_pplastic_specular_stokes",
+];
+
+fn agree(integrator: IntegratorKind, scenes: &[&str]) {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference");
     let docs = root.join("mitsuba-data/docs/scenes");
     let includes: HashMap<String, String> =
@@ -91,17 +126,7 @@ fn mitsuba_polarisation_scenes_agree_tile_by_tile() {
             .collect();
     let mut failures = Vec::new();
     let mut cache: HashMap<String, Vec<Render>> = HashMap::new();
-    for name in [
-        "bsdf_polarizer_middle",
-        "bsdf_polarizer_aligned",
-        "bsdf_polarizer_absorbing",
-        "integrator_stokes_cbox",
-        "bsdf_pplastic",
-        "bsdf_pplastic_diffuse",
-        "bsdf_pplastic_diffuse_stokes",
-        "bsdf_pplastic_specular",
-        "bsdf_pplastic_specular_stokes",
-    ] {
+    for &name in scenes {
         let path = docs.join(format!("{name}.xml"));
         let text = std::fs::read_to_string(&path).expect("the scene");
         let defines = [("res".to_string(), "128".to_string())];
@@ -119,7 +144,9 @@ fn mitsuba_polarisation_scenes_agree_tile_by_tile() {
         // same scene, rendered once and held to both references
         let key = name.trim_end_matches("_stokes").to_string();
         if !cache.contains_key(&key) {
-            let renders: Vec<_> = (0..SEEDS).map(|s| render_stokes(&scene, 101 + s)).collect();
+            let renders: Vec<_> = (0..SEEDS)
+                .map(|s| render_stokes(&scene, integrator, 101 + s))
+                .collect();
             cache.insert(key.clone(), renders);
         }
         let renders = &cache[&key];
@@ -185,7 +212,7 @@ fn mitsuba_polarisation_scenes_agree_tile_by_tile() {
                 }
             }
         }
-        println!("{name}: worst tile |z| {worst:.2}");
+        println!("{} {name}: worst tile |z| {worst:.2}", integrator.name());
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

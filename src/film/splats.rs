@@ -4,7 +4,8 @@
 //! which keeps every thread busy; applying the chunks' lists in chunk order makes the image
 //! independent of which thread traced which chunk.
 
-use super::{Bins, Film, SampleSums};
+use super::tile::{stokes_entries, stokes_terms};
+use super::{Bins, Film, SampleSums, stokes_stride};
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
 /// Where a sample's filtered splat goes: a tile (summed at once) or a [`SplatList`] (recorded).
@@ -19,6 +20,18 @@ pub trait Splat {
         l: &SampledSpectrum<N>,
         bins: Option<&Bins>,
     ) -> bool;
+
+    /// As [`Splat::splat_weighted`] for a polarised sample: its Stokes vector `st` (S0–S3 in
+    /// the camera's frame, W·m⁻²·sr⁻¹·nm⁻¹ per wavelength), S0 as radiance and S1–S3 into the
+    /// film's Stokes sums. Returns false, adding nothing, if any is NaN or infinite at a live
+    /// wavelength.
+    fn splat_stokes_weighted<const N: usize>(
+        &mut self,
+        pixels: impl Iterator<Item = (u32, u32, f32)> + Clone,
+        w: &SampledWavelengths<N>,
+        st: &[SampledSpectrum<N>; 4],
+        bins: Option<&Bins>,
+    ) -> bool;
 }
 
 /// One recorded sample: its sums and where its pixels and bins end in the list's arrays.
@@ -28,6 +41,7 @@ struct Recorded {
     band: f64,
     pixels_end: u32,
     bins_end: u32,
+    stokes_end: u32,
 }
 
 /// Splats of a whole image, in the order they were made.
@@ -39,6 +53,8 @@ pub struct SplatList {
     pixels: Vec<(u32, f32)>,
     /// (spectral bin, value per nm) of every sample that has bins.
     bins: Vec<(usize, f64)>,
+    /// (index within a pixel's Stokes sums, value) of every polarised sample.
+    stokes: Vec<(usize, f64)>,
 }
 
 impl SplatList {
@@ -49,6 +65,7 @@ impl SplatList {
             samples: Vec::new(),
             pixels: Vec::new(),
             bins: Vec::new(),
+            stokes: Vec::new(),
         }
     }
 
@@ -83,7 +100,28 @@ impl Splat for SplatList {
             band: s.band,
             pixels_end: self.pixels.len() as u32,
             bins_end: self.bins.len() as u32,
+            stokes_end: self.stokes.len() as u32,
         });
+        true
+    }
+
+    #[inline]
+    fn splat_stokes_weighted<const N: usize>(
+        &mut self,
+        pixels: impl Iterator<Item = (u32, u32, f32)> + Clone,
+        w: &SampledWavelengths<N>,
+        st: &[SampledSpectrum<N>; 4],
+        bins: Option<&Bins>,
+    ) -> bool {
+        let Some(terms) = stokes_terms(w, st, bins) else {
+            return false;
+        };
+        let (nb, before) = (bins.map_or(0, |b| b.count), self.stokes.len());
+        self.stokes.extend(stokes_entries(&terms, nb));
+        if !self.splat_weighted(pixels, w, &st[0], bins) {
+            self.stokes.truncate(before);
+            return false;
+        }
         true
     }
 }
@@ -94,15 +132,22 @@ impl Film {
     pub fn apply(&mut self, list: &SplatList) {
         debug_assert_eq!(list.width, self.width);
         let nb = self.bins.as_ref().map_or(0, |b| b.count);
-        let (mut p0, mut b0) = (0usize, 0usize);
+        let stride = stokes_stride(nb);
+        let (mut p0, mut b0, mut s0) = (0usize, 0usize, 0usize);
         for s in &list.samples {
             let (p1, b1) = (s.pixels_end as usize, s.bins_end as usize);
+            let s1 = s.stokes_end as usize;
             for &(i, wgt) in &list.pixels[p0..p1] {
                 let i = i as usize;
                 let spectral = &mut self.spectral[i * nb..(i + 1) * nb];
                 self.sums[i].add_weighted(spectral, s.xyz, s.band, &list.bins[b0..b1], wgt as f64);
+                if !self.stokes.is_empty() {
+                    for &(k, v) in &list.stokes[s0..s1] {
+                        self.stokes[i * stride + k].add_f64(v * wgt as f64);
+                    }
+                }
             }
-            (p0, b0) = (p1, b1);
+            (p0, b0, s0) = (p1, b1, s1);
         }
     }
 }

@@ -55,28 +55,32 @@ impl Tile {
         st: &[SampledSpectrum<N>; 4],
         bins: Option<&Bins>,
     ) -> bool {
-        let (Some(s1), Some(s2), Some(s3)) = (
-            SampleSums::new(w, &st[1], bins),
-            SampleSums::new(w, &st[2], bins),
-            SampleSums::new(w, &st[3], bins),
-        ) else {
+        let Some(terms) = stokes_terms(w, st, bins) else {
             return false;
         };
         if !self.add(x, y, w, &st[0], bins) {
             return false;
         }
+        self.add_stokes_terms(x, y, &terms, 1.0);
+        true
+    }
+
+    /// Adds the S1–S3 sums `terms` times `wgt` to pixel (x, y) (image coordinates inside the
+    /// tile).
+    #[inline]
+    fn add_stokes_terms<const N: usize>(
+        &mut self,
+        x: u32,
+        y: u32,
+        terms: &[SampleSums<N>; 3],
+        wgt: f64,
+    ) {
         let (nb, stride) = (self.nbins, stokes_stride(self.nbins));
         let i = ((y - self.y0) * self.width + (x - self.x0)) as usize;
         let px = &mut self.stokes[stride * i..stride * (i + 1)];
-        for (k, s) in [s1, s2, s3].iter().enumerate() {
-            for (e, v) in px[3 * k..3 * k + 3].iter_mut().zip(s.xyz) {
-                e.add_f64(v);
-            }
-            for &(b, v) in s.bins() {
-                px[9 + k * nb + b].add_f64(v);
-            }
+        for (k, v) in stokes_entries(terms, nb) {
+            px[k].add_f64(v * wgt);
         }
-        true
     }
 
     /// Adds one sample's radiance (W·m⁻²·sr⁻¹·nm⁻¹ at each wavelength) to pixel (x, y) in image
@@ -178,6 +182,59 @@ impl Splat for Tile {
         }
         true
     }
+
+    #[inline]
+    fn splat_stokes_weighted<const N: usize>(
+        &mut self,
+        pixels: impl Iterator<Item = (u32, u32, f32)> + Clone,
+        w: &SampledWavelengths<N>,
+        st: &[SampledSpectrum<N>; 4],
+        bins: Option<&Bins>,
+    ) -> bool {
+        let Some(terms) = stokes_terms(w, st, bins) else {
+            return false;
+        };
+        if !self.splat_weighted(pixels.clone(), w, &st[0], bins) {
+            return false;
+        }
+        for (x, y, wgt) in pixels {
+            self.add_stokes_terms(x, y, &terms, wgt as f64);
+        }
+        true
+    }
+}
+
+/// The sums of S1, S2 and S3 of one sample (each by the module's estimator, which is linear,
+/// so they may be negative); None if any is NaN or infinite at a live wavelength.
+#[inline]
+pub(crate) fn stokes_terms<const N: usize>(
+    w: &SampledWavelengths<N>,
+    st: &[SampledSpectrum<N>; 4],
+    bins: Option<&Bins>,
+) -> Option<[SampleSums<N>; 3]> {
+    Some([
+        SampleSums::new(w, &st[1], bins)?,
+        SampleSums::new(w, &st[2], bins)?,
+        SampleSums::new(w, &st[3], bins)?,
+    ])
+}
+
+/// The (index within a pixel's [`stokes_stride`] sums, value) pairs of `terms`: the XYZ of S1,
+/// S2, S3, then their spectral bins (`nb` bins each).
+#[inline]
+pub(crate) fn stokes_entries<const N: usize>(
+    terms: &[SampleSums<N>; 3],
+    nb: usize,
+) -> impl Iterator<Item = (usize, f64)> + '_ {
+    terms.iter().enumerate().flat_map(move |(k, s)| {
+        let xyz = s
+            .xyz
+            .into_iter()
+            .enumerate()
+            .map(move |(c, v)| (3 * k + c, v));
+        let bins = s.bins().iter().map(move |&(b, v)| (9 + k * nb + b, v));
+        xyz.chain(bins)
+    })
 }
 
 /// One sample's contribution to a pixel before its filter weight: XYZ (Y in cd/m²), band

@@ -15,9 +15,10 @@
 
 use glam::Vec3;
 
+use super::Integrator;
 use super::Shading;
 use crate::material::Polarising;
-use crate::polarisation::{Mueller, Stokes};
+use crate::polarisation::{Mueller, Stokes, rotate_stokes_basis, stokes_basis};
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
 /// A path's throughput: see the module doc.
@@ -187,4 +188,47 @@ impl<const N: usize> Carrier<N> for Polarised<N> {
     fn divided(&self, x: f32) -> Self {
         Polarised(self.0.map(|m| m.scale(1.0 / x)))
     }
+}
+
+/// The Stokes vectors `st` (per wavelength, in the implicit basis of light arriving at `sh`
+/// along −`wi`) after the scattering event at `sh` that sends it along `wo` (both local),
+/// times its normalised Mueller matrix (P₀₀ = 1; the scalar weight is the caller's): the
+/// light subpaths' and particles' counterpart of [`Carrier::scattered`].
+#[inline]
+pub(super) fn scatter_stokes<const N: usize>(
+    sh: &Shading<'_, N>,
+    (wo, wi): (Vec3, Vec3),
+    w: &SampledWavelengths<N>,
+    st: &[Stokes; N],
+) -> [Stokes; N] {
+    match sh.bsdf.mueller(&sh.frame, wo, wi, w) {
+        Polarising::Keep => *st,
+        Polarising::Depolarise => st.map(|v| Stokes::unpolarised(v.0[0])),
+        Polarising::Matrix(p) => std::array::from_fn(|j| p[j] * st[j]),
+    }
+}
+
+/// Stokes vectors `st` (per wavelength, W·m⁻²·sr⁻¹·nm⁻¹) of light reaching the camera
+/// travelling along −`d`, in its implicit basis, re-expressed in the camera's frame for the
+/// camera ray direction `d` (the basis vector `d × up`, see [`super::path::stokes`]) and
+/// returned as S0…S3 spectra.
+pub(super) fn to_camera_frame<const N: usize>(
+    it: &Integrator<'_>,
+    d: Vec3,
+    st: &[Stokes; N],
+) -> [SampledSpectrum<N>; 4] {
+    let d = d.normalize();
+    let target = d.cross(it.scene.camera.up()).try_normalize();
+    let r = target.map(|t| rotate_stokes_basis(-d, stokes_basis(-d), t));
+    let mut out = [SampledSpectrum::<N>::zero(); 4];
+    for (j, v) in st.iter().enumerate() {
+        let v: Stokes = match &r {
+            Some(r) => *r * *v,
+            None => *v,
+        };
+        for (k, o) in out.iter_mut().enumerate() {
+            o[j] = v.0[k];
+        }
+    }
+    out
 }

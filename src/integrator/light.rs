@@ -18,9 +18,11 @@
 
 use glam::{Vec2, Vec3};
 
-use super::Integrator;
+use super::carrier::{scatter_stokes, to_camera_frame};
+use super::{Integrator, Splatted};
 use crate::geometry::{Ray, spawn_ray, spawn_ray_to};
 use crate::material::TransportMode;
+use crate::polarisation::Stokes;
 use crate::sampler::Sampler;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
@@ -28,12 +30,19 @@ use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 /// position (pixels) of the connection, which may lie up to `margin` pixels outside the image
 /// (the reconstruction filter's radius: the caller spreads each splat over the pixels of the
 /// filter's support, see `render::render_light`).
+///
+/// In a polarised render the particle also carries a normalised Stokes vector per wavelength
+/// (unpolarised at emission, in the implicit basis of its direction of travel), which each
+/// scattering event multiplies by its normalised Mueller matrix (`carrier::scatter_stokes`,
+/// with the physical directions: light arrives from the particle's past); its scalar weight is
+/// the unpolarised estimator's, so S0 of an unpolarised scene is that render's, and a splat
+/// is the Stokes vector in the camera's frame.
 pub fn trace<const N: usize>(
     it: &Integrator<'_>,
     margin: f32,
     w: &mut SampledWavelengths<N>,
     s: &mut Sampler,
-    splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, SampledSpectrum<N>),
+    splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, Splatted<N>),
 ) {
     if !it.scene.media.is_empty() {
         return super::light_media::trace(it, margin, w, s, splat);
@@ -61,7 +70,8 @@ pub fn trace<const N: usize>(
         let le = light.emitted(e.n, c.wi, e.uv, w);
         if !le.is_zero() && !occluded_to_camera(it, e.o, e.o_error, e.n, c.p_lens) {
             let cos = e.n.dot(c.wi).abs();
-            splat(c.raster, w, le * (cos * c.weight / (p_sel * e.pdf_pos)));
+            let l = le * (cos * c.weight / (p_sel * e.pdf_pos));
+            splat(c.raster, w, unpolarised(it, l));
         }
     }
     let mut beta = e.weight() * (1.0 / p_sel);
@@ -69,6 +79,8 @@ pub fn trace<const N: usize>(
         return;
     }
     let beta0 = beta.max_component();
+    let polarised = it.polarised();
+    let mut pol = [Stokes::unpolarised(1.0); N];
     let mut ray = if e.n == Vec3::ZERO {
         Ray::new(e.o, e.d)
     } else {
@@ -99,13 +111,27 @@ pub fn trace<const N: usize>(
                 // the geometric cosine at the camera end, shading cosine at the light end
                 // (Veach 1997 §5.3)
                 let corr = sh.adjoint_correction(wo, c.wi);
-                splat(c.raster, w, beta * f * (wc.z.abs() * corr * c.weight));
+                let l = beta * f * (wc.z.abs() * corr * c.weight);
+                if polarised {
+                    let st = scatter_stokes(&sh, (wc, wo), w, &pol);
+                    let st: [Stokes; N] = std::array::from_fn(|j| st[j].scale(l[j]));
+                    splat(
+                        c.raster,
+                        w,
+                        Splatted::Stokes(to_camera_frame(it, -c.wi, &st)),
+                    );
+                } else {
+                    splat(c.raster, w, Splatted::Radiance(l));
+                }
             }
         }
-        let Some((_, next)) = sh.scatter(&hit, wo, w, s, TransportMode::Importance, &mut beta)
+        let Some((bs, next)) = sh.scatter(&hit, wo, w, s, TransportMode::Importance, &mut beta)
         else {
             break;
         };
+        if polarised {
+            pol = scatter_stokes(&sh, (bs.wi, wo), w, &pol);
+        }
         ray = next;
         // Russian roulette on the throughput relative to the particle's starting weight
         if depth > 1 {
@@ -115,6 +141,16 @@ pub fn trace<const N: usize>(
             }
             beta /= 1.0 - q;
         }
+    }
+}
+
+/// Unpolarised light `l` as a splat: radiance, or S0 alone in a polarised render.
+fn unpolarised<const N: usize>(it: &Integrator<'_>, l: SampledSpectrum<N>) -> Splatted<N> {
+    if it.polarised() {
+        let z = SampledSpectrum::zero();
+        Splatted::Stokes([l, z, z, z])
+    } else {
+        Splatted::Radiance(l)
     }
 }
 

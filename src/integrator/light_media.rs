@@ -11,8 +11,8 @@
 
 use glam::{Vec2, Vec3};
 
-use super::Integrator;
 use super::volpath::ShadowTarget;
+use super::{Integrator, Splatted};
 use crate::geometry::{Ray, spawn_ray};
 use crate::material::{Material, TransportMode};
 use crate::medium::live_average;
@@ -48,7 +48,7 @@ pub(super) fn trace<const N: usize>(
     margin: f32,
     w: &mut SampledWavelengths<N>,
     s: &mut Sampler,
-    splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, SampledSpectrum<N>),
+    splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, Splatted<N>),
 ) {
     let scene = it.scene;
     let (u1, u2) = (s.get_2d(), s.get_2d());
@@ -78,7 +78,7 @@ pub(super) fn trace<const N: usize>(
             splat(
                 c.raster,
                 w,
-                le * tr * (cos * c.weight / (p_sel * e.pdf_pos)),
+                Splatted::Radiance(le * tr * (cos * c.weight / (p_sel * e.pdf_pos))),
             );
         }
     }
@@ -122,7 +122,11 @@ pub(super) fn trace<const N: usize>(
                     let tr = to_lens(it, (p, Vec3::ZERO, Vec3::ZERO, pt.medium), c.p_lens, w, s);
                     let d = live_average(pt.r_u, w);
                     if d > 0.0 && !tr.is_zero() {
-                        splat(c.raster, w, pt.beta * tr * (f * c.weight / d));
+                        splat(
+                            c.raster,
+                            w,
+                            Splatted::Radiance(pt.beta * tr * (f * c.weight / d)),
+                        );
                     }
                 }
                 let ps = phase.sample(wo, s.get_2d());
@@ -152,7 +156,7 @@ fn surface<const N: usize>(
     margin: f32,
     w: &mut SampledWavelengths<N>,
     s: &mut Sampler,
-    splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, SampledSpectrum<N>),
+    splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, Splatted<N>),
 ) -> Next {
     let Some(sh) = it.shading(hit, pt.ray.d, w) else {
         return Next::Stop;
@@ -195,7 +199,7 @@ fn surface<const N: usize>(
                     splat(
                         c.raster,
                         w,
-                        pt.beta * f * tr * (wc.z.abs() * corr * c.weight / d),
+                        Splatted::Radiance(pt.beta * f * tr * (wc.z.abs() * corr * c.weight / d)),
                     );
                 }
             }

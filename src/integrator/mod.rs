@@ -196,6 +196,32 @@ impl Integrator<'_> {
     }
 }
 
+/// What a particle's splat carries to the film (light tracing, BDPT's t = 1 strategies), in
+/// W·m⁻²·sr⁻¹·nm⁻¹ per wavelength (times the caller's scale): radiance, or in a polarised
+/// render the Stokes vector S0–S3 in the camera's frame.
+#[derive(Clone, Copy, Debug)]
+pub enum Splatted<const N: usize> {
+    Radiance(SampledSpectrum<N>),
+    Stokes([SampledSpectrum<N>; 4]),
+}
+
+impl<const N: usize> Splatted<N> {
+    /// The value times `k`.
+    pub fn scaled(self, k: f32) -> Self {
+        match self {
+            Splatted::Radiance(l) => Splatted::Radiance(l * k),
+            Splatted::Stokes(st) => Splatted::Stokes(st.map(|v| v * k)),
+        }
+    }
+
+    /// The radiance (S0 of a Stokes vector).
+    pub fn radiance(&self) -> &SampledSpectrum<N> {
+        match self {
+            Splatted::Radiance(l) | Splatted::Stokes([l, ..]) => l,
+        }
+    }
+}
+
 /// The shading situation at a surface hit, seen from the incoming ray: the material at the hit
 /// (textures looked up) and the shading frame.
 #[derive(Clone, Copy)]

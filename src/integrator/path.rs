@@ -10,12 +10,11 @@
 
 use glam::Vec3;
 
-use super::carrier::{Carrier, Polarised};
+use super::carrier::{Carrier, Polarised, to_camera_frame};
 use super::{Integrator, Shading};
 use crate::geometry::Ray;
 use crate::geometry::shape::Intersection;
 use crate::material::TransportMode;
-use crate::polarisation::{Stokes, rotate_stokes_basis, stokes_basis};
 use crate::sampler::Sampler;
 use crate::sampling::power_heuristic;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
@@ -40,22 +39,10 @@ pub(super) fn stokes<const N: usize>(
     w: &mut SampledWavelengths<N>,
     s: &mut Sampler,
 ) -> [SampledSpectrum<N>; 4] {
-    let d = ray.d.normalize();
+    let d = ray.d;
     let sum = trace::<N, Polarised<N>>(it, ray, w, s, None);
     // the path's Stokes vectors are in the implicit basis of the beam along −d
-    let target = d.cross(it.scene.camera.up()).try_normalize();
-    let r = target.map(|t| rotate_stokes_basis(-d, stokes_basis(-d), t));
-    let mut out = [SampledSpectrum::<N>::zero(); 4];
-    for (j, st) in sum.iter().enumerate() {
-        let st: Stokes = match &r {
-            Some(r) => *r * *st,
-            None => *st,
-        };
-        for (k, o) in out.iter_mut().enumerate() {
-            o[j] = st.0[k];
-        }
-    }
-    out
+    to_camera_frame(it, d, &sum)
 }
 
 /// Radiance along `ray`, which a sampling step at `ray.o` (normal `n`) chose with density

@@ -46,6 +46,11 @@ impl Stokes {
         Stokes([s0, s0 * (2.0 * angle).cos(), s0 * (2.0 * angle).sin(), 0.0])
     }
 
+    /// The vector times `s`.
+    pub fn scale(&self, s: f32) -> Stokes {
+        Stokes(self.0.map(|x| x * s))
+    }
+
     /// The degree of polarisation √(S1² + S2² + S3²)/S0, in [0, 1] for physical light (0 when
     /// S0 is 0).
     pub fn degree(&self) -> f32 {

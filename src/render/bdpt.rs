@@ -14,7 +14,7 @@ use rayon::prelude::*;
 
 use super::control::ErrorEstimate;
 use super::{Ctx, RenderStats, Snapshot, StopReason, camera_sample, count_dropped, splat_filtered};
-use crate::film::{Film, SplatList, Tile};
+use crate::film::{Film, Splat, SplatList, Tile};
 use crate::integrator::bdpt::{Scratch, sample};
 use crate::sampler::Sampler;
 use crate::spectrum::N_WAVELENGTHS;
@@ -171,6 +171,7 @@ fn trace_tile(
     let mut tile = pass_film.tile(x0, y0, tw, th);
     let mut list = SplatList::new(w);
     let mut scratch = Scratch::<N_WAVELENGTHS>::new(it.max_depth);
+    let polarised = it.polarised();
     for y in y0..y0 + th {
         for x in x0..x0 + tw {
             for i in a..b {
@@ -186,19 +187,32 @@ fn trace_tile(
                     filter.radius,
                     &mut scratch,
                     &mut |raster, wl, v| {
-                        let v = v * inv_pixels;
+                        let v = v.scaled(inv_pixels);
                         let b = bins.as_ref();
                         if !splat_filtered(&mut list, (w, h), filter, raster, wl, &v, b) {
-                            count_dropped(wl, &v, nan, inf);
+                            count_dropped(wl, v.radiance(), nan, inf);
                         }
                     },
                 );
                 // the sample counts once; its hero-only part adds to it
                 let b = bins.as_ref();
+                let wh = &l.hero_only;
+                if polarised {
+                    if !tile.add_stokes(x, y, &wl, &l.stokes_all, b) {
+                        count_dropped(&wl, &l.stokes_all[0], nan, inf);
+                    }
+                    let one = std::iter::once((x, y, 1.0));
+                    let st = &l.stokes_hero;
+                    if st.iter().any(|v| !v.is_zero())
+                        && !tile.splat_stokes_weighted(one, wh, st, b)
+                    {
+                        count_dropped(wh, &st[0], nan, inf);
+                    }
+                    continue;
+                }
                 if !tile.add(x, y, &wl, &l.all, b) {
                     count_dropped(&wl, &l.all, nan, inf);
                 }
-                let wh = &l.hero_only;
                 if !l.hero.is_zero() && !tile.splat(x, y, wh, &l.hero, b) {
                     count_dropped(wh, &l.hero, nan, inf);
                 }

@@ -27,14 +27,16 @@ pub enum RenderError {
     Media(&'static str),
     #[error(
         "the scene renders polarised (it holds a polariser or retarder, or asks for Stokes \
-         vectors), which only the path integrator does, in scenes without media; `{0}` was asked{1}"
+         vectors), which the path, light and bdpt integrators do, in scenes without media; `{0}` \
+         was asked{1}"
     )]
     Polarised(&'static str, &'static str),
 }
 
 /// Refuses an integrator that would render the scene as something else: one without media in
-/// a scene with media (it would drop them), one other than `path` in a polarised scene (it
-/// carries no Stokes vectors), or any in a polarised scene with media (not yet rendered).
+/// a scene with media (it would drop them), one other than `path`, `light` or `bdpt` in a
+/// polarised scene (it carries no Stokes vectors), or any in a polarised scene with media (not
+/// yet rendered).
 pub(super) fn check_integrator(scene: &Scene, opts: &RenderOptions) -> Result<(), RenderError> {
     if !scene.media.is_empty()
         && !matches!(
@@ -44,9 +46,11 @@ pub(super) fn check_integrator(scene: &Scene, opts: &RenderOptions) -> Result<()
     {
         return Err(RenderError::Media(opts.integrator.name()));
     }
-    if scene.integrator.polarised
-        && (opts.integrator != IntegratorKind::Path || !scene.media.is_empty())
-    {
+    let carries_stokes = matches!(
+        opts.integrator,
+        IntegratorKind::Path | IntegratorKind::Light | IntegratorKind::Bdpt
+    );
+    if scene.integrator.polarised && (!carries_stokes || !scene.media.is_empty()) {
         let media = if scene.media.is_empty() {
             ""
         } else {

@@ -94,7 +94,7 @@ pub(super) fn render(ctx: &Ctx<'_>, snap: Snapshot) -> (Film, RenderStats) {
                                 let b = bins.as_ref();
                                 let size = (w, h);
                                 if !splat_filtered(&mut list, size, &filter, raster, wl, &l, b) {
-                                    count_dropped(wl, &l, &nan, &inf);
+                                    count_dropped(wl, l.radiance(), &nan, &inf);
                                 }
                             },
                         );

@@ -345,9 +345,10 @@ fn splat_filtered<const N: usize>(
     filter: &Filter,
     raster: Vec2,
     wl: &SampledWavelengths<N>,
-    l: &crate::spectrum::SampledSpectrum<N>,
+    l: &crate::integrator::Splatted<N>,
     bins: Option<&crate::film::Bins>,
 ) -> bool {
+    use crate::integrator::Splatted;
     let r = filter.radius;
     // pixels whose centre x + 0.5 lies within [raster − r, raster + r], one more on each side
     // for rounding; `Filter::weight` decides the half-open support exactly
@@ -355,7 +356,10 @@ fn splat_filtered<const N: usize>(
     let hi = ((raster + Vec2::splat(r - 0.5)).floor() + Vec2::ONE)
         .min(Vec2::new(size.0 as f32 - 1.0, size.1 as f32 - 1.0));
     if hi.x < lo.x || hi.y < lo.y {
-        return non_finite(wl, l).is_none();
+        return match l {
+            Splatted::Radiance(l) => non_finite(wl, l).is_none(),
+            Splatted::Stokes(st) => st.iter().all(|l| non_finite(wl, l).is_none()),
+        };
     }
     let (x0, y0, x1, y1) = (lo.x as u32, lo.y as u32, hi.x as u32, hi.y as u32);
     let pixels = (y0..=y1)
@@ -364,5 +368,8 @@ fn splat_filtered<const N: usize>(
             let wgt = filter.weight(raster - Vec2::new(x as f32 + 0.5, y as f32 + 0.5));
             (wgt > 0.0).then_some((x, y, wgt))
         });
-    to.splat_weighted(pixels, wl, l, bins)
+    match l {
+        Splatted::Radiance(l) => to.splat_weighted(pixels, wl, l, bins),
+        Splatted::Stokes(st) => to.splat_stokes_weighted(pixels, wl, st, bins),
+    }
 }

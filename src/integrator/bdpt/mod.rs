@@ -34,13 +34,16 @@
 
 mod connect;
 mod media;
+mod polarised;
 mod vertex;
 mod walk;
 
 use glam::Vec2;
 
-use super::Integrator;
+use super::carrier::to_camera_frame;
+use super::{Integrator, Splatted};
 use crate::geometry::Ray;
+use crate::polarisation::Stokes;
 use crate::sampler::Sampler;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 use connect::Ends;
@@ -60,6 +63,7 @@ pub struct Strategy {
 pub struct Scratch<'a, const N: usize> {
     camera: Vec<Vertex<'a, N>>,
     light: Vec<Vertex<'a, N>>,
+    pol: polarised::Pol<N>,
 }
 
 impl<const N: usize> Scratch<'_, N> {
@@ -68,6 +72,7 @@ impl<const N: usize> Scratch<'_, N> {
         Self {
             camera: Vec::with_capacity(n),
             light: Vec::with_capacity(n),
+            pol: polarised::Pol::default(),
         }
     }
 }
@@ -83,16 +88,22 @@ const TRACK_DIMS: u32 = 1 << 20;
 /// What one BDPT sample's camera-side strategies (t ≥ 2) carry along its camera ray,
 /// W·m⁻²·sr⁻¹·nm⁻¹: the strategies without a dispersive vertex at the sample's wavelengths, the
 /// others at the hero alone (`hero_only`, the wavelengths with the secondaries terminated).
+/// In a polarised render `stokes_all` and `stokes_hero` are the same sums as Stokes vectors
+/// S0–S3 in the camera's frame (`all` and `hero` are then the unpolarised estimator's, which
+/// the film does not use); zero otherwise.
 pub struct Radiance<const N: usize> {
     pub all: SampledSpectrum<N>,
     pub hero: SampledSpectrum<N>,
     pub hero_only: SampledWavelengths<N>,
+    pub stokes_all: [SampledSpectrum<N>; 4],
+    pub stokes_hero: [SampledSpectrum<N>; 4],
 }
 
 /// One BDPT sample at the wavelengths `w`, along `ray`. Returns the camera-side radiance, while
 /// `splat(raster, w, value)` receives each t = 1 strategy's contribution at its raster
 /// position with its wavelengths, `value` in the film's units times the pixel count (the
-/// caller divides by it and spreads it over the filter, as for light tracing). `s` is the
+/// caller divides by it and spreads it over the filter, as for light tracing): a Stokes
+/// vector in the camera's frame in a polarised render (`polarised.rs`). `s` is the
 /// camera sample's stream (its camera dimensions read), `s_light` a stream of the same pixel
 /// and index for the light subpath. `margin` is the filter radius, pixels.
 #[allow(clippy::too_many_arguments)]
@@ -104,7 +115,7 @@ pub fn sample<'a, const N: usize>(
     s_light: &mut Sampler,
     margin: f32,
     scratch: &mut Scratch<'a, N>,
-    splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, SampledSpectrum<N>),
+    splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, Splatted<N>),
 ) -> Radiance<N> {
     let max_depth = it.max_depth as usize;
     let conn = s.clone().at_dimension(CONNECT_DIMS);
@@ -128,7 +139,15 @@ pub fn sample<'a, const N: usize>(
         max_depth.saturating_add(1),
         &mut scratch.light,
     );
-    let (camera, light) = (&scratch.camera, &scratch.light);
+    let polarised = it.polarised();
+    if polarised {
+        scratch.pol.build(it, &scratch.camera, &scratch.light, w);
+    }
+    let (camera, light, pol) = (&scratch.camera, &scratch.light, &scratch.pol);
+    // the camera side's Stokes sums (a polarised render), in the implicit basis of light
+    // travelling along −ray.d
+    let zero = [Stokes([0.0; 4]); N];
+    let (mut st_all, mut st_hero) = (zero, zero);
     let (disp_c, disp_l) = (
         walk::first_dispersive(camera),
         walk::first_dispersive(light),
@@ -140,6 +159,8 @@ pub fn sample<'a, const N: usize>(
         all: glow.all,
         hero: glow.hero,
         hero_only,
+        stokes_all: [SampledSpectrum::zero(); 4],
+        stokes_hero: [SampledSpectrum::zero(); 4],
     };
     for t in 1..=camera.len() {
         for s in 0..=light.len() {
@@ -155,22 +176,53 @@ pub fn sample<'a, const N: usize>(
             let weighted = it.strategy.is_none_or(|o| o.weighted);
             let dispersive = s > disp_l || t > disp_c;
             let wl = if dispersive { &hero_only } else { w };
-            let Some((c, raster)) = connect(it, light, camera, s, t, wl, &conn, margin, weighted)
+            let Some((c, raster, sampled)) =
+                connect(it, light, camera, s, t, wl, &conn, margin, weighted)
             else {
                 continue;
             };
+            if polarised {
+                let (p, travel) =
+                    pol.factor(it, light, camera, (s, t), sampled.as_ref(), ray.d, wl);
+                let st: [Stokes; N] = std::array::from_fn(|j| p[j].scale(c[j]));
+                match (raster, dispersive) {
+                    (Some(r), _) => {
+                        splat(r, wl, Splatted::Stokes(to_camera_frame(it, -travel, &st)))
+                    }
+                    (None, false) => add_stokes(&mut st_all, &st),
+                    (None, true) => add_stokes(&mut st_hero, &st),
+                }
+                continue;
+            }
             match (raster, dispersive) {
-                (Some(r), _) => splat(r, wl, c),
+                (Some(r), _) => splat(r, wl, Splatted::Radiance(c)),
                 (None, false) => out.all += c,
                 (None, true) => out.hero += c,
             }
         }
     }
+    if polarised {
+        out.stokes_all = to_camera_frame(it, ray.d, &st_all);
+        out.stokes_hero = to_camera_frame(it, ray.d, &st_hero);
+        // a medium's glow (no polarised render has media) is unpolarised
+        out.stokes_all[0] += out.all;
+        out.stokes_hero[0] += out.hero;
+    }
     out
 }
 
-/// The contribution of strategy (s, t), MIS-weighted if `weighted`, and for t = 1 the raster
-/// position where it lands. None when the strategy yields nothing for these subpaths.
+/// `sum` += `st`, per wavelength.
+fn add_stokes<const N: usize>(sum: &mut [Stokes; N], st: &[Stokes; N]) {
+    for (a, b) in sum.iter_mut().zip(st) {
+        for (x, y) in a.0.iter_mut().zip(b.0) {
+            *x += y;
+        }
+    }
+}
+
+/// The contribution of strategy (s, t), MIS-weighted if `weighted`, for t = 1 the raster
+/// position where it lands, and for s = 1 or t = 1 the vertex it sampled. None when the
+/// strategy yields nothing for these subpaths.
 #[allow(clippy::too_many_arguments)]
 fn connect<'a, const N: usize>(
     it: &Integrator<'_>,
@@ -182,7 +234,7 @@ fn connect<'a, const N: usize>(
     conn: &Sampler,
     margin: f32,
     weighted: bool,
-) -> Option<(SampledSpectrum<N>, Option<Vec2>)> {
+) -> Option<(SampledSpectrum<N>, Option<Vec2>, Option<Vertex<'a, N>>)> {
     // the connection's own ratio tracking reads a range of its own
     let mut track = conn
         .clone()
@@ -241,7 +293,7 @@ fn connect<'a, const N: usize>(
     } else {
         1.0
     };
-    Some((l * (mis * spectral), raster))
+    Some((l * (mis * spectral), raster, sampled))
 }
 
 /// The power-heuristic MIS weight of strategy (s, t) for the path it built, by the
