@@ -5,7 +5,7 @@ the same scene rendered unpolarised, in the same run.
 Usage (from the repository root):
 
     cargo build --release
-    python3 scripts/bench_polarised.py [--spp 64,256] [--repeats 3] [SCENE ...]
+    python3 scripts/bench_polarised.py [--spp 64,256] [--repeats 3] [--integrator bdpt] [SCENE ...]
 
 Default scenes: the spectral Cornell box `scenes/cornell.toml` at 128 × 128 (diffuse only:
 every bounce depolarises) and Mitsuba's `integrator_stokes_cbox.xml` (tests/reference/mitsuba-data, at
@@ -15,6 +15,8 @@ key added to `[integrator]`; for the Mitsuba scene its `stokes` wrapper decides,
 unpolarised run unwraps it), alternately, `--repeats` times; the time per sample is the
 render time the EXR records (`spectrace:renderTimeSeconds`) over width × height × spp, the
 minimum over the repeats. Prints the ratio polarised ÷ unpolarised (target ≤ 1.6).
+`--integrator` renders both with `path` (the default), `bdpt` or `light` (light paths per
+pixel for its samples).
 """
 import argparse
 import pathlib
@@ -68,14 +70,18 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--spp", default="64,256")
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--integrator", default=None)
     ap.add_argument("scenes", nargs="*")
     a = ap.parse_args()
     scenes = [pathlib.Path(s) for s in a.scenes] or [ROOT / "scenes/cornell.toml", CBOX]
     print(f"# {cpu_model()}, load {loadavg()}")
+    print("# integrator:", a.integrator or "as in the scene")
     print("| scene | spp | unpolarised µs/sample | polarised µs/sample | ratio |")
     print("| --- | --- | --- | --- | --- |")
     for scene in scenes:
         up, pol, extra = variants(scene)
+        if a.integrator:
+            extra = extra + ["--integrator", a.integrator]
         try:
             for spp in [int(x) for x in a.spp.split(",")]:
                 tu, tp = [], []
