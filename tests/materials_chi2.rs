@@ -280,6 +280,29 @@ fn cases() -> Vec<Case> {
             });
         }
     }
+    // Mitsuba's measured_polarized: GGX visible normals of alpha_sample (0.02, its gold
+    // scenes', and 0.3) mixed with 10 % of the cosine-weighted hemisphere; the table's values
+    // do not enter the density
+    for (alpha, grid) in [(0.02, FINE), (0.3, COARSE)] {
+        for &t in &angles {
+            let m = spectrace::material::MeasuredPolarized {
+                phi_d: vec![0.0],
+                theta_d: vec![0.0],
+                theta_h: vec![0.0],
+                wavelengths: vec![550.0],
+                m: std::sync::Arc::new(vec![0.1; 16]),
+                sampling: spectrace::material::microfacet::Ggx::new(alpha),
+                wavelength: None,
+            };
+            v.push(Case {
+                name: format!("MeasuredPolarized α_sample={alpha} θo={t}"),
+                material: Material::MeasuredPolarized(Box::new(m)),
+                wo: dir(t, phi, false),
+                w: wavelengths(550.0),
+                grid,
+            });
+        }
+    }
     v
 }
 

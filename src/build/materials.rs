@@ -5,8 +5,8 @@ use super::textures;
 use crate::loader::desc::{MaterialKind, TextureDesc};
 use crate::material::microfacet::Microfacet;
 use crate::material::{
-    Blend, BumpMap, Conductor, Dielectric, Element, Lambert, Mask, Material, NormalMap, PPlastic,
-    Phong, Plastic, RoughConductor, RoughDielectric, TexturedLobes,
+    Blend, BumpMap, Conductor, Dielectric, Element, Lambert, Mask, Material, MeasuredPolarized,
+    NormalMap, PPlastic, Phong, Plastic, RoughConductor, RoughDielectric, TexturedLobes,
 };
 
 /// The render-side material for `k`; an error (for the user, without a location) if a
@@ -126,6 +126,19 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
             roughness,
             *distribution,
         )?,
+        MaterialKind::MeasuredPolarized {
+            table,
+            alpha_sample,
+            wavelength,
+        } => Material::MeasuredPolarized(Box::new(MeasuredPolarized {
+            phi_d: table.phi_d.clone(),
+            theta_d: table.theta_d.clone(),
+            theta_h: table.theta_h.clone(),
+            wavelengths: table.wavelengths.clone(),
+            m: table.m.clone(),
+            sampling: crate::material::microfacet::Ggx::new(*alpha_sample as f32),
+            wavelength: wavelength.map(|l| l as f32),
+        })),
     })
 }
 

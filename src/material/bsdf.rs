@@ -57,6 +57,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::RoughConductor(m) => m.eval(wo, wi, w),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).0,
             Material::PPlastic(m) => m.eval_pdf(wo, wi, self.albedo).0,
+            Material::MeasuredPolarized(m) => m.eval(wo, wi, w, mode),
             Material::Mask(m) => self.masked(m).eval(wo, wi, w, mode) * self.weight,
             Material::Blend(m) => self.blend_eval_pdf(m, wo, wi, w, mode).0,
             Material::NormalMap(_) | Material::BumpMap(_) => {
@@ -82,6 +83,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::RoughConductor(m) => m.pdf(wo, wi),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).1,
             Material::PPlastic(m) => m.eval_pdf(wo, wi, self.albedo).1,
+            Material::MeasuredPolarized(m) => m.pdf(wo, wi),
             Material::Mask(m) => self.masked(m).pdf(wo, wi, w, _mode) * self.weight,
             Material::Blend(m) => self.blend_eval_pdf(m, wo, wi, w, _mode).1,
             Material::NormalMap(_) | Material::BumpMap(_) => {
@@ -114,6 +116,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::RoughConductor(m) => m.eval_pdf(wo, wi, w),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo),
             Material::PPlastic(m) => m.eval_pdf(wo, wi, self.albedo),
+            Material::MeasuredPolarized(m) => (m.eval(wo, wi, w, mode), m.pdf(wo, wi)),
             Material::Mask(m) => {
                 let (f, pdf) = self.masked(m).eval_pdf(wo, wi, w, mode);
                 (f * self.weight, pdf * self.weight)
@@ -146,6 +149,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::RoughConductor(m) => m.sample(wo, w, u),
             Material::Plastic(m) => m.sample(wo, self.albedo, uc, u),
             Material::PPlastic(m) => m.sample(wo, self.albedo, uc, u),
+            Material::MeasuredPolarized(m) => m.sample(wo, uc, u, w, mode),
             Material::ThinDielectric { eta } => {
                 let c = wo.z.abs();
                 if c == 0.0 {

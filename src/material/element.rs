@@ -101,6 +101,8 @@ impl super::Material {
             M::Element(Element::Retarder { .. }) => true,
             // Mitsuba's polarising plastic exists for polarised renders
             M::PPlastic(_) => true,
+            // a measured pBRDF exists for polarised renders, as Mitsuba's
+            M::MeasuredPolarized(_) => true,
             M::Mask(m) => m.inner.polarises(),
             M::Blend(m) => m.a.polarises() || m.b.polarises(),
             M::NormalMap(m) => m.inner.polarises(),

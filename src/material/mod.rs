@@ -41,6 +41,7 @@ mod erf;
 pub mod fresnel;
 mod lambert;
 mod mask;
+mod measured_polarized;
 pub mod microfacet;
 mod null;
 mod perturb;
@@ -60,6 +61,7 @@ pub use dielectric::Dielectric;
 pub use element::Element;
 pub use lambert::Lambert;
 pub use mask::Mask;
+pub use measured_polarized::MeasuredPolarized;
 pub use null::thin_reflectance;
 pub use perturb::{BumpMap, LocalSurface, NormalMap};
 pub use phong::Phong;
@@ -131,6 +133,8 @@ pub enum Material {
     Plastic(Plastic),
     /// Mitsuba's `pplastic`: a polarising plastic (see [`PPlastic`]).
     PPlastic(PPlastic),
+    /// Mitsuba's `measured_polarized`: a measured pBRDF (see [`MeasuredPolarized`]).
+    MeasuredPolarized(Box<MeasuredPolarized>),
     /// Mitsuba's `thindielectric`: a sheet of index `eta` (relative to the outside) too thin to
     /// offset a ray. Reflectance with the sheet's inner reflections, R = 2F/(1 + F) for the
     /// Fresnel reflectance F at the incidence angle, else straight through: two delta lobes
@@ -226,6 +230,7 @@ impl Material {
             | Material::RoughConductor(_)
             | Material::ThinDielectric { .. }
             | Material::Element(_)
+            | Material::MeasuredPolarized(_)
             | Material::Null => SampledSpectrum::zero(),
         };
         Bsdf {
@@ -309,7 +314,8 @@ impl Material {
             | Material::RoughDielectric(_)
             | Material::RoughConductor(_)
             | Material::Plastic(_)
-            | Material::PPlastic(_) => false,
+            | Material::PPlastic(_)
+            | Material::MeasuredPolarized(_) => false,
         }
     }
 
@@ -335,7 +341,8 @@ impl Material {
             | Material::Conductor(_)
             | Material::RoughConductor(_)
             | Material::Plastic(_)
-            | Material::PPlastic(_) => false,
+            | Material::PPlastic(_)
+            | Material::MeasuredPolarized(_) => false,
         }
     }
 }

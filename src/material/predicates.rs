@@ -26,6 +26,7 @@ impl Material {
             | Material::Dielectric(_)
             | Material::Conductor(_)
             | Material::Plastic(_)
+            | Material::MeasuredPolarized(_)
             | Material::ThinDielectric { .. }
             | Material::Null => false,
         }
@@ -46,6 +47,7 @@ impl Material {
             | Material::RoughConductor(_)
             | Material::Plastic(_)
             | Material::PPlastic(_)
+            | Material::MeasuredPolarized(_)
             | Material::ThinDielectric { .. }
             | Material::Null
             | Material::Element(_)
@@ -76,7 +78,8 @@ impl Material {
             | Material::Conductor(_)
             | Material::RoughConductor(_)
             | Material::Plastic(_)
-            | Material::PPlastic(_) => false,
+            | Material::PPlastic(_)
+            | Material::MeasuredPolarized(_) => false,
         }
     }
 }

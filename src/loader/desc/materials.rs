@@ -107,6 +107,27 @@ pub enum MaterialKind {
         roughness: [f64; 2],
         distribution: Distribution,
     },
+    /// Mitsuba's `measured_polarized`: a measured polarimetric BRDF table (Baek et al. 2020),
+    /// importance-sampled by GGX of roughness `alpha_sample` (α) mixed with a cosine lobe; at
+    /// the fixed `wavelength` (nm) for every wavelength if given.
+    MeasuredPolarized {
+        table: PbsdfTable,
+        alpha_sample: f64,
+        wavelength: Option<f64>,
+    },
+}
+
+/// A pBSDF table as Mitsuba's `.pbsdf` files hold it: Mueller matrices of the BRDF (sr⁻¹, no
+/// cosine) on a grid of Rusinkiewicz angles φ_d, θ_d, θ_h (radians, each strictly increasing)
+/// and wavelengths (nm), `m` in C order φ_d × θ_d × θ_h × λ × 4 × 4 (row, then column), in the
+/// basis s = ω_light × ω_view on both beams.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PbsdfTable {
+    pub phi_d: Vec<f32>,
+    pub theta_d: Vec<f32>,
+    pub theta_h: Vec<f32>,
+    pub wavelengths: Vec<f32>,
+    pub m: std::sync::Arc<Vec<f32>>,
 }
 
 /// A spectral quantity that may vary over a surface (see `crate::texture`).

@@ -29,6 +29,7 @@ mod scene;
 mod sensor;
 mod shapes;
 mod spectra;
+pub mod tensor;
 mod textures;
 mod transform;
 mod vol;

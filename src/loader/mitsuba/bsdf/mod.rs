@@ -12,7 +12,7 @@ mod lobes;
 mod nested;
 
 use crate::spectrum::PiecewiseLinear;
-use lobes::{conductor, plastic, pplastic};
+use lobes::{conductor, measured_polarized, plastic, pplastic};
 use nested::{blend, mask, perturbed};
 
 /// Mitsuba's named indices of refraction (constants, as Mitsuba tabulates them).
@@ -111,6 +111,10 @@ pub(in crate::loader::mitsuba) const BSDFS: &[(&str, Reader)] = &[
     }),
     // the polarising plastic: alpha 0.1, Beckmann, int_ior polypropylene by default
     ("pplastic", |cx, b, n, _| plain(cx, b, n, pplastic(cx, b)?)),
+    // a measured pBRDF table (`.pbsdf`); alpha_sample 0.1
+    ("measured_polarized", |cx, b, n, _| {
+        plain(cx, b, n, measured_polarized(cx, b)?)
+    }),
     // light passes straight through; each crossing still counts toward max_depth
     ("null", |cx, b, n, _| plain(cx, b, n, MaterialKind::Null)),
     ("thindielectric", thindielectric),
