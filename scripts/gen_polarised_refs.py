@@ -10,7 +10,9 @@ The scenes are mitsuba-data's, copied unchanged into tests/reference/mitsuba-dat
   `matpreview_stokes.xml` of the pplastic scenes): the film 960 × 720 becomes WIDTH × HEIGHT,
   and an integrator not yet inside Mitsuba's `stokes` integrator is wrapped in one, so that the
   references hold S1–S3 besides S0 (the image the scene renders as it stands is S0);
-- `integrator_stokes_cbox.xml` is loaded with `res` = CBOX_RES (its own parameter).
+- `integrator_stokes_cbox.xml` is loaded with `res` = CBOX_RES (its own parameter);
+- the four `measured_polarized` scenes read tests/reference/pbsdf/synthetic.pbsdf in place of
+  the KAIST data their `filename` names (not distributed with mitsuba-data).
 
 For each scene it renders SEEDS independent images of SPP samples per pixel and writes, in
 tests/reference/polarised/<scene>/stats.txt, `key = value` lines: spp, seeds, sizes, and per
@@ -34,7 +36,12 @@ DOCS = os.path.join(ROOT, "tests", "reference", "mitsuba-data", "docs", "scenes"
 OUT = os.path.join(ROOT, "tests", "reference", "polarised")
 SCENES = ["bsdf_polarizer_middle", "bsdf_polarizer_aligned", "bsdf_polarizer_absorbing",
           "integrator_stokes_cbox", "bsdf_pplastic", "bsdf_pplastic_diffuse",
-          "bsdf_pplastic_diffuse_stokes", "bsdf_pplastic_specular", "bsdf_pplastic_specular_stokes"]
+          "bsdf_pplastic_diffuse_stokes", "bsdf_pplastic_specular", "bsdf_pplastic_specular_stokes",
+          "bsdf_measured_polarized_gold", "bsdf_measured_polarized_gold_stokes",
+          "bsdf_measured_polarized_fakegold", "bsdf_measured_polarized_fakegold_stokes"]
+# the measured_polarized scenes' KAIST data (pbsdfs/6_gold_inpainted.pbsdf, ...) are not in
+# mitsuba-data; their references use this synthetic table instead (scripts/gen_pbsdf_vectors.py)
+SYNTHETIC = os.path.join(ROOT, "tests", "reference", "pbsdf", "synthetic.pbsdf")
 INCLUDES = ["shape_scene.xml", "matpreview.xml", "matpreview_stokes.xml"]
 WIDTH, HEIGHT, CBOX_RES = 120, 90, 128
 TILE = 30
@@ -66,6 +73,7 @@ def render(name, inc_names):
             text = f.read()
         for inc, tmp_name in inc_names.items():
             text = text.replace("include/" + inc, "include/" + tmp_name)
+        text = re.sub(r'pbsdfs/[^"]+\.pbsdf', SYNTHETIC, text)
         tmp = path = os.path.join(DOCS, "_tmp_" + name + ".xml")
         with open(path, "w") as f:
             f.write(text)

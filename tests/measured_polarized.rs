@@ -426,3 +426,55 @@ fn a_missing_or_damaged_pbsdf_is_a_located_error() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// The TOML material reads a `.pbsdf` file as the Mitsuba importer does: the same table,
+/// sampling roughness and fixed wavelength make the same material.
+#[test]
+fn toml_and_mitsuba_read_the_same_measured_material() {
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference/pbsdf/synthetic.pbsdf");
+    let toml = format!(
+        r#"
+[camera]
+eye = [0, 0, 4]
+target = [0, 0, 0]
+fov = "30 deg"
+
+[film]
+width = 8
+height = 8
+
+[materials.m]
+type = "measured_polarized"
+file = "{}"
+alpha_sample = 0.06
+wavelength = "550 nm"
+
+[[shapes]]
+type = "sphere"
+center = [0, 0, 0]
+radius = 1
+material = "m"
+
+[[lights]]
+type = "point"
+position = [0, 2, 3]
+power = "100 W"
+"#,
+        file.display()
+    );
+    let desc =
+        spectrace::loader::load_str(&toml, Path::new("m.toml")).unwrap_or_else(|e| panic!("{e}"));
+    let from_toml = spectrace::build::build(&desc).expect("builds");
+    let dir = tmpdir("toml");
+    let xml = format!(
+        r#"<bsdf type="measured_polarized"><string name="filename" value="{}"/><float name="alpha_sample" value="0.06"/><float name="wavelength" value="550"/></bsdf>"#,
+        file.display()
+    );
+    let from_xml = build(&dir, &xml);
+    assert!(
+        from_toml.integrator.polarised,
+        "a measured pBRDF renders polarised"
+    );
+    assert_eq!(from_toml.materials[0], from_xml.materials[0]);
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -3,12 +3,14 @@
 //! material-preview plane under an environment map (`bsdf_polarizer_middle`, `_aligned`,
 //! `_absorbing`), the `stokes` integrator's Cornell box with two glass spheres and a
 //! conductor (`integrator_stokes_cbox`) and the five of the polarising plastic (`bsdf_pplastic`,
-//! its specular and diffuse terms alone, each also under `stokes`), copied unchanged from
-//! mitsuba-data
+//! its specular and diffuse terms alone, each also under `stokes`) and the four of the
+//! measured pBRDF (`bsdf_measured_polarized_gold`, `_fakegold`, each also under `stokes` at a
+//! fixed 550 nm), copied unchanged from mitsuba-data
 //! (`tests/reference/mitsuba-data/README.md`). The references are rendered by
-//! `scripts/gen_polarised_refs.py`, which states the two rewrites applied here identically
-//! (a smaller film, and the polariser scenes' integrator inside `stokes` so that S1–S3 are
-//! compared too).
+//! `scripts/gen_polarised_refs.py`, which states the three rewrites applied here identically
+//! (a smaller film; the polariser scenes' integrator inside `stokes` so that S1–S3 are
+//! compared too; the measured scenes' KAIST data, which mitsuba-data does not distribute,
+//! replaced by the synthetic table of `scripts/gen_pbsdf_vectors.py`).
 //!
 //! Each tile's mean X, Y, Z of S0, S1, S2 and S3 must agree within 5 combined standard errors
 //! (ours from the spread of 16 independently seeded renders of 8 spp, Mitsuba's from 8 of
@@ -82,7 +84,7 @@ fn render_stokes(scene: &spectrace::scene::Scene, integrator: IntegratorKind, se
     (img.width, px)
 }
 
-/// All nine scenes under `path`.
+/// All thirteen scenes under `path`.
 #[test]
 fn mitsuba_polarisation_scenes_agree_tile_by_tile() {
     agree(IntegratorKind::Path, &ALL);
@@ -91,20 +93,20 @@ fn mitsuba_polarisation_scenes_agree_tile_by_tile() {
 /// Bidirectional path tracing with Stokes vectors on both subpaths (`integrator::bdpt`'s
 /// `polarised.rs`): a polariser scene (delta polarisers between camera and light), the
 /// Cornell box (glass, a conductor and diffuse walls: every strategy) and the polarising
-/// plastic (both its terms); all nine with `--ignored` (about 70 s).
+/// plastic (both its terms); all thirteen with `--ignored` (about 2 min).
 #[test]
 fn mitsuba_polarisation_scenes_agree_under_bdpt() {
     agree(IntegratorKind::Bdpt, &[ALL[0], ALL[3], ALL[4]]);
 }
 
-/// [`mitsuba_polarisation_scenes_agree_under_bdpt`] on all nine scenes.
+/// [`mitsuba_polarisation_scenes_agree_under_bdpt`] on all thirteen scenes.
 #[test]
 #[ignore]
 fn all_mitsuba_polarisation_scenes_agree_under_bdpt() {
     agree(IntegratorKind::Bdpt, &ALL);
 }
 
-const ALL: [&str; 9] = [
+const ALL: [&str; 13] = [
     "bsdf_polarizer_middle",
     "bsdf_polarizer_aligned",
     "bsdf_polarizer_absorbing",
@@ -114,6 +116,10 @@ const ALL: [&str; 9] = [
     "bsdf_pplastic_diffuse_stokes",
     "bsdf_pplastic_specular",
     "bsdf_pplastic_specular_stokes",
+    "bsdf_measured_polarized_gold",
+    "bsdf_measured_polarized_gold_stokes",
+    "bsdf_measured_polarized_fakegold",
+    "bsdf_measured_polarized_fakegold_stokes",
 ];
 
 fn agree(integrator: IntegratorKind, scenes: &[&str]) {
@@ -129,6 +135,16 @@ fn agree(integrator: IntegratorKind, scenes: &[&str]) {
     for &name in scenes {
         let path = docs.join(format!("{name}.xml"));
         let text = std::fs::read_to_string(&path).expect("the scene");
+        // the KAIST pBRDF data the measured_polarized scenes name are not distributed with
+        // mitsuba-data: the references read a synthetic table instead, and so do we
+        let text = match text.find("pbsdfs/") {
+            Some(a) => {
+                let b = a + text[a..].find('"').expect("the file name's end");
+                let synthetic = root.join("pbsdf/synthetic.pbsdf");
+                format!("{}{}{}", &text[..a], synthetic.display(), &text[b..])
+            }
+            None => text,
+        };
         let defines = [("res".to_string(), "128".to_string())];
         let defines: &[(String, String)] = if name == "integrator_stokes_cbox" {
             &defines
@@ -141,8 +157,13 @@ fn agree(integrator: IntegratorKind, scenes: &[&str]) {
         let scene = spectrace::build::build(&desc).unwrap_or_else(|e| panic!("{e}"));
         assert!(scene.integrator.polarised, "{name} renders polarised");
         // `X_stokes` is `X` with its integrator already inside `stokes`: after the rewrite the
-        // same scene, rendered once and held to both references
-        let key = name.trim_end_matches("_stokes").to_string();
+        // same scene, rendered once and held to both references (but the measured_polarized
+        // ones also fix the wavelength at 550 nm)
+        let key = if name.contains("measured") {
+            name.to_string()
+        } else {
+            name.trim_end_matches("_stokes").to_string()
+        };
         if !cache.contains_key(&key) {
             let renders: Vec<_> = (0..SEEDS)
                 .map(|s| render_stokes(&scene, integrator, 101 + s))

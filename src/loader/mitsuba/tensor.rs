@@ -148,7 +148,7 @@ fn grid(f: &HashMap<String, Field<'_>>, name: &str, unit: &str) -> Result<Vec<f3
 /// The pBSDF table of the `.pbsdf` file `path` (Mitsuba's `measured_polarized`): grids φ_d,
 /// θ_d, θ_h (radians), wavelengths (nm) and M (φ_d × θ_d × θ_h × λ × 4 × 4). Errors name the
 /// file and the field.
-pub(super) fn read_pbsdf(path: &Path) -> Result<PbsdfTable, String> {
+pub(crate) fn read_pbsdf(path: &Path) -> Result<PbsdfTable, String> {
     let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let at = |e: String| format!("{}: {e}", path.display());
     let f = fields(&bytes).map_err(at)?;

@@ -11,6 +11,7 @@ mod dielectric;
 mod diffuse;
 mod element;
 mod mask;
+mod measured;
 mod null;
 mod perturb;
 mod phong;
@@ -45,6 +46,7 @@ const KINDS: &[Kind] = &[
     conductor::KIND,
     plastic::KIND,
     pplastic::KIND,
+    measured::KIND,
     thin_dielectric::KIND,
     null::KIND,
     element::POLARISER,
