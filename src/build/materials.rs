@@ -126,19 +126,7 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
             roughness,
             *distribution,
         )?,
-        MaterialKind::MeasuredPolarized {
-            table,
-            alpha_sample,
-            wavelength,
-        } => Material::MeasuredPolarized(Box::new(MeasuredPolarized {
-            phi_d: table.phi_d.clone(),
-            theta_d: table.theta_d.clone(),
-            theta_h: table.theta_h.clone(),
-            wavelengths: table.wavelengths.clone(),
-            m: table.m.clone(),
-            sampling: crate::material::microfacet::Ggx::new(*alpha_sample as f32),
-            wavelength: wavelength.map(|l| l as f32),
-        })),
+        MaterialKind::MeasuredPolarized { .. } => measured(k),
     })
 }
 
@@ -275,4 +263,26 @@ fn bump_map(height: &TextureDesc, scale: f64, inner: &MaterialKind) -> Result<Ma
         scale: scale as f32,
         inner,
     })))
+}
+
+/// Mitsuba's `measured_polarized` from its table (shared, not copied: the matrices stay in
+/// one `Arc`).
+fn measured(k: &MaterialKind) -> Material {
+    let MaterialKind::MeasuredPolarized {
+        table,
+        alpha_sample,
+        wavelength,
+    } = k
+    else {
+        unreachable!("called for measured_polarized only")
+    };
+    Material::MeasuredPolarized(Box::new(MeasuredPolarized {
+        phi_d: table.phi_d.clone(),
+        theta_d: table.theta_d.clone(),
+        theta_h: table.theta_h.clone(),
+        wavelengths: table.wavelengths.clone(),
+        m: table.m.clone(),
+        sampling: crate::material::microfacet::Ggx::new(*alpha_sample as f32),
+        wavelength: wavelength.map(|l| l as f32),
+    }))
 }

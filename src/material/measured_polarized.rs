@@ -20,9 +20,11 @@ use std::sync::Arc;
 
 use glam::{Vec2, Vec3};
 
+use super::Polarising;
 use super::fresnel::reflect;
 use super::microfacet::Ggx;
 use super::{BsdfSample, TransportMode};
+use crate::geometry::Frame;
 use crate::polarisation::Mueller;
 use crate::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
@@ -204,5 +206,38 @@ impl MeasuredPolarized {
             return None;
         }
         Some(BsdfSample::reflection(self.eval(wo, wi, w, mode), wi, pdf))
+    }
+
+    /// The normalised Mueller matrix (`polarised.rs`): the interpolated table
+    /// at each wavelength, in the basis s = ω_L × ω_V of both beams (light arriving from `wi`,
+    /// seen from `wo`), normalised; depolarising where M₀₀ is not positive or any element is not
+    /// finite (the data's invalid configurations).
+    pub(super) fn mueller<const N: usize>(
+        &self,
+        frame: &Frame,
+        (wo, wi): (Vec3, Vec3),
+        w: &SampledWavelengths<N>,
+    ) -> Polarising<N> {
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return Polarising::Depolarise;
+        }
+        let Some(a) = rusinkiewicz(wi, wo) else {
+            return Polarising::Depolarise;
+        };
+        let cell = self.cell(a);
+        let s = wi
+            .cross(wo)
+            .try_normalize()
+            .unwrap_or_else(|| Frame::from_normal(wo).s);
+        let mut out = [Mueller::IDENTITY; N];
+        for (j, o) in out.iter_mut().enumerate() {
+            let mj = self.matrix(&cell, w.lambda[j]);
+            let a = mj.0[0][0];
+            if !(a > 0.0) || mj.0.iter().flatten().any(|v| !v.is_finite()) {
+                return Polarising::Depolarise;
+            }
+            *o = super::polarised::to_world(frame, &mj.scale(1.0 / a), wo, wi, s, s);
+        }
+        Polarising::Matrix(out)
     }
 }

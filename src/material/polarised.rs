@@ -107,7 +107,7 @@ fn of<const N: usize>(
         Material::NormalMap(k) => perturbed(&k.inner, frame, perturb, (wo, wi), rho, w),
         Material::BumpMap(k) => perturbed(&k.inner, frame, perturb, (wo, wi), rho, w),
         Material::PPlastic(p) => pplastic(p, frame, (wo, wi), rho),
-        Material::MeasuredPolarized(m) => measured(m, frame, (wo, wi), w),
+        Material::MeasuredPolarized(m) => m.mueller(frame, (wo, wi), w),
         Material::ThinDielectric { eta } => {
             let (e, c) = side(wi.z, *eta);
             let m = fresnel::reflection(c, Complex::new(e, 0.0));
@@ -191,39 +191,6 @@ fn of<const N: usize>(
             Polarising::Matrix([to_world(frame, &p, wo, wi, basis, basis); N])
         }
     }
-}
-
-/// Mitsuba's `measured_polarized` (see [`super::MeasuredPolarized`]): the interpolated table
-/// at each wavelength, in the basis s = ω_L × ω_V of both beams (light arriving from `wi`,
-/// seen from `wo`), normalised; depolarising where M₀₀ is not positive or any element is not
-/// finite (the data's invalid configurations).
-fn measured<const N: usize>(
-    m: &super::MeasuredPolarized,
-    frame: &Frame,
-    (wo, wi): (Vec3, Vec3),
-    w: &SampledWavelengths<N>,
-) -> Polarising<N> {
-    if wo.z <= 0.0 || wi.z <= 0.0 {
-        return Polarising::Depolarise;
-    }
-    let Some(a) = super::measured_polarized::rusinkiewicz(wi, wo) else {
-        return Polarising::Depolarise;
-    };
-    let cell = m.cell(a);
-    let s = wi
-        .cross(wo)
-        .try_normalize()
-        .unwrap_or_else(|| Frame::from_normal(wo).s);
-    let mut out = [Mueller::IDENTITY; N];
-    for (j, o) in out.iter_mut().enumerate() {
-        let mj = m.matrix(&cell, w.lambda[j]);
-        let a = mj.0[0][0];
-        if !(a > 0.0) || mj.0.iter().flatten().any(|v| !v.is_finite()) {
-            return Polarising::Depolarise;
-        }
-        *o = to_world(frame, &mj.scale(1.0 / a), wo, wi, s, s);
-    }
-    Polarising::Matrix(out)
 }
 
 /// A conductor's complex index n + ik at `l` nm relative to the outside's index `ext`.
@@ -401,7 +368,14 @@ fn normalised(m: Mueller) -> Option<Mueller> {
 
 /// `p`, acting from the basis `s_in` of the beam along −`wi` to `s_out` of the beam along `wo`
 /// (all local to `frame`), re-expressed in the implicit world bases of the two beams.
-fn to_world(frame: &Frame, p: &Mueller, wo: Vec3, wi: Vec3, s_in: Vec3, s_out: Vec3) -> Mueller {
+pub(super) fn to_world(
+    frame: &Frame,
+    p: &Mueller,
+    wo: Vec3,
+    wi: Vec3,
+    s_in: Vec3,
+    s_out: Vec3,
+) -> Mueller {
     let f_in = frame.to_world(-wi).normalize();
     let f_out = frame.to_world(wo).normalize();
     let r_in = rotate_stokes_basis(f_in, frame.to_world(s_in), stokes_basis(f_in));

@@ -1,6 +1,6 @@
 //! Mitsuba's `TensorFile` format (`src/core/tensor.cpp` in Mitsuba 3, written by its
 //! `tensor_io.write`), which its `measured_polarized` BSDF reads (`.pbsdf` files), and the
-//! pBSDF table read from one ([`read_pbsdf`]).
+//! pBSDF table read from one (`read_pbsdf`).
 //!
 //! Layout, little-endian: the magic `tensor_file\0` (12 bytes), a version (two bytes, 1 and 0),
 //! a u32 field count; per field a u16 name length and the name, a u16 rank, a u8 type code
