@@ -102,12 +102,16 @@ impl MeasuredPolarized {
         Cell { base, steps, t }
     }
 
-    /// The interpolated element (r, c) of the table in `cell` at `lambda` nm (the fixed
-    /// wavelength if one is set).
-    fn element(&self, cell: &Cell, lambda: f32, rc: usize) -> f32 {
-        let lambda = self.wavelength.unwrap_or(lambda);
-        let (il, tl, two) = interval(&self.wavelengths, lambda);
-        let step_l = if two { 16 } else { 0 };
+    /// The lower table index of `lambda` nm (the fixed wavelength if one is set) among the
+    /// wavelengths, the upper one's weight and the step to it.
+    fn lambda_at(&self, lambda: f32) -> (usize, f32, usize) {
+        let (i, t, two) = interval(&self.wavelengths, self.wavelength.unwrap_or(lambda));
+        (i, t, if two { 16 } else { 0 })
+    }
+
+    /// The interpolated element (r, c) = `rc` of the table in `cell` at the wavelength
+    /// position `l` ([`MeasuredPolarized::lambda_at`]).
+    fn element(&self, cell: &Cell, (il, tl, step_l): (usize, f32, usize), rc: usize) -> f32 {
         let mut v = 0.0;
         for corner in 0..16u32 {
             let mut wgt = 1.0;
@@ -135,8 +139,9 @@ impl MeasuredPolarized {
 
     /// The interpolated Mueller matrix (sr⁻¹, in the table's s basis) in `cell` at `lambda`.
     pub(super) fn matrix(&self, cell: &Cell, lambda: f32) -> Mueller {
+        let l = self.lambda_at(lambda);
         Mueller(std::array::from_fn(|r| {
-            std::array::from_fn(|c| self.element(cell, lambda, 4 * r + c))
+            std::array::from_fn(|c| self.element(cell, l, 4 * r + c))
         }))
     }
 
@@ -160,7 +165,7 @@ impl MeasuredPolarized {
         };
         let cell = self.cell(a);
         SampledSpectrum(std::array::from_fn(|j| {
-            let f = self.element(&cell, w.lambda[j], 0);
+            let f = self.element(&cell, self.lambda_at(w.lambda[j]), 0);
             if f > 0.0 { f } else { 0.0 }
         }))
     }

@@ -25,10 +25,10 @@
 use glam::Vec3;
 
 use super::super::Integrator;
-use super::super::carrier::scatter_stokes;
+use super::super::carrier::{Carrier, Polarised, scatter_stokes};
 use super::vertex::Vertex;
 use crate::polarisation::{Mueller, Stokes};
-use crate::spectrum::SampledWavelengths;
+use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
 /// The normalised polarisation of one sample's two subpaths (see the module doc), kept between
 /// samples so that no sample allocates.
@@ -55,7 +55,7 @@ fn event<const N: usize>(
 }
 
 /// The product of `m` and the normalised matrix of the event at `v` (as [`event`]), per
-/// wavelength.
+/// wavelength: the camera path's [`Carrier::scattered`] with a scalar weight of 1.
 fn then_event<const N: usize>(
     m: &[Mueller; N],
     v: &Vertex<'_, N>,
@@ -66,17 +66,10 @@ fn then_event<const N: usize>(
     let Some(sh) = &v.shading else {
         return *m;
     };
-    let (wo, wi) = (sh.frame.to_local(to), sh.frame.to_local(from));
-    match sh.bsdf.mueller(&sh.frame, wo, wi, w) {
-        crate::material::Polarising::Keep => *m,
-        crate::material::Polarising::Depolarise => m.map(|mut x| {
-            for row in &mut x.0 {
-                row[1..].fill(0.0);
-            }
-            x
-        }),
-        crate::material::Polarising::Matrix(p) => std::array::from_fn(|j| m[j] * p[j]),
-    }
+    let dirs = (sh.frame.to_local(to), sh.frame.to_local(from));
+    Polarised(*m)
+        .scattered(sh, dirs, w, SampledSpectrum::splat(1.0))
+        .0
 }
 
 impl<const N: usize> Pol<N> {
