@@ -7,11 +7,14 @@ use super::curve::PiecewiseLinear;
 
 /// Sellmeier dispersion (`../shared/PHYSICS.md`, "Dielectrics"), λ in µm:
 /// n²(λ) = 1 + A + Σ_i B_i λ² / (λ² − C_i), with C_i in µm². Unused terms have B_i = 0.
+/// The coefficients are kept in f64, as the catalogues print them, so paraxial optics
+/// (`crate::optics`) reproduces a lens-design program's focal lengths.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sellmeier {
-    pub a: f32,
-    pub b: [f32; 4],
-    pub c: [f32; 4],
+    pub a: f64,
+    pub b: [f64; 4],
+    /// µm²
+    pub c: [f64; 4],
 }
 
 impl Sellmeier {
@@ -19,18 +22,58 @@ impl Sellmeier {
     /// value, 1; callers check validity ranges at build time.
     #[inline]
     pub fn eval(&self, lambda_nm: f32) -> f32 {
-        let l2 = (lambda_nm as f64 * 1e-3).powi(2);
-        let mut n2 = 1.0 + self.a as f64;
+        self.eval_f64(lambda_nm as f64) as f32
+    }
+
+    /// [`Self::eval`] in double precision.
+    pub fn eval_f64(&self, lambda_nm: f64) -> f64 {
+        let l2 = (lambda_nm * 1e-3).powi(2);
+        let mut n2 = 1.0 + self.a;
         for i in 0..4 {
             if self.b[i] != 0.0 {
-                n2 += self.b[i] as f64 * l2 / (l2 - self.c[i] as f64);
+                n2 += self.b[i] * l2 / (l2 - self.c[i]);
             }
         }
-        if n2 > 1.0 && n2.is_finite() {
-            n2.sqrt() as f32
-        } else {
-            1.0
+        valid_sqrt(n2)
+    }
+}
+
+/// √(n²) where n² > 1 and finite, else 1 (near a pole or outside a formula's range).
+fn valid_sqrt(n2: f64) -> f64 {
+    if n2 > 1.0 && n2.is_finite() {
+        n2.sqrt()
+    } else {
+        1.0
+    }
+}
+
+/// The catalogues' power series (refractiveindex.info "formula 3": HOYA, Sumita, most OHARA
+/// and some CDGM glasses), λ in µm: n²(λ) = A + Σ_i c_i λ^{p_i}. Unused terms have c_i = 0.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Polynomial {
+    pub a: f64,
+    pub c: [f64; 6],
+    /// The exponents p_i (even integers in the catalogues, any real here).
+    pub p: [f64; 6],
+}
+
+impl Polynomial {
+    /// Index at `lambda_nm` (nm); 1 where the series gives n² ≤ 1.
+    #[inline]
+    pub fn eval(&self, lambda_nm: f32) -> f32 {
+        self.eval_f64(lambda_nm as f64) as f32
+    }
+
+    /// [`Self::eval`] in double precision.
+    pub fn eval_f64(&self, lambda_nm: f64) -> f64 {
+        let l = lambda_nm * 1e-3;
+        let mut n2 = self.a;
+        for i in 0..6 {
+            if self.c[i] != 0.0 {
+                n2 += self.c[i] * l.powf(self.p[i]);
+            }
         }
+        valid_sqrt(n2)
     }
 }
 
@@ -58,6 +101,7 @@ pub enum Ior {
     /// Non-dispersive.
     Constant(f32),
     Sellmeier(Sellmeier),
+    Polynomial(Polynomial),
     Cauchy(Cauchy),
     /// Tabulated n(λ); the table is clamped to its end values outside its domain.
     Table(Arc<PiecewiseLinear>),
@@ -69,12 +113,40 @@ impl Ior {
         match self {
             Ior::Constant(n) => *n,
             Ior::Sellmeier(s) => s.eval(lambda_nm),
+            Ior::Polynomial(p) => p.eval(lambda_nm),
             Ior::Cauchy(c) => c.eval(lambda_nm),
             Ior::Table(t) => {
                 let (lo, hi) = t.domain();
                 t.eval(lambda_nm.clamp(lo, hi))
             }
         }
+    }
+
+    /// [`Self::eval`] in double precision (the formulas are evaluated in f64 throughout; a
+    /// table and a Cauchy model are f32 data).
+    pub fn eval_f64(&self, lambda_nm: f64) -> f64 {
+        match self {
+            Ior::Sellmeier(s) => s.eval_f64(lambda_nm),
+            Ior::Polynomial(p) => p.eval_f64(lambda_nm),
+            Ior::Constant(_) | Ior::Cauchy(_) | Ior::Table(_) => self.eval(lambda_nm as f32) as f64,
+        }
+    }
+
+    /// A model glass from its catalogue n_d and Abbe number V_d, for glasses no catalogue here
+    /// holds: the two-term Cauchy law n = A + B/λ² through n_d at the d line with
+    /// n_F − n_C = (n_d − 1)/V_d (exact at d, and in n_F − n_C). None unless n_d ≥ 1 and V_d > 0.
+    pub fn model(nd: f64, vd: f64) -> Option<Ior> {
+        if !(nd >= 1.0 && vd > 0.0 && nd.is_finite() && vd.is_finite()) {
+            return None;
+        }
+        let inv2 = |l_nm: f32| 1.0 / (l_nm as f64 * 1e-3).powi(2);
+        let b = (nd - 1.0) / vd / (inv2(FRAUNHOFER_F_NM) - inv2(FRAUNHOFER_C_NM));
+        let a = nd - b * inv2(FRAUNHOFER_D_NM);
+        Some(Ior::Cauchy(Cauchy {
+            a: a as f32,
+            b: b as f32,
+            c: 0.0,
+        }))
     }
 
     /// Whether n depends on wavelength, so refraction must terminate secondary wavelengths.
@@ -128,5 +200,24 @@ mod tests {
         assert!((c.eval(500.0) - 1.54).abs() < 1e-6);
         assert!(!Ior::Constant(1.5).is_dispersive());
         assert!(Ior::Cauchy(c).is_dispersive());
+    }
+
+    #[test]
+    fn a_model_glass_has_its_nd_and_abbe_number() {
+        let g = Ior::model(1.5168, 64.17).unwrap();
+        assert!((g.eval(FRAUNHOFER_D_NM) - 1.5168).abs() < 2e-6);
+        assert!((g.abbe_number() - 64.17).abs() < 0.02, "{}", g.abbe_number());
+        assert!(Ior::model(0.9, 50.0).is_none() && Ior::model(1.5, 0.0).is_none());
+    }
+
+    #[test]
+    fn the_power_series_is_the_catalogue_formula() {
+        // HOYA BSC7's printed coefficients; its catalogue n_d is 1.51680
+        let p = Polynomial {
+            a: 2.2702566,
+            c: [-0.0091988101, 0.011609706, -7.6123911e-05, 2.8558727e-05, -1.2566486e-06, 0.0],
+            p: [2.0, -2.0, -4.0, -6.0, -8.0, 0.0],
+        };
+        assert!((p.eval_f64(587.5618) - 1.5168).abs() < 1e-5);
     }
 }

@@ -1,18 +1,17 @@
 //! Named spectra: `cie-d65`, `glass:N-BK7`, `metal:Au`, `colorchecker:dark-skin`,
 //! `blackbody:6500K`, … Looked up case-insensitively; an unknown name suggests the closest ones.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::sync::{Arc, OnceLock};
-
-use serde::Deserialize;
 
 use super::blackbody::Blackbody;
 use super::curve::Spectrum;
 use super::data::{Table, embedded, embedded_table, table_to_curve};
-use super::ior::{ComplexIor, Ior, Sellmeier};
+use super::ior::{ComplexIor, Ior};
 use mitsuba::conductor;
 pub use mitsuba::{MITSUBA_VERSION, mitsuba_conductor};
 
+mod glass;
 mod mitsuba;
 
 /// What a named curve means, which sets its unit.
@@ -40,10 +39,14 @@ impl CurveKind {
     }
 }
 
-/// A dielectric from `spectra/glass/sellmeier.toml`.
+/// A dielectric from `spectra/glass/sellmeier.toml` or a catalogue in
+/// `spectra/glass/catalogues/`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Glass {
     pub name: String,
+    /// The catalogue it comes from (`SCHOTT`, `OHARA`, `HOYA`, `CDGM`, `Sumita`, `crystals`), or
+    /// `spectrace` for the curated entries of `sellmeier.toml`.
+    pub catalogue: String,
     pub ior: Ior,
     /// Validity range of the formula, nm.
     pub range_nm: (f32, f32),
@@ -100,29 +103,8 @@ fn suggest(s: &[String]) -> String {
 struct Registry {
     /// Lower-cased name → (display name, value).
     entries: BTreeMap<String, (String, Named)>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct GlassFile {
-    glass: Vec<GlassEntry>,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct GlassEntry {
-    name: String,
-    #[serde(rename = "A")]
-    a: f64,
-    #[serde(rename = "B")]
-    b: Vec<f64>,
-    #[serde(rename = "C")]
-    c: Vec<f64>,
-    range_um: [f64; 2],
-    nd: f64,
-    nd_source: String,
-    vd: Option<f64>,
-    source: String,
+    /// Keys that are aliases (`glass:schott/n-bk7`), left out of [`names`].
+    hidden: BTreeSet<String>,
 }
 
 fn source_line(t: &Table) -> String {
@@ -211,33 +193,6 @@ fn build() -> Registry {
             },
         );
     }
-    let glasses: GlassFile = match toml::from_str(GLASSES.1) {
-        Ok(g) => g,
-        Err(e) => panic!("embedded {} is corrupt: {e}", GLASSES.0), // ok: build-time invariant
-    };
-    for g in glasses.glass {
-        let mut s = Sellmeier {
-            a: g.a as f32,
-            b: [0.0; 4],
-            c: [0.0; 4],
-        };
-        for (i, (b, c)) in g.b.iter().zip(&g.c).take(4).enumerate() {
-            s.b[i] = *b as f32;
-            s.c[i] = *c as f32;
-        }
-        add(
-            format!("glass:{}", g.name),
-            Named::Dielectric(Glass {
-                name: g.name,
-                ior: Ior::Sellmeier(s),
-                range_nm: ((g.range_um[0] * 1e3) as f32, (g.range_um[1] * 1e3) as f32),
-                nd: g.nd,
-                nd_source: g.nd_source,
-                vd: g.vd,
-                source: g.source,
-            }),
-        );
-    }
     // spectrace's own metals: Johnson & Christy (1972) for the noble metals, Rakić (1995) for Al
     for (name, f) in [
         ("Au", METAL_AU),
@@ -251,7 +206,8 @@ fn build() -> Registry {
     for (name, f) in MITSUBA_METALS {
         add(format!("mitsuba:{name}"), conductor(name, *f));
     }
-    Registry { entries }
+    let hidden = glass::add_all(&mut entries);
+    Registry { entries, hidden }
 }
 
 fn registry() -> &'static Registry {
@@ -262,10 +218,12 @@ fn registry() -> &'static Registry {
 /// Every fixed name, in sorted order, with one word for its kind. `blackbody:<T>K` is listed as
 /// a pattern.
 pub fn names() -> Vec<(String, &'static str)> {
-    let mut v: Vec<(String, &'static str)> = registry()
+    let r = registry();
+    let mut v: Vec<(String, &'static str)> = r
         .entries
-        .values()
-        .map(|(n, v)| {
+        .iter()
+        .filter(|(k, _)| !r.hidden.contains(*k))
+        .map(|(_, (n, v))| {
             let kind = match v {
                 Named::Curve {
                     kind: CurveKind::Illuminant,
@@ -368,13 +326,18 @@ pub fn cie_daylight(t: f64) -> Option<Spectrum> {
 }
 
 fn closest(key: &str) -> Vec<String> {
+    let key_short = key.split_once(':').map_or(key, |(_, s)| s);
     let mut scored: Vec<(f64, &String)> = registry()
         .entries
         .iter()
         .map(|(k, (n, _))| {
             // compare with and without the "family:" prefix, so "bk7" finds "glass:N-BK7"
             let short = k.split_once(':').map_or(k.as_str(), |(_, s)| s);
-            let s = strsim::jaro_winkler(key, k).max(strsim::jaro_winkler(key, short));
+            let mut s = strsim::jaro_winkler(key, k).max(strsim::jaro_winkler(key, short));
+            // a name that contains the one asked for ("BK7" in "N-BK7") comes first
+            if key_short.len() >= 2 && short.contains(key_short) {
+                s += 1.0;
+            }
             (s, n)
         })
         .collect();

@@ -194,7 +194,8 @@ impl Cx<'_> {
 
     /// A dielectric index: a number, a glass name (`"glass:N-BK7"` or `"N-BK7"`), or
     /// `{ sellmeier = { B = […], C = […] } }` (λ in µm, C in µm²), `{ cauchy = { A, B, C } }`,
-    /// `{ samples = [[λ_nm, n], …] }`.
+    /// `{ model = { nd, vd } }` (a model glass from its catalogue n_d and Abbe number,
+    /// [`Ior::model`]), `{ samples = [[λ_nm, n], …] }`.
     pub fn ior(&self, v: &S<Value>, field: &str) -> R<Ior> {
         let span = v.span();
         match v.get_ref() {
@@ -265,14 +266,12 @@ impl Cx<'_> {
                     return Err(self.err(span, sub, "B and C need the same length, 1 to 4 terms"));
                 }
                 let mut s = Sellmeier {
-                    a: a as f32,
+                    a,
                     b: [0.0; 4],
                     c: [0.0; 4],
                 };
-                for i in 0..b.len() {
-                    s.b[i] = b[i] as f32;
-                    s.c[i] = c[i] as f32;
-                }
+                s.b[..b.len()].copy_from_slice(&b);
+                s.c[..c.len()].copy_from_slice(&c);
                 Ok(Ior::Sellmeier(s))
             }
             ("cauchy", Value::Table(tt)) => {
@@ -309,10 +308,20 @@ impl Cx<'_> {
                     .map(|t| Ior::Table(Arc::new(t)))
                     .map_err(|e| self.err(span, sub, e.to_string()))
             }
+            ("model", Value::Table(tt)) => {
+                if let Some(k) = tt.keys().find(|k| !["nd", "vd"].contains(&k.as_str())) {
+                    return Err(self.err(span, format!("{sub}.{k}"), "unknown key; expected nd, vd"));
+                }
+                let nd = self.coeffs(tt, span, sub, "nd")?[0];
+                let vd = self.coeffs(tt, span, sub, "vd")?[0];
+                Ior::model(nd, vd).ok_or_else(|| {
+                    self.err(span, sub, "a model glass needs nd ≥ 1 and an Abbe number vd > 0")
+                })
+            }
             _ => Err(self.err(
                 span,
                 sub,
-                "expected sellmeier = {B, C}, cauchy = {A, B, C} or samples = [[λ, n], …]",
+                "expected sellmeier = {B, C}, cauchy = {A, B, C}, model = {nd, vd} or samples = [[λ, n], …]",
             )),
         }
     }
