@@ -151,12 +151,48 @@ pub mod embedded {
     /// `scripts/gen_glass_catalogues.py`): (maker, (path, contents)), in the order in which a
     /// name two makers share resolves.
     pub const GLASS_CATALOGUES: &[(&str, (&str, &str))] = &[
-        ("SCHOTT", ("spectra/glass/catalogues/schott.toml", include_str!("../spectra/glass/catalogues/schott.toml"))),
-        ("OHARA", ("spectra/glass/catalogues/ohara.toml", include_str!("../spectra/glass/catalogues/ohara.toml"))),
-        ("HOYA", ("spectra/glass/catalogues/hoya.toml", include_str!("../spectra/glass/catalogues/hoya.toml"))),
-        ("CDGM", ("spectra/glass/catalogues/cdgm.toml", include_str!("../spectra/glass/catalogues/cdgm.toml"))),
-        ("Sumita", ("spectra/glass/catalogues/sumita.toml", include_str!("../spectra/glass/catalogues/sumita.toml"))),
-        ("crystals", ("spectra/glass/catalogues/crystals.toml", include_str!("../spectra/glass/catalogues/crystals.toml"))),
+        (
+            "SCHOTT",
+            (
+                "spectra/glass/catalogues/schott.toml",
+                include_str!("../spectra/glass/catalogues/schott.toml"),
+            ),
+        ),
+        (
+            "OHARA",
+            (
+                "spectra/glass/catalogues/ohara.toml",
+                include_str!("../spectra/glass/catalogues/ohara.toml"),
+            ),
+        ),
+        (
+            "HOYA",
+            (
+                "spectra/glass/catalogues/hoya.toml",
+                include_str!("../spectra/glass/catalogues/hoya.toml"),
+            ),
+        ),
+        (
+            "CDGM",
+            (
+                "spectra/glass/catalogues/cdgm.toml",
+                include_str!("../spectra/glass/catalogues/cdgm.toml"),
+            ),
+        ),
+        (
+            "Sumita",
+            (
+                "spectra/glass/catalogues/sumita.toml",
+                include_str!("../spectra/glass/catalogues/sumita.toml"),
+            ),
+        ),
+        (
+            "crystals",
+            (
+                "spectra/glass/catalogues/crystals.toml",
+                include_str!("../spectra/glass/catalogues/crystals.toml"),
+            ),
+        ),
     ];
 
     macro_rules! mitsuba_metals {

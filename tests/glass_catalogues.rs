@@ -93,10 +93,16 @@ fn every_catalogue_glass_reproduces_its_stored_nd_and_disperses_normally() {
         assert!((n - g.nd).abs() < tol, "{name}: n_d {n} vs {}", g.nd);
         // inside its validity range and the visible, n is finite, above 1 and falls with λ
         // (normal dispersion: every one of these glasses is transparent there)
-        let (lo, hi) = (g.range_nm.0.max(400.0) as f64, g.range_nm.1.min(700.0) as f64);
+        let (lo, hi) = (
+            g.range_nm.0.max(400.0) as f64,
+            g.range_nm.1.min(700.0) as f64,
+        );
         if lo < hi {
             let (a, b) = (g.ior.eval_f64(lo), g.ior.eval_f64(hi));
-            assert!(a > b && b > 1.0 && a < 3.0, "{name}: n({lo}) {a}, n({hi}) {b}");
+            assert!(
+                a > b && b > 1.0 && a < 3.0,
+                "{name}: n({lo}) {a}, n({hi}) {b}"
+            );
         }
     }
     // SCHOTT 168, OHARA 410, HOYA 190, CDGM 314, Sumita 176, less the two names SCHOTT and
@@ -125,7 +131,11 @@ fn maker_qualified_names_and_shared_names() {
 fn crystals_have_their_published_indices() {
     // Malitson (1963) CaF2 n(587.6 nm) = 1.43385; Dodge (1984) MgF2 n_o(589 nm) ≈ 1.3777;
     // Malitson & Dodge (1972) sapphire n_o(587.6 nm) = 1.7682
-    for (name, n, tol) in [("CaF2", 1.43385, 2e-5), ("MgF2", 1.3777, 1e-4), ("sapphire", 1.7682, 1e-4)] {
+    for (name, n, tol) in [
+        ("CaF2", 1.43385, 2e-5),
+        ("MgF2", 1.3777, 1e-4),
+        ("sapphire", 1.7682, 1e-4),
+    ] {
         let v = glass(&format!("glass:{name}")).ior.eval_f64(D);
         assert!((v - n).abs() < tol, "{name}: {v}");
     }
@@ -136,11 +146,12 @@ fn a_model_glass_from_nd_and_vd() {
     let g = Ior::model(1.67271, 32.25).unwrap();
     assert!((g.eval_f64(D) - 1.67271).abs() < 2e-6);
     assert!((abbe(&g) - 32.25).abs() < 0.01);
-    // close to the real N-SF5 across the visible (a two-term model: within 2e-3)
+    // close to the real N-SF5 between the F and C lines it is fitted to; a two-term law
+    // bends less than a dense flint's real curve toward the violet
     let real = glass("glass:N-SF5");
-    for l in [420.0, 500.0, 600.0, 700.0] {
+    for (l, tol) in [(420.0, 3e-3), (500.0, 3e-4), (600.0, 3e-4), (700.0, 1e-3)] {
         let d = (g.eval_f64(l) - real.ior.eval_f64(l)).abs();
         println!("model − N-SF5 at {l} nm: {d:.2e}");
-        assert!(d < 2e-3, "{l}: {d}");
+        assert!(d < tol, "{l}: {d}");
     }
 }

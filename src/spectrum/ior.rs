@@ -206,7 +206,11 @@ mod tests {
     fn a_model_glass_has_its_nd_and_abbe_number() {
         let g = Ior::model(1.5168, 64.17).unwrap();
         assert!((g.eval(FRAUNHOFER_D_NM) - 1.5168).abs() < 2e-6);
-        assert!((g.abbe_number() - 64.17).abs() < 0.02, "{}", g.abbe_number());
+        assert!(
+            (g.abbe_number() - 64.17).abs() < 0.02,
+            "{}",
+            g.abbe_number()
+        );
         assert!(Ior::model(0.9, 50.0).is_none() && Ior::model(1.5, 0.0).is_none());
     }
 
@@ -215,7 +219,14 @@ mod tests {
         // HOYA BSC7's printed coefficients; its catalogue n_d is 1.51680
         let p = Polynomial {
             a: 2.2702566,
-            c: [-0.0091988101, 0.011609706, -7.6123911e-05, 2.8558727e-05, -1.2566486e-06, 0.0],
+            c: [
+                -0.0091988101,
+                0.011609706,
+                -7.6123911e-05,
+                2.8558727e-05,
+                -1.2566486e-06,
+                0.0,
+            ],
             p: [2.0, -2.0, -4.0, -6.0, -8.0, 0.0],
         };
         assert!((p.eval_f64(587.5618) - 1.5168).abs() < 1e-5);
