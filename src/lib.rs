@@ -29,6 +29,7 @@ pub mod loader;
 pub mod material;
 pub mod medium;
 pub mod output;
+pub mod optics;
 pub mod params;
 pub mod plot;
 pub mod polarisation;

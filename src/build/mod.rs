@@ -1,6 +1,8 @@
 //! `build`: the one place where a scene description becomes a render-ready [`Scene`]. Typed
 //! quantities leave the uom world here, through `units::plain`.
 
+mod lens;
+pub use lens::{focused_lens, lens_system, located as lens_error};
 mod lights;
 mod materials;
 mod media;
@@ -291,6 +293,16 @@ fn camera(desc: &SceneDesc) -> Result<Camera, String> {
         }
         CameraKind::Orthographic { view_width } => {
             Camera::orthographic(to_world, plain::metres(*view_width), w, h)
+        }
+        CameraKind::Realistic {
+            lens,
+            film_diagonal,
+            aperture_diameter,
+            focus,
+        } => {
+            let sys = lens::focused_lens(lens, *aperture_diameter, focus).map_err(|e| e.to_string())?;
+            return Camera::realistic(to_world, sys, plain::metres(*film_diagonal), w, h)
+                .map_err(|e| format!("{}: {e}", lens.path.display()));
         }
     };
     r.map_err(|e| e.to_string())

@@ -2,6 +2,7 @@
 
 mod checkpoint;
 mod farm;
+mod lens;
 mod measure;
 mod merge;
 mod probe;
@@ -42,6 +43,9 @@ pub enum Command {
     Measure(measure::MeasureArgs),
     /// Print (and plot) the spectral radiance of a pixel or region of a spectral EXR.
     Probe(probe::ProbeArgs),
+    /// Print a lens file's paraxial effective and back focal lengths (mm) per wavelength as CSV,
+    /// with `--spot` its real-ray RMS spot radius (µm), with `--plot` its focal shift.
+    Lens(lens::LensArgs),
 }
 
 /// An error for the user, printed after "error: ".
@@ -67,6 +71,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Some(Command::Merge(args)) => merge::merge(args),
         Some(Command::Measure(args)) => measure::run(args),
         Some(Command::Probe(args)) => probe::run(args),
+        Some(Command::Lens(args)) => lens::run(args),
         None => render::run_default(),
     }
 }

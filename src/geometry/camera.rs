@@ -1,4 +1,5 @@
-//! Cameras: pinhole perspective, thin lens and orthographic.
+//! Cameras: pinhole perspective, thin lens, orthographic and realistic (a traced lens system,
+//! `camera/realistic.rs`).
 //!
 //! Camera space follows Mitsuba (and is right-handed): the camera looks along **+z**, **+y** is
 //! up and **+x** points to the camera's *left*; see [`Transform::look_at`]. Raster space is in
@@ -14,6 +15,9 @@ use super::transform::Transform;
 use crate::sampling::concentric_disk;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
+
+mod realistic;
+pub use realistic::{Realistic, RealisticError};
 
 /// Which image axis a field of view spans.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -172,6 +176,7 @@ pub enum Camera {
     Perspective(Perspective),
     ThinLens(ThinLens),
     Orthographic(Orthographic),
+    Realistic(Box<Realistic>),
 }
 
 impl Camera {
@@ -276,6 +281,36 @@ impl Camera {
                 let xy = c.film.plane(raster);
                 Ray::new(c.to_world.point(xy.extend(0.0)), c.to_world.vector(Vec3::Z))
             }
+            // at the d line; where the lens blocks that ray, the ray from the film point through
+            // the lens's axial point (for probes and previews, never for rendering)
+            Camera::Realistic(c) => c
+                .ray(raster, lens, crate::spectrum::ior::FRAUNHOFER_D_NM)
+                .map(|(r, _)| r)
+                .unwrap_or_else(|| {
+                    let xy = c.film.plane(raster);
+                    Ray::new(c.to_world.point(Vec3::ZERO), c.to_world.vector(xy.extend(1.0)))
+                }),
+        }
+    }
+
+    /// The world ray through `raster` from lens sample `lens` at wavelength `lambda_nm`, with
+    /// its weight (dimensionless): the ray of [`Camera::generate_ray`] with weight 1 for every
+    /// camera but the realistic one, whose rays depend on the wavelength and carry the weight
+    /// of its pupil sampling (`camera/realistic.rs`). None if the lens blocks the ray.
+    #[inline]
+    pub fn generate_ray_at(&self, raster: Vec2, lens: Vec2, lambda_nm: f32) -> Option<(Ray, f32)> {
+        match self {
+            Camera::Realistic(c) => c.ray(raster, lens, lambda_nm),
+            _ => Some((self.generate_ray(raster, lens), 1.0)),
+        }
+    }
+
+    /// Whether a camera ray serves its hero wavelength only (a realistic camera with dispersive
+    /// glass); the renderer then terminates the secondary wavelengths.
+    pub fn disperses(&self) -> bool {
+        match self {
+            Camera::Realistic(c) => c.dispersive(),
+            Camera::Perspective(_) | Camera::ThinLens(_) | Camera::Orthographic(_) => false,
         }
     }
 
@@ -283,7 +318,8 @@ impl Camera {
     /// chosen by `u_lens` ∈ [0, 1)² (uniform on a thin lens; ignored by a pinhole), or None if
     /// it is behind the lens, more than `margin` pixels outside the image (a reconstruction
     /// filter of that radius still carries such a point into the image), or the camera is
-    /// orthographic (a delta in direction, which no point can connect to).
+    /// orthographic (a delta in direction, which no point can connect to) or realistic (its
+    /// importance is not sampled: the renderer refuses light tracing and BDPT with it).
     pub fn connect(&self, p: Vec3, u_lens: Vec2, margin: f32) -> Option<CameraConnection> {
         let (to_world, film, lens) = match self {
             Camera::Perspective(c) => (&c.to_world, &c.film, None),
@@ -292,7 +328,7 @@ impl Camera {
                 &c.film,
                 Some((concentric_disk(u_lens) * c.lens_radius, c.focus_distance)),
             ),
-            Camera::Orthographic(_) => return None,
+            Camera::Orthographic(_) | Camera::Realistic(_) => return None,
         };
         let pc = to_world.inverse().point(p);
         let pl = lens.map_or(Vec2::ZERO, |(l, _)| l).extend(0.0);
@@ -326,7 +362,7 @@ impl Camera {
         let (to_world, film, focus) = match self {
             Camera::Perspective(c) => (&c.to_world, &c.film, None),
             Camera::ThinLens(c) => (&c.to_world, &c.film, Some(c.focus_distance)),
-            Camera::Orthographic(_) => return 0.0,
+            Camera::Orthographic(_) | Camera::Realistic(_) => return 0.0,
         };
         let inv = to_world.inverse();
         let v = inv.vector(dir);
@@ -346,6 +382,7 @@ impl Camera {
             Camera::Perspective(c) => (&c.to_world, &c.film),
             Camera::ThinLens(c) => (&c.to_world, &c.film),
             Camera::Orthographic(c) => (&c.to_world, &c.film),
+            Camera::Realistic(c) => (&c.to_world, &c.film),
         }
     }
 

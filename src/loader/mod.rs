@@ -7,6 +7,7 @@
 mod convert;
 pub mod desc;
 pub mod error;
+pub mod lens;
 pub mod mitsuba;
 pub mod photometric;
 mod raw;

@@ -85,6 +85,11 @@ pub struct RawCamera {
     pub f_number: Option<S<Value>>,
     pub focus_distance: Option<S<Value>>,
     pub view_width: Option<S<Value>>,
+    /// A realistic camera's lens file (pbrt-v4's format, `loader/lens.rs`).
+    pub lens_file: Option<S<String>>,
+    pub film_diagonal: Option<S<Value>>,
+    pub aperture_diameter: Option<S<Value>>,
+    pub film_distance: Option<S<Value>>,
     /// The name of the medium the camera sits in (`[media.NAME]`).
     pub medium: Option<S<String>>,
     /// `[camera.sensor]`: spectral sensitivities, exposure and white balance.

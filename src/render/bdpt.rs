@@ -175,8 +175,8 @@ fn trace_tile(
     for y in y0..y0 + th {
         for x in x0..x0 + tw {
             for i in a..b {
-                let (mut s, wl, ray) =
-                    camera_sample(it.scene, ctx.lambda, filter, opts.seed, x, y, i);
+                let (mut s, wl, ray, _) =
+ camera_sample(it.scene, ctx.lambda, filter, opts.seed, x, y, i);
                 let mut sl = Sampler::new(opts.seed ^ LIGHT_SEED, x, y, i);
                 let l = sample(
                     it,

@@ -16,6 +16,11 @@ pub enum RenderError {
          does not have; use a perspective or thin-lens camera"
     )]
     Camera(&'static str),
+    #[error(
+        "the `{0}` integrator {1}, which the realistic (lens-system) camera does not support yet \
+         (nor does pbrt-v4's); use path, whitted or direct"
+    )]
+    LensCamera(&'static str, &'static str),
     #[error("cannot resume: {0}")]
     Resume(String),
     #[error("--target-error needs passes of camera samples; the light integrator has none")]
@@ -33,11 +38,25 @@ pub enum RenderError {
     Polarised(&'static str, &'static str),
 }
 
-/// Refuses an integrator that would render the scene as something else: one without media in
+/// Refuses an integrator that would render the scene as something else: light tracing, BDPT or
+/// polarised rendering through a realistic camera (its importance and its lens's Mueller
+/// matrices are not modelled), one without media in
 /// a scene with media (it would drop them), one other than `path`, `light` or `bdpt` in a
 /// polarised scene (it carries no Stokes vectors), or any in a polarised scene with media (not
 /// yet rendered).
 pub(super) fn check_integrator(scene: &Scene, opts: &RenderOptions) -> Result<(), RenderError> {
+    if matches!(scene.camera, crate::geometry::Camera::Realistic(_)) {
+        let why = match opts.integrator {
+            IntegratorKind::Light | IntegratorKind::Bdpt => Some("connects paths to the camera"),
+            _ if scene.integrator.polarised => {
+                Some("renders this scene polarised, through a lens that carries no Stokes vectors")
+            }
+            _ => None,
+        };
+        if let Some(why) = why {
+            return Err(RenderError::LensCamera(opts.integrator.name(), why));
+        }
+    }
     if !scene.media.is_empty()
         && !matches!(
             opts.integrator,

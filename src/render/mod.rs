@@ -294,7 +294,10 @@ pub(super) fn draw_wavelengths(
 
 /// Camera sample `i` of pixel (x, y) under `seed`: the wavelengths, the filter offset and the
 /// lens position read the sampler's first dimensions in that order; returns the sampler (for
-/// the integrator's further dimensions), the wavelengths and the camera ray.
+/// the integrator's further dimensions), the wavelengths, the camera ray and its weight
+/// (1 but for a realistic camera, whose pupil sampling weighs its rays; 0 where its lens blocks
+/// the ray, which then must not be traced). A camera ray through dispersive lens glass keeps its
+/// hero wavelength only.
 #[inline]
 fn camera_sample(
     scene: &Scene,
@@ -308,13 +311,20 @@ fn camera_sample(
     Sampler,
     SampledWavelengths<N_WAVELENGTHS>,
     crate::geometry::Ray,
+    f32,
 ) {
     let mut s = Sampler::new(seed, x, y, i);
-    let wl = draw_wavelengths(lambda, &mut s);
+    let mut wl = draw_wavelengths(lambda, &mut s);
     let offset = filter.sample(s.get_2d());
     let raster = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
-    let ray = scene.camera.generate_ray(raster, s.get_2d());
-    (s, wl, ray)
+    let u_lens = s.get_2d();
+    if scene.camera.disperses() {
+        wl.terminate_secondary();
+    }
+    match scene.camera.generate_ray_at(raster, u_lens, wl.hero()) {
+        Some((ray, w)) => (s, wl, ray, w),
+        None => (s, wl, scene.camera.generate_ray(raster, u_lens), 0.0),
+    }
 }
 
 /// Counts a sample the film refused, as NaN or as infinite by its live values.

@@ -155,7 +155,7 @@ fn trace_tile(
     for y in y0..y0 + th {
         for x in x0..x0 + tw {
             for i in a..b {
-                let (mut s, mut wl, ray) = camera_sample(
+                let (mut s, mut wl, ray, weight) = camera_sample(
                     ctx.integrator.scene,
                     ctx.lambda,
                     filter,
@@ -167,8 +167,16 @@ fn trace_tile(
                 let (l, added) = if polarised {
                     let st = ctx.integrator.stokes(ray, &mut wl, &mut s);
                     (st[0], tile.add_stokes(x, y, &wl, &st, bins))
-                } else {
+                } else if weight == 1.0 {
                     let l = ctx.integrator.radiance(ray, &mut wl, &mut s);
+                    (l, tile.add(x, y, &wl, &l, bins))
+                } else {
+                    // a realistic camera's ray: weighted, or blocked by its lens (weight 0)
+                    let l = if weight > 0.0 {
+                        ctx.integrator.radiance(ray, &mut wl, &mut s) * weight
+                    } else {
+                        crate::spectrum::SampledSpectrum::zero()
+                    };
                     (l, tile.add(x, y, &wl, &l, bins))
                 };
                 if !added {

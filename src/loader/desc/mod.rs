@@ -91,6 +91,29 @@ pub enum CameraKind {
     Orthographic {
         view_width: Length,
     },
+    /// A lens system traced in front of a film (`geometry/camera/realistic.rs`).
+    Realistic {
+        lens: crate::loader::lens::LensDesc,
+        /// The film's diagonal (pbrt-v4's `diagonal`; 35 mm by default).
+        film_diagonal: Length,
+        /// The stop's diameter, if narrower than the lens file's.
+        aperture_diameter: Option<Length>,
+        /// Where the film sits: as the lens file says, a distance behind the last vertex, or
+        /// focused on a distance from the film.
+        focus: LensFocus,
+    },
+}
+
+/// How a realistic camera is focused.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LensFocus {
+    /// The last thickness of the lens file.
+    AsWritten,
+    /// The film this far behind the last vertex.
+    FilmDistance(Length),
+    /// The film moved so a point this far in front of the film is in paraxial focus at the
+    /// d line (587.56 nm), as pbrt-v4's `focusdistance` (measured from the film).
+    Distance(Length),
 }
 
 #[derive(Clone, Debug)]

@@ -1,9 +1,11 @@
-//! `[camera]`: the projection (`camera_sensor.rs`: `[camera.sensor]`).
+//! `[camera]`: the projection (`camera_sensor.rs`: `[camera.sensor]`; `realistic.rs`: a lens
+//! system).
 
 use super::*;
 use camera_sensor::camera_sensor;
 
 mod camera_sensor;
+mod realistic;
 
 pub(super) fn camera(cx: &Cx<'_>, c: &S<RawCamera>) -> R<CameraDesc> {
     let sp = c.span();
@@ -35,7 +37,7 @@ fn kind(cx: &Cx<'_>, c: &RawCamera, sp: &Range<usize>) -> R<CameraKind> {
         .as_ref()
         .map(|k| k.get_ref().as_str())
         .unwrap_or("perspective");
-    let all = present!(c; kind, eye, target, up, fov, fov_axis, focal_length, sensor_width, f_number, focus_distance, view_width, medium);
+    let all = present!(c; kind, eye, target, up, fov, fov_axis, focal_length, sensor_width, f_number, focus_distance, view_width, medium, lens_file, film_diagonal, aperture_diameter, film_distance);
     Ok(match kind_s {
         "perspective" => {
             cx.only(
@@ -119,9 +121,28 @@ fn kind(cx: &Cx<'_>, c: &RawCamera, sp: &Range<usize>) -> R<CameraKind> {
             }
             CameraKind::Orthographic { view_width }
         }
+        "realistic" => {
+            cx.only(
+                "a realistic camera",
+                "camera",
+                &all,
+                &[
+                    "kind",
+                    "eye",
+                    "target",
+                    "up",
+                    "lens_file",
+                    "film_diagonal",
+                    "aperture_diameter",
+                    "focus_distance",
+                    "film_distance",
+                ],
+            )?;
+            realistic::realistic(cx, c, sp)?
+        }
         other => {
             let span = c.kind.as_ref().map(|k| k.span()).unwrap_or(sp.clone());
-            return Err(cx.err(&span, "camera.type", format!("unknown camera type \"{other}\"; expected perspective, thinlens or orthographic")));
+            return Err(cx.err(&span, "camera.type", format!("unknown camera type \"{other}\"; expected perspective, thinlens, orthographic or realistic")));
         }
     })
 }
