@@ -18,3 +18,4 @@ seed ply $(find scenes tests benchmarks -name '*.ply')
 seed spectrum_csv spectra/*.csv $(find tests -name '*.csv')
 seed photometric scenes/luminaires/*
 seed vol $(find tests -name '*.vol')
+seed lens scenes/lenses/*.lens tests/bad_lenses/*.lens

@@ -4,13 +4,13 @@
 use crate::loader::LoadError;
 use crate::loader::desc::LensFocus;
 use crate::loader::lens::LensDesc;
-use crate::units::Length;
 use crate::optics::{LensError, LensSystem, Surface};
-use crate::units::plain;
+use crate::units::Length;
+use crate::units::length::millimeter;
 
 /// Builds the lens system of `desc` (mm, as lens files are written).
 pub fn lens_system(desc: &LensDesc) -> Result<LensSystem, LoadError> {
-    let mm = |l| plain::metres(l) as f64 * 1e3;
+    let mm = |l: Length| l.get::<millimeter>();
     let surfaces = desc
         .surfaces
         .iter()
@@ -33,7 +33,7 @@ pub fn located(desc: &LensDesc, e: &LensError) -> LoadError {
         LensError::ApertureBeyondSphere { surface, .. } => (*surface, "aperture"),
         LensError::Value { surface, what, .. } => (
             *surface,
-            if what.contains("thickness") || what.contains("focus") {
+            if what.contains("thickness") {
                 "thickness"
             } else if what.contains("aperture") || what.contains("stop") {
                 "aperture"
@@ -42,8 +42,16 @@ pub fn located(desc: &LensDesc, e: &LensError) -> LoadError {
             },
         ),
         LensError::Crossing { surface, .. } => (*surface, "thickness"),
+        LensError::NoImage { .. } => (desc.surfaces.len(), "thickness"),
         LensError::FilmBehindNothing { .. } => (desc.surfaces.len(), "thickness"),
-        LensError::Opaque { .. } => (1, ""),
+        // the stop is the likeliest culprit
+        LensError::Opaque { .. } => (
+            desc.surfaces
+                .iter()
+                .position(|s| s.radius.get::<millimeter>() == 0.0)
+                .map_or(1, |i| i + 1),
+            "aperture",
+        ),
     };
     let loc = desc
         .surfaces
@@ -53,29 +61,38 @@ pub fn located(desc: &LensDesc, e: &LensError) -> LoadError {
     LoadError::new(&desc.path, loc, field, e.to_string())
 }
 
-/// The lens system of `desc`, stopped down to `aperture` and focused as `focus` says.
+/// The lens system of `desc`, stopped down to `aperture` and focused as `focus` says. A
+/// focus distance with no real image is `Ok(Err(message))`, for the caller to locate in the
+/// scene that asks for it.
 pub fn focused_lens(
     desc: &LensDesc,
     aperture: Option<Length>,
     focus: &LensFocus,
-) -> Result<LensSystem, LoadError> {
-    let mm = |l| plain::metres(l) as f64 * 1e3;
+) -> Result<Result<LensSystem, String>, LoadError> {
+    let mm = |l: Length| l.get::<millimeter>();
     let mut sys = lens_system(desc)?;
     if let Some(a) = aperture {
-        sys = sys.with_stop_diameter(mm(a)).map_err(|e| located(desc, &e))?;
+        sys = sys
+            .with_stop_diameter(mm(a))
+            .map_err(|e| located(desc, &e))?;
     }
     let d_line = crate::spectrum::ior::FRAUNHOFER_D_NM as f64;
     match focus {
         LensFocus::AsWritten => {}
         LensFocus::FilmDistance(d) => {
-            sys = sys.with_film_distance(mm(*d)).map_err(|e| located(desc, &e))?;
+            sys = sys
+                .with_film_distance(mm(*d))
+                .map_err(|e| located(desc, &e))?;
         }
         LensFocus::Distance(d) => {
-            let film = sys
-                .focus_film_distance(mm(*d), d_line)
+            let film = match sys.focus_film_distance(mm(*d), d_line) {
+                Ok(f) => f,
+                Err(e) => return Ok(Err(e.to_string())),
+            };
+            sys = sys
+                .with_film_distance(film)
                 .map_err(|e| located(desc, &e))?;
-            sys = sys.with_film_distance(film).map_err(|e| located(desc, &e))?;
         }
     }
-    Ok(sys)
+    Ok(Ok(sys))
 }

@@ -97,7 +97,35 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         .map(|(l, &p)| l.bounds(&shape_list, p as f32))
         .collect();
     let light_tree = crate::light::LightTree::build(&light_bounds, &light_power);
-    let camera = camera(desc).map_err(|e| err(desc.camera.loc, "camera".into(), e))?;
+    let camera = match &desc.camera.kind {
+        // a lens's errors are located in its own file
+        CameraKind::Realistic {
+            lens,
+            film_diagonal,
+            aperture_diameter,
+            focus,
+        } => {
+            let sys = lens::focused_lens(lens, *aperture_diameter, focus)?
+                .map_err(|e| err(desc.camera.loc, "camera.focus_distance".into(), e))?;
+            let up = Vec3::new(
+                desc.camera.up[0] as f32,
+                desc.camera.up[1] as f32,
+                desc.camera.up[2] as f32,
+            );
+            let to_world = Transform::look_at(v3(&desc.camera.eye), v3(&desc.camera.target), up)
+                .map_err(|e| err(desc.camera.loc, "camera".into(), e.to_string()))?;
+            let (w, h) = (desc.film.width, desc.film.height);
+            Camera::realistic(to_world, sys, plain::metres(*film_diagonal), w, h).map_err(|e| {
+                match e {
+                    crate::geometry::RealisticError::Lens(e) => lens::located(lens, &e),
+                    crate::geometry::RealisticError::Geometry(e) => {
+                        err(desc.camera.loc, "camera".into(), e.to_string())
+                    }
+                }
+            })?
+        }
+        _ => camera(desc).map_err(|e| err(desc.camera.loc, "camera".into(), e))?,
+    };
     let (media, medium_interfaces) = media::scene_media(desc, range, surfaces.len())?;
     let polarised =
         desc.integrator.polarised || materials.iter().any(crate::material::Material::polarises);
@@ -294,16 +322,8 @@ fn camera(desc: &SceneDesc) -> Result<Camera, String> {
         CameraKind::Orthographic { view_width } => {
             Camera::orthographic(to_world, plain::metres(*view_width), w, h)
         }
-        CameraKind::Realistic {
-            lens,
-            film_diagonal,
-            aperture_diameter,
-            focus,
-        } => {
-            let sys = lens::focused_lens(lens, *aperture_diameter, focus).map_err(|e| e.to_string())?;
-            return Camera::realistic(to_world, sys, plain::metres(*film_diagonal), w, h)
-                .map_err(|e| format!("{}: {e}", lens.path.display()));
-        }
+        // built in `build`, where its lens file's errors are located
+        CameraKind::Realistic { .. } => return Err("a realistic camera needs its lens file".into()),
     };
     r.map_err(|e| e.to_string())
 }

@@ -12,7 +12,11 @@ pub struct LensArgs {
     /// line, mm, object side first).
     pub file: std::path::PathBuf,
     /// Wavelengths, nm, comma-separated (default: the F, d and C lines).
-    #[arg(long, value_delimiter = ',', default_value = "486.1327,587.5618,656.2725")]
+    #[arg(
+        long,
+        value_delimiter = ',',
+        default_value = "486.1327,587.5618,656.2725"
+    )]
     pub wavelengths: Vec<f64>,
     /// Also trace a real axial bundle (an object at infinity) and print its RMS spot radius, µm,
     /// on the paraxial focal plane of each wavelength.
@@ -30,8 +34,14 @@ const SPOT_GRID: usize = 201;
 pub fn run(args: LensArgs) -> Result<(), CliError> {
     let desc = crate::loader::lens::read(&args.file)?;
     let sys = crate::build::lens_system(&desc)?;
-    if let Some(l) = args.wavelengths.iter().find(|l| !(l.is_finite() && **l > 0.0)) {
-        return Err(CliError::Usage(format!("wavelength {l} nm must be positive")));
+    if let Some(l) = args
+        .wavelengths
+        .iter()
+        .find(|l| !(l.is_finite() && **l > 0.0))
+    {
+        return Err(CliError::Usage(format!(
+            "wavelength {l} nm must be positive"
+        )));
     }
     print!("{}", table(&sys, &args.wavelengths, args.spot));
     if let Some(path) = &args.plot {
@@ -62,7 +72,9 @@ pub fn table(sys: &LensSystem, wavelengths: &[f64], spot: bool) -> String {
 }
 
 fn plot(sys: &LensSystem, path: &std::path::Path) -> Result<(), CliError> {
-    let d = sys.paraxial(crate::spectrum::ior::FRAUNHOFER_D_NM as f64).bfl;
+    let d = sys
+        .paraxial(crate::spectrum::ior::FRAUNHOFER_D_NM as f64)
+        .bfl;
     let points = (400..=700)
         .map(|l| (l as f64, sys.paraxial(l as f64).bfl - d))
         .collect();

@@ -288,7 +288,10 @@ impl Camera {
                 .map(|(r, _)| r)
                 .unwrap_or_else(|| {
                     let xy = c.film.plane(raster);
-                    Ray::new(c.to_world.point(Vec3::ZERO), c.to_world.vector(xy.extend(1.0)))
+                    Ray::new(
+                        c.to_world.point(Vec3::ZERO),
+                        c.to_world.vector(xy.extend(1.0)),
+                    )
                 }),
         }
     }

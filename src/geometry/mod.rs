@@ -21,7 +21,7 @@ pub mod transform;
 mod wide;
 
 pub use accel::Accel;
-pub use camera::{Camera, FovAxis};
+pub use camera::{Camera, FovAxis, Realistic, RealisticError};
 pub use error::GeometryError;
 pub use frame::Frame;
 pub use instance::{Group, Instance};

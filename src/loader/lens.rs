@@ -50,7 +50,12 @@ pub struct LensSurfaceDesc {
 /// Reads a lens file (at most 1 MiB: a prescription has tens of lines).
 pub fn read(path: &Path) -> Result<LensDesc, LoadError> {
     let text = crate::files::read_text(path, 1 << 20).map_err(|e| {
-        LoadError::new(path, Loc::default(), "", format!("cannot read lens file: {e}"))
+        LoadError::new(
+            path,
+            Loc::default(),
+            "",
+            format!("cannot read lens file: {e}"),
+        )
     })?;
     parse(&text, path)
 }
@@ -87,9 +92,9 @@ pub fn parse(text: &str, path: &Path) -> Result<LensDesc, LoadError> {
             let v = match t.to_ascii_lowercase().as_str() {
                 "inf" | "infinity" | "+inf" => f64::INFINITY,
                 "-inf" | "-infinity" => f64::NEG_INFINITY,
-                _ => t.parse::<f64>().map_err(|_| {
-                    err(k, field, format!("\"{t}\" is not a number (mm)"))
-                })?,
+                _ => t
+                    .parse::<f64>()
+                    .map_err(|_| err(k, field, format!("\"{t}\" is not a number (mm)")))?,
             };
             if v.is_nan() {
                 return Err(err(k, field, "NaN is not a length".into()));
@@ -99,11 +104,19 @@ pub fn parse(text: &str, path: &Path) -> Result<LensDesc, LoadError> {
         let radius = number(0, "radius")?;
         let thickness = number(1, "thickness")?;
         if !(thickness.is_finite() && thickness >= 0.0) {
-            return Err(err(1, "thickness", format!("expected a finite length ≥ 0 mm, found {thickness}")));
+            return Err(err(
+                1,
+                "thickness",
+                format!("expected a finite length ≥ 0 mm, found {thickness}"),
+            ));
         }
         let aperture = number(3, "aperture")?;
         if !(aperture.is_finite() && aperture > 0.0) {
-            return Err(err(3, "aperture", format!("expected a positive diameter in mm, found {aperture}")));
+            return Err(err(
+                3,
+                "aperture",
+                format!("expected a positive diameter in mm, found {aperture}"),
+            ));
         }
         let medium = medium(tokens[2].1).map_err(|m| err(2, "index", m))?;
         surfaces.push(LensSurfaceDesc {

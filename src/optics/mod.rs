@@ -108,7 +108,15 @@ pub enum LensError {
         "the film is not behind the lens: the last surface's distance to the film is {value} mm"
     )]
     FilmBehindNothing { value: f64 },
-    #[error("no ray from the film reaches the scene through this lens at {lambda_nm} nm")]
+    #[error(
+        "no real image forms of a point {focus} mm in front of the film: it lies within the \
+         lens's front focal distance"
+    )]
+    NoImage { focus: f64 },
+    #[error(
+        "no ray from the centre of the film gets through this lens at {lambda_nm:.2} nm (its stop \
+         or clear apertures are too small, or light cannot cross it)"
+    )]
     Opaque { lambda_nm: f64 },
 }
 

@@ -28,7 +28,10 @@ impl LensSystem {
     fn ynu(&self, lambda_nm: f64, mut y: f64, mut u: f64) -> (f64, f64) {
         let s = self.surfaces();
         for i in 0..s.len() {
-            let (n, n2) = (self.index_before(i, lambda_nm), self.index_after(i, lambda_nm));
+            let (n, n2) = (
+                self.index_before(i, lambda_nm),
+                self.index_after(i, lambda_nm),
+            );
             let phi = (n2 - n) * s[i].curvature();
             u = (n * u - y * phi) / n2;
             if i + 1 < s.len() {
@@ -71,12 +74,7 @@ impl LensSystem {
             let next = (object > 0.0)
                 .then(|| self.image_distance(object, lambda_nm))
                 .flatten()
-                .ok_or(LensError::Value {
-                    surface: self.surfaces().len(),
-                    what: "the focus distance (no real image forms for it)",
-                    bound: "beyond the front focal point",
-                    value: focus,
-                })?;
+                .ok_or(LensError::NoImage { focus })?;
             if (next - d).abs() < 1e-12 * d.abs().max(1.0) {
                 return Ok(next);
             }

@@ -61,9 +61,9 @@ impl ExitPupil {
                     let x = r0 + (r1 - r0) * j as f64 / 2.0;
                     for (gx, gy) in grid(GRID) {
                         let p = DVec2::new(-half + gx * 2.0 * half, -half + gy * 2.0 * half);
-                        let through = BOUND_WAVELENGTHS.iter().any(|&l| {
-                            trace_to(sys, DVec2::new(x, 0.0), p, rear_z, l).is_some()
-                        });
+                        let through = BOUND_WAVELENGTHS
+                            .iter()
+                            .any(|&l| trace_to(sys, DVec2::new(x, 0.0), p, rear_z, l).is_some());
                         if through {
                             bb = Some(bb.map_or((p, p), |(lo, hi)| (lo.min(p), hi.max(p))));
                         }

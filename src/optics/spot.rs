@@ -34,8 +34,11 @@ impl LensSystem {
                 continue;
             }
             let o = (u * front.semi_aperture).extend(z0);
-            let Some(r) = self.trace(LensRay { o, d: DVec3::NEG_Z }, lambda_nm, Direction::FromObject)
-            else {
+            let Some(r) = self.trace(
+                LensRay { o, d: DVec3::NEG_Z },
+                lambda_nm,
+                Direction::FromObject,
+            ) else {
                 continue;
             };
             if r.d.z >= 0.0 {

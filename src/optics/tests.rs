@@ -21,7 +21,13 @@ fn sag_of_a_sphere_and_a_plane() {
 
 #[test]
 fn a_system_needs_one_stop_and_no_crossings() {
-    let ok = || vec![s(50.0, 5.0, 1.5, 20.0), s(0.0, 1.0, 1.0, 10.0), s(-50.0, 40.0, 1.0, 20.0)];
+    let ok = || {
+        vec![
+            s(50.0, 5.0, 1.5, 20.0),
+            s(0.0, 1.0, 1.0, 10.0),
+            s(-50.0, 40.0, 1.0, 20.0),
+        ]
+    };
     assert!(LensSystem::new(ok()).is_ok());
     let mut two = ok();
     two[2].radius = 0.0;
@@ -33,7 +39,10 @@ fn a_system_needs_one_stop_and_no_crossings() {
         })
     ));
     let none = vec![s(50.0, 5.0, 1.5, 20.0), s(-50.0, 40.0, 1.0, 20.0)];
-    assert!(matches!(LensSystem::new(none), Err(LensError::NoStop { .. })));
+    assert!(matches!(
+        LensSystem::new(none),
+        Err(LensError::NoStop { .. })
+    ));
     let mut big = ok();
     big[0].semi_aperture = 60.0;
     assert!(matches!(
@@ -42,7 +51,11 @@ fn a_system_needs_one_stop_and_no_crossings() {
     ));
     // a biconvex lens 1 mm thick at the centre and 20 mm across: its surfaces (sag 1.0 each at
     // h = 10 for R = 50) cross
-    let thin = vec![s(50.0, 1.0, 1.5, 20.0), s(-50.0, 1.0, 1.0, 20.0), s(0.0, 30.0, 1.0, 5.0)];
+    let thin = vec![
+        s(50.0, 1.0, 1.5, 20.0),
+        s(-50.0, 1.0, 1.0, 20.0),
+        s(0.0, 30.0, 1.0, 5.0),
+    ];
     assert!(matches!(
         LensSystem::new(thin),
         Err(LensError::Crossing {
@@ -74,7 +87,12 @@ fn paraxial_singlet_is_the_thick_lens_formula() {
     let p = sys.paraxial(550.0);
     assert!((p.efl - f).abs() < 1e-9 * f, "{} vs {f}", p.efl);
     // the stop lies 2 mm behind the lens: the BFL from the last vertex (the stop) is 2 less
-    assert!((p.bfl - (bfl - 2.0)).abs() < 1e-9 * f, "{} vs {}", p.bfl, bfl - 2.0);
+    assert!(
+        (p.bfl - (bfl - 2.0)).abs() < 1e-9 * f,
+        "{} vs {}",
+        p.bfl,
+        bfl - 2.0
+    );
 }
 
 #[test]
@@ -101,5 +119,9 @@ fn real_rays_near_the_axis_focus_at_the_paraxial_focus() {
     let t = -r.o.y / r.d.y;
     let z_cross = r.o.z + t * r.d.z;
     let bfl_real = sys.vertex_z(2) - z_cross;
-    assert!((bfl_real - p.bfl).abs() < 1e-5 * p.bfl, "{bfl_real} vs {}", p.bfl);
+    assert!(
+        (bfl_real - p.bfl).abs() < 1e-5 * p.bfl,
+        "{bfl_real} vs {}",
+        p.bfl
+    );
 }

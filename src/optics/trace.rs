@@ -37,8 +37,14 @@ impl LensSystem {
                 Direction::FromObject => k,
             };
             let (n1, n2) = match dir {
-                Direction::FromFilm => (self.index_after(i, lambda_nm), self.index_before(i, lambda_nm)),
-                Direction::FromObject => (self.index_before(i, lambda_nm), self.index_after(i, lambda_nm)),
+                Direction::FromFilm => (
+                    self.index_after(i, lambda_nm),
+                    self.index_before(i, lambda_nm),
+                ),
+                Direction::FromObject => (
+                    self.index_before(i, lambda_nm),
+                    self.index_after(i, lambda_nm),
+                ),
             };
             ray = self.cross(i, ray, n1, n2)?;
         }
@@ -67,7 +73,11 @@ impl LensSystem {
         if s.is_stop() {
             return Some(LensRay { o: p, d: ray.d });
         }
-        let nf = if normal.dot(ray.d) > 0.0 { -normal } else { normal };
+        let nf = if normal.dot(ray.d) > 0.0 {
+            -normal
+        } else {
+            normal
+        };
         let d = refract(ray.d, nf, n1 / n2)?;
         Some(LensRay { o: p, d })
     }

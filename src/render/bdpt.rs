@@ -176,7 +176,7 @@ fn trace_tile(
         for x in x0..x0 + tw {
             for i in a..b {
                 let (mut s, wl, ray, _) =
- camera_sample(it.scene, ctx.lambda, filter, opts.seed, x, y, i);
+                    camera_sample(it.scene, ctx.lambda, filter, opts.seed, x, y, i);
                 let mut sl = Sampler::new(opts.seed ^ LIGHT_SEED, x, y, i);
                 let l = sample(
                     it,

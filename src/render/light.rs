@@ -172,7 +172,7 @@ fn infinite_lights_pass(
                     for i in first..end {
                         let seed = opts.seed ^ 0x534b_5900;
                         let (_, wl, ray, _) =
- camera_sample(scene, ctx.lambda, &filter, seed, x, y, i);
+                            camera_sample(scene, ctx.lambda, &filter, seed, x, y, i);
                         let l = crate::integrator::light::escaped(integrator, &ray, &wl);
                         if !tile.splat_scaled(x, y, &wl, &l, bins.as_ref(), scale) {
                             count_dropped(&wl, &l, nan, inf);

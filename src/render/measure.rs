@@ -171,7 +171,7 @@ pub fn illuminance_image(
                     let mut sum = 0.0f64;
                     for i in 0..spp {
                         let (mut s, mut wl, ray, _) =
- super::camera_sample(scene, &lambda, &filter, opts.seed, x, y, i);
+                            super::camera_sample(scene, &lambda, &filter, opts.seed, x, y, i);
                         let Some(hit) = scene.accel.intersect(&scene.shapes, &ray) else {
                             continue;
                         };

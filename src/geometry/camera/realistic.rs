@@ -78,9 +78,12 @@ impl Realistic {
         // the pinhole-equivalent plane point, turned over: the lens inverts the image
         let xy = -self.film.plane(raster);
         let film = DVec2::new(xy.x as f64, xy.y as f64) * 1e3;
-        let (r, w) =
-            self.pupil
-                .camera_ray(&self.lens, film, DVec2::new(u.x as f64, u.y as f64), lambda_nm as f64)?;
+        let (r, w) = self.pupil.camera_ray(
+            &self.lens,
+            film,
+            DVec2::new(u.x as f64, u.y as f64),
+            lambda_nm as f64,
+        )?;
         let o = Vec3::new(r.o.x as f32, r.o.y as f32, r.o.z as f32) * 1e-3;
         let d = Vec3::new(r.d.x as f32, r.d.y as f32, r.d.z as f32);
         let ray = Ray::new(self.to_world.point(o), self.to_world.vector(d));
