@@ -24,10 +24,7 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
             exterior_ior,
             roughness: None,
             ..
-        } => Material::Dielectric(Dielectric {
-            int_ior: ior.clone(),
-            ext_ior: *exterior_ior as f32,
-        }),
+        } => Material::Dielectric(Dielectric::new(ior.clone(), *exterior_ior as f32)),
         MaterialKind::Dielectric {
             ior,
             exterior_ior,
@@ -43,10 +40,7 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
             exterior_ior,
             roughness: None,
             ..
-        } => Material::Conductor(Conductor {
-            ior: ior.clone(),
-            ext_ior: *exterior_ior as f32,
-        }),
+        } => Material::Conductor(Conductor::new(ior.clone(), *exterior_ior as f32)),
         MaterialKind::Conductor {
             ior,
             exterior_ior,
@@ -58,6 +52,14 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
                 .with_distribution(*distribution),
         ),
         MaterialKind::Null => Material::Null,
+        MaterialKind::Coated { layers, inner } => coated(layers, inner)?,
+        MaterialKind::ThinFilm {
+            layers,
+            exterior_ior,
+        } => Material::ThinFilm(Box::new(crate::material::ThinFilm {
+            layers: coating(layers),
+            ext_ior: *exterior_ior as f32,
+        })),
         MaterialKind::Polariser {
             angle,
             transmittance,
@@ -285,4 +287,43 @@ fn measured(k: &MaterialKind) -> Material {
         sampling: crate::material::microfacet::Ggx::new(*alpha_sample as f32),
         wavelength: wavelength.map(|l| l as f32),
     }))
+}
+
+/// The render-side coating of `layers` (thicknesses in nm).
+fn coating(layers: &[crate::loader::desc::CoatingLayerDesc]) -> crate::optics::thin_film::Coating {
+    crate::optics::thin_film::Coating {
+        layers: layers
+            .iter()
+            .map(|l| crate::optics::thin_film::Layer {
+                index: l.medium.clone(),
+                thickness_nm: l.thickness.get::<crate::units::length::nanometer>(),
+            })
+            .collect(),
+    }
+}
+
+/// `inner` under the thin-film `layers`: a smooth dielectric or a conductor (smooth or rough).
+fn coated(
+    layers: &[crate::loader::desc::CoatingLayerDesc],
+    inner: &MaterialKind,
+) -> Result<Material, String> {
+    let c = Some(Box::new(coating(layers)));
+    Ok(match material(inner)? {
+        Material::Dielectric(mut d) => {
+            d.coating = c;
+            Material::Dielectric(d)
+        }
+        Material::Conductor(mut m) => {
+            m.coating = c;
+            Material::Conductor(m)
+        }
+        Material::RoughConductor(m) => Material::RoughConductor(m.with_coating(c)),
+        _ => {
+            return Err(
+                "a coating goes on a smooth dielectric or a conductor (smooth or rough); rough \
+                 dielectrics and textured lobes do not take one yet"
+                    .into(),
+            );
+        }
+    })
 }

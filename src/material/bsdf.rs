@@ -52,7 +52,8 @@ impl<const N: usize> Bsdf<'_, N> {
             | Material::Conductor(_)
             | Material::Null
             | Material::Element(_)
-            | Material::ThinDielectric { .. } => SampledSpectrum::zero(),
+            | Material::ThinDielectric { .. }
+            | Material::ThinFilm(_) => SampledSpectrum::zero(),
             Material::RoughDielectric(m) => m.eval(wo, wi, w, mode),
             Material::RoughConductor(m) => m.eval(wo, wi, w),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).0,
@@ -78,7 +79,8 @@ impl<const N: usize> Bsdf<'_, N> {
             | Material::Conductor(_)
             | Material::Null
             | Material::Element(_)
-            | Material::ThinDielectric { .. } => 0.0,
+            | Material::ThinDielectric { .. }
+            | Material::ThinFilm(_) => 0.0,
             Material::RoughDielectric(m) => m.pdf(wo, wi, w),
             Material::RoughConductor(m) => m.pdf(wo, wi),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo).1,
@@ -111,7 +113,8 @@ impl<const N: usize> Bsdf<'_, N> {
             | Material::Conductor(_)
             | Material::Null
             | Material::Element(_)
-            | Material::ThinDielectric { .. } => (SampledSpectrum::zero(), 0.0),
+            | Material::ThinDielectric { .. }
+            | Material::ThinFilm(_) => (SampledSpectrum::zero(), 0.0),
             Material::RoughDielectric(m) => m.eval_pdf(wo, wi, w, mode),
             Material::RoughConductor(m) => m.eval_pdf(wo, wi, w),
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo),
@@ -150,6 +153,7 @@ impl<const N: usize> Bsdf<'_, N> {
             Material::Plastic(m) => m.sample(wo, self.albedo, uc, u),
             Material::PPlastic(m) => m.sample(wo, self.albedo, uc, u),
             Material::MeasuredPolarized(m) => m.sample(wo, uc, u, w, mode),
+            Material::ThinFilm(m) => m.sample(wo, w, uc),
             Material::ThinDielectric { eta } => {
                 let c = wo.z.abs();
                 if c == 0.0 {

@@ -6,6 +6,7 @@ use glam::{Vec2, Vec3};
 use super::BsdfSample;
 use super::fresnel::{fresnel_conductor, reflect};
 use super::microfacet::{Distribution, Microfacet};
+use crate::optics::thin_film::Coating;
 use crate::spectrum::ior::ComplexIor;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
@@ -15,9 +16,15 @@ use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 fn conductor_reflectance<const N: usize>(
     ior: &ComplexIor,
     ext: f32,
+    coating: Option<&Coating>,
     cos_theta_i: f32,
     w: &SampledWavelengths<N>,
 ) -> SampledSpectrum<N> {
+    if let Some(c) = coating {
+        return SampledSpectrum(w.lambda.map(|l| {
+            super::coated::on_conductor(c, ext, ior, cos_theta_i, l).r_unpolarised() as f32
+        }));
+    }
     SampledSpectrum(w.lambda.map(|l| {
         let (n, k) = ior.eval(l);
         fresnel_conductor(cos_theta_i, n / ext, k / ext)
@@ -33,11 +40,17 @@ pub struct Conductor {
     pub ior: ComplexIor,
     /// Index of the outside medium.
     pub ext_ior: f32,
+    /// Thin-film layers on the metal (`coated.rs`): R(λ) of the stack replaces F.
+    pub coating: Option<Box<Coating>>,
 }
 
 impl Conductor {
     pub fn new(ior: ComplexIor, ext_ior: f32) -> Self {
-        Self { ior, ext_ior }
+        Self {
+            ior,
+            ext_ior,
+            coating: None,
+        }
     }
 
     #[inline]
@@ -50,7 +63,8 @@ impl Conductor {
             return None;
         }
         let wi = Vec3::new(-wo.x, -wo.y, wo.z);
-        let f = conductor_reflectance(&self.ior, self.ext_ior, wo.z, w) / wi.z;
+        let f =
+            conductor_reflectance(&self.ior, self.ext_ior, self.coating.as_deref(), wo.z, w) / wi.z;
         Some(BsdfSample {
             f,
             wi,
@@ -82,6 +96,8 @@ pub struct RoughConductor {
     pub alpha_u: f32,
     pub alpha_v: f32,
     pub distribution: Distribution,
+    /// Thin-film layers on the metal: R(λ) of the stack at the microfacet's cosine replaces F.
+    pub coating: Option<Box<Coating>>,
 }
 
 impl RoughConductor {
@@ -93,7 +109,13 @@ impl RoughConductor {
             alpha_u: alpha,
             alpha_v: alpha,
             distribution: Distribution::Ggx,
+            coating: None,
         }
+    }
+
+    /// The same surface under thin-film layers.
+    pub fn with_coating(self, coating: Option<Box<Coating>>) -> Self {
+        Self { coating, ..self }
     }
 
     /// The same surface with roughness `alpha_u` along the first tangent, `alpha_v` along the
@@ -155,7 +177,7 @@ impl RoughConductor {
         let k = mf.d(wm) * mf.g(wo, wi) / (4.0 * wo.z * wi.z);
         // wo·wm = wi·wm; their mean keeps the rounding symmetric (exact reciprocity).
         let cos = 0.5 * (wo.dot(wm) + wi.dot(wm));
-        conductor_reflectance(&self.ior, self.ext_ior, cos, w) * k
+        conductor_reflectance(&self.ior, self.ext_ior, self.coating.as_deref(), cos, w) * k
     }
 
     #[inline]

@@ -29,11 +29,18 @@ pub struct Dielectric {
     pub int_ior: Ior,
     /// Index of the outside (+z side), e.g. 1.0 for vacuum, 1.000277 for air.
     pub ext_ior: f32,
+    /// Thin-film layers on the outside face (`coated.rs`): they replace F and 1 − F by the
+    /// stack's R(λ) and T(λ); the directions stay the bare interface's.
+    pub coating: Option<Box<crate::optics::thin_film::Coating>>,
 }
 
 impl Dielectric {
     pub fn new(int_ior: Ior, ext_ior: f32) -> Self {
-        Self { int_ior, ext_ior }
+        Self {
+            int_ior,
+            ext_ior,
+            coating: None,
+        }
     }
 
     /// Relative index η(λ) = n_int(λ)/n_ext.
@@ -52,6 +59,17 @@ impl Dielectric {
     ) -> Option<BsdfSample<N>> {
         if wo.z == 0.0 {
             return None;
+        }
+        if let Some(c) = &self.coating {
+            return super::coated::dielectric_sample(
+                c,
+                self.ext_ior,
+                &self.int_ior,
+                wo,
+                w,
+                uc,
+                mode,
+            );
         }
         let etas = w.lambda.map(|l| self.eta(l));
         let fr = etas.map(|e| fresnel_dielectric(wo.z, e));

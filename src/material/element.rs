@@ -116,6 +116,7 @@ impl super::Material {
             | M::RoughConductor(_)
             | M::Plastic(_)
             | M::ThinDielectric { .. }
+            | M::ThinFilm(_)
             | M::Null => false,
         }
     }

@@ -34,6 +34,7 @@
 
 mod blend;
 mod bsdf;
+pub mod coated;
 mod conductor;
 mod dielectric;
 mod element;
@@ -56,6 +57,7 @@ mod textured;
 pub use blend::Blend;
 pub use bsdf::Bsdf;
 use bsdf::UNPERTURBED;
+pub use coated::ThinFilm;
 pub use conductor::{Conductor, RoughConductor};
 pub use dielectric::Dielectric;
 pub use element::Element;
@@ -142,6 +144,8 @@ pub enum Material {
     ThinDielectric {
         eta: f32,
     },
+    /// A free-standing coherent film (a soap bubble's wall; see [`ThinFilm`]).
+    ThinFilm(Box<ThinFilm>),
     /// Mitsuba's `null`: no surface for light, which passes straight through (a delta
     /// transmission of weight 1 that still counts as a scattering event, as in Mitsuba).
     Null,
@@ -229,6 +233,7 @@ impl Material {
             | Material::Conductor(_)
             | Material::RoughConductor(_)
             | Material::ThinDielectric { .. }
+            | Material::ThinFilm(_)
             | Material::Element(_)
             | Material::MeasuredPolarized(_)
             | Material::Null => SampledSpectrum::zero(),
@@ -308,6 +313,7 @@ impl Material {
             | Material::Conductor(_)
             | Material::Null
             | Material::Element(_)
+            | Material::ThinFilm(_)
             | Material::ThinDielectric { .. } => true,
             Material::Diffuse(_)
             | Material::Phong(_)
@@ -326,6 +332,7 @@ impl Material {
     pub fn is_dispersive(&self) -> bool {
         match self {
             Material::Dielectric(m) => m.int_ior.is_dispersive(),
+            Material::ThinFilm(_) => false,
             Material::RoughDielectric(m) => m.int_ior.is_dispersive(),
             Material::Mask(m) => m.inner.is_dispersive(),
             Material::NormalMap(m) => m.inner.is_dispersive(),

@@ -29,7 +29,7 @@
 use glam::Vec3;
 
 use super::plastic::g1;
-use super::{Bsdf, Material, UNPERTURBED};
+use super::{Bsdf, Material, UNPERTURBED, coated};
 use crate::geometry::Frame;
 use crate::polarisation::{Complex, Mueller, fresnel, rotate_stokes_basis, stokes_basis};
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
@@ -113,8 +113,31 @@ fn of<const N: usize>(
             let m = fresnel::reflection(c, Complex::new(e, 0.0));
             interface(frame, Vec3::Z, wo, wi, |_| m, false).with(w)
         }
+        Material::ThinFilm(f) => {
+            let reflect = wi.z * wo.z > 0.0;
+            let m = |l: f32| {
+                let r = coated::film(&f.layers, f.ext_ior, wi.z, l);
+                if reflect {
+                    coated::reflection_mueller(&r)
+                } else {
+                    coated::transmission_mueller(&r)
+                }
+            };
+            interface(frame, Vec3::Z, wo, wi, m, false).with(w)
+        }
         Material::Dielectric(d) => {
             let reflect = wi.z * wo.z > 0.0;
+            if let Some(c) = &d.coating {
+                let m = |l: f32| {
+                    let r = coated::on_dielectric(c, d.ext_ior, &d.int_ior, wi.z, l);
+                    if reflect {
+                        coated::reflection_mueller(&r)
+                    } else {
+                        coated::transmission_mueller(&r)
+                    }
+                };
+                return interface(frame, Vec3::Z, wo, wi, m, d.int_ior.is_dispersive()).with(w);
+            }
             let dispersive = d.int_ior.is_dispersive();
             interface(
                 frame,
@@ -157,15 +180,13 @@ fn of<const N: usize>(
         Material::Conductor(c) => {
             let eta = |l: f32| conductor_eta(&c.ior, c.ext_ior, l);
             let cos = wi.z;
-            interface(
-                frame,
-                Vec3::Z,
-                wo,
-                wi,
-                |l| fresnel::reflection(cos, eta(l)),
-                false,
-            )
-            .with(w)
+            let m = |l: f32| match &c.coating {
+                Some(k) => {
+                    coated::reflection_mueller(&coated::on_conductor(k, c.ext_ior, &c.ior, cos, l))
+                }
+                None => fresnel::reflection(cos, eta(l)),
+            };
+            interface(frame, Vec3::Z, wo, wi, m, false).with(w)
         }
         Material::RoughConductor(c) => {
             let eta = |l: f32| conductor_eta(&c.ior, c.ext_ior, l);
@@ -173,15 +194,13 @@ fn of<const N: usize>(
                 return Polarising::Depolarise;
             };
             let cos = wi.dot(h);
-            interface(
-                frame,
-                h,
-                wo,
-                wi,
-                |l| fresnel::reflection(cos, eta(l)),
-                false,
-            )
-            .with(w)
+            let m = |l: f32| match &c.coating {
+                Some(k) => {
+                    coated::reflection_mueller(&coated::on_conductor(k, c.ext_ior, &c.ior, cos, l))
+                }
+                None => fresnel::reflection(cos, eta(l)),
+            };
+            interface(frame, h, wo, wi, m, false).with(w)
         }
         Material::Element(e) => {
             let (m, basis) = e.mueller(wo);

@@ -28,6 +28,7 @@ impl Material {
             | Material::Plastic(_)
             | Material::MeasuredPolarized(_)
             | Material::ThinDielectric { .. }
+            | Material::ThinFilm(_)
             | Material::Null => false,
         }
     }
@@ -49,6 +50,7 @@ impl Material {
             | Material::PPlastic(_)
             | Material::MeasuredPolarized(_)
             | Material::ThinDielectric { .. }
+            | Material::ThinFilm(_)
             | Material::Null
             | Material::Element(_)
             | Material::Blend(_)
@@ -70,6 +72,7 @@ impl Material {
             | Material::RoughDielectric(_)
             | Material::Null
             | Material::Element(_)
+            | Material::ThinFilm(_)
             | Material::ThinDielectric { .. } => true,
             // a mask's pass-through does not distinguish the sides
             Material::Mask(_)

@@ -20,6 +20,7 @@ use crate::spectrum::ior::Ior;
 mod paraxial;
 mod pupil;
 mod spot;
+pub mod thin_film;
 mod trace;
 
 pub use paraxial::Paraxial;

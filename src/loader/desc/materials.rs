@@ -115,6 +115,24 @@ pub enum MaterialKind {
         alpha_sample: f64,
         wavelength: Option<f64>,
     },
+    /// A smooth dielectric or a conductor under thin-film layers (`coating = [...]`), the
+    /// layers listed from the outside in.
+    Coated {
+        layers: Vec<CoatingLayerDesc>,
+        inner: Box<MaterialKind>,
+    },
+    /// A free-standing coherent film in a medium of index `exterior_ior` (a soap bubble's wall).
+    ThinFilm {
+        layers: Vec<CoatingLayerDesc>,
+        exterior_ior: f64,
+    },
+}
+
+/// One thin-film layer: its material and thickness.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CoatingLayerDesc {
+    pub medium: crate::optics::thin_film::LayerIndex,
+    pub thickness: Length,
 }
 
 /// A pBSDF table as Mitsuba's `.pbsdf` files hold it: Mueller matrices of the BRDF (sr⁻¹, no

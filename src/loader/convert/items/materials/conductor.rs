@@ -13,6 +13,7 @@ pub(super) const KIND: Kind = Kind {
         "exterior_ior",
         "roughness",
         "specular_reflectance",
+        "coating",
     ],
     read,
 };
@@ -36,5 +37,6 @@ fn read(m: &Mat<'_>) -> R<MaterialKind> {
         roughness: m.roughness(true)?,
         distribution: Distribution::Ggx,
     };
-    lobes(m, kind)
+    let kind = lobes(m, kind)?;
+    coating::coated(m, kind)
 }

@@ -11,6 +11,7 @@ pub(super) const KIND: Kind = Kind {
         "roughness",
         "specular_reflectance",
         "specular_transmittance",
+        "coating",
     ],
     read,
 };
@@ -23,5 +24,6 @@ fn read(m: &Mat<'_>) -> R<MaterialKind> {
         roughness: m.roughness(true)?,
         distribution: Distribution::Ggx,
     };
-    lobes(m, kind)
+    let kind = lobes(m, kind)?;
+    coating::coated(m, kind)
 }

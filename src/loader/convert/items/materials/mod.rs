@@ -6,6 +6,7 @@
 //! and the keys it does take, so a misspelt key never passes silently.
 
 mod blend;
+mod coating;
 mod conductor;
 mod dielectric;
 mod diffuse;
@@ -48,6 +49,7 @@ const KINDS: &[Kind] = &[
     pplastic::KIND,
     measured::KIND,
     thin_dielectric::KIND,
+    coating::THIN_FILM,
     null::KIND,
     element::POLARISER,
     element::RETARDER,
