@@ -191,3 +191,76 @@ fn a_soap_film_reflects_most_where_its_optical_thickness_is_an_odd_quarter_wave(
     assert!((r(max_at) - r_max).abs() < 1e-9, "{} vs {r_max}", r(max_at));
     assert!(r(min_at) < 1e-12, "{}", r(min_at));
 }
+
+#[test]
+fn the_polarised_matrices_of_a_bare_stack_are_fresnel_s() {
+    use spectrace::material::coated::{
+        on_conductor, on_dielectric, reflection_mueller, transmission_mueller,
+    };
+    use spectrace::polarisation::{Complex, fresnel};
+    let empty = Coating {
+        layers: vec![layer(Ior::Constant(1.38), 0.0)],
+    };
+    let gold = match lookup("metal:Au") {
+        Ok(Named::Conductor(m)) => m.ior,
+        other => panic!("{other:?}"),
+    };
+    let close = |a: [[f32; 4]; 4], b: [[f32; 4]; 4], what: &str| {
+        for i in 0..4 {
+            for j in 0..4 {
+                assert!((a[i][j] - b[i][j]).abs() < 2e-5, "{what} [{i}][{j}]: {a:?} vs {b:?}");
+            }
+        }
+    };
+    for cos in [0.95f32, 0.7, 0.4, 0.1] {
+        // a conductor: reflectances and the retardance, with its sign
+        let (n, k) = gold.eval(550.0);
+        let coated = reflection_mueller(&on_conductor(&empty, 1.0, &gold, cos, 550.0)).0;
+        close(coated, fresnel::reflection(cos, Complex::new(n, k)).0, "gold");
+        // glass from outside: reflection and transmission
+        let glass = Ior::Constant(1.5);
+        let r = on_dielectric(&empty, 1.0, &glass, cos, 550.0);
+        close(reflection_mueller(&r).0, fresnel::reflection(cos, Complex::new(1.5, 0.0)).0, "glass R");
+        close(transmission_mueller(&r).0, fresnel::transmission(cos, 1.5).0, "glass T");
+        // from inside, past the critical angle at cos 0.4 and 0.1: total internal reflection
+        // with its retardance
+        let r = on_dielectric(&empty, 1.0, &glass, -cos, 550.0);
+        close(reflection_mueller(&r).0, fresnel::reflection(cos, Complex::new(1.0 / 1.5, 0.0)).0, "inside R");
+    }
+}
+
+#[test]
+fn a_layer_on_gold_has_the_airy_amplitudes_and_phases() {
+    // Born & Wolf's conventions (n + ik, e^{2iβ}), with the p sign of polarisation::fresnel:
+    // r_p = (n_t cos θᵢ − n_i cos θₜ)/(n_t cos θᵢ + n_i cos θₜ)
+    let gold = match lookup("metal:Au") {
+        Ok(Named::Conductor(m)) => m.ior,
+        other => panic!("{other:?}"),
+    };
+    let (n1, d) = (2.0f32, 80.0);
+    let c = Coating {
+        layers: vec![layer(Ior::Constant(n1), d)],
+    };
+    let n1 = C64::real(n1 as f64);
+    let one = C64::real(1.0);
+    for l in [450.0f32, 600.0] {
+        let (n, k) = gold.eval(l);
+        let n2 = C64::new(n as f64, k as f64);
+        for cos0 in [0.9f64, 0.5] {
+            let s2 = C64::real(1.0 - cos0 * cos0);
+            let cos_in = |m: C64| (one - s2 / (m * m)).sqrt();
+            let (c0, c1, c2) = (C64::real(cos0), cos_in(n1), cos_in(n2));
+            let rs = |na: C64, ca: C64, nb: C64, cb: C64| (na * ca - nb * cb) / (na * ca + nb * cb);
+            let rp = |na: C64, ca: C64, nb: C64, cb: C64| (nb * ca - na * cb) / (nb * ca + na * cb);
+            let beta = n1 * c1 * C64::real(2.0 * std::f64::consts::PI * d / l as f64);
+            let e = C64::new((2.0 * beta.re).cos(), (2.0 * beta.re).sin());
+            let airy = |a: C64, b: C64| (a + b * e) / (one + a * b * e);
+            let want_s = airy(rs(one, c0, n1, c1), rs(n1, c1, n2, c2));
+            let want_p = airy(rp(one, c0, n1, c1), rp(n1, c1, n2, c2));
+            let got = c.response(l as f64, 1.0, cos0, C64::new(n as f64, -(k as f64)), false);
+            for (g, w, what) in [(got.r.0, want_s, "s"), (got.r.1, want_p, "p")] {
+                assert!((g - w).norm2().sqrt() < 1e-6, "{what} {l} {cos0}: {g:?} vs {w:?}");
+            }
+        }
+    }
+}

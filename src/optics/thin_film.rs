@@ -132,8 +132,9 @@ pub struct Coating {
 /// What a stack does to light at one wavelength, incidence angle and side.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StackResponse {
-    /// Amplitude reflection coefficients (s, p), in the Fresnel convention of
-    /// [`crate::polarisation::fresnel`] (normal incidence on bare glass gives r_p = −r_s).
+    /// Amplitude reflection coefficients (s, p), in the conventions of
+    /// [`crate::polarisation::fresnel`] (n + ik; normal incidence on bare glass gives
+    /// r_p = −r_s).
     pub r: (C64, C64),
     /// Power reflectances (s, p).
     pub reflectance: (f64, f64),
@@ -207,11 +208,14 @@ impl Coating {
         };
         let (rs, r_s, t_s, ph_s) = solve(ms, eta0.0, eta_m.0);
         let (rp, r_p, t_p, ph_p) = solve(mp, eta0.1, eta_m.1);
+        // to the conventions of `polarisation::fresnel` (Born & Wolf's n + ik, time factor
+        // e^{−iωt}): Macleod's n − ik conjugates every amplitude, and his p amplitude has the
+        // opposite sign
         StackResponse {
-            r: (rs, -rp),
+            r: (rs.conj(), -rp.conj()),
             reflectance: (r_s, r_p),
             transmittance: (t_s, t_p),
-            transmission_phase: (ph_s, ph_p),
+            transmission_phase: (-ph_s, -ph_p),
         }
     }
 }
