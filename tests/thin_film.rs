@@ -208,7 +208,10 @@ fn the_polarised_matrices_of_a_bare_stack_are_fresnel_s() {
     let close = |a: [[f32; 4]; 4], b: [[f32; 4]; 4], what: &str| {
         for i in 0..4 {
             for j in 0..4 {
-                assert!((a[i][j] - b[i][j]).abs() < 2e-5, "{what} [{i}][{j}]: {a:?} vs {b:?}");
+                assert!(
+                    (a[i][j] - b[i][j]).abs() < 2e-5,
+                    "{what} [{i}][{j}]: {a:?} vs {b:?}"
+                );
             }
         }
     };
@@ -216,16 +219,32 @@ fn the_polarised_matrices_of_a_bare_stack_are_fresnel_s() {
         // a conductor: reflectances and the retardance, with its sign
         let (n, k) = gold.eval(550.0);
         let coated = reflection_mueller(&on_conductor(&empty, 1.0, &gold, cos, 550.0)).0;
-        close(coated, fresnel::reflection(cos, Complex::new(n, k)).0, "gold");
+        close(
+            coated,
+            fresnel::reflection(cos, Complex::new(n, k)).0,
+            "gold",
+        );
         // glass from outside: reflection and transmission
         let glass = Ior::Constant(1.5);
         let r = on_dielectric(&empty, 1.0, &glass, cos, 550.0);
-        close(reflection_mueller(&r).0, fresnel::reflection(cos, Complex::new(1.5, 0.0)).0, "glass R");
-        close(transmission_mueller(&r).0, fresnel::transmission(cos, 1.5).0, "glass T");
+        close(
+            reflection_mueller(&r).0,
+            fresnel::reflection(cos, Complex::new(1.5, 0.0)).0,
+            "glass R",
+        );
+        close(
+            transmission_mueller(&r).0,
+            fresnel::transmission(cos, 1.5).0,
+            "glass T",
+        );
         // from inside, past the critical angle at cos 0.4 and 0.1: total internal reflection
         // with its retardance
         let r = on_dielectric(&empty, 1.0, &glass, -cos, 550.0);
-        close(reflection_mueller(&r).0, fresnel::reflection(cos, Complex::new(1.0 / 1.5, 0.0)).0, "inside R");
+        close(
+            reflection_mueller(&r).0,
+            fresnel::reflection(cos, Complex::new(1.0 / 1.5, 0.0)).0,
+            "inside R",
+        );
     }
 }
 
@@ -259,7 +278,10 @@ fn a_layer_on_gold_has_the_airy_amplitudes_and_phases() {
             let want_p = airy(rp(one, c0, n1, c1), rp(n1, c1, n2, c2));
             let got = c.response(l as f64, 1.0, cos0, C64::new(n as f64, -(k as f64)), false);
             for (g, w, what) in [(got.r.0, want_s, "s"), (got.r.1, want_p, "p")] {
-                assert!((g - w).norm2().sqrt() < 1e-6, "{what} {l} {cos0}: {g:?} vs {w:?}");
+                assert!(
+                    (g - w).norm2().sqrt() < 1e-6,
+                    "{what} {l} {cos0}: {g:?} vs {w:?}"
+                );
             }
         }
     }

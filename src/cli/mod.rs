@@ -3,6 +3,7 @@
 mod checkpoint;
 mod farm;
 mod lens;
+mod material;
 mod measure;
 mod merge;
 mod probe;
@@ -46,6 +47,9 @@ pub enum Command {
     /// Print a lens file's paraxial effective and back focal lengths (mm) per wavelength as CSV,
     /// with `--spot` its real-ray RMS spot radius (µm), with `--plot` its focal shift.
     Lens(lens::LensArgs),
+    /// Print a material's directional-hemispherical reflectance and transmittance per
+    /// wavelength as CSV (exact for smooth materials, with standard errors otherwise).
+    Material(material::MaterialArgs),
 }
 
 /// An error for the user, printed after "error: ".
@@ -72,6 +76,7 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         Some(Command::Measure(args)) => measure::run(args),
         Some(Command::Probe(args)) => probe::run(args),
         Some(Command::Lens(args)) => lens::run(args),
+        Some(Command::Material(args)) => material::run(args),
         None => render::run_default(),
     }
 }

@@ -32,6 +32,7 @@
 //! All variants are plain data (`Spectrum`, `Ior`, `ComplexIor`, `f32`) in a closed enum; no call
 //! allocates.
 
+pub mod albedo;
 mod blend;
 mod bsdf;
 pub mod coated;
