@@ -19,3 +19,6 @@ render radiometry path 16
 render phong whitted 16
 render textures path 16
 render polarisation path 64
+render lens path 64
+render coatings path 256
+render bubbles path 128

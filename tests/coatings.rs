@@ -157,3 +157,40 @@ layers = [{ thickness = "380 nm", ior = "water" }]
     println!("soap film in a uniform field: {m:.5} ± {se:.5}");
     assert!((m - 1.0).abs() < 4.0 * se.max(1e-4), "{m} ± {se}");
 }
+
+#[test]
+fn a_white_coated_plastic_reflects_everything_its_coating_does_not_absorb() {
+    // ρ = 1 with the inner reflections summed (`nonlinear`): the base absorbs nothing, so a
+    // lossless coating's plastic reflects all the light at every angle and wavelength; a
+    // silver layer absorbs some
+    let toml = |coating: &str| {
+        format!(
+            "[camera]\neye = [0, 0, -1]\ntarget = [0, 0, 0]\nfov = \"40 deg\"\n[film]\nwidth = 4\n\
+             height = 4\n[materials.p]\ntype = \"plastic\"\nreflectance = 1\nnonlinear = true\n\
+             coating = {coating}\n[[shapes]]\ntype = \"sphere\"\ncenter = [0, 0, 1]\nradius = 0.5\n\
+             material = \"p\"\n[[lights]]\ntype = \"environment\"\nluminance = \"1 cd/m^2\"\n"
+        )
+    };
+    use spectrace::units::{Angle, Length, angle::degree, length::nanometer};
+    let s =
+        spectrace::Scene::from_toml(&toml("[{ thickness = \"120 nm\", ior = \"ZnS\" }]")).unwrap();
+    let wl: Vec<Length> = [420.0, 550.0, 680.0].map(Length::new::<nanometer>).to_vec();
+    for deg in [0.0, 40.0, 75.0] {
+        for r in s
+            .material_albedo("p", Angle::new::<degree>(deg), &wl, 200_000)
+            .unwrap()
+        {
+            println!("{deg}°: R {:.5} ± {:.5}", r.reflectance, r.reflectance_se);
+            assert!(
+                (r.reflectance - 1.0).abs() < 4.0 * r.reflectance_se + 1e-3,
+                "{deg}: {r:?}"
+            );
+        }
+    }
+    let s =
+        spectrace::Scene::from_toml(&toml("[{ thickness = \"10 nm\", metal = \"Ag\" }]")).unwrap();
+    let r = s
+        .material_albedo("p", Angle::new::<degree>(0.0), &wl[1..2], 100_000)
+        .unwrap()[0];
+    assert!(r.reflectance < 0.95, "{r:?}");
+}

@@ -218,10 +218,7 @@ fn cases() -> Vec<Case> {
             name: format!("Blend 0.6 of Dielectric and Lambert θo={t}"),
             material: Material::Blend(Box::new(spectrace::material::Blend {
                 weight: Spectrum::Constant(0.6).into(),
-                a: Material::Dielectric(spectrace::material::Dielectric {
-                    int_ior: bk7(),
-                    ext_ior: 1.0,
-                }),
+                a: Material::Dielectric(spectrace::material::Dielectric::new(bk7(), 1.0)),
                 b: Material::Diffuse(Lambert::new(Spectrum::Constant(0.5))),
             })),
             wo: dir(t, phi, false),
@@ -248,6 +245,24 @@ fn cases() -> Vec<Case> {
                 rough,
             )
             .unwrap();
+            if rough.is_none() {
+                // the same under a thin film (its spectral R, T and R_int; `coated.rs`)
+                let film = spectrace::optics::thin_film::Coating {
+                    layers: vec![spectrace::optics::thin_film::Layer {
+                        index: spectrace::optics::thin_film::LayerIndex::Dielectric(
+                            spectrace::spectrum::ior::Ior::Constant(2.35),
+                        ),
+                        thickness_nm: 120.0,
+                    }],
+                };
+                v.push(Case {
+                    name: format!("Plastic with a thin film θo={t}"),
+                    material: Material::Plastic(m.clone().with_film(film, 1.000277, 1.49).unwrap()),
+                    wo: dir(t, phi, false),
+                    w: wavelengths(550.0),
+                    grid: FINE,
+                });
+            }
             v.push(Case {
                 name: format!("Plastic {rough:?} θo={t}"),
                 material: Material::Plastic(m),

@@ -285,3 +285,43 @@ fn light_tracing_and_bdpt_refuse_a_realistic_camera() {
         );
     }
 }
+
+/// The mean direction (unit, camera space) of the rays from raster position `raster` at
+/// `lambda` through a realistic camera.
+fn mean_direction(camera: &Camera, raster: Vec2, lambda: f32) -> Vec3 {
+    let mut sum = Vec3::ZERO;
+    for i in 0..32 * 32 {
+        let u = Vec2::new(
+            ((i % 32) as f32 + 0.5) / 32.0,
+            ((i / 32) as f32 + 0.5) / 32.0,
+        );
+        if let Some((r, w)) = camera.generate_ray_at(raster, u, lambda) {
+            sum += r.d * w;
+        }
+    }
+    sum.normalize()
+}
+
+#[test]
+fn the_double_gauss_shows_lateral_colour_toward_the_corners_and_none_at_the_centre() {
+    // the same object direction lands at different film heights for F and C light: seen from
+    // the film, the rays of one film point leave in different directions; the angle between
+    // them times the focal length is the lateral colour on the film
+    let path = lens_path();
+    let desc = spectrace::loader::lens::read(std::path::Path::new(&path)).unwrap();
+    let sys = spectrace::build::lens_system(&desc).unwrap();
+    let efl = sys.paraxial(587.5618).efl;
+    let to_world = Transform::look_at(Vec3::ZERO, Vec3::Z, Vec3::Y).unwrap();
+    let cam = Camera::realistic(to_world, sys, 0.04327, 360, 240).unwrap();
+    let shift = |raster: Vec2| {
+        let (f, c) = (
+            mean_direction(&cam, raster, 486.13),
+            mean_direction(&cam, raster, 656.27),
+        );
+        f.cross(c).length() as f64 * efl * 1e3 // µm on the film (sin of the angle)
+    };
+    let (centre, corner) = (shift(Vec2::new(180.0, 120.0)), shift(Vec2::new(8.0, 8.0)));
+    println!("lateral colour F − C: centre {centre:.2} µm, corner {corner:.2} µm (pixels 100 µm)");
+    assert!(centre < 0.5, "{centre}");
+    assert!(corner > 2.0, "{corner}");
+}

@@ -265,6 +265,70 @@ fn spectrum(
     })
 }
 
+/// A lens file's paraxial focal lengths per wavelength: rows of (wavelength nm, EFL mm,
+/// BFL mm, spot RMS radius mm or None).
+#[pyfunction]
+#[pyo3(signature = (path, wavelengths, spot = false))]
+#[allow(clippy::type_complexity)]
+fn lens(
+    path: PathBuf,
+    wavelengths: Vec<Bound<'_, PyAny>>,
+    spot: bool,
+) -> PyResult<Vec<(f64, f64, f64, Option<f64>)>> {
+    use spectrace::units::length::millimeter;
+    let l = wavelengths
+        .iter()
+        .map(convert::wavelength)
+        .collect::<PyResult<Vec<Length>>>()?;
+    Ok(spectrace::api::lens(&path, &l, spot)
+        .map_err(err)?
+        .iter()
+        .map(|r| {
+            (
+                r.wavelength.get::<nanometer>(),
+                r.efl.get::<millimeter>(),
+                r.bfl.get::<millimeter>(),
+                r.spot_rms.map(|s| s.get::<millimeter>()),
+            )
+        })
+        .collect())
+}
+
+/// A material's reflectance and transmittance per wavelength for light at `angle_deg` from
+/// the normal: rows of (wavelength nm, R, T, R's standard error, T's, exact).
+#[pyfunction]
+#[pyo3(signature = (scene, name, angle_deg, wavelengths, samples = 65536))]
+#[allow(clippy::type_complexity)]
+fn material_albedo(
+    scene: &Scene,
+    name: &str,
+    angle_deg: f64,
+    wavelengths: Vec<Bound<'_, PyAny>>,
+    samples: u32,
+) -> PyResult<Vec<(f64, f64, f64, f64, f64, bool)>> {
+    let l = wavelengths
+        .iter()
+        .map(convert::wavelength)
+        .collect::<PyResult<Vec<Length>>>()?;
+    let a = spectrace::units::Angle::new::<spectrace::units::angle::degree>(angle_deg);
+    Ok(scene
+        .inner
+        .material_albedo(name, a, &l, samples)
+        .map_err(err)?
+        .iter()
+        .map(|r| {
+            (
+                r.wavelength.get::<nanometer>(),
+                r.reflectance,
+                r.transmittance,
+                r.reflectance_se,
+                r.transmittance_se,
+                r.exact,
+            )
+        })
+        .collect())
+}
+
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SpectraceError", m.py().get_type::<SpectraceError>())?;
@@ -276,5 +340,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(render, m)?)?;
     m.add_function(wrap_pyfunction!(measure, m)?)?;
     m.add_function(wrap_pyfunction!(spectrum, m)?)?;
+    m.add_function(wrap_pyfunction!(lens, m)?)?;
+    m.add_function(wrap_pyfunction!(material_albedo, m)?)?;
     Ok(())
 }

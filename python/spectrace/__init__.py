@@ -38,6 +38,8 @@ __all__ = [
     "SceneBuilder",
     "SpectraceError",
     "Spectrum",
+    "lens",
+    "material_albedo",
     "measure",
     "render",
     "spectrum",
@@ -379,3 +381,44 @@ def spectrum(name: str, wavelengths: Sequence[Union[float, str]]) -> Spectrum:
         np.asarray(values, dtype=np.float64),
         None if k is None else np.asarray(k, dtype=np.float64),
     )
+
+
+def lens(
+    path: Union[str, os.PathLike],
+    wavelengths: Sequence[Union[float, str]] = (486.1327, 587.5618, 656.2725),
+    spot: bool = False,
+) -> Dict[str, np.ndarray]:
+    """A lens file's (pbrt-v4's format, catalogue glasses allowed) first-order optics per
+    wavelength, as ``spectrace lens`` prints them: arrays ``wavelength_nm``, ``efl_mm``
+    (paraxial effective focal length), ``bfl_mm`` (back focal length from the last vertex) and,
+    with ``spot``, ``spot_rms_um`` (RMS radius of a real axial bundle on each wavelength's
+    paraxial focal plane, µm)."""
+    ws = np.atleast_1d(np.asarray(wavelengths, dtype=object)).tolist()
+    rows = _native.lens(os.fspath(path), ws, spot)
+    out = {
+        "wavelength_nm": np.array([r[0] for r in rows]),
+        "efl_mm": np.array([r[1] for r in rows]),
+        "bfl_mm": np.array([r[2] for r in rows]),
+    }
+    if spot:
+        out["spot_rms_um"] = np.array([np.nan if r[3] is None else r[3] * 1e3 for r in rows])
+    return out
+
+
+def material_albedo(
+    scene: Union[Scene, str, os.PathLike],
+    material: str,
+    angle_deg: float,
+    wavelengths: Sequence[Union[float, str]],
+    samples: int = 65536,
+) -> Dict[str, np.ndarray]:
+    """A material's directional-hemispherical reflectance and transmittance (fractions of the
+    power arriving at ``angle_deg`` from the normal) per wavelength, as ``spectrace material``
+    prints them: arrays ``wavelength_nm``, ``reflectance``, ``transmittance`` and their
+    standard errors ``reflectance_se``, ``transmittance_se`` (0 for smooth materials, whose
+    values are exact)."""
+    s = _scene(scene)
+    ws = np.atleast_1d(np.asarray(wavelengths, dtype=object)).tolist()
+    rows = _native.material_albedo(s._native, material, float(angle_deg), ws, samples)
+    keys = ["wavelength_nm", "reflectance", "transmittance", "reflectance_se", "transmittance_se"]
+    return {k: np.array([r[i] for r in rows]) for i, k in enumerate(keys)}

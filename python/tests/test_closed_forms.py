@@ -294,3 +294,36 @@ def test_ctrl_c_stops_the_render():
     assert p.returncode == 7, (p.returncode, out)
     assert "interrupted" in out
     assert time.monotonic() - t0 < 10
+
+
+def test_lens_focal_lengths_are_the_thick_lens_formula(tmp_path):
+    # an equiconvex N-BK7 singlet: 1/f = (n−1)(2/R − (n−1)d/(n R²)), with SCHOTT's Sellmeier
+    # coefficients for n at each wavelength
+    f = tmp_path / "singlet.lens"
+    f.write_text("0 2 0 10\n51.68 6 N-BK7 25.4\n-51.68 95 1 25.4\n")
+    out = spectrace.lens(f, [486.1327, 587.5618, 656.2725], spot=True)
+    b = [1.03961212, 0.231792344, 1.01046945]
+    c = [0.00600069867, 0.0200179144, 103.560653]
+    for l, efl in zip(out["wavelength_nm"], out["efl_mm"]):
+        l2 = (l * 1e-3) ** 2
+        n = math.sqrt(1 + sum(bi * l2 / (l2 - ci) for bi, ci in zip(b, c)))
+        r, d = 51.68, 6.0
+        expect = 1 / ((n - 1) * (2 / r - (n - 1) * d / (n * r * r)))
+        assert abs(efl - expect) < 1e-6 * expect
+    assert np.all(out["spot_rms_um"] > 0)
+
+
+def test_material_albedo_is_fresnel_for_smooth_glass():
+    scene = (
+        spectrace.Scene.builder()
+        .camera(eye=[0, 0, -1], target=[0, 0, 0], fov="40 deg")
+        .film(4, 4)
+        .material("glass", type="dielectric", ior=1.5)
+        .shape("sphere", center=[0, 0, 1], radius=0.5, material="glass")
+        .light("environment", luminance="1 cd/m^2")
+        .build()
+    )
+    out = spectrace.material_albedo(scene, "glass", 0.0, [450, 550, 650])
+    assert np.allclose(out["reflectance"], 0.04, atol=1e-6)
+    assert np.allclose(out["transmittance"], 0.96, atol=1e-6)
+    assert np.all(out["reflectance_se"] == 0)

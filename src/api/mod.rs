@@ -36,6 +36,7 @@ mod builder;
 mod image;
 mod items;
 mod lookup;
+mod optics;
 mod placed;
 mod quantity;
 
@@ -43,6 +44,7 @@ pub use builder::SceneBuilder;
 pub use image::{Estimate, Image, Region};
 pub use items::{Emission, Ior, Material, Spectrum};
 pub use lookup::{MeasureOptions, MeterReading, SpectrumValues, measure, measure_with, spectrum};
+pub use optics::{LensFocalLengths, MaterialAlbedo, lens};
 pub use placed::{Camera, Light, Meter, Shape};
 pub use quantity::{Brightness, Flux, FluxDensity, Intensity, Radiometric, degrees, metres};
 
@@ -80,6 +82,8 @@ pub enum Error {
 pub struct Scene {
     inner: crate::scene::Scene,
     notes: Vec<String>,
+    /// The materials' names, in `inner.materials`' order.
+    material_names: Vec<String>,
     /// Where the scene came from (a file, or how it was given), for the image's metadata.
     source: String,
 }
@@ -179,6 +183,7 @@ impl Scene {
         })?;
         Ok(Scene {
             inner,
+            material_names: desc.materials.iter().map(|m| m.name.clone()).collect(),
             notes: desc.notes,
             source,
         })

@@ -318,10 +318,24 @@ fn coated(
             Material::Conductor(m)
         }
         Material::RoughConductor(m) => Material::RoughConductor(m.with_coating(c)),
+        Material::Plastic(p) => {
+            let MaterialKind::Plastic {
+                int_ior,
+                exterior_ior,
+                ..
+            } = inner
+            else {
+                return Err("a coated plastic".into());
+            };
+            let layers = c
+                .map(|b| *b)
+                .unwrap_or(crate::optics::thin_film::Coating { layers: Vec::new() });
+            Material::Plastic(p.with_film(layers, *exterior_ior as f32, *int_ior as f32)?)
+        }
         _ => {
             return Err(
-                "a coating goes on a smooth dielectric or a conductor (smooth or rough); rough \
-                 dielectrics and textured lobes do not take one yet"
+                "a coating goes on a smooth dielectric, a conductor (smooth or rough) or a smooth \
+                 plastic; rough dielectrics and textured lobes do not take one yet"
                     .into(),
             );
         }

@@ -28,47 +28,41 @@ pub struct LensArgs {
     pub plot: Option<std::path::PathBuf>,
 }
 
-/// Rays per side of the spot diagram's grid over the front aperture.
-const SPOT_GRID: usize = 201;
-
 pub fn run(args: LensArgs) -> Result<(), CliError> {
-    let desc = crate::loader::lens::read(&args.file)?;
-    let sys = crate::build::lens_system(&desc)?;
-    if let Some(l) = args
+    use crate::units::{Length, length::millimeter, length::nanometer};
+    let wl: Vec<Length> = args
         .wavelengths
         .iter()
-        .find(|l| !(l.is_finite() && **l > 0.0))
-    {
-        return Err(CliError::Usage(format!(
-            "wavelength {l} nm must be positive"
-        )));
-    }
-    print!("{}", table(&sys, &args.wavelengths, args.spot));
-    if let Some(path) = &args.plot {
-        plot(&sys, path)?;
-    }
-    Ok(())
-}
-
-/// The CSV table: `wavelength_nm,efl_mm,bfl_mm` and, with `spot`, `spot_rms_um`.
-pub fn table(sys: &LensSystem, wavelengths: &[f64], spot: bool) -> String {
+        .map(|&l| Length::new::<nanometer>(l))
+        .collect();
+    let rows =
+        crate::api::lens(&args.file, &wl, args.spot).map_err(|e| CliError::Usage(e.to_string()))?;
     let mut out = String::from("wavelength_nm,efl_mm,bfl_mm");
-    if spot {
+    if args.spot {
         out.push_str(",spot_rms_um");
     }
     out.push('\n');
-    for &l in wavelengths {
-        let p = sys.paraxial(l);
-        out.push_str(&format!("{l},{:.6},{:.6}", p.efl, p.bfl));
-        if spot {
-            match sys.axial_spot(l, p.bfl, SPOT_GRID) {
-                Some(s) => out.push_str(&format!(",{:.4}", s.rms_radius * 1e3)),
+    for r in &rows {
+        out.push_str(&format!(
+            "{},{:.6},{:.6}",
+            r.wavelength.get::<nanometer>(),
+            r.efl.get::<millimeter>(),
+            r.bfl.get::<millimeter>()
+        ));
+        if args.spot {
+            match r.spot_rms {
+                Some(s) => out.push_str(&format!(",{:.4}", s.get::<millimeter>() * 1e3)),
                 None => out.push_str(",nan"),
             }
         }
         out.push('\n');
     }
-    out
+    print!("{out}");
+    if let Some(path) = &args.plot {
+        let desc = crate::loader::lens::read(&args.file)?;
+        plot(&crate::build::lens_system(&desc)?, path)?;
+    }
+    Ok(())
 }
 
 fn plot(sys: &LensSystem, path: &std::path::Path) -> Result<(), CliError> {

@@ -4,8 +4,8 @@
 use clap::Args;
 
 use super::CliError;
-use crate::material::albedo::{Albedo, albedo};
-use crate::units::{Angle, angle, parse::parse};
+use crate::api::MaterialAlbedo;
+use crate::units::{Angle, parse::parse};
 
 #[derive(Args, Debug)]
 pub struct MaterialArgs {
@@ -58,49 +58,25 @@ pub fn wavelength_list(s: &str) -> Result<Vec<f32>, CliError> {
 }
 
 pub fn run(args: MaterialArgs) -> Result<(), CliError> {
-    let desc = crate::loader::load_any(&args.scene, &[])?;
-    let Some(i) = desc.materials.iter().position(|m| m.name == args.material) else {
-        return Err(CliError::Usage(format!(
-            "{}: no material \"{}\"{}",
-            args.scene.display(),
-            args.material,
-            crate::params::did_you_mean(
-                &args.material,
-                desc.materials.iter().map(|m| m.name.as_str())
-            )
-        )));
-    };
-    let scene = crate::build::build(&desc)?;
+    let scene = crate::api::Scene::load(&args.scene).map_err(|e| CliError::Usage(e.to_string()))?;
     let a: Angle = parse(&args.angle).map_err(|e| CliError::Usage(format!("--angle: {e}")))?;
-    let theta = a.get::<angle::radian>();
-    if !(0.0..std::f64::consts::FRAC_PI_2).contains(&theta) {
-        return Err(CliError::Usage(format!(
-            "--angle {}: expected 0 to 90 deg (90 excluded)",
-            args.angle
-        )));
-    }
-    let lambdas = wavelength_list(&args.wavelengths)?;
-    let m = &scene.materials[i];
-    let rows: Vec<Albedo> = lambdas
-        .iter()
-        .map(|&l| albedo(m, theta as f32, l, args.samples, 0))
+    let lambdas: Vec<crate::units::Length> = wavelength_list(&args.wavelengths)?
+        .into_iter()
+        .map(|l| crate::units::Length::new::<crate::units::length::nanometer>(l as f64))
         .collect();
+    let rows = scene
+        .material_albedo(&args.material, a, &lambdas, args.samples)
+        .map_err(|e| CliError::Usage(format!("{}: {e}", args.scene.display())))?;
     print!("{}", table(&rows));
     if let Some(path) = &args.plot {
         let series = [
             crate::plot::Series {
                 name: "reflectance",
-                points: rows
-                    .iter()
-                    .map(|r| (r.lambda_nm as f64, r.reflectance))
-                    .collect(),
+                points: rows.iter().map(|r| (nm(r), r.reflectance)).collect(),
             },
             crate::plot::Series {
                 name: "transmittance",
-                points: rows
-                    .iter()
-                    .map(|r| (r.lambda_nm as f64, r.transmittance))
-                    .collect(),
+                points: rows.iter().map(|r| (nm(r), r.transmittance)).collect(),
             },
         ];
         let title = format!("{} at {}", args.material, args.angle);
@@ -116,14 +92,22 @@ pub fn run(args: MaterialArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+fn nm(r: &MaterialAlbedo) -> f64 {
+    r.wavelength.get::<crate::units::length::nanometer>()
+}
+
 /// CSV: `wavelength_nm,reflectance,transmittance,reflectance_se,transmittance_se`.
-pub fn table(rows: &[Albedo]) -> String {
+pub fn table(rows: &[MaterialAlbedo]) -> String {
     let mut out =
         String::from("wavelength_nm,reflectance,transmittance,reflectance_se,transmittance_se\n");
     for r in rows {
         out.push_str(&format!(
             "{},{:.6},{:.6},{:.6},{:.6}\n",
-            r.lambda_nm, r.reflectance, r.transmittance, r.reflectance_se, r.transmittance_se
+            nm(r),
+            r.reflectance,
+            r.transmittance,
+            r.reflectance_se,
+            r.transmittance_se
         ));
     }
     out

@@ -185,3 +185,71 @@ fn diattenuator_retarder(a: f32, b: f32, delta: f32) -> Mueller {
         [0.0, 0.0, c * sin_d, c * cos_d],
     ])
 }
+
+/// A smooth plastic's coating under thin-film layers: the layered interface's R(λ, cos θ) and
+/// T(λ, cos θ) from outside replace 1 − F and F, and its internal reflectance
+/// R_int(λ) = 2∫₀¹ R_inside(μ) μ dμ (the stack seen from the base, cosine-weighted over the
+/// hemisphere) replaces Fdr, tabulated at build every [`PlasticFilm::STEP_NM`] nm and
+/// interpolated. With this R_int a lossless stack over a white base (ρ = 1, `nonlinear`)
+/// reflects all the light, as energy conservation requires (`tests/coatings.rs`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlasticFilm {
+    pub layers: Coating,
+    /// The indices outside and of the coating's dielectric (absolute).
+    pub ext_ior: f32,
+    pub int_ior: f32,
+    /// R_int at 300, 305, … nm up to 1000 nm.
+    r_int: Vec<f32>,
+}
+
+impl PlasticFilm {
+    /// Spacing of the R_int table, nm.
+    pub const STEP_NM: f32 = 5.0;
+    const FIRST_NM: f32 = 300.0;
+    const LAST_NM: f32 = 1000.0;
+
+    pub fn new(layers: Coating, ext_ior: f32, int_ior: f32) -> PlasticFilm {
+        let n = ((Self::LAST_NM - Self::FIRST_NM) / Self::STEP_NM) as usize + 1;
+        let int = Ior::Constant(int_ior);
+        let r_int = (0..n)
+            .map(|i| {
+                let l = Self::FIRST_NM + Self::STEP_NM * i as f32;
+                // midpoint rule in μ² (dμ² = 2μ dμ): 512 points
+                let k = 512;
+                (0..k)
+                    .map(|j| {
+                        let mu = (((j as f32) + 0.5) / k as f32).sqrt();
+                        on_dielectric(&layers, ext_ior, &int, -mu, l).r_unpolarised() as f32
+                    })
+                    .sum::<f32>()
+                    / k as f32
+            })
+            .collect();
+        PlasticFilm {
+            layers,
+            ext_ior,
+            int_ior,
+            r_int,
+        }
+    }
+
+    /// R_int at `l` nm (clamped to the table's ends).
+    pub fn r_int(&self, l: f32) -> f32 {
+        let x = ((l - Self::FIRST_NM) / Self::STEP_NM).clamp(0.0, (self.r_int.len() - 1) as f32);
+        let i = (x as usize).min(self.r_int.len() - 2);
+        let t = x - i as f32;
+        self.r_int[i] * (1.0 - t) + self.r_int[i + 1] * t
+    }
+
+    /// (R, T) of the stack from outside at cos θ = `cos` (> 0) and `l` nm.
+    pub fn outside(&self, cos: f32, l: f32) -> (f32, f32) {
+        let r = on_dielectric(
+            &self.layers,
+            self.ext_ior,
+            &Ior::Constant(self.int_ior),
+            cos,
+            l,
+        );
+        (r.r_unpolarised() as f32, r.t_unpolarised() as f32)
+    }
+}

@@ -31,7 +31,7 @@ use super::BsdfSample;
 use super::fresnel::{fresnel_dielectric, reflect};
 use super::microfacet::{Distribution, Microfacet};
 use crate::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
-use crate::spectrum::SampledSpectrum;
+use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 use crate::texture::Texture;
 
 /// Cosines at which the rough coating's transmittance is tabulated.
@@ -154,6 +154,8 @@ pub struct Plastic {
     pub spec_weight: f32,
     /// None: a smooth coating.
     pub rough: Option<Box<RoughCoating>>,
+    /// Thin-film layers on a smooth coating (`coated.rs`): spectral R, T and R_int.
+    pub film: Option<Box<super::coated::PlasticFilm>>,
 }
 
 impl Plastic {
@@ -195,7 +197,62 @@ impl Plastic {
                 0.5
             },
             rough,
+            film: None,
         })
+    }
+
+    /// The same smooth plastic under thin-film `layers` (indices `ext_ior` outside and
+    /// `int_ior` of the coating, absolute). Errors for a rough plastic.
+    pub fn with_film(
+        mut self,
+        layers: crate::optics::thin_film::Coating,
+        ext_ior: f32,
+        int_ior: f32,
+    ) -> Result<Self, String> {
+        if self.rough.is_some() {
+            return Err(
+                "a coating goes on a smooth plastic only (roughplastic does not take one yet)"
+                    .into(),
+            );
+        }
+        self.film = Some(Box::new(super::coated::PlasticFilm::new(
+            layers, ext_ior, int_ior,
+        )));
+        Ok(self)
+    }
+
+    /// Per wavelength (R, T) of the coated interface from outside at `cos`, and R_int.
+    #[inline]
+    fn film_terms<const N: usize>(
+        f: &super::coated::PlasticFilm,
+        cos: f32,
+        w: &SampledWavelengths<N>,
+    ) -> ([f32; N], [f32; N]) {
+        let rt = w.lambda.map(|l| f.outside(cos, l));
+        (rt.map(|x| x.0), rt.map(|x| x.1))
+    }
+
+    /// The coated smooth plastic's f and pdf (see [`Self::eval_pdf`]).
+    fn film_eval_pdf<const N: usize>(
+        &self,
+        f: &super::coated::PlasticFilm,
+        wo: Vec3,
+        wi: Vec3,
+        rho: SampledSpectrum<N>,
+        w: &SampledWavelengths<N>,
+    ) -> (SampledSpectrum<N>, f32) {
+        let (_, t_o) = Self::film_terms(f, wo.z, w);
+        let (_, t_i) = Self::film_terms(f, wi.z, w);
+        let mut v = [0.0; N];
+        for j in 0..N {
+            let r_int = f.r_int(w.lambda[j]);
+            let d = rho[j];
+            let den = 1.0 - if self.nonlinear { d * r_int } else { r_int };
+            let eff = if den > 0.0 { d / den } else { 0.0 };
+            v[j] = eff * FRAC_1_PI * t_o[j] * t_i[j] / (self.eta * self.eta);
+        }
+        let ps = self.p_spec(mean(&t_o));
+        (SampledSpectrum(v), (1.0 - ps) * cosine_hemisphere_pdf(wi.z))
     }
 
     /// T(cos θ): the coating's transmittance.
@@ -236,9 +293,13 @@ impl Plastic {
         wo: Vec3,
         wi: Vec3,
         rho: SampledSpectrum<N>,
+        w: &SampledWavelengths<N>,
     ) -> (SampledSpectrum<N>, f32) {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return (SampledSpectrum::zero(), 0.0);
+        }
+        if let Some(f) = &self.film {
+            return self.film_eval_pdf(f, wo, wi, rho, w);
         }
         let (t_o, t_i) = (self.transmittance(wo.z), self.transmittance(wi.z));
         let diffuse = self.effective(rho) * (FRAC_1_PI * t_o * t_i / (self.eta * self.eta));
@@ -268,14 +329,27 @@ impl Plastic {
         &self,
         wo: Vec3,
         rho: SampledSpectrum<N>,
+        w: &SampledWavelengths<N>,
         uc: f32,
         u: Vec2,
     ) -> Option<BsdfSample<N>> {
         if wo.z <= 0.0 {
             return None;
         }
-        let ps = self.p_spec(self.transmittance(wo.z));
+        let film = self.film.as_deref().map(|f| Self::film_terms(f, wo.z, w));
+        let ps = match &film {
+            Some((_, t)) => self.p_spec(mean(t)),
+            None => self.p_spec(self.transmittance(wo.z)),
+        };
         if uc < ps {
+            if let Some((r, _)) = film {
+                let wi = Vec3::new(-wo.x, -wo.y, wo.z);
+                let f = SampledSpectrum(r) * (self.specular / wo.z);
+                return Some(BsdfSample {
+                    specular: true,
+                    ..BsdfSample::reflection(f, wi, ps)
+                });
+            }
             let Some(r) = &self.rough else {
                 // the coating's mirror reflection: f = F/cos θᵢ, probability ps
                 let wi = Vec3::new(-wo.x, -wo.y, wo.z);
@@ -290,13 +364,18 @@ impl Plastic {
             if wi.z <= 0.0 {
                 return None;
             }
-            let (f, pdf) = self.eval_pdf(wo, wi, rho);
+            let (f, pdf) = self.eval_pdf(wo, wi, rho, w);
             return (pdf > 0.0).then(|| BsdfSample::reflection(f, wi, pdf));
         }
         let wi = cosine_hemisphere(u);
-        let (f, pdf) = self.eval_pdf(wo, wi, rho);
+        let (f, pdf) = self.eval_pdf(wo, wi, rho, w);
         (pdf > 0.0 && wi.z > 0.0).then(|| BsdfSample::reflection(f, wi, pdf))
     }
+}
+
+/// The mean of the sampled values (a coated interface's transmittance for the lobe choice).
+fn mean<const N: usize>(v: &[f32; N]) -> f32 {
+    v.iter().sum::<f32>() / N as f32
 }
 
 #[cfg(test)]

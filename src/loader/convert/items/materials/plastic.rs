@@ -1,5 +1,6 @@
 //! `type = "plastic"`: a diffuse base under a smooth or rough (GGX, isotropic) dielectric
-//! coating of index `ior` (default 1.49), Mitsuba's `plastic` and `roughplastic`.
+//! coating of index `ior` (default 1.49), Mitsuba's `plastic` and `roughplastic`; a smooth one
+//! may carry thin-film layers (`coating`).
 
 use super::*;
 
@@ -11,6 +12,7 @@ pub(super) const KIND: Kind = Kind {
         "exterior_ior",
         "roughness",
         "nonlinear",
+        "coating",
     ],
     read,
 };
@@ -21,7 +23,7 @@ fn read(m: &Mat<'_>) -> R<MaterialKind> {
         None => 1.49,
         Some(i) => m.index(i, "ior")?,
     };
-    Ok(MaterialKind::Plastic {
+    let kind = MaterialKind::Plastic {
         diffuse: m.texture(r, "reflectance")?,
         specular: 1.0,
         int_ior,
@@ -29,5 +31,6 @@ fn read(m: &Mat<'_>) -> R<MaterialKind> {
         nonlinear: m.flag("nonlinear")?,
         roughness: m.roughness(false)?.map(|a| a[0]),
         distribution: Distribution::Ggx,
-    })
+    };
+    coating::coated(m, kind)
 }
