@@ -259,7 +259,7 @@ impl Camera {
     /// (pixels, (0, 0) = top-left corner of the image, x right, y down; pixel (i, j) covers
     /// [i, i+1) × [j, j+1)) from lens position `lens` ∈ [0, 1)² (ignored by the pinhole and
     /// orthographic cameras).
-    #[inline]
+    #[inline(always)]
     pub fn generate_ray(&self, raster: Vec2, lens: Vec2) -> Ray {
         match self {
             Camera::Perspective(c) => {
@@ -283,16 +283,7 @@ impl Camera {
             }
             // at the d line; where the lens blocks that ray, the ray from the film point through
             // the lens's axial point (for probes and previews, never for rendering)
-            Camera::Realistic(c) => c
-                .ray(raster, lens, crate::spectrum::ior::FRAUNHOFER_D_NM)
-                .map(|(r, _)| r)
-                .unwrap_or_else(|| {
-                    let xy = c.film.plane(raster);
-                    Ray::new(
-                        c.to_world.point(Vec3::ZERO),
-                        c.to_world.vector(xy.extend(1.0)),
-                    )
-                }),
+            Camera::Realistic(c) => c.preview_ray(raster, lens),
         }
     }
 

@@ -318,6 +318,10 @@ fn camera_sample(
     let offset = filter.sample(s.get_2d());
     let raster = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) + offset;
     let u_lens = s.get_2d();
+    if !matches!(scene.camera, crate::geometry::Camera::Realistic(_)) {
+        let ray = scene.camera.generate_ray(raster, u_lens);
+        return (s, wl, ray, 1.0);
+    }
     if scene.camera.disperses() {
         wl.terminate_secondary();
     }

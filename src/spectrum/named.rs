@@ -206,8 +206,11 @@ fn build() -> Registry {
     for (name, f) in MITSUBA_METALS {
         add(format!("mitsuba:{name}"), conductor(name, *f));
     }
-    let hidden = glass::add_all(&mut entries);
-    Registry { entries, hidden }
+    glass::add_curated(&mut entries);
+    Registry {
+        entries,
+        hidden: BTreeSet::new(),
+    }
 }
 
 fn registry() -> &'static Registry {
@@ -215,15 +218,34 @@ fn registry() -> &'static Registry {
     R.get_or_init(build)
 }
 
+/// The glass catalogues, read on first use (`named/glass.rs`).
+fn catalogues() -> &'static Registry {
+    static C: OnceLock<Registry> = OnceLock::new();
+    C.get_or_init(|| {
+        let (entries, hidden) = glass::catalogues(&registry().entries);
+        Registry { entries, hidden }
+    })
+}
+
+/// Both registries' entries (lookups that must see every name: listing, suggestions).
+fn all_entries() -> impl Iterator<Item = (&'static String, &'static (String, Named), bool)> {
+    let (r, c) = (registry(), catalogues());
+    r.entries
+        .iter()
+        .map(move |(k, v)| (k, v, r.hidden.contains(k)))
+        .chain(
+            c.entries
+                .iter()
+                .map(move |(k, v)| (k, v, c.hidden.contains(k))),
+        )
+}
+
 /// Every fixed name, in sorted order, with one word for its kind. `blackbody:<T>K` is listed as
 /// a pattern.
 pub fn names() -> Vec<(String, &'static str)> {
-    let r = registry();
-    let mut v: Vec<(String, &'static str)> = r
-        .entries
-        .iter()
-        .filter(|(k, _)| !r.hidden.contains(*k))
-        .map(|(_, (n, v))| {
+    let mut v: Vec<(String, &'static str)> = all_entries()
+        .filter(|(_, _, hidden)| !hidden)
+        .map(|(_, (n, v), _)| {
             let kind = match v {
                 Named::Curve {
                     kind: CurveKind::Illuminant,
@@ -247,6 +269,7 @@ pub fn names() -> Vec<(String, &'static str)> {
             (n.clone(), kind)
         })
         .collect();
+    v.sort_by_key(|(n, _)| n.to_lowercase());
     v.push((
         "blackbody:<T>K".into(),
         "Planck curve at temperature T, peak-normalised",
@@ -262,6 +285,11 @@ pub fn names() -> Vec<(String, &'static str)> {
 pub fn lookup(name: &str) -> Result<Named, UnknownSpectrum> {
     let key = name.trim().to_lowercase();
     if let Some((_, v)) = registry().entries.get(&key) {
+        return Ok(v.clone());
+    }
+    if key.starts_with("glass:")
+        && let Some((_, v)) = catalogues().entries.get(&key)
+    {
         return Ok(v.clone());
     }
     if let Some(t) = name.trim().strip_prefix("blackbody:")
@@ -327,10 +355,8 @@ pub fn cie_daylight(t: f64) -> Option<Spectrum> {
 
 fn closest(key: &str) -> Vec<String> {
     let key_short = key.split_once(':').map_or(key, |(_, s)| s);
-    let mut scored: Vec<(f64, &String)> = registry()
-        .entries
-        .iter()
-        .map(|(k, (n, _))| {
+    let mut scored: Vec<(f64, &String)> = all_entries()
+        .map(|(k, (n, _), _)| {
             // compare with and without the "family:" prefix, so "bk7" finds "glass:N-BK7"
             let short = k.split_once(':').map_or(k.as_str(), |(_, s)| s);
             let mut s = strsim::jaro_winkler(key, k).max(strsim::jaro_winkler(key, short));

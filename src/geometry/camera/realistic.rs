@@ -74,6 +74,7 @@ impl Realistic {
     /// The world ray through raster position `raster` from the pupil sample `u` ∈ [0, 1)² at
     /// `lambda_nm`, and its weight (dimensionless, see the module docs); None if the lens
     /// blocks it.
+    #[inline(never)]
     pub(super) fn ray(&self, raster: Vec2, u: Vec2, lambda_nm: f32) -> Option<(Ray, f32)> {
         // the pinhole-equivalent plane point, turned over: the lens inverts the image
         let xy = -self.film.plane(raster);
@@ -88,6 +89,23 @@ impl Realistic {
         let d = Vec3::new(r.d.x as f32, r.d.y as f32, r.d.z as f32);
         let ray = Ray::new(self.to_world.point(o), self.to_world.vector(d));
         (w.is_finite() && w > 0.0).then_some((ray, w as f32))
+    }
+
+    /// The ray through `raster` at the d line; where the lens blocks it, the ray from the film
+    /// point through the lens's axial point (for probes and previews, never for rendering).
+    /// Kept out of line so the other cameras' ray generation stays small.
+    #[cold]
+    #[inline(never)]
+    pub(super) fn preview_ray(&self, raster: Vec2, u: Vec2) -> Ray {
+        self.ray(raster, u, crate::spectrum::ior::FRAUNHOFER_D_NM)
+            .map(|(r, _)| r)
+            .unwrap_or_else(|| {
+                let xy = self.film.plane(raster);
+                Ray::new(
+                    self.to_world.point(Vec3::ZERO),
+                    self.to_world.vector(xy.extend(1.0)),
+                )
+            })
     }
 
     /// Whether a ray through the lens serves one wavelength only.

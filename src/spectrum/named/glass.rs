@@ -102,10 +102,9 @@ fn range_nm(r: [f64; 2]) -> (f32, f32) {
     ((r[0] * 1e3) as f32, (r[1] * 1e3) as f32)
 }
 
-/// Adds every glass to `entries` (lower-cased key → (display name, value)); returns the alias
-/// keys, which `names()` leaves out.
-pub(super) fn add_all(entries: &mut BTreeMap<String, (String, Named)>) -> BTreeSet<String> {
-    let mut hidden = BTreeSet::new();
+/// Adds the curated glasses of `sellmeier.toml` to `entries` (lower-cased key → (display
+/// name, value)).
+pub(super) fn add_curated(entries: &mut BTreeMap<String, (String, Named)>) {
     let curated: CuratedFile = parse(embedded::GLASSES);
     for g in curated.glass {
         let glass = Glass {
@@ -121,6 +120,17 @@ pub(super) fn add_all(entries: &mut BTreeMap<String, (String, Named)>) -> BTreeS
         let name = format!("glass:{}", glass.name);
         entries.insert(name.to_lowercase(), (name, Named::Dielectric(glass)));
     }
+}
+
+/// The catalogues' glasses, keyed as `entries` are, leaving out the names `taken` (the
+/// curated glasses' and the other registry's); and the alias keys, which `names()` leaves out.
+/// Parsed on the first lookup that needs them (1262 glasses: about 10⁸ instructions, which a
+/// scene without catalogue glasses should not pay).
+pub(super) fn catalogues(
+    taken: &BTreeMap<String, (String, Named)>,
+) -> (BTreeMap<String, (String, Named)>, BTreeSet<String>) {
+    let mut entries = BTreeMap::new();
+    let mut hidden = BTreeSet::new();
     for (maker, file) in embedded::GLASS_CATALOGUES {
         let cat: CatalogueFile = parse(*file);
         for g in cat.glass {
@@ -160,7 +170,8 @@ pub(super) fn add_all(entries: &mut BTreeMap<String, (String, Named)>) -> BTreeS
             let qualified = format!("glass:{maker}/{}", glass.name);
             let bare = format!("glass:{}", glass.name);
             let named = Named::Dielectric(glass);
-            if entries.contains_key(&bare.to_lowercase()) {
+            let key = bare.to_lowercase();
+            if entries.contains_key(&key) || taken.contains_key(&key) {
                 entries.insert(qualified.to_lowercase(), (qualified, named));
             } else {
                 hidden.insert(qualified.to_lowercase());
@@ -169,5 +180,5 @@ pub(super) fn add_all(entries: &mut BTreeMap<String, (String, Named)>) -> BTreeS
             }
         }
     }
-    hidden
+    (entries, hidden)
 }
