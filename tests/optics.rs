@@ -182,7 +182,7 @@ fn the_camera_focuses_each_wavelength_at_its_paraxial_image_distance() {
         // the film at d, and 0.05 to 0.3 mm either side
         let spread = |delta: f64| {
             let s = sys.clone().with_film_distance(d + delta).unwrap();
-            let cam = Camera::realistic(to_world.clone(), s, 0.01, 16, 16).unwrap();
+            let cam = Camera::realistic(to_world, s, 0.01, 16, 16).unwrap();
             // the object plane sits 2 m from the film as it was focused
             spread_at(&cam, (object * 1e-3) as f32 + delta as f32 * 1e-3, l as f32)
         };
@@ -192,7 +192,7 @@ fn the_camera_focuses_each_wavelength_at_its_paraxial_image_distance() {
         }
         // and the other wavelengths are blurred there
         let cam = Camera::realistic(
-            to_world.clone(),
+            to_world,
             sys.clone().with_film_distance(d).unwrap(),
             0.01,
             16,
@@ -276,9 +276,7 @@ fn light_tracing_and_bdpt_refuse_a_realistic_camera() {
         let mut o = spectrace::render::RenderOptions::from_scene(&scene);
         o.integrator = kind;
         let cancel = std::sync::atomic::AtomicBool::new(false);
-        let e = spectrace::render::render(&scene, &o, &cancel, &|_, _| {})
-            .err()
-            .expect("refused");
+        let e = spectrace::render::render(&scene, &o, &cancel, &|_, _| {}).expect_err("refused");
         assert!(
             e.to_string().contains("realistic (lens-system) camera"),
             "{e}"

@@ -96,3 +96,35 @@ pub fn focused_lens(
     }
     Ok(Ok(sys))
 }
+
+/// The scene's realistic camera: its lens built, stopped down and focused, placed by the
+/// camera's eye, target and up. A lens's errors name the lens file's line; the rest the
+/// scene's `[camera]`.
+pub(super) fn realistic_camera(
+    desc: &crate::loader::SceneDesc,
+) -> Result<crate::geometry::Camera, LoadError> {
+    use crate::geometry::{Camera, RealisticError, Transform};
+    let c = &desc.camera;
+    let err = |field: &str, msg: String| LoadError::new(&desc.path, c.loc, field, msg);
+    let crate::loader::desc::CameraKind::Realistic {
+        lens,
+        film_diagonal,
+        aperture_diameter,
+        focus,
+    } = &c.kind
+    else {
+        return Err(err("camera.type", "not a realistic camera".into()));
+    };
+    let sys = focused_lens(lens, *aperture_diameter, focus)?
+        .map_err(|e| err("camera.focus_distance", e))?;
+    let up = glam::Vec3::new(c.up[0] as f32, c.up[1] as f32, c.up[2] as f32);
+    let to_world = Transform::look_at(super::v3(&c.eye), super::v3(&c.target), up)
+        .map_err(|e| err("camera", e.to_string()))?;
+    let diagonal = crate::units::plain::metres(*film_diagonal);
+    Camera::realistic(to_world, sys, diagonal, desc.film.width, desc.film.height).map_err(|e| {
+        match e {
+            RealisticError::Lens(e) => located(lens, &e),
+            RealisticError::Geometry(e) => err("camera", e.to_string()),
+        }
+    })
+}

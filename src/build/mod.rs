@@ -99,31 +99,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
     let light_tree = crate::light::LightTree::build(&light_bounds, &light_power);
     let camera = match &desc.camera.kind {
         // a lens's errors are located in its own file
-        CameraKind::Realistic {
-            lens,
-            film_diagonal,
-            aperture_diameter,
-            focus,
-        } => {
-            let sys = lens::focused_lens(lens, *aperture_diameter, focus)?
-                .map_err(|e| err(desc.camera.loc, "camera.focus_distance".into(), e))?;
-            let up = Vec3::new(
-                desc.camera.up[0] as f32,
-                desc.camera.up[1] as f32,
-                desc.camera.up[2] as f32,
-            );
-            let to_world = Transform::look_at(v3(&desc.camera.eye), v3(&desc.camera.target), up)
-                .map_err(|e| err(desc.camera.loc, "camera".into(), e.to_string()))?;
-            let (w, h) = (desc.film.width, desc.film.height);
-            Camera::realistic(to_world, sys, plain::metres(*film_diagonal), w, h).map_err(|e| {
-                match e {
-                    crate::geometry::RealisticError::Lens(e) => lens::located(lens, &e),
-                    crate::geometry::RealisticError::Geometry(e) => {
-                        err(desc.camera.loc, "camera".into(), e.to_string())
-                    }
-                }
-            })?
-        }
+        CameraKind::Realistic { .. } => lens::realistic_camera(desc)?,
         _ => camera(desc).map_err(|e| err(desc.camera.loc, "camera".into(), e))?,
     };
     let (media, medium_interfaces) = media::scene_media(desc, range, surfaces.len())?;
@@ -239,7 +215,7 @@ pub(super) fn surface(material: Option<usize>, two_sided: bool, light: Option<us
     }
 }
 
-fn v3(p: &crate::loader::desc::Point) -> Vec3 {
+pub(super) fn v3(p: &crate::loader::desc::Point) -> Vec3 {
     Vec3::new(
         plain::metres(p[0]),
         plain::metres(p[1]),

@@ -287,27 +287,6 @@ impl Camera {
         }
     }
 
-    /// The world ray through `raster` from lens sample `lens` at wavelength `lambda_nm`, with
-    /// its weight (dimensionless): the ray of [`Camera::generate_ray`] with weight 1 for every
-    /// camera but the realistic one, whose rays depend on the wavelength and carry the weight
-    /// of its pupil sampling (`camera/realistic.rs`). None if the lens blocks the ray.
-    #[inline]
-    pub fn generate_ray_at(&self, raster: Vec2, lens: Vec2, lambda_nm: f32) -> Option<(Ray, f32)> {
-        match self {
-            Camera::Realistic(c) => c.ray(raster, lens, lambda_nm),
-            _ => Some((self.generate_ray(raster, lens), 1.0)),
-        }
-    }
-
-    /// Whether a camera ray serves its hero wavelength only (a realistic camera with dispersive
-    /// glass); the renderer then terminates the secondary wavelengths.
-    pub fn disperses(&self) -> bool {
-        match self {
-            Camera::Realistic(c) => c.dispersive(),
-            Camera::Perspective(_) | Camera::ThinLens(_) | Camera::Orthographic(_) => false,
-        }
-    }
-
     /// Where the world point `p` appears on a perspective camera, seen through the lens point
     /// chosen by `u_lens` ∈ [0, 1)² (uniform on a thin lens; ignored by a pinhole), or None if
     /// it is behind the lens, more than `margin` pixels outside the image (a reconstruction

@@ -57,7 +57,7 @@ fn choice<const N: usize>(r: &[f32; N], t: &[f32; N]) -> f32 {
 /// A free-standing coherent film in a medium of index `ext` (a soap bubble's wall): a delta
 /// reflection and a delta transmission straight through, with the film's reflectance R(λ)
 /// and transmittance T(λ) (interference between its faces; A = 1 − R − T if a layer absorbs).
-/// Sampled by [`choice`]; not dispersive in direction.
+/// Sampled by the wavelengths' mean R/(R + T) (`choice`); not dispersive in direction.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ThinFilm {
     pub layers: Coating,
@@ -100,7 +100,7 @@ impl ThinFilm {
     }
 }
 
-/// The smooth dielectric's sample with a coating: reflect with probability [`choice`],
+/// The smooth dielectric's sample with a coating: reflect with probability `choice`,
 /// f = R(λ)/|cos θᵢ| or T(λ)/|cos θᵢ|/η'² (radiance), the refracted direction Snell's between
 /// the outside and the substrate (a stack of parallel layers does not change it).
 #[allow(clippy::too_many_arguments)]
@@ -252,4 +252,88 @@ impl PlasticFilm {
         );
         (r.r_unpolarised() as f32, r.t_unpolarised() as f32)
     }
+}
+
+impl super::Plastic {
+    /// The same smooth plastic under thin-film `layers` (indices `ext_ior` outside and
+    /// `int_ior` of the coating, absolute). Errors for a rough plastic.
+    pub fn with_film(
+        mut self,
+        layers: Coating,
+        ext_ior: f32,
+        int_ior: f32,
+    ) -> Result<Self, String> {
+        if self.rough.is_some() {
+            return Err(
+                "a coating goes on a smooth plastic only (roughplastic does not take one yet)"
+                    .into(),
+            );
+        }
+        self.film = Some(Box::new(PlasticFilm::new(layers, ext_ior, int_ior)));
+        Ok(self)
+    }
+
+    /// The coated smooth plastic's f (no cosine) and pdf: the diffuse base through the stack's
+    /// T(λ) both ways under R_int(λ) (see `Plastic::eval_pdf` and [`PlasticFilm`]).
+    pub(super) fn film_eval_pdf<const N: usize>(
+        &self,
+        f: &PlasticFilm,
+        wo: Vec3,
+        wi: Vec3,
+        rho: SampledSpectrum<N>,
+        w: &SampledWavelengths<N>,
+    ) -> (SampledSpectrum<N>, f32) {
+        let (_, t_o) = film_terms(f, wo.z, w);
+        let (_, t_i) = film_terms(f, wi.z, w);
+        let mut v = [0.0; N];
+        for j in 0..N {
+            let r_int = f.r_int(w.lambda[j]);
+            let d = rho[j];
+            let den = 1.0 - if self.nonlinear { d * r_int } else { r_int };
+            let eff = if den > 0.0 { d / den } else { 0.0 };
+            v[j] = eff * std::f32::consts::FRAC_1_PI * t_o[j] * t_i[j] / (self.eta * self.eta);
+        }
+        let ps = self.p_spec(mean(&t_o));
+        (
+            SampledSpectrum(v),
+            (1.0 - ps) * crate::sampling::cosine_hemisphere_pdf(wi.z),
+        )
+    }
+}
+
+/// Per wavelength (R, T) of a plastic's coated interface from outside at `cos`.
+#[inline]
+pub(super) fn film_terms<const N: usize>(
+    f: &PlasticFilm,
+    cos: f32,
+    w: &SampledWavelengths<N>,
+) -> ([f32; N], [f32; N]) {
+    let rt = w.lambda.map(|l| f.outside(cos, l));
+    (rt.map(|x| x.0), rt.map(|x| x.1))
+}
+
+/// The mean of the sampled values (a coated interface's transmittance for the lobe choice).
+pub(super) fn mean<const N: usize>(v: &[f32; N]) -> f32 {
+    v.iter().sum::<f32>() / N as f32
+}
+
+/// A thin-film stack's matrices across a smooth interface: its reflection or its transmission
+/// by the side `wi` lies on, from the stack's response `resp(λ)` (`coated.rs`).
+pub(super) fn stack<const N: usize>(
+    frame: &crate::geometry::Frame,
+    (wo, wi): (Vec3, Vec3),
+    w: &SampledWavelengths<N>,
+    hero_only: bool,
+    resp: impl Fn(f32) -> StackResponse,
+) -> super::Polarising<N> {
+    let reflect = wi.z * wo.z > 0.0;
+    let m = |l: f32| {
+        let r = resp(l);
+        if reflect {
+            reflection_mueller(&r)
+        } else {
+            transmission_mueller(&r)
+        }
+    };
+    super::polarised::interface(frame, Vec3::Z, wo, wi, m, hero_only).with(w)
 }

@@ -201,60 +201,6 @@ impl Plastic {
         })
     }
 
-    /// The same smooth plastic under thin-film `layers` (indices `ext_ior` outside and
-    /// `int_ior` of the coating, absolute). Errors for a rough plastic.
-    pub fn with_film(
-        mut self,
-        layers: crate::optics::thin_film::Coating,
-        ext_ior: f32,
-        int_ior: f32,
-    ) -> Result<Self, String> {
-        if self.rough.is_some() {
-            return Err(
-                "a coating goes on a smooth plastic only (roughplastic does not take one yet)"
-                    .into(),
-            );
-        }
-        self.film = Some(Box::new(super::coated::PlasticFilm::new(
-            layers, ext_ior, int_ior,
-        )));
-        Ok(self)
-    }
-
-    /// Per wavelength (R, T) of the coated interface from outside at `cos`, and R_int.
-    #[inline]
-    fn film_terms<const N: usize>(
-        f: &super::coated::PlasticFilm,
-        cos: f32,
-        w: &SampledWavelengths<N>,
-    ) -> ([f32; N], [f32; N]) {
-        let rt = w.lambda.map(|l| f.outside(cos, l));
-        (rt.map(|x| x.0), rt.map(|x| x.1))
-    }
-
-    /// The coated smooth plastic's f and pdf (see [`Self::eval_pdf`]).
-    fn film_eval_pdf<const N: usize>(
-        &self,
-        f: &super::coated::PlasticFilm,
-        wo: Vec3,
-        wi: Vec3,
-        rho: SampledSpectrum<N>,
-        w: &SampledWavelengths<N>,
-    ) -> (SampledSpectrum<N>, f32) {
-        let (_, t_o) = Self::film_terms(f, wo.z, w);
-        let (_, t_i) = Self::film_terms(f, wi.z, w);
-        let mut v = [0.0; N];
-        for j in 0..N {
-            let r_int = f.r_int(w.lambda[j]);
-            let d = rho[j];
-            let den = 1.0 - if self.nonlinear { d * r_int } else { r_int };
-            let eff = if den > 0.0 { d / den } else { 0.0 };
-            v[j] = eff * FRAC_1_PI * t_o[j] * t_i[j] / (self.eta * self.eta);
-        }
-        let ps = self.p_spec(mean(&t_o));
-        (SampledSpectrum(v), (1.0 - ps) * cosine_hemisphere_pdf(wi.z))
-    }
-
     /// T(cos θ): the coating's transmittance.
     #[inline]
     fn transmittance(&self, cos: f32) -> f32 {
@@ -280,7 +226,7 @@ impl Plastic {
 
     /// Probability of sampling the specular part, seen from `wo`.
     #[inline]
-    fn p_spec(&self, t_o: f32) -> f32 {
+    pub(super) fn p_spec(&self, t_o: f32) -> f32 {
         let ps = (1.0 - t_o) * self.spec_weight;
         let pd = t_o * (1.0 - self.spec_weight);
         if ps + pd > 0.0 { ps / (ps + pd) } else { 0.0 }
@@ -336,9 +282,12 @@ impl Plastic {
         if wo.z <= 0.0 {
             return None;
         }
-        let film = self.film.as_deref().map(|f| Self::film_terms(f, wo.z, w));
+        let film = self
+            .film
+            .as_deref()
+            .map(|f| super::coated::film_terms(f, wo.z, w));
         let ps = match &film {
-            Some((_, t)) => self.p_spec(mean(t)),
+            Some((_, t)) => self.p_spec(super::coated::mean(t)),
             None => self.p_spec(self.transmittance(wo.z)),
         };
         if uc < ps {
@@ -371,11 +320,6 @@ impl Plastic {
         let (f, pdf) = self.eval_pdf(wo, wi, rho, w);
         (pdf > 0.0 && wi.z > 0.0).then(|| BsdfSample::reflection(f, wi, pdf))
     }
-}
-
-/// The mean of the sampled values (a coated interface's transmittance for the lobe choice).
-fn mean<const N: usize>(v: &[f32; N]) -> f32 {
-    v.iter().sum::<f32>() / N as f32
 }
 
 #[cfg(test)]

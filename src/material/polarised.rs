@@ -113,30 +113,14 @@ fn of<const N: usize>(
             let m = fresnel::reflection(c, Complex::new(e, 0.0));
             interface(frame, Vec3::Z, wo, wi, |_| m, false).with(w)
         }
-        Material::ThinFilm(f) => {
-            let reflect = wi.z * wo.z > 0.0;
-            let m = |l: f32| {
-                let r = coated::film(&f.layers, f.ext_ior, wi.z, l);
-                if reflect {
-                    coated::reflection_mueller(&r)
-                } else {
-                    coated::transmission_mueller(&r)
-                }
-            };
-            interface(frame, Vec3::Z, wo, wi, m, false).with(w)
-        }
+        Material::ThinFilm(f) => coated::stack(frame, (wo, wi), w, false, |l| {
+            coated::film(&f.layers, f.ext_ior, wi.z, l)
+        }),
         Material::Dielectric(d) => {
             let reflect = wi.z * wo.z > 0.0;
             if let Some(c) = &d.coating {
-                let m = |l: f32| {
-                    let r = coated::on_dielectric(c, d.ext_ior, &d.int_ior, wi.z, l);
-                    if reflect {
-                        coated::reflection_mueller(&r)
-                    } else {
-                        coated::transmission_mueller(&r)
-                    }
-                };
-                return interface(frame, Vec3::Z, wo, wi, m, d.int_ior.is_dispersive()).with(w);
+                let resp = |l| coated::on_dielectric(c, d.ext_ior, &d.int_ior, wi.z, l);
+                return coated::stack(frame, (wo, wi), w, d.int_ior.is_dispersive(), resp);
             }
             let dispersive = d.int_ior.is_dispersive();
             interface(
@@ -315,7 +299,7 @@ fn s_axis(n: Vec3, wi: Vec3, wo: Vec3) -> Vec3 {
 /// An interface's matrices before they are put per wavelength: `m(λ)` in the frame of the
 /// plane of incidence about the (local) normal `n`, and whether they differ per wavelength
 /// only at the hero (dispersive: the secondaries are terminated).
-struct Interface<'a, F: Fn(f32) -> Mueller> {
+pub(super) struct Interface<'a, F: Fn(f32) -> Mueller> {
     frame: &'a Frame,
     s_in: Vec3,
     s_out: Vec3,
@@ -325,7 +309,7 @@ struct Interface<'a, F: Fn(f32) -> Mueller> {
     hero_only: bool,
 }
 
-fn interface<F: Fn(f32) -> Mueller>(
+pub(super) fn interface<F: Fn(f32) -> Mueller>(
     frame: &Frame,
     n: Vec3,
     wo: Vec3,
@@ -353,7 +337,7 @@ fn interface<F: Fn(f32) -> Mueller>(
 
 impl<F: Fn(f32) -> Mueller> Interface<'_, F> {
     /// The normalised matrices at the wavelengths `w`, in world implicit bases.
-    fn with<const N: usize>(self, w: &SampledWavelengths<N>) -> Polarising<N> {
+    pub(super) fn with<const N: usize>(self, w: &SampledWavelengths<N>) -> Polarising<N> {
         let one = |l: f32| -> Mueller {
             match normalised((self.m)(l)) {
                 Some(p) => to_world(self.frame, &p, self.wo, self.wi, self.s_in, self.s_out),

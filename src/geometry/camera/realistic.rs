@@ -70,6 +70,29 @@ impl Camera {
     }
 }
 
+impl Camera {
+    /// The world ray through `raster` from lens sample `lens` at wavelength `lambda_nm`, with
+    /// its weight (dimensionless): the ray of [`Camera::generate_ray`] with weight 1 for every
+    /// camera but the realistic one, whose rays depend on the wavelength and carry the weight
+    /// of its pupil sampling (`camera/realistic.rs`). None if the lens blocks the ray.
+    #[inline]
+    pub fn generate_ray_at(&self, raster: Vec2, lens: Vec2, lambda_nm: f32) -> Option<(Ray, f32)> {
+        match self {
+            Camera::Realistic(c) => c.ray(raster, lens, lambda_nm),
+            _ => Some((self.generate_ray(raster, lens), 1.0)),
+        }
+    }
+
+    /// Whether a camera ray serves its hero wavelength only (a realistic camera with dispersive
+    /// glass); the renderer then terminates the secondary wavelengths.
+    pub fn disperses(&self) -> bool {
+        match self {
+            Camera::Realistic(c) => c.dispersive(),
+            Camera::Perspective(_) | Camera::ThinLens(_) | Camera::Orthographic(_) => false,
+        }
+    }
+}
+
 impl Realistic {
     /// The world ray through raster position `raster` from the pupil sample `u` ∈ [0, 1)² at
     /// `lambda_nm`, and its weight (dimensionless, see the module docs); None if the lens
