@@ -3,7 +3,10 @@
 //!
 //! Header lines `# expect: TEXT` list substrings the message must contain, `# not: TEXT`
 //! substrings it must not (in an XML file, inside a `<!-- … -->` comment). A line marked
-//! `# <-- error` is where the error must point (line and column are always reported).
+//! `# <-- error` is where the error must point (line and column are always reported);
+//! `support::corpus::check` reads them.
+
+mod support;
 
 use std::path::{Path, PathBuf};
 
@@ -43,63 +46,10 @@ fn every_bad_scene_errors_cleanly() {
     assert!(files.len() >= 25, "the corpus has {} scenes", files.len());
     let mut failures = Vec::new();
     for path in &files {
-        let text = std::fs::read_to_string(path).expect("readable");
-        let expects: Vec<&str> = text
-            .lines()
-            .filter_map(|l| l.strip_prefix("# expect: "))
-            .collect();
-        assert!(
-            !expects.is_empty(),
-            "{} has no `# expect:` line",
-            path.display()
-        );
-        let rejects: Vec<&str> = text
-            .lines()
-            .filter_map(|l| l.strip_prefix("# not: "))
-            .collect();
-        let marker = text
-            .lines()
-            .position(|l| l.contains("# <-- error"))
-            .map(|i| i + 1);
-        let result = std::panic::catch_unwind(|| load_and_build(path));
-        let msg = match result {
-            Err(_) => {
-                failures.push(format!("{}: PANICKED", path.display()));
-                continue;
-            }
-            Ok(Ok(())) => {
-                failures.push(format!("{}: loaded without error", path.display()));
-                continue;
-            }
-            Ok(Err(m)) => m,
-        };
-        let prefix = format!("{}:", path.display());
-        if !msg.starts_with(&prefix) {
-            failures.push(format!(
-                "{}: message does not start with the file name: {msg}",
-                path.display()
-            ));
+        match support::corpus::check(path, || load_and_build(path)) {
+            Ok(msg) => println!("{msg}"),
+            Err(f) => failures.extend(f),
         }
-        for e in &expects {
-            if !msg.contains(e) {
-                failures.push(format!("{}: message lacks \"{e}\": {msg}", path.display()));
-            }
-        }
-        for r in &rejects {
-            if msg.contains(r) {
-                failures.push(format!(
-                    "{}: message contains \"{r}\": {msg}",
-                    path.display()
-                ));
-            }
-        }
-        if let Some(line) = marker {
-            let want = format!("{prefix}{line}:");
-            if !msg.starts_with(&want) {
-                failures.push(format!("{}: expected line {line}: {msg}", path.display()));
-            }
-        }
-        println!("{msg}");
     }
     assert!(
         failures.is_empty(),

@@ -44,12 +44,7 @@ pub fn lens(
     wavelengths
         .iter()
         .map(|w| {
-            let l = w.get::<length::nanometer>();
-            if !(l.is_finite() && l > 0.0) {
-                return Err(Error::Options(format!(
-                    "wavelength {l} nm must be positive"
-                )));
-            }
+            let l = nm(w)?;
             let p = sys.paraxial(l);
             let mm = Length::new::<length::millimeter>;
             Ok(LensFocalLengths {
@@ -118,12 +113,7 @@ impl Scene {
         wavelengths
             .iter()
             .map(|w| {
-                let l = w.get::<length::nanometer>();
-                if !(l.is_finite() && l > 0.0) {
-                    return Err(Error::Options(format!(
-                        "wavelength {l} nm must be positive"
-                    )));
-                }
+                let l = nm(w)?;
                 let a = crate::material::albedo::albedo(m, theta as f32, l as f32, samples, 0);
                 Ok(MaterialAlbedo {
                     wavelength: *w,
@@ -135,5 +125,17 @@ impl Scene {
                 })
             })
             .collect()
+    }
+}
+
+/// A wavelength in nm, which must be positive and finite.
+fn nm(w: &Length) -> Result<f64, Error> {
+    let l = w.get::<length::nanometer>();
+    if l.is_finite() && l > 0.0 {
+        Ok(l)
+    } else {
+        Err(Error::Options(format!(
+            "wavelength {l} nm must be positive"
+        )))
     }
 }

@@ -52,6 +52,7 @@ impl Csv {
 
 /// A small deterministic generator (SplitMix64) for Monte Carlo checks.
 pub mod cli;
+pub mod corpus;
 pub mod idiff;
 pub mod media;
 pub mod photometric;
