@@ -134,17 +134,8 @@ pub(super) fn dielectric_sample<const N: usize>(
     if wi.z == 0.0 || wi.z * wo.z >= 0.0 || !(1.0 - pr > 0.0) {
         return None;
     }
-    let mut f = [0.0; N];
-    for j in 0..N {
-        let mut tj = t[j] / wi.z.abs();
-        if mode == TransportMode::Radiance {
-            let ep = if wo.z > 0.0 { etas[j] } else { 1.0 / etas[j] };
-            tj /= ep * ep;
-        }
-        f[j] = tj;
-    }
     Some(BsdfSample {
-        f: SampledSpectrum(f),
+        f: super::dielectric::transmitted(t, &etas, wo, wi, mode),
         wi,
         pdf: 1.0 - pr,
         specular: true,

@@ -91,19 +91,8 @@ impl Dielectric {
         if wi.z == 0.0 || wi.z * wo.z >= 0.0 {
             return None;
         }
-        let inv_cos = 1.0 / wi.z.abs();
-        let mut f = [0.0; N];
-        for j in 0..N {
-            let mut t = (1.0 - fr[j]) * inv_cos;
-            if mode == TransportMode::Radiance {
-                // η' for this wavelength: n(wi side)/n(wo side).
-                let ep = if wo.z > 0.0 { etas[j] } else { 1.0 / etas[j] };
-                t /= ep * ep;
-            }
-            f[j] = t;
-        }
         Some(BsdfSample {
-            f: SampledSpectrum(f),
+            f: transmitted(fr.map(|r| 1.0 - r), &etas, wo, wi, mode),
             wi,
             pdf: 1.0 - pr,
             specular: true,
@@ -112,4 +101,27 @@ impl Dielectric {
             eta: etap,
         })
     }
+}
+
+/// A specular transmission's f per wavelength from its transmittances `t` (power fractions):
+/// t/|cos θᵢ|, divided in [`TransportMode::Radiance`] by η'² = (n(wi side)/n(wo side))² at each
+/// wavelength's relative index `etas` (inside over outside).
+#[inline]
+pub(super) fn transmitted<const N: usize>(
+    t: [f32; N],
+    etas: &[f32; N],
+    wo: Vec3,
+    wi: Vec3,
+    mode: TransportMode,
+) -> SampledSpectrum<N> {
+    let inv_cos = 1.0 / wi.z.abs();
+    let mut f = [0.0; N];
+    for j in 0..N {
+        f[j] = t[j] * inv_cos;
+        if mode == TransportMode::Radiance {
+            let ep = if wo.z > 0.0 { etas[j] } else { 1.0 / etas[j] };
+            f[j] /= ep * ep;
+        }
+    }
+    SampledSpectrum(f)
 }
