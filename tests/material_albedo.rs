@@ -187,3 +187,41 @@ fn the_material_and_lens_commands_print_csv() {
     assert!((v[1] - 50.0).abs() < 0.5, "EFL {}", v[1]);
     assert!(v[2] > 30.0 && v[2] < 40.0 && v[3] > 0.0, "{out}");
 }
+
+#[test]
+fn bad_angles_wavelengths_and_lens_files_are_errors() {
+    let dir = support::cli::tmpdir("material-bad");
+    let scene = dir.join("s.toml");
+    std::fs::write(&scene, SCENE).unwrap();
+    let s = scene.to_str().unwrap();
+    let lens_path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/lenses/dgauss50.lens");
+    let lens = lens_path.to_str().unwrap();
+    for (args, expect) in [
+        (
+            vec!["material", s, "glass", "--angle", "90deg"],
+            "expected 0 to 90 deg",
+        ),
+        (vec!["material", s, "glass", "--angle", "30 m"], "--angle"),
+        (
+            vec!["material", s, "glass", "--wavelengths", "700:400:5"],
+            "FROM:TO:STEP",
+        ),
+        (
+            vec!["material", s, "glass", "--wavelengths", "500,-3"],
+            "FROM:TO:STEP",
+        ),
+        (vec!["lens", "/nonexistent/x.lens"], "cannot read lens file"),
+        (vec!["lens", lens, "--wavelengths", "0"], "must be positive"),
+    ] {
+        let out = Command::new(env!("CARGO_BIN_EXE_spectrace"))
+            .args(&args)
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            !out.status.success() && err.contains(expect),
+            "{args:?}: {err}"
+        );
+    }
+}
