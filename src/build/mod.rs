@@ -135,6 +135,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
             light_selection: desc.integrator.light_selection,
             moment: desc.integrator.moment,
             polarised,
+            split_dispersion: desc.integrator.split_dispersion,
         },
         wavelengths: range,
         bounds,

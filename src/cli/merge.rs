@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 
 use super::CliError;
 use super::farm::{num_attr, text_attr};
+use super::view;
 use crate::film::FilterDesc;
 use crate::film::{Film, Filter, STATE_PREFIX};
 use crate::image_io::{ExrImage, read_exr};
@@ -27,6 +28,10 @@ pub struct MergeArgs {
     /// PNG exposure EV₁₀₀. Default: automatic.
     #[arg(long, allow_negative_numbers = true)]
     pub exposure: Option<f32>,
+    /// The PNG's display transform (`standard` or `clip`, as `render --view`).
+    #[arg(long, default_value = "standard",
+          value_parser = clap::builder::PossibleValuesParser::new(crate::output::View::NAMES))]
+    pub view: String,
     /// No summary.
     #[arg(short, long)]
     pub quiet: bool,
@@ -147,7 +152,7 @@ pub fn merge(args: MergeArgs) -> Result<(), CliError> {
         .png
         .clone()
         .unwrap_or_else(|| args.output.with_extension("png"));
-    write_png(&png, &image, args.exposure)?;
+    write_png(&png, &image, args.exposure, view(&args.view))?;
     if !args.quiet {
         eprintln!(
             "merged {} parts ({} samples per pixel) into {} and {}",

@@ -80,3 +80,9 @@ pub fn run(cli: Cli) -> Result<(), CliError> {
         None => render::run_default(),
     }
 }
+
+/// The display transform called `name` (`--view`, checked by clap; an empty name, from a
+/// checkpoint written before the option existed, is the default).
+pub(crate) fn view(name: &str) -> crate::output::View {
+    crate::output::View::from_name(name).unwrap_or_default()
+}

@@ -5,6 +5,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::CliError;
 use super::progress::Progress;
+use super::view;
 use crate::loader::desc::IntegratorKind;
 use crate::output::{RenderInfo, write_exr, write_png};
 use crate::render::{RenderOptions, render_with};
@@ -64,6 +65,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
                 (args.spp.is_some(), "--spp"),
                 (args.seed != 0, "--seed"),
                 (args.integrator.is_some(), "--integrator"),
+                (args.dispersion.is_some(), "--dispersion"),
                 (args.spectral_bins.is_some(), "--spectral-bins"),
                 (args.exposure.is_some(), "--exposure"),
                 (!args.define.is_empty(), "-D"),
@@ -208,7 +210,12 @@ fn run_scene(
     info.stop = stats.stop.name();
     info.rel_error = stats.rel_error;
     write_exr_or_part(&exr, &image, &info, &film, &opts, &hash, args.mitsuba_units)?;
-    let ev = write_png(&png, &image, args.exposure.or(scene.film.exposure_ev))?;
+    let ev = write_png(
+        &png,
+        &image,
+        args.exposure.or(scene.film.exposure_ev),
+        view(&args.view),
+    )?;
     if let Some(kind) = args.false_colour
         && stats.stop != crate::render::StopReason::Cancelled
     {

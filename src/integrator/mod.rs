@@ -13,6 +13,7 @@ pub mod light;
 mod light_media;
 pub mod meter;
 mod path;
+pub mod split;
 mod volpath;
 mod whitted;
 
@@ -102,6 +103,10 @@ pub struct Integrator<'a> {
     pub rr_depth: u32,
     /// `bdpt` only: render one connection strategy alone (debugging; None renders them all).
     pub strategy: Option<bdpt::Strategy>,
+    /// Split camera samples at dispersive hits ([`split`]): the scene asks for it, and it has
+    /// no media and is not polarised (where the hero's free flights or Stokes frames would
+    /// make the split depend on the hero).
+    pub split_dispersion: bool,
 }
 
 impl<'a> Integrator<'a> {
@@ -125,6 +130,9 @@ impl<'a> Integrator<'a> {
             max_depth,
             rr_depth: scene.integrator.rr_depth,
             strategy: None,
+            split_dispersion: scene.integrator.split_dispersion
+                && scene.media.is_empty()
+                && !scene.integrator.polarised,
         }
     }
 

@@ -128,6 +128,8 @@ pub struct RawIntegrator {
     pub max_depth: Option<S<Value>>,
     pub rr_depth: Option<S<Value>>,
     pub light_selection: Option<S<String>>,
+    /// `split` (default) or `hero`: what a camera path does at its first dispersive hit.
+    pub dispersion: Option<S<String>>,
     /// `direct`: light and BSDF samples per camera hit.
     pub emitter_samples: Option<S<Value>>,
     pub bsdf_samples: Option<S<Value>>,

@@ -8,8 +8,10 @@
 //! of each bin, W·m⁻²·sr⁻¹·nm⁻¹). A polarised render adds its Stokes components ([`stokes_channels`]).
 //!
 //! PNG tone curve: linear RGB is divided by the saturating luminance of an ISO-100 camera,
-//! L_max = 1.2 · 2^EV₁₀₀ cd/m² (the saturation-based sensitivity of ISO 12232), clamped to
-//! [0, 1], and encoded with the sRGB transfer function. With automatic exposure,
+//! L_max = 1.2 · 2^EV₁₀₀ cd/m² (the saturation-based sensitivity of ISO 12232), brought into
+//! [0, 1] by the display transform ([`View`]: by default out-of-gamut and over-exposed colours
+//! pale toward the grey of their luminance, keeping their hue) and encoded with the sRGB
+//! transfer function. With automatic exposure,
 //! EV₁₀₀ = log₂(L_avg · 100 / 12.5), the reflected-light meter calibration of ISO 2720 with
 //! L_avg the geometric mean luminance of the pixels that are not black.
 
@@ -19,6 +21,7 @@ mod stokes;
 
 pub use stokes::stokes_channels;
 
+pub use crate::colour::view::View;
 use crate::film::Image;
 use crate::image_io::{self, AttrValue, Channel, ImageError, WordChannel};
 use crate::spectrum::WavelengthRange;
@@ -330,11 +333,21 @@ pub fn auto_ev100(img: &Image) -> f32 {
     (log_avg * 100.0 / 12.5).max(1e-12).log2() as f32
 }
 
-/// Writes the PNG preview with exposure `ev100` (None: automatic); returns the EV₁₀₀ used.
-pub fn write_png(path: &Path, img: &Image, ev100: Option<f32>) -> Result<f32, ImageError> {
+/// Writes the PNG preview with exposure `ev100` (None: automatic) through the display
+/// transform `view`; returns the EV₁₀₀ used.
+pub fn write_png(
+    path: &Path,
+    img: &Image,
+    ev100: Option<f32>,
+    view: View,
+) -> Result<f32, ImageError> {
     let ev = ev100.unwrap_or_else(|| auto_ev100(img));
     let k = 1.0 / (1.2 * 2f32.powf(ev));
-    let rgb: Vec<[f32; 3]> = img.rgb.iter().map(|p| p.map(|v| v * k)).collect();
+    let rgb: Vec<[f32; 3]> = img
+        .rgb
+        .iter()
+        .map(|p| view.apply(p.map(|v| v * k)))
+        .collect();
     image_io::write_png_linear(path, img.width, img.height, &rgb)?;
     Ok(ev)
 }

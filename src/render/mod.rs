@@ -65,6 +65,9 @@ pub struct RenderOptions {
     /// Stop at the end of the first pass whose estimated relative error of Y (see
     /// `control::ErrorEstimate`) is below this (dimensionless, e.g. 0.01).
     pub target_error: Option<f64>,
+    /// Split camera samples at dispersion (the scene's `dispersion = "split"`; see
+    /// `integrator::split`). Ignored with media and in polarised renders.
+    pub split_dispersion: bool,
 }
 
 impl RenderOptions {
@@ -81,6 +84,7 @@ impl RenderOptions {
             part: None,
             time_limit: None,
             target_error: None,
+            split_dispersion: scene.integrator.split_dispersion,
         }
     }
 
@@ -216,6 +220,8 @@ pub fn render_with(
     .with_stokes(scene.integrator.polarised);
     let mut integrator = Integrator::new(scene, opts.integrator, opts.max_depth);
     integrator.strategy = opts.strategy;
+    integrator.split_dispersion =
+        opts.split_dispersion && scene.media.is_empty() && !scene.integrator.polarised;
     let lambda = WavelengthSampler::visible(scene.wavelengths);
     let tiles: Vec<(u32, u32, u32, u32)> = (0..h.div_ceil(TILE))
         .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))

@@ -168,12 +168,12 @@ fn trace_tile(
                     let st = ctx.integrator.stokes(ray, &mut wl, &mut s);
                     (st[0], tile.add_stokes(x, y, &wl, &st, bins))
                 } else if weight == 1.0 {
-                    let l = ctx.integrator.radiance(ray, &mut wl, &mut s);
+                    let l = ctx.integrator.radiance_split(ray, &mut wl, &mut s);
                     (l, tile.add(x, y, &wl, &l, bins))
                 } else {
                     // a realistic camera's ray: weighted, or blocked by its lens (weight 0)
                     let l = if weight > 0.0 {
-                        ctx.integrator.radiance(ray, &mut wl, &mut s) * weight
+                        ctx.integrator.radiance_split(ray, &mut wl, &mut s) * weight
                     } else {
                         crate::spectrum::SampledSpectrum::zero()
                     };

@@ -58,6 +58,10 @@ pub struct IntegratorSettings {
     /// (`integrator::stokes`) and the film sums S1–S3 beside S0. Set by the scene's integrator
     /// or by any polarising element among its materials.
     pub polarised: bool,
+    /// At a camera path's first dispersive hit, estimate every wavelength by a path of its
+    /// own instead of keeping the hero alone (see
+    /// [`crate::loader::desc::IntegratorDesc::split_dispersion`]).
+    pub split_dispersion: bool,
 }
 
 /// A render-ready scene. Shapes are in world space, metres.

@@ -50,6 +50,16 @@ impl<const N: usize> SampledWavelengths<N> {
         self.pdf[1..].iter().all(|&p| p == 0.0)
     }
 
+    /// The same wavelengths with the one at index `j` as the hero: both arrays rotated left by
+    /// `j` (index `m` of the result is index `(m + j) mod N` of `self`).
+    #[inline]
+    pub fn rotated(&self, j: usize) -> Self {
+        let mut r = *self;
+        r.lambda.rotate_left(j % N);
+        r.pdf.rotate_left(j % N);
+        r
+    }
+
     /// The pdfs as a spectrum, for dividing a sampled value by them.
     #[inline]
     pub fn pdf_spectrum(&self) -> SampledSpectrum<N> {

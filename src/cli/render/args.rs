@@ -61,6 +61,17 @@ pub struct RenderArgs {
     /// PNG exposure EV₁₀₀ (saturation at 1.2·2^EV cd/m²). Default: automatic.
     #[arg(long, allow_negative_numbers = true)]
     pub exposure: Option<f32>,
+    /// What a camera sample does at its first dispersive hit: `split` (trace it again with
+    /// each of its wavelengths as the hero, so that every wavelength is estimated) or `hero`
+    /// (keep the hero wavelength alone). Default: the scene's `dispersion` (`split`).
+    #[arg(long, value_parser = clap::builder::PossibleValuesParser::new(["split", "hero"]))]
+    pub dispersion: Option<String>,
+    /// The PNG's display transform: `standard` (out-of-gamut and over-exposed colours pale
+    /// toward the grey of their luminance, keeping their hue; in-gamut colours unchanged) or
+    /// `clip` (each channel clamped on its own). The EXR is never transformed.
+    #[arg(long, default_value = "standard",
+          value_parser = clap::builder::PossibleValuesParser::new(crate::output::View::NAMES))]
+    pub view: String,
     /// Also write a false-colour PNG (viridis, with a legend in its unit) of `luminance` (cd/m²,
     /// the render's Y) or `illuminance` (lx at the surfaces seen: an extra pass at the render's
     /// spp, as Radiance's `rpict -i`).

@@ -18,6 +18,9 @@ pub(super) fn options(
     })?;
     let scene = api_scene.inner();
     opts.strategy = bdpt_strategy(args, &opts)?;
+    if let Some(d) = &args.dispersion {
+        opts.split_dispersion = d == "split";
+    }
     let splats = matches!(
         opts.integrator,
         IntegratorKind::Light | IntegratorKind::Bdpt

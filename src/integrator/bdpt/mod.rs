@@ -35,6 +35,7 @@
 mod connect;
 mod media;
 mod polarised;
+mod split;
 mod vertex;
 mod walk;
 
@@ -106,6 +107,10 @@ pub struct Radiance<const N: usize> {
 /// vector in the camera's frame in a polarised render (`polarised.rs`). `s` is the
 /// camera sample's stream (its camera dimensions read), `s_light` a stream of the same pixel
 /// and index for the light subpath. `margin` is the filter radius, pixels.
+///
+/// With [`Integrator::split_dispersion`], a sample whose camera subpath meets a dispersive
+/// interface is traced again with each other wavelength as the hero (`split.rs`); its
+/// camera-side radiance is then all in `all`, at `w`.
 #[allow(clippy::too_many_arguments)]
 pub fn sample<'a, const N: usize>(
     it: &'a Integrator<'a>,
@@ -117,8 +122,56 @@ pub fn sample<'a, const N: usize>(
     scratch: &mut Scratch<'a, N>,
     splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, Splatted<N>),
 ) -> Radiance<N> {
-    let max_depth = it.max_depth as usize;
     let conn = s.clone().at_dimension(CONNECT_DIMS);
+    let again = it.split_dispersion.then(|| (s.clone(), s_light.clone()));
+    let glow = walks(it, ray, w, s, s_light, scratch);
+    let mut hero_only = *w;
+    hero_only.terminate_secondary();
+    // a medium's own emission, which only the camera walk finds
+    let mut out = Radiance {
+        all: glow.all,
+        hero: glow.hero,
+        hero_only,
+        stokes_all: [SampledSpectrum::zero(); 4],
+        stokes_hero: [SampledSpectrum::zero(); 4],
+    };
+    let camera_disperses = walk::first_dispersive(&scratch.camera) < scratch.camera.len();
+    match again {
+        Some(streams) if camera_disperses && !w.secondary_terminated() => {
+            let sample = split::Sample {
+                ray,
+                w,
+                conn: &conn,
+                margin,
+            };
+            split::rotations(it, &sample, streams, scratch, splat, &mut out);
+        }
+        _ => strategies(
+            it,
+            ray,
+            w,
+            &conn,
+            margin,
+            scratch,
+            splat,
+            Keep::Every,
+            &mut out,
+        ),
+    }
+    out
+}
+
+/// Both subpaths of a sample at `w` into `scratch` (and the polarised factors' cache);
+/// returns a medium's emission the camera walk found.
+fn walks<'a, const N: usize>(
+    it: &'a Integrator<'a>,
+    ray: Ray,
+    w: &SampledWavelengths<N>,
+    s: &mut Sampler,
+    s_light: &mut Sampler,
+    scratch: &mut Scratch<'a, N>,
+) -> media::Glow<N> {
+    let max_depth = it.max_depth as usize;
     let mut glow = media::Glow {
         all: SampledSpectrum::zero(),
         hero: SampledSpectrum::zero(),
@@ -139,10 +192,40 @@ pub fn sample<'a, const N: usize>(
         max_depth.saturating_add(1),
         &mut scratch.light,
     );
-    let polarised = it.polarised();
-    if polarised {
+    if it.polarised() {
         scratch.pol.build(it, &scratch.camera, &scratch.light, w);
     }
+    glow
+}
+
+/// Which strategies [`strategies`] evaluates, and the factor on the hero-only ones.
+#[derive(Clone, Copy)]
+enum Keep {
+    /// All of them, as they are.
+    Every,
+    /// The dispersive ones only, times `scale` (a rotation of a split sample: `split.rs`).
+    Dispersive { scale: f32 },
+    /// All of them, the dispersive ones times `scale` (the first rotation of a split sample).
+    EveryScaled { scale: f32 },
+}
+
+/// Every connection strategy of the subpaths in `scratch` at the wavelengths `w`: t = 1 ones
+/// to `splat`, the others added to `out` (`all`, or `hero` at `out.hero_only` where a
+/// dispersive vertex takes part), as `keep` says.
+#[allow(clippy::too_many_arguments)]
+fn strategies<'a, const N: usize>(
+    it: &'a Integrator<'a>,
+    ray: Ray,
+    w: &SampledWavelengths<N>,
+    conn: &Sampler,
+    margin: f32,
+    scratch: &Scratch<'a, N>,
+    splat: &mut impl FnMut(Vec2, &SampledWavelengths<N>, Splatted<N>),
+    keep: Keep,
+    out: &mut Radiance<N>,
+) {
+    let max_depth = it.max_depth as usize;
+    let polarised = it.polarised();
     let (camera, light, pol) = (&scratch.camera, &scratch.light, &scratch.pol);
     // the camera side's Stokes sums (a polarised render), in the implicit basis of light
     // travelling along −ray.d
@@ -152,16 +235,7 @@ pub fn sample<'a, const N: usize>(
         walk::first_dispersive(camera),
         walk::first_dispersive(light),
     );
-    let mut hero_only = *w;
-    hero_only.terminate_secondary();
-    // a medium's own emission, which only the camera walk finds
-    let mut out = Radiance {
-        all: glow.all,
-        hero: glow.hero,
-        hero_only,
-        stokes_all: [SampledSpectrum::zero(); 4],
-        stokes_hero: [SampledSpectrum::zero(); 4],
-    };
+    let hero_only = out.hero_only;
     for t in 1..=camera.len() {
         for s in 0..=light.len() {
             // depth = interior vertices of the full path = s + t − 2
@@ -175,12 +249,18 @@ pub fn sample<'a, const N: usize>(
             }
             let weighted = it.strategy.is_none_or(|o| o.weighted);
             let dispersive = s > disp_l || t > disp_c;
+            let scale = match keep {
+                Keep::Dispersive { .. } if !dispersive => continue,
+                Keep::Dispersive { scale } | Keep::EveryScaled { scale } if dispersive => scale,
+                _ => 1.0,
+            };
             let wl = if dispersive { &hero_only } else { w };
             let Some((c, raster, sampled)) =
-                connect(it, light, camera, s, t, wl, &conn, margin, weighted)
+                connect(it, light, camera, s, t, wl, conn, margin, weighted)
             else {
                 continue;
             };
+            let c = c * scale;
             if polarised {
                 let (p, travel) =
                     pol.factor(it, light, camera, (s, t), sampled.as_ref(), ray.d, wl);
@@ -208,7 +288,6 @@ pub fn sample<'a, const N: usize>(
         out.stokes_all[0] += out.all;
         out.stokes_hero[0] += out.hero;
     }
-    out
 }
 
 /// `sum` += `st`, per wavelength.

@@ -172,6 +172,14 @@ pub struct IntegratorDesc {
     /// integrator in a polarised variant asks; a scene holding a polarising element renders
     /// polarised whatever this says.
     pub polarised: bool,
+    /// TOML `dispersion = "split"` (the default) or `"hero"`. A camera path that meets a
+    /// dispersive interface keeps only its hero wavelength (Wilkie et al. 2014 §4); with
+    /// `split`, the sample is traced again with each of its other wavelengths as the hero and
+    /// each wavelength keeps its own path's estimate (`integrator::split`), so a sample through
+    /// glass carries every wavelength. Unbiased either way; `split` costs a path per
+    /// wavelength where the camera sees through dispersive glass and lowers the colour noise
+    /// there.
+    pub split_dispersion: bool,
 }
 
 /// Default `rr_depth`, Mitsuba 3's: paths keep their first five surface hits.

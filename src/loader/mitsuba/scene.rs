@@ -192,6 +192,7 @@ fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
         light_selection: LightSelection::Tree,
         moment: false,
         polarised: false,
+        split_dispersion: true,
     };
     let mut camera = None;
     let mut materials: Vec<MaterialDesc> = Vec::new();

@@ -10,6 +10,7 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
         light_selection: LightSelection::Tree,
         moment: false,
         polarised: false,
+        split_dispersion: true,
     };
     let Some(i) = i else { return Ok(d) };
     let i = i.get_ref();
@@ -84,6 +85,19 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
                     &k.span(),
                     "integrator.light_selection",
                     format!("\"{o}\": expected tree, power or uniform"),
+                ));
+            }
+        };
+    }
+    if let Some(k) = &i.dispersion {
+        d.split_dispersion = match k.get_ref().as_str() {
+            "split" => true,
+            "hero" => false,
+            o => {
+                return Err(cx.err(
+                    &k.span(),
+                    "integrator.dispersion",
+                    format!("\"{o}\": expected split or hero"),
                 ));
             }
         };
