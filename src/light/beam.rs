@@ -1,4 +1,5 @@
-//! A collimated beam of finite radius: a laser, or a white beam for dispersion studies.
+//! A collimated beam of finite section: a laser, or a white beam (round, or through a slit)
+//! for dispersion studies.
 
 use glam::{Vec2, Vec3};
 
@@ -7,16 +8,52 @@ use crate::geometry::Frame;
 use crate::sampling::concentric_disk;
 use crate::spectrum::{SampledWavelengths, Spectrum};
 
-/// Parallel light leaving a disk of radius `radius` (m) centred at `center`, travelling along
-/// `frame.n`, with total spectral power `power` (W·nm⁻¹) spread uniformly over the disk. Its
-/// irradiance on a plane across the beam is power / (π r²).
+/// A beam's cross-section in its plane, in the coordinates of `frame.s` and `frame.t`, m.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Section {
+    /// A disk of this radius.
+    Disk { radius: f32 },
+    /// A rectangle (a slit) of these half-extents along `frame.s` and `frame.t`.
+    Rect { half_s: f32, half_t: f32 },
+}
+
+impl Section {
+    /// Area, m².
+    pub fn area(&self) -> f32 {
+        match *self {
+            Section::Disk { radius } => std::f32::consts::PI * radius * radius,
+            Section::Rect { half_s, half_t } => 4.0 * half_s * half_t,
+        }
+    }
+
+    /// A point uniform on the section from `u` (density 1/area).
+    fn sample(&self, u: Vec2) -> Vec2 {
+        match *self {
+            Section::Disk { radius } => concentric_disk(u) * radius,
+            Section::Rect { half_s, half_t } => {
+                Vec2::new((2.0 * u.x - 1.0) * half_s, (2.0 * u.y - 1.0) * half_t)
+            }
+        }
+    }
+
+    /// Whether the in-plane offset (s, t) lies in the section.
+    fn contains(&self, s: f32, t: f32) -> bool {
+        match *self {
+            Section::Disk { radius } => s * s + t * t <= radius * radius,
+            Section::Rect { half_s, half_t } => s.abs() <= half_s && t.abs() <= half_t,
+        }
+    }
+}
+
+/// Parallel light leaving a disk or a slit (`section`) centred at `center`, travelling along
+/// `frame.n`, with total spectral power `power` (W·nm⁻¹) spread uniformly over the section.
+/// Its irradiance on a plane across the beam is power / area.
 #[derive(Clone, Debug)]
 pub struct BeamLight {
     pub center: Vec3,
-    /// `n` is the direction of travel.
+    /// `n` is the direction of travel; a slit's sides run along `s` and `t`.
     pub frame: Frame,
-    /// Beam radius, m.
-    pub radius: f32,
+    pub section: Section,
     /// Total spectral power, W·nm⁻¹.
     pub power: Spectrum,
 }
@@ -30,7 +67,7 @@ impl BeamLight {
         w: &SampledWavelengths<N>,
     ) -> Option<LightSample<N>> {
         let along = self.reaches(p)?;
-        let e = self.power.sample(w) * (1.0 / (std::f32::consts::PI * self.radius * self.radius));
+        let e = self.power.sample(w) * (1.0 / self.section.area());
         Some(LightSample {
             wi: -self.frame.n,
             li: e,
@@ -43,16 +80,16 @@ impl BeamLight {
         })
     }
 
-    /// A particle (light tracing, `bdpt`): a point uniform on the disk from `u`
-    /// (pdf_pos = 1/(π r²) m⁻²), travelling along the beam (a delta direction, pdf_dir = 1),
-    /// `le` the irradiance across the beam, power/(π r²).
+    /// A particle (light tracing, `bdpt`): a point uniform on the section from `u`
+    /// (pdf_pos = 1/area, m⁻²), travelling along the beam (a delta direction, pdf_dir = 1),
+    /// `le` the irradiance across the beam, power/area.
     pub fn sample_le<const N: usize>(
         &self,
         w: &SampledWavelengths<N>,
         u: Vec2,
     ) -> EmissionSample<N> {
-        let d = concentric_disk(u) * self.radius;
-        let inv_area = 1.0 / (std::f32::consts::PI * self.radius * self.radius);
+        let d = self.section.sample(u);
+        let inv_area = 1.0 / self.section.area();
         EmissionSample {
             o: self.center + self.frame.s * d.x + self.frame.t * d.y,
             o_error: Vec3::ZERO,
@@ -65,12 +102,12 @@ impl BeamLight {
         }
     }
 
-    /// Densities of [`BeamLight::sample_le`] for a particle reaching `p`: 1/(π r²) if `p` lies
-    /// in the beam's cylinder ahead of the disk, else 0; the direction is a delta (0).
+    /// Densities of [`BeamLight::sample_le`] for a particle reaching `p`: 1/area if `p` lies
+    /// in the beam's prism ahead of the section, else 0; the direction is a delta (0).
     pub fn pdf_le(&self, p: Vec3) -> EmissionPdf {
         EmissionPdf {
             pos: if self.reaches(p).is_some() {
-                1.0 / (std::f32::consts::PI * self.radius * self.radius)
+                1.0 / self.section.area()
             } else {
                 0.0
             },
@@ -78,15 +115,15 @@ impl BeamLight {
         }
     }
 
-    /// The distance (m) from the disk to `p` along the beam if `p` lies in the beam's cylinder
-    /// ahead of the disk; None otherwise.
+    /// The distance (m) from the section to `p` along the beam if `p` lies in the beam ahead
+    /// of the section; None otherwise.
     fn reaches(&self, p: Vec3) -> Option<f32> {
         let local = p - self.center;
         let along = local.dot(self.frame.n);
         if along <= 0.0 {
             return None;
         }
-        let perp = local - self.frame.n * along;
-        (perp.length_squared() <= self.radius * self.radius).then_some(along)
+        let (s, t) = (local.dot(self.frame.s), local.dot(self.frame.t));
+        self.section.contains(s, t).then_some(along)
     }
 }

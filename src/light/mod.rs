@@ -29,7 +29,7 @@ mod spot;
 mod tree;
 
 pub use area::AreaLight;
-pub use beam::BeamLight;
+pub use beam::{BeamLight, Section as BeamSection};
 pub use bounds::{DirectionCone, Importance, LightBounds};
 pub use directional::DirectionalLight;
 pub use environment::EnvironmentLight;

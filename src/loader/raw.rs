@@ -195,6 +195,8 @@ pub struct RawLight {
     pub falloff: Option<S<Value>>,
     pub angular_diameter: Option<S<Value>>,
     pub radius: Option<S<Value>>,
+    /// A beam's slit, [width, height].
+    pub slit: Option<S<Value>>,
     /// An environment map's image file.
     pub image: Option<S<String>>,
     /// A luminaire's photometric file (.ies or .ldt).

@@ -37,11 +37,14 @@ use glam::Vec3;
 use super::{surface, v3};
 use crate::geometry::Frame;
 use crate::geometry::shape::Shape;
+use crate::light::BeamSection as Section;
 use crate::light::{
     AreaLight, BeamLight, DirectionalLight, EnvironmentLight, Light, PointLight, ProjectorLight,
     SpotLight, SpotTexture,
 };
-use crate::loader::desc::{DirectionalAmount, EmitAmount, LightKind, PointAmount, SceneDesc};
+use crate::loader::desc::{
+    BeamSection, DirectionalAmount, EmitAmount, LightKind, PointAmount, SceneDesc,
+};
 use crate::loader::{LoadError, Loc};
 use crate::scene::Surface;
 use crate::spectrum::WavelengthRange;
@@ -169,15 +172,36 @@ fn light(l: &LightDesc, r: WavelengthRange) -> Result<Light, String> {
         LightKind::Beam {
             position,
             target,
-            radius,
+            section,
             amount,
         } => {
             let p = v3(position);
             let (per, _) = point_amount(amount, 1.0);
+            let n = (v3(target) - p).normalize();
+            let (frame, section) = match section {
+                BeamSection::Disk(radius) => (
+                    Frame::from_normal(n),
+                    Section::Disk {
+                        radius: plain::metres(*radius),
+                    },
+                ),
+                BeamSection::Slit { width, height, up } => {
+                    // the loader made `up` a unit vector across the beam
+                    let t = Vec3::new(up[0] as f32, up[1] as f32, up[2] as f32).normalize();
+                    let s = t.cross(n).normalize();
+                    (
+                        Frame { s, t, n },
+                        Section::Rect {
+                            half_s: 0.5 * plain::metres(*width),
+                            half_t: 0.5 * plain::metres(*height),
+                        },
+                    )
+                }
+            };
             Light::Beam(BeamLight {
                 center: p,
-                frame: Frame::from_normal((v3(target) - p).normalize()),
-                radius: plain::metres(*radius),
+                frame,
+                section,
                 power: scaled(&l.spectrum, per, 1.0, r)?,
             })
         }

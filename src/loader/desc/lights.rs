@@ -110,8 +110,21 @@ pub enum LightKind {
     Beam {
         position: Point,
         target: Point,
-        radius: Length,
+        section: BeamSection,
         amount: PointAmount,
+    },
+}
+
+/// A beam's cross-section.
+#[derive(Clone, Debug)]
+pub enum BeamSection {
+    /// A disk of this radius.
+    Disk(Length),
+    /// A slit: `width` across, `height` along `up` (a unit vector across the beam).
+    Slit {
+        width: Length,
+        height: Length,
+        up: [f64; 3],
     },
 }
 
