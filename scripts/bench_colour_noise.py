@@ -24,16 +24,14 @@ per pixel come from the EXR attribute spectrace:samplesPerPixel.
   * Prism region: every `mesh` shape with a `dielectric` material, its vertices projected through
     the scene's pinhole camera (`fov` spans `fov_axis`, default x = horizontal, as the loader;
     pixel row 0 at the top), the 2D convex hull of the projections rasterised (pixel centres).
-  * Rainbow (8-bit sRGB PNGs): in the mean of the seeds' PNGs, outside the prism mask, the row
-    with the most saturated pixels (HSV s > --sat 0.35, v > --val 0.15); in it the longest run of
-    them, gaps of 1 px allowed (its length counts the gaps). Over the run's saturated pixels: the
-    hue range (unwrapped, deg), the largest hue step between neighbours, the steps > 15 deg; and
-    the run's pixels with two or more channels at 0 or 255. "per seed max": the same on each
-    seed's PNG (its own row), the maximum over the seeds.
-    CAVEATS: in prism.toml the warm-lit wall and table pass s > 0.35, v > 0.15 too (s ≈ 0.5), so
-    the row found is the wall's or the table's unless v is raised (--val 0.6 finds the rainbow,
-    row 164). The PNGs' exposure is automatic (per image, from the geometric mean luminance,
-    which noise lowers); at it the rainbow's middle is white: only its ends have hues.
+  * Rainbow: the pixels outside the prism whose luminance (the EXR's Y) is over --bright 4
+    times the image's median; the row with most of them, and in it their longest run (gaps of
+    1 px allowed). Over the run's pixels with HSV saturation > --sat 0.15 in the 8-bit sRGB PNG
+    (the display transform's output; a near-grey pixel's hue is noise): the hue range
+    (unwrapped, deg), the largest hue step between neighbours, the steps > 15 deg; and the
+    run's pixels with two or more channels at 0 or 255. In the mean of the seeds' PNGs, and
+    "per seed max": the same on each seed's PNG (its own row), the maximum over the seeds.
+    The PNGs' exposure is automatic (per image, from the geometric mean luminance).
 """
 
 from __future__ import annotations
@@ -59,7 +57,7 @@ from bench_efficiency import git_head, log  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 DEFAULT_CONFIGS = ["hero=--dispersion hero", "split="]
-SAT, VAL, STEP = 0.35, 0.15, 15.0
+SAT, BRIGHT, STEP = 0.15, 4.0, 15.0
 
 
 def angle_rad(s: str) -> float:
@@ -122,22 +120,29 @@ def hsv(rgb: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return 60.0 * hue, np.where(mx > 0, (mx - mn) / np.where(mx > 0, mx, 1), 0.0), mx
 
 
-def rainbow(rgb: np.ndarray, mask: np.ndarray, smin: float = SAT, vmin: float = VAL) -> dict:
-    hue, s, v = hsv(rgb)
-    sat = (s > smin) & (v > vmin) & ~mask
-    row = int(np.argmax(sat.sum(1)))
-    idx = np.flatnonzero(sat[row])
+def rainbow(rgb: np.ndarray, mask: np.ndarray, lum: np.ndarray, smin: float = SAT,
+            bright: float = BRIGHT) -> dict:
+    """The rainbow: pixels outside the prism whose luminance (EXR Y) exceeds `bright` times the
+    image's median, in the row holding most of them; its longest run (gaps of 1 px allowed).
+    Hue steps are taken over the run's pixels with HSV saturation above `smin` (the hue of a
+    near-grey pixel is noise)."""
+    hue, s, _ = hsv(rgb)
+    lit = (lum > bright * np.median(lum[lum > 0])) & ~mask
+    row = int(np.argmax(lit.sum(1)))
+    idx = np.flatnonzero(lit[row])
     if len(idx) == 0:
         return dict(row=row, start=0, length=0, hue_range=0.0, max_step=0.0, steps_over_15=0,
                     clipped2=0)
     runs = np.split(idx, np.flatnonzero(np.diff(idx) > 2) + 1)  # gaps of 1 px allowed
     run = max(runs, key=lambda r: r[-1] - r[0])
-    hu = np.unwrap(hue[row, run], period=360.0)
+    span = np.arange(run[0], run[-1] + 1)
+    coloured = span[s[row, span] > smin]
+    hu = np.unwrap(hue[row, coloured], period=360.0) if len(coloured) else np.zeros(1)
     steps = np.abs(np.diff(hu))
     px = rgb[row, run[0] : run[-1] + 1]
     clipped = ((px == 0) | (px == 255)).sum(-1) >= 2
     return {"row": row, "start": int(run[0]), "length": int(run[-1] - run[0] + 1),
-            "hue_range": float(hu.max() - hu.min()),
+            "coloured": int(len(coloured)), "hue_range": float(hu.max() - hu.min()),
             "max_step": float(steps.max()) if len(steps) else 0.0,
             "steps_over_15": int((steps > STEP).sum()), "clipped2": int(clipped.sum())}
 
@@ -177,11 +182,9 @@ def measure(a, name: str, args: list[str], outdir: Path, mask: np.ndarray) -> di
         rts.append(attrs.get("spectrace:renderTimeSeconds"))
     vp, vi, nok = chroma_var(xyz, mask)
     mean_png = np.mean(pngs, 0)
-    rb = rainbow(mean_png, mask, a.sat, a.val)
-    per_seed = [rainbow(p, mask, a.sat, a.val) for p in pngs]
-    if rb["length"] > mask.shape[1] // 2:
-        log(f"{name}: the rainbow run (row {rb['row']}, {rb['length']} px) is over half the "
-            "width: the background, not the rainbow? (try --val 0.6)")
+    mean_y = np.mean([x[1] for x in xyz], 0)
+    rb = rainbow(mean_png, mask, mean_y, a.sat, a.bright)
+    per_seed = [rainbow(p, mask, x[1], a.sat, a.bright) for p, x in zip(pngs, xyz)]
     return {"args": args, "wall_s": float(np.mean(walls)), "walls": walls, "spp": spps,
             "render_s": None if None in rts else float(np.mean(rts)),
             "chroma_var_prism": vp, "chroma_var_image": vi, "valid_px": nok,
@@ -203,7 +206,8 @@ def main() -> int:
     ap.add_argument("--keep", type=Path, default=None)
     ap.add_argument("--overlay", type=Path, default=None)
     ap.add_argument("--sat", type=float, default=SAT, help="rainbow: HSV saturation above")
-    ap.add_argument("--val", type=float, default=VAL, help="rainbow: HSV value above")
+    ap.add_argument("--bright", type=float, default=BRIGHT,
+                    help="rainbow: luminance above this times the image's median")
     ap.add_argument("--common-args", default="", help="appended to every config's arguments")
     a = ap.parse_args()
     if a.seeds < 2:
@@ -254,8 +258,8 @@ def main() -> int:
         print(f"{n:<12} {r['wall_s']:>8.2f} {rs:>8} {fmt_spp(r['spp']):>8} "
               f"{r['chroma_var_prism']:>17.5g} {r['chroma_var_image']:>17.5g}  "
               f"{shlex.join(r['args'])}")
-    keys = ["row", "length", "hue_range", "max_step", "steps_over_15", "clipped2"]
-    print(f"\nrainbow (sat > {a.sat}, val > {a.val}; deg)  " + " ".join(f"{k:>13}" for k in keys))
+    keys = ["row", "length", "coloured", "hue_range", "max_step", "steps_over_15", "clipped2"]
+    print(f"\nrainbow (Y > {a.bright} × median, sat > {a.sat}; deg)  " + " ".join(f"{k:>13}" for k in keys))
     for n, r in res.items():
         for lab, rb in (("mean PNG", r["rainbow_mean"]), ("per seed max", r["rainbow_seed_max"])):
             print(f"{n:<12} {lab:<23}" + " ".join(

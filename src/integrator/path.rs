@@ -26,7 +26,20 @@ pub(super) fn radiance<const N: usize>(
     w: &mut SampledWavelengths<N>,
     s: &mut Sampler,
 ) -> SampledSpectrum<N> {
-    trace::<N, SampledSpectrum<N>>(it, ray, w, s, None)
+    trace::<N, SampledSpectrum<N>>(it, ray, w, s, None, &mut false)
+}
+
+/// [`radiance`], and whether the path's first dispersive hit was seen from the camera through
+/// delta lobes only (directly, or in a mirror): where `split.rs` splits the sample.
+pub(super) fn radiance_seen<const N: usize>(
+    it: &Integrator<'_>,
+    ray: Ray,
+    w: &mut SampledWavelengths<N>,
+    s: &mut Sampler,
+) -> (SampledSpectrum<N>, bool) {
+    let mut seen = false;
+    let l = trace::<N, SampledSpectrum<N>>(it, ray, w, s, None, &mut seen);
+    (l, seen)
 }
 
 /// The Stokes vector (S0, …, S3) of the light arriving along `ray`, per wavelength
@@ -40,7 +53,7 @@ pub(super) fn stokes<const N: usize>(
     s: &mut Sampler,
 ) -> [SampledSpectrum<N>; 4] {
     let d = ray.d;
-    let sum = trace::<N, Polarised<N>>(it, ray, w, s, None);
+    let sum = trace::<N, Polarised<N>>(it, ray, w, s, None, &mut false);
     // the path's Stokes vectors are in the implicit basis of the beam along −d
     to_camera_frame(it, d, &sum)
 }
@@ -57,11 +70,13 @@ pub(super) fn radiance_after_sample<const N: usize>(
     w: &mut SampledWavelengths<N>,
     s: &mut Sampler,
 ) -> SampledSpectrum<N> {
-    trace::<N, SampledSpectrum<N>>(it, ray, w, s, Some((pdf, n)))
+    trace::<N, SampledSpectrum<N>>(it, ray, w, s, Some((pdf, n)), &mut false)
 }
 
 /// The path tracer; `first` is the density of the first direction and the normal at its
 /// origin when it was sampled against light sampling (None: a camera ray, weighted 1).
+/// `seen_dispersion` is set when the first dispersive hit is reached from a camera ray
+/// through delta lobes only.
 #[inline(always)]
 fn trace<const N: usize, C: Carrier<N>>(
     it: &Integrator<'_>,
@@ -69,6 +84,7 @@ fn trace<const N: usize, C: Carrier<N>>(
     w: &mut SampledWavelengths<N>,
     s: &mut Sampler,
     first: Option<(f32, Vec3)>,
+    seen_dispersion: &mut bool,
 ) -> C::Sum {
     let scene = it.scene;
     let mut l = C::zero_sum();
@@ -79,6 +95,8 @@ fn trace<const N: usize, C: Carrier<N>>(
     let (mut prev_pdf, mut prev_n) = first.unwrap_or((0.0, Vec3::ZERO));
     // the camera ray counts as "specular": no MIS
     let mut specular_bounce = first.is_none();
+    // every scattering so far by a delta lobe (the camera ray counts as one)
+    let mut all_specular = first.is_none();
     let mut eta_scale = 1.0f32;
     let mut depth = 0u32;
     // Every bounce reads the same dimensions whatever happened before (pbrt-v4 §8.3: a fixed
@@ -130,6 +148,9 @@ fn trace<const N: usize, C: Carrier<N>>(
         // hits; Wilkie et al. 2014 §4.2). Terminating only when transmission is sampled with
         // probability 1 − F(λ₀) biases the secondaries.
         if sh.bsdf.is_dispersive() {
+            if all_specular && !w.secondary_terminated() {
+                *seen_dispersion = true;
+            }
             w.terminate_secondary();
         }
 
@@ -151,6 +172,7 @@ fn trace<const N: usize, C: Carrier<N>>(
             eta_scale *= bs.eta * bs.eta;
         }
         specular_bounce = bs.specular;
+        all_specular &= bs.specular;
         prev_pdf = bs.pdf;
         prev_p = hit.p;
         prev_n = sh.frame.n;

@@ -6,7 +6,10 @@
 //! wavelength per sample, and its colour is noise ("confetti"). Here such a sample is traced
 //! `N` times, once with each of its wavelengths as the hero (the arrays rotated,
 //! [`SampledWavelengths::rotated`]), from the same sampler streams, and the `N` estimates are
-//! averaged.
+//! averaged. Only samples whose first dispersive hit the camera sees through delta lobes
+//! (the glass itself, or in a mirror) split: there the colour noise shows; where the path
+//! reaches glass after a diffuse or glossy bounce, its colour is averaged with many others'
+//! and a split would cost more than it saves.
 //!
 //! # Why the average is unbiased
 //!
@@ -15,9 +18,10 @@
 //! that would have followed had that number picked stratum `k + j mod N`, so each rotation has
 //! the same distribution as the original estimator, and so has their average. The decision to
 //! split is taken after the first rotation, by whether its camera path met a dispersive
-//! interface; it does not depend on which wavelength is the hero, because everything a path
-//! samples before its first dispersive hit is the same for every hero (directions, lobe
-//! choices by sums over the wavelengths, Russian roulette by the largest throughput). So
+//! interface through delta lobes only; it does not depend on which wavelength is the hero,
+//! because everything a path samples before its first dispersive hit is the same for every
+//! hero (directions, lobe choices by sums over the wavelengths, Russian roulette by the
+//! largest throughput). So
 //! conditioned on the split, every rotation still has the original's distribution, and
 //! E[estimate] is unchanged. Scenes with media, whose free flights are sampled by the hero's
 //! extinction, and polarised renders do not split ([`super::Integrator::split_dispersion`]).
@@ -33,6 +37,7 @@
 //! the hero.
 
 use super::Integrator;
+use crate::scene::IntegratorKind;
 use crate::geometry::Ray;
 use crate::sampler::Sampler;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
@@ -58,6 +63,28 @@ pub fn to_original<const N: usize>(
 }
 
 impl Integrator<'_> {
+    /// [`Integrator::radiance`], and whether the sample should split: its first dispersive
+    /// hit was seen through delta lobes only (`path`), or it met dispersion at all (the
+    /// integrators with short paths, `whitted` and `direct`).
+    fn radiance_seen<const N: usize>(
+        &self,
+        ray: Ray,
+        w: &mut SampledWavelengths<N>,
+        s: &mut Sampler,
+    ) -> (SampledSpectrum<N>, bool) {
+        match self.kind {
+            IntegratorKind::Path | IntegratorKind::Light | IntegratorKind::Bdpt
+                if self.scene.media.is_empty() =>
+            {
+                super::path::radiance_seen(self, ray, w, s)
+            }
+            _ => {
+                let l = self.radiance(ray, w, s);
+                (l, w.secondary_terminated())
+            }
+        }
+    }
+
     /// [`Integrator::radiance`], split at dispersion when the scene asks for it (see the module
     /// doc): returns the estimate at `w`'s wavelengths, which are left unterminated when the
     /// sample was split.
@@ -68,9 +95,11 @@ impl Integrator<'_> {
         s: &mut Sampler,
     ) -> SampledSpectrum<N> {
         let (w0, s0) = (*w, self.split_dispersion.then(|| s.clone()));
-        let l = self.radiance(ray, w, s);
-        let Some(s0) = s0 else { return l };
-        if w0.secondary_terminated() || !w.secondary_terminated() {
+        let Some(s0) = s0 else {
+            return self.radiance(ray, w, s);
+        };
+        let (l, seen) = self.radiance_seen(ray, w, s);
+        if !seen || w0.secondary_terminated() || !w.secondary_terminated() {
             return l;
         }
         let mut sum = to_original(&w0, 0, w, &l);

@@ -109,8 +109,8 @@ pub struct Radiance<const N: usize> {
 /// and index for the light subpath. `margin` is the filter radius, pixels.
 ///
 /// With [`Integrator::split_dispersion`], a sample whose camera subpath meets a dispersive
-/// interface is traced again with each other wavelength as the hero (`split.rs`); its
-/// camera-side radiance is then all in `all`, at `w`.
+/// interface through delta lobes only is traced again with each other wavelength as the hero
+/// (`split.rs`); its camera-side radiance is then all in `all`, at `w`.
 #[allow(clippy::too_many_arguments)]
 pub fn sample<'a, const N: usize>(
     it: &'a Integrator<'a>,
@@ -135,7 +135,10 @@ pub fn sample<'a, const N: usize>(
         stokes_all: [SampledSpectrum::zero(); 4],
         stokes_hero: [SampledSpectrum::zero(); 4],
     };
-    let camera_disperses = walk::first_dispersive(&scratch.camera) < scratch.camera.len();
+    // the camera sees dispersion through delta lobes only (the lens is vertex 0)
+    let first = walk::first_dispersive(&scratch.camera);
+    let camera_disperses =
+        first < scratch.camera.len() && scratch.camera[1..first].iter().all(|v| v.delta);
     match again {
         Some(streams) if camera_disperses && !w.secondary_terminated() => {
             let sample = split::Sample {
