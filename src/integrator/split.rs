@@ -37,9 +37,9 @@
 //! the hero.
 
 use super::Integrator;
-use crate::scene::IntegratorKind;
 use crate::geometry::Ray;
 use crate::sampler::Sampler;
+use crate::scene::IntegratorKind;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
 /// `l`, an estimate at `wj` (the sample's wavelengths `w0` rotated by `j`, possibly with its
