@@ -13,10 +13,10 @@ defaults. --common-args="ARGS" are appended to every config's (e.g. "--exposure 
 renders), --overlay FILE (the first config's mean PNG, prism mask cyan, rainbow run yellow).
 
 Equal time (default): the FIRST config renders at --spp (or the scene's spp); its mean wall time
-per render, measured around the subprocess, is the budget, and every other config renders with
-`--time <budget>s` and no --spp (the renderer stops at the end of the last pass that fits; a
-config's own --spp caps it). --equal-spp renders every config at the same spp instead. Samples
-per pixel come from the EXR attribute spectrace:samplesPerPixel.
+per render, measured around the subprocess, is the budget. Every other config first renders
+seed 1 at that spp to measure its own time, and then renders all seeds at the spp that fits the
+budget (rounded). --equal-spp renders every config at the same spp instead. Samples per pixel
+come from the EXR attribute spectrace:samplesPerPixel.
 
   * Chromaticity variance: x = X/(X+Y+Z), y = Y/(X+Y+Z) per pixel and seed (EXR channels X, Y,
     Z); over the seeds, var(x) + var(y) (ddof = 1), averaged over the pixels with X+Y+Z > 0 in
@@ -24,13 +24,16 @@ per pixel come from the EXR attribute spectrace:samplesPerPixel.
   * Prism region: every `mesh` shape with a `dielectric` material, its vertices projected through
     the scene's pinhole camera (`fov` spans `fov_axis`, default x = horizontal, as the loader;
     pixel row 0 at the top), the 2D convex hull of the projections rasterised (pixel centres).
-  * Rainbow: the pixels outside the prism whose luminance (the EXR's Y) is over --bright 4
-    times the image's median; the row with most of them, and in it their longest run (gaps of
-    1 px allowed). Over the run's pixels with HSV saturation > --sat 0.15 in the 8-bit sRGB PNG
-    (the display transform's output; a near-grey pixel's hue is noise): the hue range
-    (unwrapped, deg), the largest hue step between neighbours, the steps > 15 deg; and the
-    run's pixels with two or more channels at 0 or 255. In the mean of the seeds' PNGs, and
-    "per seed max": the same on each seed's PNG (its own row), the maximum over the seeds.
+  * Rainbow: where the scene's `[[lights]]` alone (the beam; emitting shapes removed from the
+    TOML, rendered by `light` at 16 spp) light the image outside the prism: the row with the
+    most of that light, and in it the longest run of pixels over --frac 0.05 of the row's
+    peak (gaps of 1 px allowed). In the 8-bit sRGB PNG (the display transform's output), the
+    rows within --band 4 of the run's averaged (the spectrum is the same along its height),
+    over the run's pixels with HSV saturation > --sat 0.3 (where the spectrum is dim over the
+    lit wall its pixels are nearly grey and their hue is noise): the hue range (unwrapped,
+    deg), the largest hue step between neighbouring coloured pixels, the steps > 15 deg; and
+    the run's pixels with two or more channels at 0 or 255 (clipped). In the mean of the
+    seeds' PNGs, and "per seed max": the same on each seed's PNG, the maximum over the seeds.
     The PNGs' exposure is automatic (per image, from the geometric mean luminance).
 """
 
@@ -39,6 +42,7 @@ from __future__ import annotations
 import argparse
 import itertools
 import json
+import re
 import math
 import shlex
 import subprocess
@@ -57,7 +61,7 @@ from bench_efficiency import git_head, log  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 DEFAULT_CONFIGS = ["hero=--dispersion hero", "split="]
-SAT, BRIGHT, STEP = 0.15, 4.0, 15.0
+SAT, FRAC, STEP, BAND = 0.3, 0.05, 15.0, 4
 
 
 def angle_rad(s: str) -> float:
@@ -120,25 +124,40 @@ def hsv(rgb: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return 60.0 * hue, np.where(mx > 0, (mx - mn) / np.where(mx > 0, mx, 1), 0.0), mx
 
 
-def rainbow(rgb: np.ndarray, mask: np.ndarray, lum: np.ndarray, smin: float = SAT,
-            bright: float = BRIGHT) -> dict:
-    """The rainbow: pixels outside the prism whose luminance (EXR Y) exceeds `bright` times the
-    image's median, in the row holding most of them; its longest run (gaps of 1 px allowed).
-    Hue steps are taken over the run's pixels with HSV saturation above `smin` (the hue of a
-    near-grey pixel is noise)."""
+def beam_only(binary: str, scene_path: Path, outdir: Path) -> np.ndarray:
+    """Luminance of the scene lit by its `[[lights]]` alone (every emitting shape removed from
+    the TOML text), by light tracing at 16 spp: where the beam's light lands."""
+    blocks = re.split(r"(?m)^(?=\[)", scene_path.read_text())
+    kept = [b for b in blocks if not (b.startswith("[[shapes]]") and "emission" in b)]
+    path = outdir / "beam_only.toml"
+    path.write_text("".join(kept))
+    out = outdir / "beam_only.exr"
+    render(binary, path, out, 0, ["--integrator", "light", "--spp", "16"])
+    return read_exr(out)[0]["Y"]
+
+
+def rainbow_run(beam_y: np.ndarray, mask: np.ndarray, frac: float) -> tuple[int, np.ndarray]:
+    """The rainbow's row (the most beam light outside the prism) and its pixels there: the
+    longest run (gaps of 1 px allowed) of pixels over `frac` of the row's brightest."""
+    y = np.where(mask, 0.0, beam_y)
+    row = int(np.argmax(y.sum(1)))
+    idx = np.flatnonzero(y[row] > frac * y[row].max())
+    runs = np.split(idx, np.flatnonzero(np.diff(idx) > 2) + 1)
+    return row, max(runs, key=lambda r: r[-1] - r[0])
+
+
+def rainbow(rgb: np.ndarray, row: int, run: np.ndarray, smin: float = SAT, band: int = BAND) -> dict:
+    """Hue steps along `run` of `row` in the PNG, the rows within `band` of it averaged (the
+    spectrum is the same along its height; the average lowers the noise's part in the hue),
+    over the pixels with HSV saturation above `smin` (the hue of a near-grey pixel is noise)."""
+    rgb = rgb.copy()
+    rgb[row] = rgb[max(row - band, 0) : row + band + 1].mean(0)
     hue, s, _ = hsv(rgb)
-    lit = (lum > bright * np.median(lum[lum > 0])) & ~mask
-    row = int(np.argmax(lit.sum(1)))
-    idx = np.flatnonzero(lit[row])
-    if len(idx) == 0:
-        return dict(row=row, start=0, length=0, hue_range=0.0, max_step=0.0, steps_over_15=0,
-                    clipped2=0)
-    runs = np.split(idx, np.flatnonzero(np.diff(idx) > 2) + 1)  # gaps of 1 px allowed
-    run = max(runs, key=lambda r: r[-1] - r[0])
     span = np.arange(run[0], run[-1] + 1)
     coloured = span[s[row, span] > smin]
     hu = np.unwrap(hue[row, coloured], period=360.0) if len(coloured) else np.zeros(1)
-    steps = np.abs(np.diff(hu))
+    # steps between neighbouring pixels that are both coloured (a gap is not a step)
+    steps = np.abs(np.diff(hu))[np.diff(coloured) == 1] if len(coloured) > 1 else np.zeros(0)
     px = rgb[row, run[0] : run[-1] + 1]
     clipped = ((px == 0) | (px == 255)).sum(-1) >= 2
     return {"row": row, "start": int(run[0]), "length": int(run[-1] - run[0] + 1),
@@ -167,7 +186,7 @@ def render(binary: str, scene: Path, out: Path, seed: int, args: list[str]) -> f
     return t
 
 
-def measure(a, name: str, args: list[str], outdir: Path, mask: np.ndarray) -> dict:
+def measure(a, name: str, args: list[str], outdir: Path, mask: np.ndarray, rb_at) -> dict:
     """Renders one config for every seed and returns its figures."""
     walls, xyz, pngs, spps, rts = [], [], [], [], []
     for s in range(1, a.seeds + 1):
@@ -182,9 +201,8 @@ def measure(a, name: str, args: list[str], outdir: Path, mask: np.ndarray) -> di
         rts.append(attrs.get("spectrace:renderTimeSeconds"))
     vp, vi, nok = chroma_var(xyz, mask)
     mean_png = np.mean(pngs, 0)
-    mean_y = np.mean([x[1] for x in xyz], 0)
-    rb = rainbow(mean_png, mask, mean_y, a.sat, a.bright)
-    per_seed = [rainbow(p, mask, x[1], a.sat, a.bright) for p, x in zip(pngs, xyz)]
+    rb = rainbow(mean_png, *rb_at, a.sat, a.band)
+    per_seed = [rainbow(p, *rb_at, a.sat, a.band) for p in pngs]
     return {"args": args, "wall_s": float(np.mean(walls)), "walls": walls, "spp": spps,
             "render_s": None if None in rts else float(np.mean(rts)),
             "chroma_var_prism": vp, "chroma_var_image": vi, "valid_px": nok,
@@ -206,8 +224,10 @@ def main() -> int:
     ap.add_argument("--keep", type=Path, default=None)
     ap.add_argument("--overlay", type=Path, default=None)
     ap.add_argument("--sat", type=float, default=SAT, help="rainbow: HSV saturation above")
-    ap.add_argument("--bright", type=float, default=BRIGHT,
-                    help="rainbow: luminance above this times the image's median")
+    ap.add_argument("--band", type=int, default=BAND,
+                    help="rainbow: rows averaged on either side of its row")
+    ap.add_argument("--frac", type=float, default=FRAC,
+                    help="rainbow: beam-only luminance above this fraction of its row's peak")
     ap.add_argument("--common-args", default="", help="appended to every config's arguments")
     a = ap.parse_args()
     if a.seeds < 2:
@@ -223,19 +243,26 @@ def main() -> int:
     spp = a.spp or int(scene["film"].get("spp", 0)) or None
     mask = prism_mask(scene, w, h)
     log(f"prism mask: {int(mask.sum())} px of {w}×{h}")
-    res, budget = {}, None
+    res, budget, spp0 = {}, None, None
     with tempfile.TemporaryDirectory() as td:
         outdir = a.keep or Path(td)
         outdir.mkdir(parents=True, exist_ok=True)
+        rb_at = rainbow_run(beam_only(a.binary, a.scene, outdir), mask, a.frac)
+        log(f"rainbow: row {rb_at[0]}, columns {rb_at[1][0]}-{rb_at[1][-1]}")
         for i, (name, extra) in enumerate(configs):
             if a.equal_spp or i == 0:
                 args = extra if "--spp" in extra or spp is None else ["--spp", str(spp), *extra]
             else:
-                args = ["--time", f"{budget:.3f}s", *extra]
-                if "--spp" in extra:
-                    log(f"{name}: its own --spp caps its equal-time render")
-            res[name] = r = measure(a, name, args, outdir, mask)
+                # equal time: this config's time at the first config's spp, measured on one
+                # render (seed 1), scales the spp its renders take
+                cal = outdir / f"{name}_calibration.exr"
+                t = render(a.binary, a.scene, cal, 1, ["--spp", str(spp0), *extra])
+                n = max(1, round(spp0 * budget / t))
+                log(f"{name}: {t:.2f} s at {spp0} spp, so {n} spp for {budget:.2f} s")
+                args = ["--spp", str(n), *extra]
+            res[name] = r = measure(a, name, args, outdir, mask, rb_at)
             budget = budget or r["wall_s"]
+            spp0 = spp0 or int(min(r["spp"]))
             if i == 0 and a.overlay:  # the mask tinted cyan, the rainbow run yellow
                 o, rb = r["mean_png"].copy(), r["rainbow_mean"]
                 o[mask] = 0.5 * o[mask] + [0, 127, 127]
@@ -259,7 +286,7 @@ def main() -> int:
               f"{r['chroma_var_prism']:>17.5g} {r['chroma_var_image']:>17.5g}  "
               f"{shlex.join(r['args'])}")
     keys = ["row", "length", "coloured", "hue_range", "max_step", "steps_over_15", "clipped2"]
-    print(f"\nrainbow (Y > {a.bright} × median, sat > {a.sat}; deg)  " + " ".join(f"{k:>13}" for k in keys))
+    print(f"\nrainbow (beam light > {a.frac} of its peak, sat > {a.sat}; deg)  " + " ".join(f"{k:>13}" for k in keys))
     for n, r in res.items():
         for lab, rb in (("mean PNG", r["rainbow_mean"]), ("per seed max", r["rainbow_seed_max"])):
             print(f"{n:<12} {lab:<23}" + " ".join(

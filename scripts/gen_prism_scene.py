@@ -227,8 +227,9 @@ default_text = f"""# The default scene: a projector's white beam through a slit 
 # line leaves straight toward the back wall (-z), {CENTRE[1] + 2.5:.1f} m away (N-SF11:
 # n_d = {n_d:.5f}, exit {math.degrees(theta_e):.2f} deg, deviation {math.degrees(dev):.2f} deg).
 # From 400 to 700 nm the exit direction turns by {math.degrees(spread):.2f} deg (violet leaves
-# near grazing), so the spectrum is about {100 * (CENTRE[1] + 2.5) * math.tan(spread):.0f} cm long; the slit, 4 mm wide and 24 cm
-# tall, keeps each wavelength's band narrow.
+# near grazing), so the spectrum is about {100 * (CENTRE[1] + 2.5) * math.tan(spread):.0f} cm long. The slit, 25 mm wide and 24 cm
+# tall, blurs it over about two pixels of the image, so neighbouring pixels' hues differ by
+# less than 15 deg where the spectrum is most compressed (its yellow).
 
 [camera]
 eye = [0.35, 1.55, 2.4]
@@ -311,16 +312,16 @@ type = "rectangle"
 transform = [{{ scale = 0.5 }}, {{ rotate = {{ axis = [1, 0, 0], angle = "90 deg" }} }}, {{ translate = [0.6, 2.69, 0.0] }}]
 emission = {{ spectrum = {{ blackbody = "3500 K" }}, power = "12 W" }}
 
-# the projector's beam through a slit 4 mm wide and 24 cm tall
+# the projector's beam through a slit 25 mm wide and 24 cm tall
 [[lights]]
 type = "beam"
 position = {v3(beam_from)}
 target = {v3(entry)}
-slit = ["4 mm", "24 cm"]
+slit = ["25 mm", "24 cm"]
 spectrum = "cie-d65"
 power = "BEAM_POWER"
 """
-default_text = default_text.replace("BEAM_POWER", "0.03 W")
+default_text = default_text.replace("BEAM_POWER", "0.025 W")
 
 if BENCHMARK:
     beam = text[text.index("# the projector's beam"):]

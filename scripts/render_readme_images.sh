@@ -10,7 +10,7 @@ render() { # scene integrator spp
   target/release/spectrace render "scenes/$1.toml" -o "target/$1.exr" --png "docs/images/$1.png" \
     --integrator "$2" --spp "$3" --quiet
 }
-render prism bdpt 12
+render prism bdpt 9
 render prism_screen bdpt 32
 render gems bdpt 128
 render cornell path 16

@@ -16,8 +16,8 @@ use clap::{Parser, Subcommand};
 /// spectrace: a spectral path tracer in physical units.
 ///
 /// Wavelengths are in nm, radiance in W·m⁻²·sr⁻¹·nm⁻¹, luminance (Y) in cd/m². Without a
-/// command, renders the built-in default scene (a projector's white beam through an N-SF11
-/// prism, a rainbow on the wall of a room) to
+/// command, renders the built-in default scene (a projector's white beam through a slit and
+/// an N-SF11 prism, its spectrum on the wall of a room) to
 /// spectrace.exr and spectrace.png in the current folder.
 #[derive(Parser, Debug)]
 #[command(name = "spectrace", version, about, long_about)]
