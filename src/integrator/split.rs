@@ -23,7 +23,7 @@
 //! hero (directions, lobe choices by sums over the wavelengths, Russian roulette by the
 //! largest throughput). So
 //! conditioned on the split, every rotation still has the original's distribution, and
-//! E[estimate] is unchanged. Scenes with media, whose free flights are sampled by the hero's
+//! the expected estimate is unchanged. Scenes with media, whose free flights are sampled by the hero's
 //! extinction, and polarised renders do not split ([`super::Integrator::split_dispersion`]).
 //!
 //! # Where the values go
