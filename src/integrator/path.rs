@@ -148,9 +148,7 @@ fn trace<const N: usize, C: Carrier<N>>(
         // hits; Wilkie et al. 2014 §4.2). Terminating only when transmission is sampled with
         // probability 1 − F(λ₀) biases the secondaries.
         if sh.bsdf.is_dispersive() {
-            if all_specular && !w.secondary_terminated() {
-                *seen_dispersion = true;
-            }
+            *seen_dispersion |= all_specular && !w.secondary_terminated();
             w.terminate_secondary();
         }
 

@@ -21,10 +21,10 @@
 //! interface through delta lobes only; it does not depend on which wavelength is the hero,
 //! because everything a path samples before its first dispersive hit is the same for every
 //! hero (directions, lobe choices by sums over the wavelengths, Russian roulette by the
-//! largest throughput). So
-//! conditioned on the split, every rotation still has the original's distribution, and
-//! the expected estimate is unchanged. Scenes with media, whose free flights are sampled by the hero's
-//! extinction, and polarised renders do not split ([`super::Integrator::split_dispersion`]).
+//! largest throughput). So conditioned on the split, every rotation still has the original's
+//! distribution, and the expected estimate is unchanged. Scenes with media, whose free flights
+//! are sampled by the hero's extinction, and polarised renders do not split
+//! ([`super::Integrator::split_dispersion`]).
 //!
 //! # Where the values go
 //!

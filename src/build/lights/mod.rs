@@ -174,37 +174,7 @@ fn light(l: &LightDesc, r: WavelengthRange) -> Result<Light, String> {
             target,
             section,
             amount,
-        } => {
-            let p = v3(position);
-            let (per, _) = point_amount(amount, 1.0);
-            let n = (v3(target) - p).normalize();
-            let (frame, section) = match section {
-                BeamSection::Disk(radius) => (
-                    Frame::from_normal(n),
-                    Section::Disk {
-                        radius: plain::metres(*radius),
-                    },
-                ),
-                BeamSection::Slit { width, height, up } => {
-                    // the loader made `up` a unit vector across the beam
-                    let t = Vec3::new(up[0] as f32, up[1] as f32, up[2] as f32).normalize();
-                    let s = t.cross(n).normalize();
-                    (
-                        Frame { s, t, n },
-                        Section::Rect {
-                            half_s: 0.5 * plain::metres(*width),
-                            half_t: 0.5 * plain::metres(*height),
-                        },
-                    )
-                }
-            };
-            Light::Beam(BeamLight {
-                center: p,
-                frame,
-                section,
-                power: scaled(&l.spectrum, per, 1.0, r)?,
-            })
-        }
+        } => beam(l, (position, target), section, amount, r)?,
         LightKind::Projector {
             transform,
             fov,
@@ -326,4 +296,43 @@ fn projector(
         image,
         spectrum: l.spectrum.clone(),
     })))
+}
+
+/// A beam light: its frame (a slit's sides along its `up` and across) and section.
+fn beam(
+    l: &LightDesc,
+    (position, target): (&Point, &Point),
+    section: &BeamSection,
+    amount: &PointAmount,
+    r: WavelengthRange,
+) -> Result<Light, String> {
+    let p = v3(position);
+    let (per, _) = point_amount(amount, 1.0);
+    let n = (v3(target) - p).normalize();
+    let (frame, section) = match section {
+        BeamSection::Disk(radius) => (
+            Frame::from_normal(n),
+            Section::Disk {
+                radius: plain::metres(*radius),
+            },
+        ),
+        BeamSection::Slit { width, height, up } => {
+            // the loader made `up` a unit vector across the beam
+            let t = Vec3::new(up[0] as f32, up[1] as f32, up[2] as f32).normalize();
+            let s = t.cross(n).normalize();
+            (
+                Frame { s, t, n },
+                Section::Rect {
+                    half_s: 0.5 * plain::metres(*width),
+                    half_t: 0.5 * plain::metres(*height),
+                },
+            )
+        }
+    };
+    Ok(Light::Beam(BeamLight {
+        center: p,
+        frame,
+        section,
+        power: scaled(&l.spectrum, per, 1.0, r)?,
+    }))
 }

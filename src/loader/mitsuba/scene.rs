@@ -188,8 +188,7 @@ fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
         kind: IntegratorKind::Path,
         max_depth: 1024,
         rr_depth: DEFAULT_RR_DEPTH,
-        // decided after the emitters are read (below)
-        light_selection: LightSelection::Tree,
+        light_selection: LightSelection::Tree, // decided after the emitters are read (below)
         moment: false,
         polarised: false,
         split_dispersion: true,
