@@ -115,6 +115,51 @@ def v3(p):
     return "[" + ", ".join(f"{c:.5f}" for c in p) + "]"
 
 
+# blocks both scenes share
+MATERIALS = """[materials.sf11]
+type = "dielectric"
+ior = "N-SF11"
+
+[materials.wall]
+type = "diffuse"
+reflectance = "colorchecker:neutral-8"
+
+[materials.floor]
+type = "diffuse"
+reflectance = "colorchecker:neutral-3-5"
+
+[materials.table]
+type = "diffuse"
+reflectance = "colorchecker:dark-skin"
+"""
+PRISM_AND_ROOM = f"""[[shapes]]
+type = "mesh"
+material = "sf11"
+vertices = [
+  {v3(verts[0])}, {v3(verts[1])}, {v3(verts[2])},
+  {v3(verts[3])}, {v3(verts[4])}, {v3(verts[5])},
+]
+faces = {faces}
+
+# the room: walls and ceiling (a box seen from inside), and a darker floor just above its base
+[[shapes]]
+type = "box"
+material = "wall"
+two_sided = true
+transform = [{{ scale = [2.5, 1.35, 2.5] }}, {{ translate = [0, 1.35, 0] }}]
+
+[[shapes]]
+type = "rectangle"
+material = "floor"
+transform = [{{ scale = 2.5 }}, {{ rotate = {{ axis = [1, 0, 0], angle = "-90 deg" }} }}, {{ translate = [0, 0.001, 0] }}]
+"""
+PANEL = """# a warm ceiling panel facing down
+[[shapes]]
+type = "rectangle"
+transform = [{ scale = 0.5 }, { rotate = { axis = [1, 0, 0], angle = "90 deg" } }, { translate = [0.6, 2.69, 0.0] }]
+emission = { spectrum = { blackbody = "3500 K" }, power = "12 W" }
+"""
+
 text = f"""# The default scene: a projector's white beam through an N-SF11 prism on a table, throwing a
 # rainbow onto the back wall of a room lit by a ceiling panel. Rendered by bidirectional path
 # tracing: the rainbow is light that only particles find (a collimated beam through two smooth
@@ -148,55 +193,15 @@ rr_depth = 2
 # would get too few particles to draw a smooth rainbow)
 light_selection = "uniform"
 
-[materials.sf11]
-type = "dielectric"
-ior = "N-SF11"
-
-[materials.wall]
-type = "diffuse"
-reflectance = "colorchecker:neutral-8"
-
-[materials.floor]
-type = "diffuse"
-reflectance = "colorchecker:neutral-3-5"
-
-[materials.table]
-type = "diffuse"
-reflectance = "colorchecker:dark-skin"
-
-[[shapes]]
-type = "mesh"
-material = "sf11"
-vertices = [
-  {v3(verts[0])}, {v3(verts[1])}, {v3(verts[2])},
-  {v3(verts[3])}, {v3(verts[4])}, {v3(verts[5])},
-]
-faces = {faces}
-
-# the room: walls and ceiling (a box seen from inside), and a darker floor just above its base
-[[shapes]]
-type = "box"
-material = "wall"
-two_sided = true
-transform = [{{ scale = [2.5, 1.35, 2.5] }}, {{ translate = [0, 1.35, 0] }}]
-
-[[shapes]]
-type = "rectangle"
-material = "floor"
-transform = [{{ scale = 2.5 }}, {{ rotate = {{ axis = [1, 0, 0], angle = "-90 deg" }} }}, {{ translate = [0, 0.001, 0] }}]
-
+{MATERIALS}
+{PRISM_AND_ROOM}
 # the table: a 1.2 m × 0.7 m top on a block
 [[shapes]]
 type = "box"
 material = "table"
 transform = [{{ scale = [0.6, {TABLE_TOP / 2:.3f}, 0.35] }}, {{ translate = [{CENTRE[0]:.3f}, {TABLE_TOP / 2:.3f}, {CENTRE[1]:.3f}] }}]
 
-# a warm ceiling panel facing down
-[[shapes]]
-type = "rectangle"
-transform = [{{ scale = 0.5 }}, {{ rotate = {{ axis = [1, 0, 0], angle = "90 deg" }} }}, {{ translate = [0.6, 2.69, 0.0] }}]
-emission = {{ spectrum = {{ blackbody = "3500 K" }}, power = "12 W" }}
-
+{PANEL}
 # the projector's beam, 2.5 cm in radius
 [[lights]]
 type = "beam"
@@ -253,47 +258,12 @@ light_selection = "uniform"
 # a camera sample through the prism carries every wavelength (issue 30, BENCHMARKS.md)
 dispersion = "split"
 
-[materials.sf11]
-type = "dielectric"
-ior = "N-SF11"
-
-[materials.wall]
-type = "diffuse"
-reflectance = "colorchecker:neutral-8"
-
-[materials.floor]
-type = "diffuse"
-reflectance = "colorchecker:neutral-3-5"
-
-[materials.table]
-type = "diffuse"
-reflectance = "colorchecker:dark-skin"
-
+{MATERIALS}
 [materials.black]
 type = "diffuse"
 reflectance = "colorchecker:black-2"
 
-[[shapes]]
-type = "mesh"
-material = "sf11"
-vertices = [
-  {v3(verts[0])}, {v3(verts[1])}, {v3(verts[2])},
-  {v3(verts[3])}, {v3(verts[4])}, {v3(verts[5])},
-]
-faces = {faces}
-
-# the room: walls and ceiling (a box seen from inside), and a darker floor just above its base
-[[shapes]]
-type = "box"
-material = "wall"
-two_sided = true
-transform = [{{ scale = [2.5, 1.35, 2.5] }}, {{ translate = [0, 1.35, 0] }}]
-
-[[shapes]]
-type = "rectangle"
-material = "floor"
-transform = [{{ scale = 2.5 }}, {{ rotate = {{ axis = [1, 0, 0], angle = "-90 deg" }} }}, {{ translate = [0, 0.001, 0] }}]
-
+{PRISM_AND_ROOM}
 # the table under the projector and the prism
 [[shapes]]
 type = "box"
@@ -306,12 +276,7 @@ type = "box"
 material = "black"
 transform = [{{ scale = [0.07, 0.06, 0.12] }}, {{ rotate = {{ axis = [0, 1, 0], angle = "{yaw:.3f} deg" }} }}, {{ translate = {v3(body_c)} }}]
 
-# a warm ceiling panel facing down
-[[shapes]]
-type = "rectangle"
-transform = [{{ scale = 0.5 }}, {{ rotate = {{ axis = [1, 0, 0], angle = "90 deg" }} }}, {{ translate = [0.6, 2.69, 0.0] }}]
-emission = {{ spectrum = {{ blackbody = "3500 K" }}, power = "12 W" }}
-
+{PANEL}
 # the projector's beam through a slit 25 mm wide and 24 cm tall
 [[lights]]
 type = "beam"
