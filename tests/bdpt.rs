@@ -8,7 +8,7 @@ use std::f64::consts::PI;
 
 use spectrace::integrator::bdpt::Strategy;
 use spectrace::loader::desc::IntegratorKind;
-use support::render::{mean, render_with, scene_from};
+use support::render::{assert_strategies_sum_to_full, mean, render_with, scene_from};
 
 const CIE_Y_INTEGRAL: f64 = 106.856895;
 const K_M: f64 = 683.002;
@@ -150,34 +150,7 @@ emission = {{ radiance = "10 W/m^2/sr" }}
 fn weighted_strategies_sum_to_the_full_render() {
     let max_depth = 3;
     let s = room(max_depth, 4);
-    let (full, _) = render_with(&s, |_| {});
-    let mut sum = vec![0.0f64; full.band.len()];
-    for len in 2..=max_depth + 2 {
-        for t in 1..=len {
-            let sv = len - t;
-            if (sv, t) == (1, 1) {
-                continue;
-            }
-            let (img, _) = render_with(&s, |o| {
-                o.strategy = Some(Strategy {
-                    s: sv,
-                    t,
-                    weighted: true,
-                });
-            });
-            for (a, b) in sum.iter_mut().zip(&img.band) {
-                *a += *b as f64;
-            }
-        }
-    }
-    let total: f64 = full.band.iter().map(|&v| v as f64).sum();
-    assert!(total > 0.0);
-    for (i, (a, b)) in sum.iter().zip(&full.band).enumerate() {
-        assert!(
-            (a - *b as f64).abs() <= 1e-4 * (*b as f64).abs() + 1e-6 * total / sum.len() as f64,
-            "pixel {i}: Σ strategies {a}, full {b}"
-        );
-    }
+    assert_strategies_sum_to_full(&s, max_depth);
 }
 
 /// Each strategy alone, unweighted, is an unbiased estimator of the paths it can sample:

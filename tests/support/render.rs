@@ -167,3 +167,38 @@ transform = [{{ scale = 30 }}, {{ rotate = {{ axis = [1, 0, 0], angle = "-90 deg
 "#
     )
 }
+
+/// Asserts that the MIS-weighted images of every bdpt strategy (s, t) with
+/// s + t − 2 ≤ `max_depth` sum to the full render of `scene`: the same random numbers feed
+/// each, so they agree to rounding (1e-4 relative).
+pub fn assert_strategies_sum_to_full(scene: &Scene, max_depth: u32) {
+    use spectrace::integrator::bdpt::Strategy;
+    let (full, _) = render_with(scene, |_| {});
+    let mut sum = vec![0.0f64; full.band.len()];
+    for len in 2..=max_depth + 2 {
+        for t in 1..=len {
+            let sv = len - t;
+            if (sv, t) == (1, 1) {
+                continue;
+            }
+            let (img, _) = render_with(scene, |o| {
+                o.strategy = Some(Strategy {
+                    s: sv,
+                    t,
+                    weighted: true,
+                });
+            });
+            for (a, b) in sum.iter_mut().zip(&img.band) {
+                *a += *b as f64;
+            }
+        }
+    }
+    let total: f64 = full.band.iter().map(|&v| v as f64).sum();
+    assert!(total > 0.0);
+    for (i, (a, b)) in sum.iter().zip(&full.band).enumerate() {
+        assert!(
+            (a - *b as f64).abs() <= 1e-4 * (*b as f64).abs() + 1e-6 * total / sum.len() as f64,
+            "pixel {i}: Σ strategies {a}, full {b}"
+        );
+    }
+}
