@@ -39,6 +39,12 @@ fn unknown_names_suggest() {
     let e = lookup("cie-d56").unwrap_err();
     assert!(e.suggestions.iter().any(|s| s == "cie-d65"), "{e}");
     assert!(e.to_string().contains("did you mean"));
+    // a name longer than any known one is not compared (a fuzzed 20 000-character name took
+    // 2 s of string distances)
+    let long = "x".repeat(super::MAX_SUGGESTED + 1);
+    assert!(lookup(&long).unwrap_err().suggestions.is_empty());
+    let e = lookup(&format!("cie-d56{}", " ".repeat(super::MAX_SUGGESTED - 7))).unwrap_err();
+    assert!(e.suggestions.len() <= 3);
 }
 
 #[test]
