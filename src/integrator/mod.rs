@@ -130,10 +130,17 @@ impl<'a> Integrator<'a> {
             max_depth,
             rr_depth: scene.integrator.rr_depth,
             strategy: None,
-            split_dispersion: scene.integrator.split_dispersion
-                && scene.media.is_empty()
-                && !scene.integrator.polarised,
+            split_dispersion: false,
         }
+        .with_split_dispersion(scene.integrator.split_dispersion)
+    }
+
+    /// Splits camera samples at dispersion if `wanted` and the scene allows it (no media, not
+    /// polarised: see [`Integrator::split_dispersion`]).
+    pub fn with_split_dispersion(mut self, wanted: bool) -> Self {
+        self.split_dispersion =
+            wanted && self.scene.media.is_empty() && !self.scene.integrator.polarised;
+        self
     }
 
     /// A light for next-event estimation at the shading point `p` with shading normal `n`

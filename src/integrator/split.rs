@@ -63,9 +63,9 @@ pub fn to_original<const N: usize>(
 }
 
 impl Integrator<'_> {
-    /// [`Integrator::radiance`], and whether the sample should split: its first dispersive
-    /// hit was seen through delta lobes only (`path`), or it met dispersion at all (the
-    /// integrators with short paths, `whitted` and `direct`).
+    /// [`Integrator::radiance`], and whether the sample should split: its wavelengths were
+    /// all alive at its first dispersive hit, and that hit was seen through delta lobes only
+    /// (`path`), or came at all (the integrators with short paths, `whitted` and `direct`).
     fn radiance_seen<const N: usize>(
         &self,
         ray: Ray,
@@ -79,8 +79,9 @@ impl Integrator<'_> {
                 super::path::radiance_seen(self, ray, w, s)
             }
             _ => {
+                let alive = !w.secondary_terminated();
                 let l = self.radiance(ray, w, s);
-                (l, w.secondary_terminated())
+                (l, alive && w.secondary_terminated())
             }
         }
     }
@@ -99,7 +100,7 @@ impl Integrator<'_> {
             return self.radiance(ray, w, s);
         };
         let (l, seen) = self.radiance_seen(ray, w, s);
-        if !seen || w0.secondary_terminated() || !w.secondary_terminated() {
+        if !seen {
             return l;
         }
         let mut sum = to_original(&w0, 0, w, &l);

@@ -218,10 +218,9 @@ pub fn render_with(
         opts.spectral_bins,
     )
     .with_stokes(scene.integrator.polarised);
-    let mut integrator = Integrator::new(scene, opts.integrator, opts.max_depth);
+    let mut integrator = Integrator::new(scene, opts.integrator, opts.max_depth)
+        .with_split_dispersion(opts.split_dispersion);
     integrator.strategy = opts.strategy;
-    integrator.split_dispersion =
-        opts.split_dispersion && scene.media.is_empty() && !scene.integrator.polarised;
     let lambda = WavelengthSampler::visible(scene.wavelengths);
     let tiles: Vec<(u32, u32, u32, u32)> = (0..h.div_ceil(TILE))
         .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))

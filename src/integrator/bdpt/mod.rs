@@ -101,6 +101,21 @@ pub struct Radiance<const N: usize> {
     pub stokes_hero: [SampledSpectrum<N>; 4],
 }
 
+impl<const N: usize> Radiance<N> {
+    /// Nothing yet, for a sample at the wavelengths `w`.
+    fn zero(w: &SampledWavelengths<N>) -> Self {
+        let mut hero_only = *w;
+        hero_only.terminate_secondary();
+        Self {
+            all: SampledSpectrum::zero(),
+            hero: SampledSpectrum::zero(),
+            hero_only,
+            stokes_all: [SampledSpectrum::zero(); 4],
+            stokes_hero: [SampledSpectrum::zero(); 4],
+        }
+    }
+}
+
 /// One BDPT sample at the wavelengths `w`, along `ray`. Returns the camera-side radiance, while
 /// `splat(raster, w, value)` receives each t = 1 strategy's contribution at its raster
 /// position with its wavelengths, `value` in the film's units times the pixel count (the
@@ -126,16 +141,9 @@ pub fn sample<'a, const N: usize>(
     let conn = s.clone().at_dimension(CONNECT_DIMS);
     let again = it.split_dispersion.then(|| (s.clone(), s_light.clone()));
     let glow = walks(it, ray, w, s, s_light, scratch);
-    let mut hero_only = *w;
-    hero_only.terminate_secondary();
     // a medium's own emission, which only the camera walk finds
-    let mut out = Radiance {
-        all: glow.all,
-        hero: glow.hero,
-        hero_only,
-        stokes_all: [SampledSpectrum::zero(); 4],
-        stokes_hero: [SampledSpectrum::zero(); 4],
-    };
+    let mut out = Radiance::zero(w);
+    (out.all, out.hero) = (glow.all, glow.hero);
     // the camera sees dispersion through delta lobes only (the lens is vertex 0)
     let first = walk::first_dispersive(&scratch.camera);
     let camera_disperses =
@@ -150,17 +158,10 @@ pub fn sample<'a, const N: usize>(
             };
             split::rotations(it, &sample, streams, scratch, splat, &mut out);
         }
-        _ => strategies(
-            it,
-            ray,
-            w,
-            &conn,
-            margin,
-            scratch,
-            splat,
-            Keep::Every,
-            &mut out,
-        ),
+        _ => {
+            let keep = Keep::Every { dispersive: 1.0 };
+            strategies(it, ray, w, &conn, margin, scratch, splat, keep, &mut out);
+        }
     }
     out
 }

@@ -41,17 +41,8 @@ pub(super) fn rotations<'a, const N: usize>(
 ) {
     let scale = 1.0 / N as f32;
     let (ray, w, conn, margin) = (sample.ray, sample.w, sample.conn, sample.margin);
-    strategies(
-        it,
-        ray,
-        w,
-        conn,
-        margin,
-        scratch,
-        splat,
-        Keep::EveryScaled { scale },
-        out,
-    );
+    let keep = Keep::Every { dispersive: scale };
+    strategies(it, ray, w, conn, margin, scratch, splat, keep, out);
     out.all += to_original(w, 0, &out.hero_only, &out.hero);
     out.hero = SampledSpectrum::zero();
     for j in 1..N {
@@ -62,17 +53,9 @@ pub(super) fn rotations<'a, const N: usize>(
             glow.all.is_zero() && glow.hero.is_zero(),
             "no media when split"
         );
-        let mut hero_only = wj;
-        hero_only.terminate_secondary();
-        let mut part = Radiance {
-            all: SampledSpectrum::zero(),
-            hero: SampledSpectrum::zero(),
-            hero_only,
-            stokes_all: [SampledSpectrum::zero(); 4],
-            stokes_hero: [SampledSpectrum::zero(); 4],
-        };
+        let mut part = Radiance::zero(&wj);
         let keep = Keep::Dispersive { scale };
         strategies(it, ray, &wj, conn, margin, scratch, splat, keep, &mut part);
-        out.all += to_original(w, j, &hero_only, &part.hero);
+        out.all += to_original(w, j, &part.hero_only, &part.hero);
     }
 }

@@ -16,12 +16,12 @@ use crate::spectrum::SampledWavelengths;
 /// Which strategies [`strategies`] evaluates, and the factor on the hero-only ones.
 #[derive(Clone, Copy)]
 pub(super) enum Keep {
-    /// All of them, as they are.
-    Every,
-    /// The dispersive ones only, times `scale` (a rotation of a split sample: `split.rs`).
+    /// All of them, the dispersive ones times `dispersive` (1, or 1/N in the first rotation
+    /// of a split sample).
+    Every { dispersive: f32 },
+    /// The dispersive ones only, times `scale` (the other rotations of a split sample:
+    /// `split.rs`).
     Dispersive { scale: f32 },
-    /// All of them, the dispersive ones times `scale` (the first rotation of a split sample).
-    EveryScaled { scale: f32 },
 }
 
 /// Every connection strategy of the subpaths in `scratch` at the wavelengths `w`: t = 1 ones
@@ -64,10 +64,12 @@ pub(super) fn strategies<'a, const N: usize>(
             }
             let weighted = it.strategy.is_none_or(|o| o.weighted);
             let dispersive = s > disp_l || t > disp_c;
-            let scale = match keep {
-                Keep::Dispersive { .. } if !dispersive => continue,
-                Keep::Dispersive { scale } | Keep::EveryScaled { scale } if dispersive => scale,
-                _ => 1.0,
+            let scale = match (keep, dispersive) {
+                (Keep::Dispersive { .. }, false) => continue,
+                (Keep::Dispersive { scale }, true) | (Keep::Every { dispersive: scale }, true) => {
+                    scale
+                }
+                (Keep::Every { .. }, false) => 1.0,
             };
             let wl = if dispersive { &hero_only } else { w };
             let Some((c, raster, sampled)) =

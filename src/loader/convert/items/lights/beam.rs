@@ -3,6 +3,8 @@
 //! a scale.
 
 use super::*;
+use glam::DVec3;
+
 use crate::loader::desc::BeamSection;
 
 pub(super) const KIND: Kind = Kind {
@@ -81,15 +83,10 @@ fn slit(l: &Lt<'_>, s: &S<Value>, (p, t): (Point, Point)) -> R<BeamSection> {
         Some(u) => l.cx.vec3(u, &l.field("up"))?,
         None => [0.0, 1.0, 0.0],
     };
-    let m = |q: Point| q.map(|c| c.get::<length::meter>());
-    let (a, b) = (m(p), m(t));
-    let d = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
-    let dd = d.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let k = (0..3).map(|i| up[i] * d[i]).sum::<f64>() / (dd * dd);
-    let perp: [f64; 3] = std::array::from_fn(|i| up[i] - k * d[i]);
-    let n = perp.iter().map(|x| x * x).sum::<f64>().sqrt();
-    let uu = up.iter().map(|x| x * x).sum::<f64>().sqrt();
-    if !(n > 1e-6 * uu.max(1e-300)) {
+    let m = |q: Point| DVec3::from(q.map(|c| c.get::<length::meter>()));
+    let (d, u) = (m(t) - m(p), DVec3::from(up));
+    let perp = u - d * (u.dot(d) / d.length_squared());
+    if !(perp.length() > 1e-6 * u.length().max(1e-300)) {
         let at = l.l.up.as_ref().map_or(span.clone(), |u| u.span());
         return Err(l.cx.err(
             &at,
@@ -100,6 +97,6 @@ fn slit(l: &Lt<'_>, s: &S<Value>, (p, t): (Point, Point)) -> R<BeamSection> {
     Ok(BeamSection::Slit {
         width,
         height,
-        up: perp.map(|x| x / n),
+        up: perp.normalize().to_array(),
     })
 }
