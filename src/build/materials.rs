@@ -256,7 +256,7 @@ fn bump_map(height: &TextureDesc, scale: f64, inner: &MaterialKind) -> Result<Ma
     if matches!(inner, Material::NormalMap(_) | Material::BumpMap(_)) {
         return Err("a bump map cannot hold another normal or bump map".into());
     }
-    let height = textures::texture(height)?;
+    let height = textures::scalar_texture(height)?;
     if !textures::is_grey(&height) {
         return Err("a bump map's height must be a grey image".into());
     }

@@ -7,7 +7,7 @@ use glam::Vec3;
 
 use crate::image_io::{Encoding, read_rgb};
 use crate::loader::desc::{TextureDesc, TransformStep};
-use crate::texture::{Bitmap, Checkerboard, Texture, UvTransform};
+use crate::texture::{Bitmap, Checkerboard, TexFilter, Texture, UvTransform, Wrap};
 
 /// The 2D affine part of `to_uv` (Mitsuba keeps the x, y rows and the translation column).
 fn uv_transform(list: &[TransformStep]) -> Result<UvTransform, String> {
@@ -36,6 +36,14 @@ pub(super) fn srgb_to_linear(c: f32) -> f32 {
 pub(super) fn texture(t: &TextureDesc) -> Result<Texture, String> {
     Ok(match t {
         TextureDesc::Uniform(s) => Texture::Uniform(s.clone()),
+        TextureDesc::Raw([a, b, c]) if a == b && b == c => {
+            Texture::Uniform(crate::spectrum::Spectrum::Constant(*a))
+        }
+        TextureDesc::Raw(v) => {
+            return Err(format!(
+                "a raw constant of three different numbers {v:?} is not a spectrum (it can only be a normal map)"
+            ));
+        }
         TextureDesc::Checkerboard { a, b, to_uv } => {
             Texture::Checkerboard(Arc::new(Checkerboard {
                 a: a.clone(),
@@ -75,6 +83,18 @@ pub(super) fn texture(t: &TextureDesc) -> Result<Texture, String> {
 /// A normal map: an image of triples used as numbers (decoded from sRGB only when the file is
 /// sRGB-encoded and `raw` is false, as Mitsuba reads it), never spectra.
 pub(super) fn vector_texture(t: &TextureDesc) -> Result<Texture, String> {
+    if let TextureDesc::Raw(v) = t {
+        let b = Bitmap::from_vectors(
+            1,
+            1,
+            vec![*v],
+            TexFilter::Nearest,
+            Wrap::Repeat,
+            uv_transform(&[])?,
+        )
+        .map_err(|e| e.to_string())?;
+        return Ok(Texture::Bitmap(Arc::new(b)));
+    }
     let TextureDesc::Bitmap {
         path,
         filter,
@@ -91,6 +111,40 @@ pub(super) fn vector_texture(t: &TextureDesc) -> Result<Texture, String> {
     let lin = |v: f32| if decode { srgb_to_linear(v) } else { v };
     let v = img.rgb.iter().map(|p| p.map(lin)).collect();
     let b = Bitmap::from_vectors(
+        img.width,
+        img.height,
+        v,
+        *filter,
+        *wrap,
+        uv_transform(to_uv)?,
+    );
+    Ok(Texture::Bitmap(Arc::new(
+        b.map_err(|e| format!("{}: {e}", path.display()))?,
+    )))
+}
+
+/// A texture read as one number per texel, as Mitsuba's `eval_1` reads it (bump heights): a
+/// raw colour image becomes its luminance (Rec. 709 weights, Mitsuba's `luminance`); other
+/// textures as [`texture`] reads them.
+pub(super) fn scalar_texture(t: &TextureDesc) -> Result<Texture, String> {
+    let TextureDesc::Bitmap {
+        path,
+        filter,
+        wrap,
+        raw: true,
+        to_uv,
+        ..
+    } = t
+    else {
+        return texture(t);
+    };
+    let img = read_rgb(path).map_err(|e| e.to_string())?;
+    let v = img
+        .rgb
+        .iter()
+        .map(|p| 0.212671 * p[0] + 0.715160 * p[1] + 0.072169 * p[2])
+        .collect();
+    let b = Bitmap::from_grey(
         img.width,
         img.height,
         v,

@@ -1,6 +1,7 @@
 //! Reading images as RGB for textures and environment maps: PNG (8 or 16 bit, grey, grey +
-//! alpha, RGB, RGBA, palette), JPEG (8-bit grey or RGB, with jpeg-decoder), OpenEXR (R, G, B or
-//! Y channels) and Radiance HDR (RGBE).
+//! alpha, RGB, RGBA, palette), JPEG (8-bit grey or RGB, with jpeg-decoder), BMP (with the
+//! `image` crate's decoder: 8-bit sRGB values, as Mitsuba reads them), OpenEXR (R, G, B or Y
+//! channels) and Radiance HDR (RGBE).
 
 use std::path::Path;
 
@@ -28,7 +29,7 @@ pub struct RgbImage {
     pub grey: bool,
 }
 
-/// Reads `path` by its extension (`.png`, `.jpg`/`.jpeg`, `.exr`, `.hdr`/`.rgbe`;
+/// Reads `path` by its extension (`.png`, `.jpg`/`.jpeg`, `.bmp`, `.exr`, `.hdr`/`.rgbe`;
 /// case-insensitive). Fails with
 /// an error naming the file for other extensions, unreadable or corrupt files, EXR files without
 /// R, G, B or Y channels, and non-finite values.
@@ -43,10 +44,11 @@ pub fn read_rgb(path: &Path) -> Result<RgbImage, ImageError> {
         "jpg" | "jpeg" => read_jpeg(path)?,
         "exr" => exr_rgb(path)?,
         "hdr" | "rgbe" | "pic" => super::hdr_in::read_hdr(path)?,
+        "bmp" => read_bmp(path)?,
         _ => {
             return Err(invalid(
                 path,
-                format!("unsupported image type \".{ext}\"; use .png, .jpg, .exr or .hdr"),
+                format!("unsupported image type \".{ext}\"; use .png, .jpg, .bmp, .exr or .hdr"),
             ));
         }
     };
@@ -190,4 +192,114 @@ fn read_jpeg(path: &Path) -> Result<RgbImage, ImageError> {
         encoding: Encoding::Srgb,
         grey,
     })
+}
+
+/// A BMP file (any bit depth and compression the `image` crate decodes) as 8-bit sRGB values;
+/// alpha is dropped. A file the decoder reads as luminance counts as grey.
+fn read_bmp(path: &Path) -> Result<RgbImage, ImageError> {
+    let file = open_input(path, crate::files::MAX_IMAGE_BYTES)?;
+    let codec = |e: image::ImageError| ImageError::Codec {
+        path: path.to_path_buf(),
+        action: "cannot decode BMP",
+        source: Box::new(e),
+    };
+    let decoder =
+        image::codecs::bmp::BmpDecoder::new(std::io::BufReader::new(file)).map_err(codec)?;
+    let img = image::DynamicImage::from_decoder(decoder).map_err(codec)?;
+    let (w, h) = (img.width() as usize, img.height() as usize);
+    pixel_count(path, w, h)?;
+    let rgb8 = img.to_rgb8();
+    let byte = |v: u8| v as f32 / 255.0;
+    let rgb: Vec<[f32; 3]> = rgb8
+        .pixels()
+        .map(|p| [byte(p[0]), byte(p[1]), byte(p[2])])
+        .collect();
+    let grey = matches!(
+        img.color(),
+        image::ColorType::L8
+            | image::ColorType::La8
+            | image::ColorType::L16
+            | image::ColorType::La16
+    );
+    Ok(RgbImage {
+        width: w,
+        height: h,
+        rgb,
+        encoding: Encoding::Srgb,
+        grey,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 24-bit BMP by the format's definition: 14-byte file header, 40-byte info header,
+    /// rows bottom-up, BGR, each row padded to 4 bytes. `height` is the header's (negative:
+    /// rows top-down).
+    fn bmp(width: i32, height: i32, rows_as_stored: &[Vec<[u8; 3]>]) -> Vec<u8> {
+        let mut pixels = Vec::new();
+        for row in rows_as_stored {
+            for p in row {
+                pixels.extend([p[2], p[1], p[0]]);
+            }
+            while pixels.len() % 4 != 0 {
+                pixels.push(0);
+            }
+        }
+        let mut f = b"BM".to_vec();
+        f.extend((54 + pixels.len() as u32).to_le_bytes());
+        f.extend([0; 4]);
+        f.extend(54u32.to_le_bytes());
+        f.extend(40u32.to_le_bytes());
+        f.extend(width.to_le_bytes());
+        f.extend(height.to_le_bytes());
+        f.extend(1u16.to_le_bytes());
+        f.extend(24u16.to_le_bytes());
+        f.extend([0; 4]);
+        f.extend((pixels.len() as u32).to_le_bytes());
+        f.extend([0; 16]);
+        f.extend(pixels);
+        f
+    }
+
+    fn read(name: &str, bytes: &[u8]) -> Result<RgbImage, ImageError> {
+        let dir = std::env::temp_dir().join(format!("spectrace-bmp-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(name);
+        std::fs::write(&path, bytes).unwrap();
+        read_rgb(&path)
+    }
+
+    /// Rows stored bottom-up come out top row first, channels in R, G, B order, values /255.
+    #[test]
+    fn bmp_reads_rows_top_first_in_rgb() {
+        let bottom = vec![[10, 20, 30], [40, 50, 60], [70, 80, 90]];
+        let top = vec![[255, 0, 0], [0, 255, 0], [0, 0, 255]];
+        let img = read("a.bmp", &bmp(3, 2, &[bottom, top])).unwrap();
+        assert_eq!((img.width, img.height, img.grey), (3, 2, false));
+        assert_eq!(img.encoding, Encoding::Srgb);
+        assert_eq!(img.rgb[0], [1.0, 0.0, 0.0]);
+        assert_eq!(img.rgb[2], [0.0, 0.0, 1.0]);
+        assert_eq!(img.rgb[3], [10.0 / 255.0, 20.0 / 255.0, 30.0 / 255.0]);
+        // a negative height stores rows top-down
+        let img = read(
+            "b.bmp",
+            &bmp(1, -2, &[vec![[255, 255, 255]], vec![[0, 0, 0]]]),
+        )
+        .unwrap();
+        assert_eq!(img.rgb, vec![[1.0; 3], [0.0; 3]]);
+    }
+
+    /// A truncated file or a header claiming 2³⁰ × 2³⁰ pixels is an error naming the file.
+    #[test]
+    fn bad_bmp_is_an_error() {
+        let mut f = bmp(4, 4, &vec![vec![[1, 2, 3]; 4]; 4]);
+        f.truncate(60);
+        let e = read("short.bmp", &f).unwrap_err().to_string();
+        assert!(e.contains("short.bmp"), "{e}");
+        let huge = bmp(1 << 30, 1 << 30, &[vec![[1, 2, 3]]]);
+        let e = read("huge.bmp", &huge).unwrap_err().to_string();
+        assert!(e.contains("huge.bmp"), "{e}");
+    }
 }

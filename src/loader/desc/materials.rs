@@ -160,7 +160,10 @@ pub enum TextureDesc {
         b: Spectrum,
         to_uv: Vec<TransformStep>,
     },
-    /// An image file (PNG, EXR, HDR), read when the scene is built.
+    /// Numbers used as given, not a colour (Mitsuba's `rawconstant`): a normal map's triple in
+    /// [0, 1]³ (mapped to a normal by 2v − 1), or a grey value when all three are equal.
+    Raw([f32; 3]),
+    /// An image file (PNG, JPEG, BMP, EXR, HDR), read when the scene is built.
     Bitmap {
         path: PathBuf,
         filter: TexFilter,

@@ -160,20 +160,30 @@ fn projector(cx: &Cx<'_>, e: &Element) -> R<(LightKind, Spectrum)> {
             ));
         }
     };
-    if cx.child(e, "irradiance").is_none() {
+    let Some(irradiance) = cx.child(e, "irradiance") else {
         return Err(cx.err(e, "a projector needs an irradiance (a texture or a value)"));
-    }
-    let scale = cx.opt_float(e, "scale")?.unwrap_or(1.0);
+    };
+    let scale = cx.opt_float(e, "scale")?.unwrap_or(1.0) as f32;
+    let (image, spectrum) = if cx.resolve(irradiance)?.tag == "texture" {
+        // measured in Mitsuba 3.9.1: a grey image projects an equal-energy spectrum
+        // (X = Y = Z), not D65 (the `D65(scale)` texture in its source notwithstanding)
+        (cx.texture_of(irradiance)?, Spectrum::Constant(scale))
+    } else {
+        // a number or colour is an emission (Mitsuba's `get_emissive_texture`: a `d65`
+        // texture in spectral variants, unbounded): D65-shaped, any magnitude
+        (
+            Spectrum::Constant(1.0).into(),
+            cx.spectrum(irradiance, true)?.scaled(scale),
+        )
+    };
     Ok((
         LightKind::Projector {
             transform: steps,
             fov: Angle::new::<angle::degree>(fov),
             fov_axis_y,
-            image: cx.texture_prop(e, "irradiance", 1.0)?,
+            image,
         },
-        // measured in Mitsuba 3.9.1: a grey image projects an equal-energy spectrum
-        // (X = Y = Z), not D65 (the `D65(scale)` texture in its source notwithstanding)
-        Spectrum::Constant(scale as f32),
+        spectrum,
     ))
 }
 

@@ -83,11 +83,12 @@ const PLUGINS: &[(&str, &[&str])] = &[
             "direct",
             "moment",
             "stokes",
+            "ptracer",
         ],
     ),
     ("shape emitter", &["area"]),
     ("spectrum", &["blackbody", "d65"]),
-    ("texture", &["checkerboard", "bitmap"]),
+    ("texture", &["checkerboard", "bitmap", "rawconstant"]),
     (
         "transform",
         &["translate", "scale", "rotate", "matrix", "lookat"],

@@ -323,7 +323,8 @@ fn max_depth(cx: &Cx<'_>, d: &Element) -> R<u32> {
 }
 
 /// An `<integrator>`: `path`, and `volpath` and `volpathmis` (spectrace's volumetric path
-/// tracer; the same as `path` in a scene without media) with `max_depth`, `rr_depth`;
+/// tracer; the same as `path` in a scene without media) and `ptracer` (spectrace's light
+/// tracer) with `max_depth`, `rr_depth`;
 /// `direct` with its sample counts; `moment` around one of them (its image plus second
 /// moments); `stokes` around one of them (a polarised render). Returns whether the integrator renders media.
 fn integrator_settings(cx: &Cx<'_>, c: &Element, integrator: &mut IntegratorDesc) -> R<bool> {
@@ -369,8 +370,13 @@ fn integrator_settings(cx: &Cx<'_>, c: &Element, integrator: &mut IntegratorDesc
         };
         return Ok(false);
     }
-    if !matches!(t, "path" | "volpath" | "volpathmis") {
+    if !matches!(t, "path" | "volpath" | "volpathmis" | "ptracer") {
         return Err(cx.unsupported(c, "integrator", t));
+    }
+    if t == "ptracer" {
+        // Mitsuba's particle tracer: particles from the emitters, each vertex (the emitter's
+        // own included) connected to the sensor; spectrace's light tracer
+        integrator.kind = IntegratorKind::Light;
     }
     if let Some(d) = cx.child(c, "max_depth") {
         integrator.max_depth = max_depth(cx, d)?;
@@ -392,5 +398,5 @@ fn integrator_settings(cx: &Cx<'_>, c: &Element, integrator: &mut IntegratorDesc
             "hide_emitters = true is not supported: spectrace always shows emitters seen directly",
         ));
     }
-    Ok(t != "path")
+    Ok(!matches!(t, "path" | "ptracer"))
 }

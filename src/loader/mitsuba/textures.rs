@@ -90,6 +90,17 @@ impl Cx<'_> {
                     loc: self.loc(t),
                 })
             }
+            // numbers as given, neither a colour nor uplifted (`rawconstant.cpp`)
+            "rawconstant" => {
+                let v = self
+                    .child(t, "value")
+                    .ok_or_else(|| self.err(t, "a rawconstant needs a value"))?;
+                let v = match v.tag.as_str() {
+                    "vector" | "point" => self.vec3(v)?,
+                    _ => [self.float(v)?; 3],
+                };
+                Ok(TextureDesc::Raw(v.map(|x| x as f32)))
+            }
             other => Err(self.unsupported(t, "texture", other)),
         }
     }

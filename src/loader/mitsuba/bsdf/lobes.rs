@@ -90,12 +90,12 @@ pub(super) fn conductor(cx: &Cx<'_>, b: &Element, t: &str) -> R<MaterialKind> {
 pub(super) fn plastic(cx: &Cx<'_>, b: &Element, t: &str) -> R<MaterialKind> {
     let specular = match cx.child(b, "specular_reflectance") {
         None => 1.0,
-        Some(c) => match cx.spectrum(c, false)? {
-            Spectrum::Constant(v) if v >= 0.0 => v as f64,
+        Some(c) => match grey(cx, c)? {
+            Some(v) if v >= 0.0 => v,
             _ => {
                 return Err(cx.err(
                     c,
-                    "a plastic's specular_reflectance must be one number ≥ 0 here (a spectrum or texture is not supported)",
+                    "a plastic's specular_reflectance must be one number ≥ 0 here, or a grey rgb (a spectrum or texture is not supported)",
                 ));
             }
         },

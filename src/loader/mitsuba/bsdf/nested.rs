@@ -111,8 +111,12 @@ pub(super) fn perturbed(cx: &Cx<'_>, b: &Element, name: &str, t: &str) -> R<(Mat
         };
         h
     };
-    if cx.resolve(map)?.attr("type") != Some("bitmap") {
-        return Err(cx.err(map, format!("a {t}'s texture must be a bitmap here")));
+    let map_type = cx.resolve(map)?.attr("type");
+    if !(map_type == Some("bitmap") || (t == "normalmap" && map_type == Some("rawconstant"))) {
+        return Err(cx.err(
+            map,
+            format!("a {t}'s texture must be a bitmap here (or a normalmap's rawconstant)"),
+        ));
     }
     let texture = cx.texture_of(map)?;
     let inner = Box::new(m.kind);

@@ -1,0 +1,143 @@
+#!/usr/bin/env python3
+"""Writes tests/data/mitsuba_plugin_refs.toml: numbers Mitsuba 3.9.1 itself renders for the
+plugins and parameters of issue 31, which tests/mitsuba_data_plugins.rs holds spectrace to.
+
+Each [[case]] is a small scene (16 × 16 pixels, box filter, XYZ film, `scalar_spectral`) and
+the mean X, Y, Z over the image of two renders with seeds 0 and 1, with the standard error of
+that mean (the standard deviation of the per-pixel difference of the seeds / 2 / √pixels).
+
+Usage: pip install mitsuba==3.9.1; python3 scripts/gen_mitsuba_plugin_refs.py
+"""
+import os
+
+import mitsuba as mi
+import numpy as np
+
+mi.set_variant("scalar_spectral")
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SPP = 64
+
+
+def sensor(origin="0, 0, 3", target="0, 0, 0", up="0, 1, 0", fov=10):
+    return f"""<sensor type="perspective"><float name="fov" value="{fov}"/>
+<transform name="to_world"><lookat origin="{origin}" target="{target}" up="{up}"/></transform>
+<sampler type="independent"><integer name="sample_count" value="{SPP}"/></sampler>
+<film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/>
+<string name="pixel_format" value="xyz"/><rfilter type="box"/></film></sensor>"""
+
+
+def projector(irradiance):
+    """A projector 2 m above a white diffuse plane, seen from 3 m: its irradiance given as a
+    number or RGB (an emission: D65-shaped in spectral variants, of any magnitude)."""
+    return f"""<integrator type="direct"/>{sensor()}
+<shape type="rectangle"><bsdf type="diffuse"><float name="reflectance" value="1"/></bsdf></shape>
+<emitter type="projector"><float name="fov" value="40"/>
+<transform name="to_world"><lookat origin="0, 0, 2" target="0, 0, 0" up="0, 1, 0"/></transform>
+{irradiance}</emitter>"""
+
+
+def write_bmp(path, rgb):
+    """A 24-bit uncompressed BMP (BITMAPINFOHEADER, rows bottom-up, BGR, rows padded to 4
+    bytes), written from the format's definition."""
+    h, w, _ = rgb.shape
+    row = (3 * w + 3) // 4 * 4
+    pixels = bytearray()
+    for y in range(h - 1, -1, -1):
+        line = bytearray()
+        for x in range(w):
+            r, g, b = (int(v) for v in rgb[y, x])
+            line += bytes([b, g, r])
+        pixels += line + bytes(row - len(line))
+    header = b"BM" + (54 + len(pixels)).to_bytes(4, "little") + bytes(4) + (54).to_bytes(4, "little")
+    info = ((40).to_bytes(4, "little") + w.to_bytes(4, "little", signed=True)
+            + h.to_bytes(4, "little", signed=True) + (1).to_bytes(2, "little")
+            + (24).to_bytes(2, "little") + bytes(4) + len(pixels).to_bytes(4, "little")
+            + (2835).to_bytes(4, "little") * 2 + bytes(8))
+    with open(path, "wb") as f:
+        f.write(header + info + pixels)
+
+
+def image_files():
+    """tests/data/mitsuba_plugins/: an 8 × 4 colour BMP (an emitter's radiance) and an 8 × 8
+    colour PNG of ridges (a bump map read raw: its luminance is the height)."""
+    folder = os.path.join(ROOT, "tests", "data", "mitsuba_plugins")
+    os.makedirs(folder, exist_ok=True)
+    y, x = np.mgrid[0:4, 0:8]
+    bmp = np.stack([30 * x + 20, 60 * y + 10, 255 - 25 * x], axis=-1).astype(np.uint8)
+    write_bmp(os.path.join(folder, "panel.bmp"), bmp)
+    y, x = np.mgrid[0:8, 0:8]
+    ridge = 0.5 + 0.5 * np.sin(2 * np.pi * x / 8)
+    png = np.stack([ridge * 200, ridge * 120 + 60 * (y / 7), 255 - ridge * 100], axis=-1)
+    mi.Bitmap(png.astype(np.uint8), pixel_format=mi.Bitmap.PixelFormat.RGB).write(
+        os.path.join(folder, "ridges.png"))
+
+
+# `{data}` stands for tests/data/mitsuba_plugins (the test substitutes its own path)
+LIT = """<emitter type="directional"><vector name="direction" value="-0.6, -0.3, -1"/>
+<rgb name="irradiance" value="2"/></emitter>"""
+
+CASES = [
+    ("projector_rgb_1", projector('<rgb name="irradiance" value="1"/>')),
+    ("projector_float_1", projector('<float name="irradiance" value="1"/>')),
+    ("projector_rgb_bright", projector('<rgb name="irradiance" value="25.5 38.0 20.1"/>')),
+    ("projector_rgb_scaled",
+     projector('<rgb name="irradiance" value="0.255 0.38 0.201"/><float name="scale" value="3"/>')),
+    # Mitsuba's particle tracer: a point light over a diffuse plane, and an area light seen
+    # directly (the emitter's own vertex connected to the sensor)
+    ("ptracer_point", f"""<integrator type="ptracer"><integer name="max_depth" value="3"/></integrator>
+{sensor(fov=30)}<shape type="rectangle"><bsdf type="diffuse"/></shape>
+<emitter type="point"><point name="position" value="0.3, 0.2, 1"/><rgb name="intensity" value="2"/></emitter>"""),
+    ("ptracer_area", f"""<integrator type="ptracer"/>{sensor(fov=30)}
+<shape type="rectangle"><bsdf type="diffuse"/></shape>
+<shape type="disk"><transform name="to_world"><scale value="0.1"/><rotate x="1" angle="180"/>
+<translate value="0.1, 0, 0.5"/></transform><emitter type="area"><rgb name="radiance" value="3"/></emitter></shape>
+<shape type="disk"><transform name="to_world"><scale value="0.15"/><translate value="-0.2, 0.1, 0.3"/></transform>
+<emitter type="area"><rgb name="radiance" value="0.5 0.8 0.2"/></emitter></shape>"""),
+    # a normalmap of a rawconstant normal: (0.5, 0.5, 1) is the unperturbed normal, (0.75,
+    # 0.5, 0.9) a tilted one, on a plane under a slanted directional light
+    ("normalmap_raw_identity", f"""<integrator type="path"><integer name="max_depth" value="2"/></integrator>
+{sensor(fov=30)}{LIT}<shape type="rectangle"><bsdf type="normalmap">
+<texture name="normalmap" type="rawconstant"><vector name="value" value="0.5, 0.5, 1"/></texture>
+<bsdf type="roughconductor"><string name="material" value="Al"/><float name="alpha" value="0.3"/></bsdf>
+</bsdf></shape>"""),
+    ("normalmap_raw_tilted", f"""<integrator type="path"><integer name="max_depth" value="2"/></integrator>
+{sensor(fov=30)}{LIT}<shape type="rectangle"><bsdf type="normalmap">
+<texture name="normalmap" type="rawconstant"><vector name="value" value="0.75, 0.5, 0.9"/></texture>
+<bsdf type="diffuse"/></bsdf></shape>"""),
+    # a colour PNG read raw as a bump map: Mitsuba's eval_1 takes its luminance
+    ("bumpmap_colour_raw", f"""<integrator type="path"><integer name="max_depth" value="2"/></integrator>
+{sensor(fov=30)}{LIT}<shape type="rectangle"><bsdf type="bumpmap"><float name="scale" value="0.3"/>
+<texture type="bitmap"><string name="filename" value="{{data}}/ridges.png"/><boolean name="raw" value="true"/></texture>
+<bsdf type="diffuse"/></bsdf></shape>"""),
+    # a BMP as an emitter's radiance (sRGB 8-bit values, as a PNG's)
+    ("bmp_radiance", f"""<integrator type="path"><integer name="max_depth" value="1"/></integrator>
+{sensor(fov=30)}<shape type="rectangle"><emitter type="area"><texture name="radiance" type="bitmap">
+<string name="filename" value="{{data}}/panel.bmp"/><string name="filter_type" value="nearest"/></texture></emitter></shape>"""),
+]
+
+
+def render(body, seed):
+    data = os.path.join(ROOT, "tests", "data", "mitsuba_plugins")
+    scene = mi.load_string(f'<scene version="3.0.0">{body.replace("{data}", data)}</scene>')
+    return np.array(mi.render(scene, seed=seed), dtype=np.float64)[:, :, :3]
+
+
+def main():
+    out = ["# Written by scripts/gen_mitsuba_plugin_refs.py with Mitsuba 3.9.1 scalar_spectral:",
+           f"# mean X, Y, Z of 16 × 16 renders at {SPP} spp, two seeds, and their standard errors.", ""]
+    image_files()
+    for name, body in CASES:
+        a, b = render(body, 0), render(body, 1)
+        mean = (a + b).reshape(-1, 3).mean(0) / 2
+        se = (a - b).reshape(-1, 3).std(0) / 2 / np.sqrt(a.shape[0] * a.shape[1])
+        out += ["[[case]]", f'name = "{name}"', f"spp = {SPP}",
+                "xml = '''" + body + "'''",
+                "xyz = [" + ", ".join(f"{v:.7g}" for v in mean) + "]",
+                "stderr = [" + ", ".join(f"{v:.3g}" for v in se) + "]", ""]
+        print(name, mean, se)
+    with open(os.path.join(ROOT, "tests", "data", "mitsuba_plugin_refs.toml"), "w") as f:
+        f.write("\n".join(out))
+
+
+if __name__ == "__main__":
+    main()
