@@ -70,6 +70,23 @@ def image_files():
     png = np.stack([ridge * 200, ridge * 120 + 60 * (y / 7), 255 - ridge * 100], axis=-1)
     mi.Bitmap(png.astype(np.uint8), pixel_format=mi.Bitmap.PixelFormat.RGB).write(
         os.path.join(folder, "ridges.png"))
+    # a 2 × 2 grid of quads (9 vertices, 8 triangles: Mitsuba reads triangles only) with vertex colours,
+    # face colours (bare red/green/blue, floats) and a one-field face weight
+    lines = ["ply", "format ascii 1.0", "element vertex 9", "property float x", "property float y",
+             "property float z", "property float color_0", "property float color_1",
+             "property float color_2", "element face 8", "property list uchar int vertex_indices",
+             "property float red", "property float green", "property float blue",
+             "property float weight_0", "end_header"]
+    for j in range(3):
+        for i in range(3):
+            lines.append(f"{i - 1} {j - 1} 0 {0.1 + 0.4 * i} {0.8 - 0.3 * j} {0.2 + 0.2 * i * j}")
+    faces = [(0, 1, 4, 3), (1, 2, 5, 4), (3, 4, 7, 6), (4, 5, 8, 7)]
+    colours = [(0.9, 0.2, 0.1), (0.1, 0.7, 0.3), (0.2, 0.3, 0.9), (0.8, 0.8, 0.2)]
+    for k, (f, c) in enumerate(zip(faces, colours)):
+        for tri in ((f[0], f[1], f[2]), (f[0], f[2], f[3])):
+            lines.append(f"3 {tri[0]} {tri[1]} {tri[2]} {c[0]} {c[1]} {c[2]} {0.2 + 0.2 * k}")
+    with open(os.path.join(folder, "grid_attributes.ply"), "w") as f:
+        f.write("\n".join(lines) + "\n")
 
 
 # `{data}` stands for tests/data/mitsuba_plugins (the test substitutes its own path)
@@ -109,6 +126,23 @@ CASES = [
 {sensor(fov=30)}{LIT}<shape type="rectangle"><bsdf type="bumpmap"><float name="scale" value="0.3"/>
 <texture type="bitmap"><string name="filename" value="{{data}}/ridges.png"/><boolean name="raw" value="true"/></texture>
 <bsdf type="diffuse"/></bsdf></shape>"""),
+    # mesh attributes on a flat-lit plane: vertex colours blended as spectra, face colours,
+    # a face weight blending two diffuse BSDFs, and a scaled vertex colour
+    *[(f"mesh_attribute_{tag}", f"""<integrator type="direct"/>{sensor(fov=45)}{LIT}
+<shape type="ply"><string name="filename" value="{{data}}/grid_attributes.ply"/>{bsdf}</shape>""")
+      for tag, bsdf in [
+          ("vertex_color", '<bsdf type="diffuse"><texture type="mesh_attribute" name="reflectance">'
+                           '<string name="name" value="vertex_color"/></texture></bsdf>'),
+          ("face_color", '<bsdf type="diffuse"><texture type="mesh_attribute" name="reflectance">'
+                         '<string name="name" value="face_color"/></texture></bsdf>'),
+          ("face_weight", '<bsdf type="blendbsdf"><texture type="mesh_attribute" name="weight">'
+                          '<string name="name" value="face_weight"/></texture>'
+                          '<bsdf type="diffuse"><rgb name="reflectance" value="0 0.5 0.5"/></bsdf>'
+                          '<bsdf type="diffuse"><rgb name="reflectance" value="1 1 0"/></bsdf></bsdf>'),
+          ("scaled", '<bsdf type="diffuse"><texture type="mesh_attribute" name="reflectance">'
+                     '<string name="name" value="vertex_color"/><float name="scale" value="0.5"/>'
+                     '</texture></bsdf>'),
+      ]],
     # a BMP as an emitter's radiance (sRGB 8-bit values, as a PNG's)
     ("bmp_radiance", f"""<integrator type="path"><integer name="max_depth" value="1"/></integrator>
 {sensor(fov=30)}<shape type="rectangle"><emitter type="area"><texture name="radiance" type="bitmap">

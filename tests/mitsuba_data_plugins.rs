@@ -133,3 +133,11 @@ fn colour_bumpmap_matches_mitsuba() {
 fn bmp_texture_matches_mitsuba() {
     check_cases("bmp_");
 }
+
+/// `mesh_attribute` on a PLY grid under a directional light (`grid_attributes.ply`, written by
+/// the generator): vertex colours blended as spectra across each triangle, face colours, a
+/// face weight blending two diffuse BSDFs, and `scale`.
+#[test]
+fn mesh_attributes_match_mitsuba() {
+    check_cases("mesh_attribute_");
+}

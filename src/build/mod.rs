@@ -20,7 +20,7 @@ use crate::geometry::accel::Accel;
 use crate::geometry::camera::{Camera, FovAxis as CamAxis};
 use crate::geometry::instance::{Group, Instance};
 use crate::geometry::transform::Transform;
-use crate::loader::desc::{CameraKind, FovAxis, Projection, SceneDesc};
+use crate::loader::desc::{CameraKind, FovAxis, Projection, SceneDesc, ShapeKind};
 use crate::loader::{LoadError, Loc};
 use crate::spectrum::WavelengthRange;
 use crate::units::plain;
@@ -41,11 +41,14 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         )
     })?;
 
-    let materials = desc
-        .materials
-        .iter()
-        .map(|m| material(&m.kind).map_err(|e| err(m.loc, format!("materials.{}", m.name), e)))
-        .collect::<Result<Vec<_>, _>>()?;
+    textures::take_wanted();
+    let mut wants_mesh = Vec::with_capacity(desc.materials.len());
+    let mut materials = Vec::with_capacity(desc.materials.len());
+    for m in &desc.materials {
+        materials
+            .push(material(&m.kind).map_err(|e| err(m.loc, format!("materials.{}", m.name), e))?);
+        wants_mesh.push(textures::take_wanted());
+    }
 
     let mut shape_list = Vec::with_capacity(desc.shapes.len());
     for (i, s) in desc.shapes.iter().enumerate() {
@@ -53,6 +56,20 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
     }
 
     let (lights, light_sampling_weights, mut surfaces) = lights::lights(desc, &shape_list, range)?;
+    if textures::take_wanted() {
+        return Err(err(
+            Loc { line: 1, col: 1 },
+            "lights".into(),
+            "a mesh_attribute texture is only read as a material's texture here".into(),
+        ));
+    }
+    bind_mesh_attributes(
+        desc,
+        &shape_list,
+        &wants_mesh,
+        &mut materials,
+        &mut surfaces,
+    )?;
     // shape groups in their own object space, their surfaces after the scene's own
     let mut groups = Vec::with_capacity(desc.groups.len());
     for g in &desc.groups {
@@ -60,6 +77,13 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         let mut list = Vec::with_capacity(g.shapes.len());
         for (i, s) in g.shapes.iter().enumerate() {
             let field = || format!("shapegroup \"{}\".shapes[{i}]", g.id);
+            if s.material.is_some_and(|m| wants_mesh[m]) {
+                return Err(err(
+                    s.loc,
+                    field(),
+                    "a material reading mesh attributes is not supported in a shape group".into(),
+                ));
+            }
             list.push(shapes::shape(s).map_err(|e| err(s.loc, field(), e))?);
             surfaces.push(surface(s.material, s.two_sided, None));
         }
@@ -207,12 +231,49 @@ fn meter(s: &crate::loader::desc::SensorDesc) -> crate::scene::Meter {
     }
 }
 
+/// Gives each shape whose material reads mesh attributes (`wants_mesh`) its own copy of the
+/// material, built with the shape's attributes bound (see `textures::with_mesh`); such a
+/// shape must be a PLY mesh.
+fn bind_mesh_attributes(
+    desc: &SceneDesc,
+    shapes: &[crate::geometry::shape::Shape],
+    wants_mesh: &[bool],
+    materials: &mut Vec<crate::material::Material>,
+    surfaces: &mut [Surface],
+) -> Result<(), LoadError> {
+    for (i, s) in desc.shapes.iter().enumerate() {
+        let Some(m) = s.material.filter(|&m| wants_mesh[m]) else {
+            continue;
+        };
+        let e = |msg: String| LoadError::new(&desc.path, s.loc, format!("shapes[{i}]"), msg);
+        let (ShapeKind::Ply { path, .. }, crate::geometry::shape::Shape::Mesh(mesh)) =
+            (&s.kind, &shapes[i])
+        else {
+            return Err(e(format!(
+                "material \"{}\" reads mesh attributes, which only a PLY mesh has",
+                desc.materials[m].name
+            )));
+        };
+        let (_, attributes) =
+            crate::geometry::shape::Mesh::load_ply_attributes(path, &Default::default())
+                .map_err(|x| e(x.to_string()))?;
+        let bound = textures::with_mesh(mesh, &attributes, || material(&desc.materials[m].kind))
+            .and_then(|r| r)
+            .map_err(|x| e(format!("materials.{}: {x}", desc.materials[m].name)))?;
+        surfaces[i].material = Some(materials.len() as u32);
+        surfaces[i].attributes = true;
+        materials.push(bound);
+    }
+    Ok(())
+}
+
 /// Surfaces per shape: filled by `lights` (which also knows the emitters).
 pub(super) fn surface(material: Option<usize>, two_sided: bool, light: Option<usize>) -> Surface {
     Surface {
         material: material.map(|m| m as u32),
         two_sided,
         light: light.map(|l| l as u32),
+        attributes: false,
     }
 }
 

@@ -7,7 +7,9 @@ use glam::Vec3;
 
 use crate::image_io::{Encoding, read_rgb};
 use crate::loader::desc::{TextureDesc, TransformStep};
-use crate::texture::{Bitmap, Checkerboard, TexFilter, Texture, UvTransform, Wrap};
+use crate::texture::{
+    AttributeTexture, Bitmap, Checkerboard, TexFilter, Texture, UvTransform, Wrap,
+};
 
 /// The 2D affine part of `to_uv` (Mitsuba keeps the x, y rows and the translation column).
 fn uv_transform(list: &[TransformStep]) -> Result<UvTransform, String> {
@@ -36,6 +38,7 @@ pub(super) fn srgb_to_linear(c: f32) -> f32 {
 pub(super) fn texture(t: &TextureDesc) -> Result<Texture, String> {
     Ok(match t {
         TextureDesc::Uniform(s) => Texture::Uniform(s.clone()),
+        TextureDesc::MeshAttribute { name, scale } => bound_attribute(name, *scale)?,
         TextureDesc::Raw([a, b, c]) if a == b && b == c => {
             Texture::Uniform(crate::spectrum::Spectrum::Constant(*a))
         }
@@ -166,5 +169,75 @@ pub(super) fn is_grey(t: &Texture) -> bool {
         Texture::Uniform(s) => constant(s),
         Texture::Checkerboard(c) => constant(&c.a) && constant(&c.b),
         Texture::Bitmap(b) => b.is_grey(),
+        Texture::Attribute(a) => !a.is_colour(),
     }
+}
+
+/// A mesh's attributes by name, as [`with_mesh`] binds them.
+type Bound = Vec<(String, Arc<AttributeTexture>)>;
+
+thread_local! {
+    /// The attributes of the mesh a material is being built for ([`with_mesh`]); None while a
+    /// material is first built, unbound.
+    static BOUND: std::cell::RefCell<Option<Bound>> =
+        const { std::cell::RefCell::new(None) };
+    /// Whether an unbound build met a mesh attribute ([`take_wanted`]).
+    static WANTED: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// A `mesh_attribute` texture. Unbound (a material's first build), a placeholder that marks
+/// the material as wanting a mesh: the build step then builds it again for each mesh it is on,
+/// inside [`with_mesh`]. A thread-local rather than a context argument through every material
+/// constructor: only this texture reads it, and only while the scene is built on one thread.
+fn bound_attribute(name: &str, scale: f64) -> Result<Texture, String> {
+    BOUND.with(|b| match &*b.borrow() {
+        None => {
+            WANTED.set(true);
+            Ok(Texture::Uniform(crate::spectrum::Spectrum::Constant(0.0)))
+        }
+        Some(list) => {
+            let Some((_, t)) = list.iter().find(|(n, _)| n == name) else {
+                let have: Vec<&str> = list.iter().map(|(n, _)| n.as_str()).collect();
+                return Err(format!(
+                    "the mesh has no attribute \"{name}\" (it has: {})",
+                    if have.is_empty() {
+                        "none".to_string()
+                    } else {
+                        have.join(", ")
+                    }
+                ));
+            };
+            Ok(Texture::Attribute(if scale == 1.0 {
+                t.clone()
+            } else {
+                Arc::new(t.scaled(scale as f32))
+            }))
+        }
+    })
+}
+
+/// Whether the material built since the last call read a mesh attribute unbound.
+pub(super) fn take_wanted() -> bool {
+    WANTED.replace(false)
+}
+
+/// Runs `f` (a material's build) with `mesh`'s attributes bound.
+pub(super) fn with_mesh<R>(
+    mesh: &crate::geometry::shape::Mesh,
+    attributes: &[crate::geometry::shape::MeshAttribute],
+    f: impl FnOnce() -> R,
+) -> Result<R, String> {
+    let list = attributes
+        .iter()
+        .map(|a| {
+            Ok((
+                a.name.clone(),
+                Arc::new(AttributeTexture::new(a, mesh, 1.0)?),
+            ))
+        })
+        .collect::<Result<Vec<_>, String>>()?;
+    BOUND.with(|b| *b.borrow_mut() = Some(list));
+    let r = f();
+    BOUND.with(|b| *b.borrow_mut() = None);
+    Ok(r)
 }

@@ -339,12 +339,19 @@ impl Integrator<'_> {
             ng = -ng;
             frame.n = -frame.n;
         }
-        let local = if material.is_perturbed() {
+        let local = if material.is_perturbed() || surf.attributes {
+            let bary = if surf.attributes {
+                self.scene.barycentrics(hit)
+            } else {
+                [1.0, 0.0, 0.0]
+            };
             LocalSurface {
                 uv: hit.uv,
                 dpdu: frame.to_local(hit.dpdu),
                 dpdv: frame.to_local(hit.dpdv),
                 n_geom: frame.to_local(ng),
+                prim: hit.prim,
+                bary,
             }
         } else {
             LocalSurface::flat(hit.uv)

@@ -185,22 +185,23 @@ impl Material {
         w: &SampledWavelengths<N>,
     ) -> Bsdf<'_, N> {
         let uv = s.uv;
+        let at = |t: &crate::texture::Texture| t.sample_at(uv, s.prim, s.bary, w);
         let albedo = match self {
-            Material::Diffuse(m) => m.reflectance.sample(uv, w),
-            Material::Plastic(m) => m.diffuse.sample(uv, w),
-            Material::PPlastic(m) => m.diffuse.sample(uv, w),
+            Material::Diffuse(m) => at(&m.reflectance),
+            Material::Plastic(m) => at(&m.diffuse),
+            Material::PPlastic(m) => at(&m.diffuse),
             Material::Mask(m) => {
                 return Bsdf {
-                    weight: m.opacity.sample(uv, w)[0].clamp(0.0, 1.0),
+                    weight: at(&m.opacity)[0].clamp(0.0, 1.0),
                     ..m.inner.at_surface(s, w).with_material(self)
                 };
             }
             Material::Blend(m) => {
                 return Bsdf {
                     material: self,
-                    albedo: m.a.at(uv, w).albedo,
-                    albedo_b: m.b.at(uv, w).albedo,
-                    weight: m.weight.sample(uv, w)[0].clamp(0.0, 1.0),
+                    albedo: m.a.at_surface(s, w).albedo,
+                    albedo_b: m.b.at_surface(s, w).albedo,
+                    weight: at(&m.weight)[0].clamp(0.0, 1.0),
                     perturb: UNPERTURBED,
                     alpha: [0.0; 2],
                     spec_r: SampledSpectrum::splat(1.0),
@@ -222,8 +223,8 @@ impl Material {
             Material::Textured(m) => {
                 return Bsdf {
                     alpha: m.alpha_at(uv, w),
-                    spec_r: m.reflectance.sample(uv, w),
-                    spec_t: m.transmittance.sample(uv, w),
+                    spec_r: at(&m.reflectance),
+                    spec_t: at(&m.transmittance),
                     ..m.inner.at_surface(s, w).with_material(self)
                 };
             }

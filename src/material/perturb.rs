@@ -52,13 +52,17 @@ pub struct BumpMap {
 }
 
 /// A hit's surface derivatives in its own local shading frame (normal +z), for the perturbed
-/// frames: ∂p/∂u and ∂p/∂v in m per unit u and v, and the unit geometric normal.
+/// frames: ∂p/∂u and ∂p/∂v in m per unit u and v, and the unit geometric normal; and where
+/// the hit is on a mesh (triangle `prim`, barycentric weights `bary` of its stored corners),
+/// for mesh attributes.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LocalSurface {
     pub uv: Vec2,
     pub dpdu: Vec3,
     pub dpdv: Vec3,
     pub n_geom: Vec3,
+    pub prim: u32,
+    pub bary: [f32; 3],
 }
 
 impl LocalSurface {
@@ -69,6 +73,8 @@ impl LocalSurface {
             dpdu: Vec3::X,
             dpdv: Vec3::Y,
             n_geom: Vec3::Z,
+            prim: 0,
+            bary: [1.0, 0.0, 0.0],
         }
     }
 }

@@ -25,6 +25,9 @@ pub struct Surface {
     pub two_sided: bool,
     /// Index into [`Scene::lights`] of the shape's area light.
     pub light: Option<u32>,
+    /// Whether the material reads the mesh's attributes (the integrator then finds the hit's
+    /// barycentric weights); only for meshes of the scene's own list, not of groups.
+    pub attributes: bool,
 }
 
 /// Film settings in plain units.
@@ -128,6 +131,17 @@ impl Meter {
 }
 
 impl Scene {
+    /// Barycentric weights of a hit on a mesh of the scene's own list (for mesh attributes);
+    /// (1, 0, 0) for other shapes.
+    pub fn barycentrics(&self, hit: &crate::geometry::shape::Intersection) -> [f32; 3] {
+        match self.shapes.get(hit.shape as usize) {
+            Some(crate::geometry::shape::Shape::Mesh(m)) => {
+                m.barycentrics(hit.prim as usize, hit.p)
+            }
+            _ => [1.0, 0.0, 0.0],
+        }
+    }
+
     /// Every meter's points, meter after meter (a grid's row by row), as `measure` reads them.
     pub fn meter_points(&self) -> Vec<MeterPoint> {
         self.meters

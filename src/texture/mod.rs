@@ -16,7 +16,9 @@
 //! | `mod.rs` | [`Texture`] (closed enum), [`UvTransform`] |
 //! | `checkerboard.rs` | [`Checkerboard`], Mitsuba's two-colour checks |
 //! | `bitmap.rs` | [`Bitmap`]: images with nearest or bilinear filtering and wrap modes |
+//! | `attribute.rs` | [`AttributeTexture`]: a mesh's vertex or face values (Mitsuba's `mesh_attribute`) |
 
+mod attribute;
 mod bitmap;
 mod checkerboard;
 
@@ -24,6 +26,7 @@ use std::sync::Arc;
 
 use glam::Vec2;
 
+pub use attribute::AttributeTexture;
 pub use bitmap::{Bitmap, BitmapError, TexFilter, Wrap};
 pub use checkerboard::Checkerboard;
 
@@ -58,6 +61,9 @@ pub enum Texture {
     Uniform(Spectrum),
     Checkerboard(Arc<Checkerboard>),
     Bitmap(Arc<Bitmap>),
+    /// A mesh's attribute, looked up by triangle and barycentric weights
+    /// ([`Texture::sample_at`]); a lookup by uv alone gives its mean.
+    Attribute(Arc<AttributeTexture>),
 }
 
 impl From<Spectrum> for Texture {
@@ -78,6 +84,23 @@ impl Texture {
             Texture::Uniform(s) => s.sample(w),
             Texture::Checkerboard(c) => c.sample(uv, w),
             Texture::Bitmap(b) => b.sample(uv, w),
+            Texture::Attribute(a) => SampledSpectrum::splat(a.mean()),
+        }
+    }
+
+    /// The value at a hit: surface coordinates `uv`, triangle `prim` and its barycentric
+    /// weights `bary` (which only mesh attributes read), for the wavelengths `w`.
+    #[inline]
+    pub fn sample_at<const N: usize>(
+        &self,
+        uv: Vec2,
+        prim: u32,
+        bary: [f32; 3],
+        w: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
+        match self {
+            Texture::Attribute(a) => a.sample(prim, bary, w),
+            _ => self.sample(uv, w),
         }
     }
 
@@ -116,6 +139,7 @@ impl Texture {
                 0.5 * (spectral(&|l| c.a.eval(l)) + spectral(&|l| c.b.eval(l)))
             }
             Texture::Bitmap(b) => b.mean(spectral),
+            Texture::Attribute(a) => a.mean(),
         }
     }
 }

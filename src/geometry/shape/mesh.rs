@@ -29,6 +29,9 @@ pub struct Mesh {
     normals: Option<Vec<Vec3>>,
     uvs: Option<Vec<Vec2>>,
     indices: Vec<[u32; 3]>,
+    /// For each kept triangle, its index among the triangles given to [`Mesh::new`] (which
+    /// drops degenerate ones), for per-face data of the source file.
+    source: Vec<u32>,
     /// `cdf[i]` = area of triangles 0..=i divided by the total; the last entry is 1.
     cdf: Vec<f32>,
     area: f32,
@@ -113,9 +116,10 @@ impl Mesh {
         });
         let flip = transform.swaps_handedness();
         let mut kept = Vec::with_capacity(indices.len());
+        let mut source = Vec::with_capacity(indices.len());
         let mut cumulative = Vec::with_capacity(indices.len());
         let mut total = 0.0f64;
-        for mut tri in indices {
+        for (k, mut tri) in indices.into_iter().enumerate() {
             if flip {
                 tri.swap(1, 2);
             }
@@ -125,6 +129,7 @@ impl Mesh {
                 total += f64::from(area);
                 cumulative.push(total);
                 kept.push(tri);
+                source.push(k as u32);
             }
         }
         let mut cdf: Vec<f32> = cumulative.iter().map(|&c| (c / total) as f32).collect();
@@ -136,6 +141,7 @@ impl Mesh {
             normals,
             uvs,
             indices: kept,
+            source,
             cdf,
             area: total as f32,
         }
@@ -159,6 +165,25 @@ impl Mesh {
     /// Triangles as vertex indices (winding as stored, see the type's documentation).
     pub fn indices(&self) -> &[[u32; 3]] {
         &self.indices
+    }
+
+    /// The index among the triangles given to [`Mesh::new`] of kept triangle `i`.
+    pub fn source_triangle(&self, i: usize) -> u32 {
+        self.source[i]
+    }
+
+    /// Barycentric weights of triangle `i`'s stored corners (as [`Mesh::indices`]) at a point
+    /// `p` on it, m: each in [0, 1] up to rounding, summing to 1.
+    pub fn barycentrics(&self, i: usize, p: Vec3) -> [f32; 3] {
+        let [a, b, c] = self.vertices(i);
+        let n = (b - a).cross(c - a);
+        let nn = n.length_squared();
+        if nn == 0.0 {
+            return [1.0, 0.0, 0.0];
+        }
+        let b1 = (p - a).cross(c - a).dot(n) / nn;
+        let b2 = (b - a).cross(p - a).dot(n) / nn;
+        [1.0 - b1 - b2, b1, b2]
     }
 
     /// Whether the mesh has vertex normals / uvs.

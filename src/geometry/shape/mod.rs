@@ -15,6 +15,8 @@ mod mesh;
 mod obj;
 mod obj_check;
 mod ply;
+mod ply_attributes;
+pub use ply_attributes::MeshAttribute;
 mod serialized;
 mod sphere;
 mod triangle;

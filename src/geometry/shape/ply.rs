@@ -1,10 +1,12 @@
 //! Loading Stanford PLY files (ASCII, binary little- and big-endian) into a [`Mesh`]: vertex
 //! `x y z` with optional `nx ny nz` and `u v` (or `s t`), faces as `vertex_indices` (or
-//! `vertex_index`) lists, triangulated as fans. Other elements and properties are skipped.
+//! `vertex_index`) lists, triangulated as fans. Other vertex and face properties are kept as
+//! Mitsuba's mesh attributes ([`super::ply_attributes`]); other elements are skipped.
 
 use glam::{Vec2, Vec3};
 
 use super::Mesh;
+use super::ply_attributes::{Columns, MeshAttribute};
 use crate::geometry::error::GeometryError;
 use crate::geometry::transform::Transform;
 use std::path::Path;
@@ -17,7 +19,7 @@ enum Format {
 }
 
 #[derive(Clone, Copy)]
-enum Ty {
+pub(super) enum Ty {
     I8,
     U8,
     I16,
@@ -52,17 +54,17 @@ impl Ty {
     }
 }
 
-struct Prop {
-    name: String,
+pub(super) struct Prop {
+    pub(super) name: String,
     ty: Ty,
     /// Some(count type) for list properties.
-    list: Option<Ty>,
+    pub(super) list: Option<Ty>,
 }
 
-struct Elem {
-    name: String,
+pub(super) struct Elem {
+    pub(super) name: String,
     count: usize,
-    props: Vec<Prop>,
+    pub(super) props: Vec<Prop>,
 }
 
 /// Reads values one at a time from the body in the file's format.
@@ -110,16 +112,32 @@ impl Mesh {
                     source,
                 }
             })?;
+        Ok(Self::parse_ply(&bytes, path, transform)?.0)
+    }
+
+    /// [`Mesh::load_ply`] with the file's other vertex and face properties as Mitsuba's mesh
+    /// attributes (`vertex_…`, `face_…`; face values given per triangle of the fans).
+    pub fn load_ply_attributes(
+        path: &Path,
+        transform: &Transform,
+    ) -> Result<(Mesh, Vec<MeshAttribute>), GeometryError> {
+        let bytes =
+            crate::files::read_bytes(path, crate::files::MAX_MESH_BYTES).map_err(|source| {
+                GeometryError::MeshOpen {
+                    path: path.to_path_buf(),
+                    source,
+                }
+            })?;
         Self::parse_ply(&bytes, path, transform)
     }
 
-    /// Parses PLY data (ASCII or binary) as [`Mesh::load_ply`] does a file; `path` names it in
-    /// errors.
+    /// Parses PLY data (ASCII or binary) as [`Mesh::load_ply_attributes`] does a file; `path`
+    /// names it in errors.
     pub fn parse_ply(
         bytes: &[u8],
         path: &Path,
         transform: &Transform,
-    ) -> Result<Mesh, GeometryError> {
+    ) -> Result<(Mesh, Vec<MeshAttribute>), GeometryError> {
         let bad = |m: &str| GeometryError::MeshParse {
             path: path.to_path_buf(),
             message: m.to_string(),
@@ -153,6 +171,8 @@ impl Mesh {
         let (mut positions, mut normals, mut uvs, mut indices) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         let truncated = || bad("the file ends early or has a bad value");
+        let mut vertex_extra = Columns::new("vertex_", &elems, "vertex");
+        let mut face_extra = Columns::new("face_", &elems, "face");
         let body_len = bytes.len() - body_start;
         for e in &elems {
             if e.props.is_empty() {
@@ -173,7 +193,8 @@ impl Mesh {
             for _ in 0..e.count {
                 let mut v = [0.0f64; 8]; // x y z nx ny nz u v
                 let mut face: Vec<u32> = Vec::new();
-                for p in &e.props {
+                let mut face_values = Vec::new();
+                for (pi, p) in e.props.iter().enumerate() {
                     match p.list {
                         Some(ct) => {
                             let n = body.read(ct).ok_or_else(truncated)? as usize;
@@ -203,7 +224,14 @@ impl Mesh {
                                 "nz" => 5,
                                 "u" | "s" | "texture_u" => 6,
                                 "v" | "t" | "texture_v" => 7,
-                                _ => continue,
+                                _ => {
+                                    if e.name == "vertex" {
+                                        vertex_extra.push(pi, x);
+                                    } else if e.name == "face" {
+                                        face_values.push((pi, x));
+                                    }
+                                    continue;
+                                }
                             };
                             v[slot] = x;
                         }
@@ -216,6 +244,9 @@ impl Mesh {
                 } else if e.name == "face" {
                     for k in 1..face.len().saturating_sub(1) {
                         indices.push([face[0], face[k], face[k + 1]]);
+                        for &(pi, x) in &face_values {
+                            face_extra.push(pi, x);
+                        }
                     }
                 }
             }
@@ -227,7 +258,11 @@ impl Mesh {
         };
         let normals = has("nx").then_some(normals);
         let uvs = (has("u") || has("s") || has("texture_u")).then_some(uvs);
-        Mesh::new(positions, normals, uvs, indices, transform).map_err(|e| bad(&e.to_string()))
+        let mut attributes = vertex_extra.attributes(false);
+        attributes.extend(face_extra.attributes(true));
+        let mesh = Mesh::new(positions, normals, uvs, indices, transform)
+            .map_err(|e| bad(&e.to_string()))?;
+        Ok((mesh, attributes))
     }
 }
 

@@ -163,6 +163,10 @@ pub enum TextureDesc {
     /// Numbers used as given, not a colour (Mitsuba's `rawconstant`): a normal map's triple in
     /// [0, 1]³ (mapped to a normal by 2v − 1), or a grey value when all three are equal.
     Raw([f32; 3]),
+    /// A PLY mesh's vertex or face attribute `name` (`vertex_…`, `face_…`) times `scale`
+    /// (Mitsuba's `mesh_attribute`), bound to each mesh the material is on when the scene is
+    /// built.
+    MeshAttribute { name: String, scale: f64 },
     /// An image file (PNG, JPEG, BMP, EXR, HDR), read when the scene is built.
     Bitmap {
         path: PathBuf,

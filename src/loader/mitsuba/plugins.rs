@@ -88,7 +88,10 @@ const PLUGINS: &[(&str, &[&str])] = &[
     ),
     ("shape emitter", &["area"]),
     ("spectrum", &["blackbody", "d65"]),
-    ("texture", &["checkerboard", "bitmap", "rawconstant"]),
+    (
+        "texture",
+        &["checkerboard", "bitmap", "rawconstant", "mesh_attribute"],
+    ),
     (
         "transform",
         &["translate", "scale", "rotate", "matrix", "lookat"],

@@ -101,6 +101,26 @@ impl Cx<'_> {
                 };
                 Ok(TextureDesc::Raw(v.map(|x| x as f32)))
             }
+            // a mesh's attribute by name (`mesh_attribute.cpp`)
+            "mesh_attribute" => {
+                let at = |key: &str| self.child(t, key).unwrap_or(t);
+                let name = self
+                    .string(t, "name")
+                    .ok_or_else(|| self.err(t, "a mesh_attribute needs a name"))?;
+                if !(name.starts_with("vertex_") || name.starts_with("face_")) {
+                    return Err(self.err(
+                        at("name"),
+                        format!(
+                            "a mesh attribute's name starts with vertex_ or face_, not \"{name}\""
+                        ),
+                    ));
+                }
+                let scale = self.opt_float(t, "scale")?.unwrap_or(1.0);
+                if !scale.is_finite() {
+                    return Err(self.err(at("scale"), format!("scale must be finite, not {scale}")));
+                }
+                Ok(TextureDesc::MeshAttribute { name, scale })
+            }
             other => Err(self.unsupported(t, "texture", other)),
         }
     }
