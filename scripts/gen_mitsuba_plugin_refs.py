@@ -143,6 +143,13 @@ CASES = [
                      '<string name="name" value="vertex_color"/><float name="scale" value="0.5"/>'
                      '</texture></bsdf>'),
       ]],
+    # a sphere's uv follows its to_world rotation (φ from the object's +x, θ from its +z):
+    # coarse checks on a rotated sphere under a slanted light
+    ("sphere_uv_rotated", f"""<integrator type="direct"/>{sensor(fov=45)}{LIT}
+<shape type="sphere"><transform name="to_world"><rotate z="1" angle="225"/><rotate x="1" angle="30"/>
+<translate z="0.2"/></transform><bsdf type="diffuse"><texture type="checkerboard" name="reflectance">
+<rgb name="color0" value="0.9"/><rgb name="color1" value="0.1"/>
+<transform name="to_uv"><scale x="2" y="2"/></transform></texture></bsdf></shape>"""),
     # a BMP as an emitter's radiance (sRGB 8-bit values, as a PNG's)
     ("bmp_radiance", f"""<integrator type="path"><integer name="max_depth" value="1"/></integrator>
 {sensor(fov=30)}<shape type="rectangle"><emitter type="area"><texture name="radiance" type="bitmap">

@@ -167,6 +167,66 @@ def compare(work, scene, spp, out_dir):
     return "  ".join(parts) + f"  pixels passing {100 * passing:.2f} %"
 
 
+MITSUBA_SCRIPT = r"""
+import sys, numpy as np, mitsuba as mi
+mi.set_variant(sys.argv[1])
+scene = mi.load_file(sys.argv[2])
+spp = int(sys.argv[3])
+for seed, out in ((0, sys.argv[4]), (1, sys.argv[5])):
+    img = mi.render(scene, spp=spp, seed=seed)
+    bmp = mi.Bitmap(img, channel_names=["R", "G", "B"] + scene.integrator().aov_names())
+    bmp.write(out)
+"""
+
+
+def block_compare(work, scene, spp, out_dir, variant):
+    """Renders a scene (film capped) with Mitsuba (two seeds, `variant`) and spectrace (two
+    seeds) at `spp` and compares 8 × 8-pixel blocks of each renderer's two-seed mean: a block
+    is off when its spectrace−Mitsuba difference in any channel exceeds 4 standard errors
+    (from the four seeds' differences, pooled over the image for blocks as noisy as it) plus
+    0.5 % of the block's value. Prints the image mean ratios and the fraction of blocks off."""
+    import numpy as np
+
+    stem = os.path.join(out_dir, scene.replace(os.sep, "__")[:-4])
+    mi = [stem + "_mi0.exr", stem + "_mi1.exr"]
+    env = dict(os.environ)
+    env.setdefault("DRJIT_LIBLLVM_PATH", "/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1")
+    run = subprocess.run([sys.executable, "-c", MITSUBA_SCRIPT, variant, os.path.join(work, scene),
+                          str(spp), *mi], capture_output=True, text=True, env=env)
+    if run.returncode != 0:
+        return "mitsuba failed: " + (run.stderr.strip().splitlines() or ["?"])[-1][:160]
+    ours = []
+    for seed in (1, 2):
+        exr = stem + f"_st{seed}.exr"
+        r = subprocess.run([SPECTRACE, "render", os.path.join(work, scene), "--mitsuba-units",
+                            "--spp", str(spp), "--seed", str(seed), "-q", "-o", exr, "--png",
+                            exr[:-4] + ".png"], capture_output=True, text=True)
+        if r.returncode != 0:
+            return f"spectrace failed: {first_error(r.stderr)}"
+        ours.append(read_rgb(exr))
+    theirs = [read_rgb(m) for m in mi]
+    if ours[0].shape != theirs[0].shape:
+        return f"size {ours[0].shape} differs from Mitsuba's {theirs[0].shape}"
+    h, w, _ = ours[0].shape
+    bh, bw = h // 8, w // 8
+
+    def blocks(img):
+        return img[:bh * 8, :bw * 8].reshape(bh, 8, bw, 8, 3).mean(axis=(1, 3))
+
+    s1, s2, m1, m2 = (blocks(x) for x in (*ours, *theirs))
+    s, m = (s1 + s2) / 2, (m1 + m2) / 2
+    # per block variance of (s − m) from the seed pairs: ((s1−s2)² + (m1−m2)²)/4, pooled with
+    # the image's median so that a block's single-sample estimate does not decide alone
+    var = ((s1 - s2) ** 2 + (m1 - m2) ** 2) / 4
+    var = np.maximum(var, np.median(var, axis=(0, 1)))
+    off = np.abs(s - m) > 4 * np.sqrt(var) + 0.005 * np.abs(m) + 1e-6
+    off_blocks = off.any(axis=2).mean()
+    ratio = [ours[0][..., c].mean() / 2 + ours[1][..., c].mean() / 2 for c in range(3)]
+    ref = [theirs[0][..., c].mean() / 2 + theirs[1][..., c].mean() / 2 for c in range(3)]
+    parts = [f"{n} {a / b if b else float('nan'):.4f}" for n, a, b in zip("RGB", ratio, ref)]
+    return "  ".join(parts) + f"  blocks off {100 * off_blocks:.1f} % of {bh * bw}"
+
+
 def first_error(stderr):
     lines = [line.strip() for line in stderr.splitlines() if line.strip()]
     for line in lines:
@@ -183,6 +243,12 @@ def main():
     ap.add_argument("--filter", default="", help="comma-separated substrings of scene paths")
     ap.add_argument("--out-dir", default="", help="keep the EXRs here (default: discarded)")
     ap.add_argument("--timeout", type=float, default=600.0, help="seconds per scene")
+    ap.add_argument("--mitsuba-spp", type=int, default=0,
+                    help="instead of the census, render every selected scene (film capped) with "
+                         "Mitsuba 3 and spectrace at this many spp (×2 seeds each) and compare "
+                         "8 × 8-pixel blocks")
+    ap.add_argument("--variant", default="llvm_ad_spectral",
+                    help="Mitsuba variant for --mitsuba-spp (scalar_spectral needs no LLVM)")
     ap.add_argument("--compare-spp", type=int, default=0,
                     help="instead of the census, compare the test scenes that have official "
                          "references with them at this many spp (×2 seeds; needs numpy and "
@@ -207,6 +273,11 @@ def main():
             for name in files:
                 if name.endswith(".xml"):
                     cap_film(os.path.join(dirpath, name), args.max_px)
+        if args.mitsuba_spp:
+            for scene in scenes:
+                print(f"{scene}: {block_compare(work, scene, args.mitsuba_spp, out_dir, args.variant)}",
+                      flush=True)
+            return
         ok = 0
         failures = []
         for scene in scenes:

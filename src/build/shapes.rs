@@ -65,16 +65,16 @@ pub(super) fn steps(
 pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
     let shape = match &s.kind {
         ShapeKind::Sphere { center, radius } => {
-            let t = transform(s, false)?;
-            let c = t.point(v3(center));
-            let axes = [Vec3::X, Vec3::Y, Vec3::Z].map(|a| t.vector(a).length());
-            if (axes[0] - axes[1]).abs() > 1e-5 * axes[0]
-                || (axes[0] - axes[2]).abs() > 1e-5 * axes[0]
-            {
-                return Err("a sphere's transform must scale uniformly (non-uniform scale would make an ellipsoid)".into());
-            }
+            // the object sphere at its centre, then the transform, whose rotation orients
+            // the uv (Mitsuba: to_world · translate(center) · scale(radius))
+            let t = Transform::translate(v3(center))
+                .map_err(|e| e.to_string())?
+                .then(&transform(s, false)?);
             Shape::Sphere(
-                Sphere::new(c, plain::metres(*radius) * axes[0]).map_err(|e| e.to_string())?,
+                Sphere::with_transform(&t, plain::metres(*radius)).map_err(|e| match e {
+                    crate::geometry::GeometryError::NonUniformScale { .. } => "a sphere's transform must scale uniformly (non-uniform scale would make an ellipsoid)".to_string(),
+                    e => e.to_string(),
+                })?,
             )
         }
         ShapeKind::Rectangle => Shape::Mesh(Mesh::rectangle(&transform(s, true)?)),
