@@ -150,6 +150,40 @@ CASES = [
 <translate z="0.2"/></transform><bsdf type="diffuse"><texture type="checkerboard" name="reflectance">
 <rgb name="color0" value="0.9"/><rgb name="color1" value="0.1"/>
 <transform name="to_uv"><scale x="2" y="2"/></transform></texture></bsdf></shape>"""),
+    # Mitsuba's microfacet G is G1(wo)·G1(wi): very rough GGX and Beckmann metal and glass under
+    # a grazing light, where it differs most from the height-correlated G
+    *[(f"smith_{tag}", f"""<integrator type="path"><integer name="max_depth" value="3"/></integrator>
+{sensor(fov=45)}<emitter type="directional"><vector name="direction" value="-1, 0, -0.15"/>
+<rgb name="irradiance" value="3"/></emitter><shape type="sphere"><transform name="to_world"><translate z="0.3"/></transform>{bsdf}</shape>
+<shape type="rectangle"><transform name="to_world"><scale value="3"/></transform><bsdf type="diffuse"/></shape>""")
+      for tag, bsdf in [
+          ("conductor_ggx", '<bsdf type="roughconductor"><string name="distribution" value="ggx"/>'
+                            '<float name="alpha" value="0.7"/></bsdf>'),
+          ("conductor_beckmann", '<bsdf type="roughconductor"><string name="material" value="Au"/>'
+                                 '<float name="alpha" value="0.6"/></bsdf>'),
+          ("dielectric_ggx", '<bsdf type="roughdielectric"><string name="distribution" value="ggx"/>'
+                             '<float name="alpha" value="0.6"/></bsdf>'),
+      ]],
+    # a checkerboard read as one number (roughness, opacity, blend weight): Mitsuba's eval_1
+    # gives color0 where its spectral eval gives color1
+    *[(f"checker_scalar_{tag}", f"""<integrator type="path"><integer name="max_depth" value="8"/></integrator>
+{sensor(fov=45)}{LIT}<shape type="rectangle"><transform name="to_world"><scale value="1.2"/></transform>
+<bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf></shape>
+<shape type="sphere"><transform name="to_world"><translate z="0.4"/></transform>{bsdf}</shape>""")
+      for tag, bsdf in [
+          ("alpha", '<bsdf type="roughconductor"><texture type="checkerboard" name="alpha">'
+                    '<float name="color0" value="0.05"/><float name="color1" value="0.6"/>'
+                    '<transform name="to_uv"><scale x="2" y="1"/></transform></texture></bsdf>'),
+          ("opacity", '<bsdf type="mask"><texture type="checkerboard" name="opacity">'
+                      '<float name="color0" value="0.1"/><float name="color1" value="0.9"/>'
+                      '<transform name="to_uv"><scale x="2" y="1"/></transform></texture>'
+                      '<bsdf type="diffuse"><rgb name="reflectance" value="0.8 0.2 0.1"/></bsdf></bsdf>'),
+          ("weight", '<bsdf type="blendbsdf"><texture type="checkerboard" name="weight">'
+                     '<float name="color0" value="0"/><float name="color1" value="1"/>'
+                     '<transform name="to_uv"><scale x="2" y="1"/></transform></texture>'
+                     '<bsdf type="diffuse"><rgb name="reflectance" value="0.9 0.1 0.1"/></bsdf>'
+                     '<bsdf type="diffuse"><rgb name="reflectance" value="0.1 0.1 0.9"/></bsdf></bsdf>'),
+      ]],
     # a BMP as an emitter's radiance (sRGB 8-bit values, as a PNG's)
     ("bmp_radiance", f"""<integrator type="path"><integer name="max_depth" value="1"/></integrator>
 {sensor(fov=30)}<shape type="rectangle"><emitter type="area"><texture name="radiance" type="bitmap">

@@ -149,3 +149,18 @@ fn mesh_attributes_match_mitsuba() {
 fn sphere_uv_follows_its_rotation() {
     check_cases("sphere_uv_");
 }
+
+/// Mitsuba's rough conductors and dielectrics use the separable Smith G1(wo)·G1(wi)
+/// (`MicrofacetDistribution::G`), not spectrace's height-correlated G: very rough GGX and
+/// Beckmann spheres under a grazing light, where the two differ most.
+#[test]
+fn mitsuba_rough_lobes_use_its_separable_g() {
+    check_cases("smith_");
+}
+
+/// A checkerboard read as one number (a roughness, a mask's opacity, a blend weight) takes
+/// `color0` where Mitsuba's spectral lookup takes `color1` (its `eval_1`'s parity).
+#[test]
+fn scalar_checkerboards_match_mitsuba() {
+    check_cases("checker_scalar_");
+}

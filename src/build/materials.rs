@@ -30,10 +30,12 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
             exterior_ior,
             roughness: Some(a),
             distribution,
+            smith,
         } => Material::RoughDielectric(
             RoughDielectric::new(ior.clone(), *exterior_ior as f32, a[0] as f32)
                 .with_anisotropy(a[0] as f32, a[1] as f32)
-                .with_distribution(*distribution),
+                .with_distribution(*distribution)
+                .with_smith(*smith),
         ),
         MaterialKind::Conductor {
             ior,
@@ -46,10 +48,12 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
             exterior_ior,
             roughness: Some(a),
             distribution,
+            smith,
         } => Material::RoughConductor(
             RoughConductor::new(ior.clone(), *exterior_ior as f32, a[0] as f32)
                 .with_anisotropy(a[0] as f32, a[1] as f32)
-                .with_distribution(*distribution),
+                .with_distribution(*distribution)
+                .with_smith(*smith),
         ),
         MaterialKind::Null => Material::Null,
         MaterialKind::Coated { layers, inner } => coated(layers, inner)?,

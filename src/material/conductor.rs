@@ -5,7 +5,7 @@ use glam::{Vec2, Vec3};
 
 use super::BsdfSample;
 use super::fresnel::{fresnel_conductor, reflect};
-use super::microfacet::{Distribution, Microfacet};
+use super::microfacet::{Distribution, Microfacet, Smith};
 use crate::optics::thin_film::Coating;
 use crate::spectrum::ior::ComplexIor;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
@@ -96,6 +96,8 @@ pub struct RoughConductor {
     pub alpha_u: f32,
     pub alpha_v: f32,
     pub distribution: Distribution,
+    /// The masking–shadowing function (Mitsuba's scenes: separable).
+    pub smith: Smith,
     /// Thin-film layers on the metal: R(λ) of the stack at the microfacet's cosine replaces F.
     pub coating: Option<Box<Coating>>,
 }
@@ -109,6 +111,7 @@ impl RoughConductor {
             alpha_u: alpha,
             alpha_v: alpha,
             distribution: Distribution::Ggx,
+            smith: Smith::HeightCorrelated,
             coating: None,
         }
     }
@@ -129,6 +132,10 @@ impl RoughConductor {
     }
 
     /// The same surface with another microfacet distribution.
+    pub fn with_smith(self, smith: Smith) -> Self {
+        Self { smith, ..self }
+    }
+
     pub fn with_distribution(self, distribution: Distribution) -> Self {
         Self {
             distribution,
@@ -139,6 +146,7 @@ impl RoughConductor {
     #[inline]
     pub fn microfacet(&self) -> Microfacet {
         Microfacet::anisotropic(self.alpha_u, self.alpha_v, self.distribution)
+            .with_smith(self.smith)
     }
 
     /// The half vector, or `None` if the pair cannot reflect.

@@ -181,15 +181,28 @@ fn beckmann_visible_slopes(cos_t: f64, u: Vec2) -> (f64, f64) {
     (erfinv(xx.clamp(-1.0 + 1e-15, hi0)), y)
 }
 
+/// Which Smith masking–shadowing function G(wo, wi) a microfacet lobe uses.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Smith {
+    /// 1/(1 + Λ(wo) + Λ(wi)) (Heitz 2014, "Understanding the Masking-Shadowing Function",
+    /// §6): heights of masking and shadowing correlated, spectrace's own.
+    #[default]
+    HeightCorrelated,
+    /// G1(wo)·G1(wi), as Mitsuba 3 defines it (`MicrofacetDistribution::G`), for its scenes:
+    /// up to a few per cent darker at grazing angles.
+    Separable,
+}
+
 /// A microfacet distribution of roughness `alpha_u` along the shading frame's first tangent
 /// (x, Mitsuba's ∂p/∂u direction) and `alpha_v` along the second (y), each clamped to at least
-/// [`MIN_ALPHA`], with the height-correlated Smith G of its own Λ. Directions in the local
-/// shading frame, normals `wm` on the +z side (see the module docs).
+/// [`MIN_ALPHA`], with the Smith G of its own Λ (`smith`). Directions in the local shading
+/// frame, normals `wm` on the +z side (see the module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Microfacet {
     pub alpha_u: f32,
     pub alpha_v: f32,
     pub kind: Distribution,
+    pub smith: Smith,
 }
 
 impl Microfacet {
@@ -204,7 +217,13 @@ impl Microfacet {
             alpha_u: alpha_u.max(MIN_ALPHA),
             alpha_v: alpha_v.max(MIN_ALPHA),
             kind,
+            smith: Smith::HeightCorrelated,
         }
+    }
+
+    /// The same distribution with masking–shadowing `smith`.
+    pub fn with_smith(self, smith: Smith) -> Self {
+        Self { smith, ..self }
     }
 
     #[inline]
@@ -257,10 +276,14 @@ impl Microfacet {
         }
     }
 
-    /// Height-correlated Smith G(wo, wi) = 1/(1 + Λ(wo) + Λ(wi)).
+    /// Smith G(wo, wi) as `smith` defines it (see [`Smith`]).
     #[inline]
     pub fn g(&self, wo: Vec3, wi: Vec3) -> f32 {
-        1.0 / (1.0 + self.lambda(wo) + self.lambda(wi))
+        let (lo, li) = (self.lambda(wo), self.lambda(wi));
+        match self.smith {
+            Smith::HeightCorrelated => 1.0 / (1.0 + lo + li),
+            Smith::Separable => 1.0 / ((1.0 + lo) * (1.0 + li)),
+        }
     }
 
     /// Samples a microfacet normal on the +z side from the distribution of normals visible from

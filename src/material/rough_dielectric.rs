@@ -4,7 +4,7 @@
 use glam::{Vec2, Vec3};
 
 use super::fresnel::{fresnel_dielectric, fresnel_dielectric_pair, reflect, refract};
-use super::microfacet::{Distribution, Microfacet};
+use super::microfacet::{Distribution, Microfacet, Smith};
 use super::{BsdfSample, TransportMode};
 use crate::spectrum::ior::Ior;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
@@ -40,6 +40,8 @@ pub struct RoughDielectric {
     pub alpha_u: f32,
     pub alpha_v: f32,
     pub distribution: Distribution,
+    /// The masking–shadowing function (Mitsuba's scenes: separable).
+    pub smith: Smith,
 }
 
 /// The configuration of a (wo, wi) pair: generalised half vector and η'.
@@ -60,6 +62,7 @@ impl RoughDielectric {
             alpha_u: alpha,
             alpha_v: alpha,
             distribution: Distribution::Ggx,
+            smith: Smith::HeightCorrelated,
         }
     }
 
@@ -74,6 +77,10 @@ impl RoughDielectric {
     }
 
     /// The same interface with another microfacet distribution.
+    pub fn with_smith(self, smith: Smith) -> Self {
+        Self { smith, ..self }
+    }
+
     pub fn with_distribution(self, distribution: Distribution) -> Self {
         Self {
             distribution,
@@ -84,6 +91,7 @@ impl RoughDielectric {
     #[inline]
     pub fn microfacet(&self) -> Microfacet {
         Microfacet::anisotropic(self.alpha_u, self.alpha_v, self.distribution)
+            .with_smith(self.smith)
     }
 
     #[inline]

@@ -59,11 +59,13 @@ impl<const N: usize> Bsdf<'_, N> {
     ) -> (SampledSpectrum<N>, f32) {
         let (f, pdf) = match &m.inner {
             Material::RoughConductor(c) => {
-                let mf = Microfacet::anisotropic(self.alpha[0], self.alpha[1], c.distribution);
+                let mf = Microfacet::anisotropic(self.alpha[0], self.alpha[1], c.distribution)
+                    .with_smith(c.smith);
                 c.eval_pdf_with(&mf, wo, wi, w)
             }
             Material::RoughDielectric(d) => {
-                let mf = Microfacet::anisotropic(self.alpha[0], self.alpha[1], d.distribution);
+                let mf = Microfacet::anisotropic(self.alpha[0], self.alpha[1], d.distribution)
+                    .with_smith(d.smith);
                 d.eval_pdf_with(&mf, wo, wi, w, mode)
             }
             // delta lobes (and any other material, which the build refuses) have no density
@@ -84,11 +86,13 @@ impl<const N: usize> Bsdf<'_, N> {
     ) -> Option<BsdfSample<N>> {
         let mut bs = match &m.inner {
             Material::RoughConductor(c) => {
-                let mf = Microfacet::anisotropic(self.alpha[0], self.alpha[1], c.distribution);
+                let mf = Microfacet::anisotropic(self.alpha[0], self.alpha[1], c.distribution)
+                    .with_smith(c.smith);
                 c.sample_with(&mf, wo, w, u)
             }
             Material::RoughDielectric(d) => {
-                let mf = Microfacet::anisotropic(self.alpha[0], self.alpha[1], d.distribution);
+                let mf = Microfacet::anisotropic(self.alpha[0], self.alpha[1], d.distribution)
+                    .with_smith(d.smith);
                 d.sample_with(&mf, wo, w, uc, u, mode)
             }
             Material::Conductor(c) => c.sample(wo, w),

@@ -19,6 +19,8 @@ pub enum MaterialKind {
         exterior_ior: f64,
         roughness: Option<[f64; 2]>,
         distribution: Distribution,
+        /// The masking–shadowing function of a rough one (Mitsuba's scenes: separable).
+        smith: Smith,
     },
     /// As a dielectric's: smooth, or roughness [α_u, α_v].
     Conductor {
@@ -26,6 +28,7 @@ pub enum MaterialKind {
         exterior_ior: f64,
         roughness: Option<[f64; 2]>,
         distribution: Distribution,
+        smith: Smith,
     },
     /// No surface: light passes straight through (Mitsuba's `null`).
     Null,

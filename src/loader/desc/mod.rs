@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 pub use crate::film::FilterDesc;
 pub use crate::light::SpotFalloff;
-pub use crate::material::microfacet::Distribution;
+pub use crate::material::microfacet::{Distribution, Smith};
 pub use crate::scene::{IntegratorKind, LightSelection};
 use crate::spectrum::Spectrum;
 use crate::spectrum::ior::{ComplexIor, Ior};

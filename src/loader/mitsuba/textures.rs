@@ -17,6 +17,24 @@ impl Cx<'_> {
         self.texture_of(c)
     }
 
+    /// [`Cx::texture_prop`] for a property Mitsuba reads as one number (`eval_1`: roughness,
+    /// opacity, a blend weight). Mitsuba 3.9.1's checkerboard gives `color0` there on the checks
+    /// where its spectral `eval` gives `color1` (`checkerboard.cpp`: `m0 = mask.x != mask.y` in
+    /// `eval_1`, `==` in `eval`), so a checkerboard read this way has its colours swapped.
+    pub(super) fn scalar_texture_prop(
+        &self,
+        e: &Element,
+        name: &str,
+        default: f32,
+    ) -> R<TextureDesc> {
+        Ok(match self.texture_prop(e, name, default)? {
+            TextureDesc::Checkerboard { a, b, to_uv } => {
+                TextureDesc::Checkerboard { a: b, b: a, to_uv }
+            }
+            t => t,
+        })
+    }
+
     /// The texture (or spectrum) a property element `c` gives.
     pub(super) fn texture_of(&self, c: &Element) -> R<TextureDesc> {
         let t = self.resolve(c)?;

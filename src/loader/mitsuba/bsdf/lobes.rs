@@ -83,6 +83,8 @@ pub(super) fn conductor(cx: &Cx<'_>, b: &Element, t: &str) -> R<MaterialKind> {
         exterior_ior: 1.0,
         roughness,
         distribution: distribution(cx, b)?,
+        // Mitsuba's G is G1(wo)·G1(wi) (`MicrofacetDistribution::G`)
+        smith: Smith::Separable,
     })
 }
 

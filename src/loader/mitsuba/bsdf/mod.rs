@@ -171,6 +171,8 @@ fn conductor_or_dielectric(
                 None
             },
             distribution: distribution(cx, b)?,
+            // Mitsuba's G is G1(wo)·G1(wi) (`MicrofacetDistribution::G`)
+            smith: Smith::Separable,
         },
         _ => conductor(cx, b, t)?,
     };
@@ -316,7 +318,7 @@ fn is_texture(cx: &Cx<'_>, b: &Element, name: &str) -> R<bool> {
 /// number beside a texture becomes a uniform texture.
 fn alpha_textures(cx: &Cx<'_>, b: &Element) -> R<Option<[TextureDesc; 2]>> {
     if is_texture(cx, b, "alpha")? {
-        let a = cx.texture_prop(b, "alpha", 0.1)?;
+        let a = cx.scalar_texture_prop(b, "alpha", 0.1)?;
         return Ok(Some([a.clone(), a]));
     }
     if is_texture(cx, b, "alpha_u")? || is_texture(cx, b, "alpha_v")? {
@@ -324,8 +326,8 @@ fn alpha_textures(cx: &Cx<'_>, b: &Element) -> R<Option<[TextureDesc; 2]>> {
             return Err(cx.err(b, "give both alpha_u and alpha_v"));
         }
         return Ok(Some([
-            cx.texture_prop(b, "alpha_u", 0.1)?,
-            cx.texture_prop(b, "alpha_v", 0.1)?,
+            cx.scalar_texture_prop(b, "alpha_u", 0.1)?,
+            cx.scalar_texture_prop(b, "alpha_v", 0.1)?,
         ]));
     }
     Ok(None)

@@ -39,19 +39,11 @@ pub(super) fn blend(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, bo
             ));
         }
     }
-    if let Some(o) = cx.child(b, "weight")
-        && cx.resolve(o)?.attr("type") == Some("checkerboard")
-    {
-        return Err(cx.err(
-            o,
-            "a checkerboard weight is not supported; use a number or a grey image",
-        ));
-    }
     Ok((
         MaterialDesc {
             name: name.to_string(),
             kind: MaterialKind::Blend {
-                weight: cx.texture_prop(b, "weight", 0.5)?,
+                weight: cx.scalar_texture_prop(b, "weight", 0.5)?,
                 a: Box::new(m0.kind),
                 b: Box::new(m1.kind),
             },
@@ -150,19 +142,11 @@ pub(super) fn mask(cx: &Cx<'_>, b: &Element, name: &str) -> R<(MaterialDesc, boo
         .find(|c| c.tag == "bsdf" || c.tag == "ref")
         .ok_or_else(|| cx.err(b, "a mask needs a nested <bsdf>"))?;
     let (m, two) = bsdf(cx, inner, name)?;
-    if let Some(o) = cx.child(b, "opacity")
-        && cx.resolve(o)?.attr("type") == Some("checkerboard")
-    {
-        return Err(cx.err(
-            o,
-            "a checkerboard opacity is not supported (Mitsuba 3.9.1 swaps its colours for opacities); use a number or a grey image",
-        ));
-    }
     Ok((
         MaterialDesc {
             name: name.to_string(),
             kind: MaterialKind::Mask {
-                opacity: cx.texture_prop(b, "opacity", 0.5)?,
+                opacity: cx.scalar_texture_prop(b, "opacity", 0.5)?,
                 inner: Box::new(m.kind),
             },
             loc: cx.loc(b),

@@ -36,6 +36,7 @@ fn read(m: &Mat<'_>) -> R<MaterialKind> {
         exterior_ior: m.exterior()?,
         roughness: m.roughness(true)?,
         distribution: Distribution::Ggx,
+        smith: Smith::HeightCorrelated,
     };
     let kind = lobes(m, kind)?;
     coating::coated(m, kind)
