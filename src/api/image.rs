@@ -102,6 +102,7 @@ impl Image {
             stop: stats.stop.name(),
             rel_error: stats.rel_error,
             sensor: None,
+            aovs: &[],
         };
         let metadata = crate::output::header(&info)
             .into_iter()

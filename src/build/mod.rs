@@ -160,6 +160,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
             moment: desc.integrator.moment,
             polarised,
             split_dispersion: desc.integrator.split_dispersion,
+            aovs: desc.integrator.aovs.clone(),
         },
         wavelengths: range,
         bounds,

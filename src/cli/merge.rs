@@ -131,8 +131,9 @@ pub fn merge(args: MergeArgs) -> Result<(), CliError> {
     }
     let range = film.range;
     let info = RenderInfo {
-        // the parts carry no scene: sensor channels are not recomputed
+        // the parts carry no scene: sensor channels and AOVs are not recomputed
         sensor: None,
+        aovs: &[],
         scene_file: &key.scene,
         integrator: &key.integrator,
         spp: spp.min(u32::MAX as u64) as u32,

@@ -159,6 +159,7 @@ fn run_scene(
         stop: "checkpoint",
         rel_error: None,
         sensor: scene.camera_sensor.as_ref().zip(cos_theta.as_deref()),
+        aovs: &[],
     };
     let (snapshot, started) =
         resume_or_start(args, scene_path, scene, opts.spectral_bins, &resume, &hash)?;
@@ -209,6 +210,12 @@ fn run_scene(
     info.inf_samples = stats.inf_samples;
     info.stop = stats.stop.name();
     info.rel_error = stats.rel_error;
+    // AOVs of the whole image only (a part's are not merged)
+    let aovs = match opts.part {
+        None => crate::render::aov::render_aovs(scene, opts.seed, stats.spp_done),
+        Some(_) => Vec::new(),
+    };
+    info.aovs = &aovs;
     write_exr_or_part(&exr, &image, &info, &film, &opts, &hash, args.mitsuba_units)?;
     let ev = write_png(
         &png,

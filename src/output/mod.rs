@@ -49,6 +49,8 @@ pub struct RenderInfo<'a> {
     /// The camera's sensor and the cosine of each pixel's chief ray with the optical axis:
     /// adds the sensor's channels (see [`sensor_channels`]).
     pub sensor: Option<(&'a crate::sensor::CameraSensor, &'a [f32])>,
+    /// First-hit channels written after the image's (see [`crate::render::aov`]).
+    pub aovs: &'a [crate::render::aov::AovChannel],
 }
 
 /// The sensor's channels of `img`: `sensor.H` (photometric exposure, lx·s), raw `sensor.R`,
@@ -281,6 +283,9 @@ pub fn write_exr_state(
     }
     let (stokes, stokes_text) = stokes_channels(img);
     for (name, data) in &stokes {
+        channels.push(Channel { name, data });
+    }
+    for (name, data) in info.aovs {
         channels.push(Channel { name, data });
     }
     let mut attrs = header(info);

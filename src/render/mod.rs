@@ -27,6 +27,7 @@ use crate::sampler::Sampler;
 use crate::scene::Scene;
 use crate::spectrum::{N_WAVELENGTHS, SampledWavelengths, WavelengthSampler};
 
+pub mod aov;
 mod bdpt;
 mod control;
 mod error;

@@ -4,7 +4,7 @@
 
 mod settings;
 
-pub use settings::{IntegratorKind, LightSelection};
+pub use settings::{Aov, AovKind, IntegratorKind, LightSelection};
 
 use glam::Vec3;
 
@@ -65,6 +65,8 @@ pub struct IntegratorSettings {
     /// own instead of keeping the hero alone (see
     /// [`crate::loader::desc::IntegratorDesc::split_dispersion`]).
     pub split_dispersion: bool,
+    /// First-hit quantities to write beside the image (see [`crate::render::aov`]).
+    pub aovs: Vec<Aov>,
 }
 
 /// A render-ready scene. Shapes are in world space, metres.

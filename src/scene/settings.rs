@@ -94,3 +94,51 @@ mod tests {
         assert_eq!(IntegratorKind::from_name("volpath"), None);
     }
 }
+
+/// A first-hit quantity written beside the image (Mitsuba's `aov` integrator), averaged over a
+/// pixel's camera samples with the film's filter. Lengths in m, zero where the ray escapes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AovKind {
+    /// Distance from the camera along the ray, m (`.T`).
+    Depth,
+    /// Hit point, world space, m (`.X .Y .Z`).
+    Position,
+    /// Surface coordinates (`.U .V`).
+    Uv,
+    /// Unit geometric normal, outward (`.X .Y .Z`).
+    GeoNormal,
+    /// Unit shading normal before normal or bump maps (`.X .Y .Z`).
+    ShNormal,
+    /// ∂p/∂u and ∂p/∂v, m per unit (`.X .Y .Z`).
+    DpDu,
+    DpDv,
+    /// The primitive's index within its shape, and the shape's index (`.I`).
+    PrimIndex,
+    ShapeIndex,
+}
+
+impl AovKind {
+    /// The kind Mitsuba's `aovs` names `name`; None for names spectrace does not write
+    /// (`albedo`, `duv_dx`, `duv_dy`) or does not know.
+    pub fn from_mitsuba(name: &str) -> Option<Self> {
+        Some(match name {
+            "depth" => AovKind::Depth,
+            "position" => AovKind::Position,
+            "uv" => AovKind::Uv,
+            "geo_normal" => AovKind::GeoNormal,
+            "sh_normal" => AovKind::ShNormal,
+            "dp_du" => AovKind::DpDu,
+            "dp_dv" => AovKind::DpDv,
+            "prim_index" => AovKind::PrimIndex,
+            "shape_index" => AovKind::ShapeIndex,
+            _ => return None,
+        })
+    }
+}
+
+/// One AOV: its channel name prefix (`nn` gives `nn.X`, `nn.Y`, `nn.Z`) and kind.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Aov {
+    pub name: String,
+    pub kind: AovKind,
+}

@@ -180,6 +180,8 @@ pub struct IntegratorDesc {
     /// wavelength where the camera sees through dispersive glass and lowers the colour noise
     /// there.
     pub split_dispersion: bool,
+    /// First-hit quantities written beside the image (Mitsuba's `aov`).
+    pub aovs: Vec<crate::scene::Aov>,
 }
 
 /// Default `rr_depth`, Mitsuba 3's: paths keep their first five surface hits.

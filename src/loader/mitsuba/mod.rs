@@ -22,6 +22,7 @@
 mod bsdf;
 mod cx;
 mod emitters;
+mod integrator;
 mod media;
 mod params;
 mod plugins;

@@ -84,6 +84,7 @@ const PLUGINS: &[(&str, &[&str])] = &[
             "moment",
             "stokes",
             "ptracer",
+            "aov",
         ],
     ),
     ("shape emitter", &["area"]),

@@ -11,6 +11,7 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
         moment: false,
         polarised: false,
         split_dispersion: true,
+        aovs: Vec::new(),
     };
     let Some(i) = i else { return Ok(d) };
     let i = i.get_ref();
