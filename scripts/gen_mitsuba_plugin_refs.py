@@ -184,6 +184,14 @@ CASES = [
                      '<bsdf type="diffuse"><rgb name="reflectance" value="0.9 0.1 0.1"/></bsdf>'
                      '<bsdf type="diffuse"><rgb name="reflectance" value="0.1 0.1 0.9"/></bsdf></bsdf>'),
       ]],
+    # linear curves (tests/data/mitsuba_plugins/zigzag.txt, written by hand): a zig-zag of
+    # capsules with spherical joints and a second, thinner curve, scaled (radii are not)
+    ("linearcurve_zigzag", f"""<integrator type="path"><integer name="max_depth" value="3"/></integrator>
+{sensor(fov=45)}{LIT}<shape type="rectangle"><transform name="to_world"><scale value="3"/>
+<translate z="-1.2"/></transform><bsdf type="diffuse"/></shape>
+<shape type="linearcurve"><string name="filename" value="{{data}}/zigzag.txt"/>
+<transform name="to_world"><rotate x="1" angle="70"/><scale x="1.2"/></transform>
+<bsdf type="diffuse"><rgb name="reflectance" value="0.8 0.3 0.1"/></bsdf></shape>"""),
     # a BMP as an emitter's radiance (sRGB 8-bit values, as a PNG's)
     ("bmp_radiance", f"""<integrator type="path"><integer name="max_depth" value="1"/></integrator>
 {sensor(fov=30)}<shape type="rectangle"><emitter type="area"><texture name="radiance" type="bitmap">

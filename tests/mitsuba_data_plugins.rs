@@ -164,3 +164,44 @@ fn mitsuba_rough_lobes_use_its_separable_g() {
 fn scalar_checkerboards_match_mitsuba() {
     check_cases("checker_scalar_");
 }
+
+/// Mitsuba's `linearcurve`: a zig-zag of capsules joined by spheres and a thinner second
+/// curve, transformed (positions scaled, radii not), lit and shadowing a floor.
+#[test]
+fn linear_curves_match_mitsuba() {
+    check_cases("linearcurve_");
+}
+
+/// A straight curve of radius r seen by an orthographic camera of view height H against a
+/// uniform sky: black where the tube is, so the image's mean is the sky's times 1 − 2r/H (its
+/// silhouette is 2r wide, whatever the pixel grid).
+#[test]
+fn curve_silhouette_is_its_diameter() {
+    let (r, half_h) = (0.15, 1.0);
+    let body = format!(
+        r#"<integrator type="path"><integer name="max_depth" value="1"/></integrator>
+<sensor type="orthographic"><transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/>
+</transform><sampler type="independent"><integer name="sample_count" value="64"/></sampler>
+<film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="32"/>
+<rfilter type="box"/><string name="pixel_format" value="xyz"/></film></sensor>
+<emitter type="constant"><rgb name="radiance" value="1"/></emitter>
+<shape type="linearcurve"><string name="filename" value="{{data}}/line.txt"/>
+<bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf></shape>"#
+    );
+    let (with, _) = render_mean(&body, 64);
+    let sky = render_mean(
+        &body.replace("line.txt", "no_such_curve.txt").replace(
+            r#"<shape type="linearcurve"><string name="filename" value="{data}/no_such_curve.txt"/>
+<bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf></shape>"#,
+            "",
+        ),
+        64,
+    )
+    .0;
+    let covered = 1.0 - with[1] / sky[1];
+    let expect = r / half_h;
+    assert!(
+        (covered - expect).abs() < 2e-3,
+        "covered {covered}, expected 2r/H = {expect}"
+    );
+}

@@ -122,6 +122,15 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
             let mesh = Mesh::load_ply(path, &transform(s, true)?).map_err(|e| e.to_string())?;
             Shape::Mesh(with_normals(mesh, *normals))
         }
+        ShapeKind::LinearCurve { path } => {
+            if s.emission.is_some() {
+                return Err("a curve cannot be an area emitter".into());
+            }
+            Shape::Curve(
+                crate::geometry::shape::LinearCurve::load(path, &transform(s, true)?)
+                    .map_err(|e| e.to_string())?,
+            )
+        }
         ShapeKind::Inline { vertices, faces } => {
             let positions = vertices
                 .iter()

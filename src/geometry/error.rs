@@ -95,6 +95,10 @@ pub enum GeometryError {
         source: std::io::Error,
     },
 
+    /// Curves whose control points cannot make a tube.
+    #[error("curve: {0}")]
+    Curve(String),
+
     /// A mesh file that cannot be parsed, or whose contents are invalid.
     #[error("malformed mesh file {}: {message}", path.display())]
     MeshParse { path: PathBuf, message: String },

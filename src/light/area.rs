@@ -56,7 +56,7 @@ impl AreaLight {
             (lo, hi) = (lo.min(a), hi.max(b));
         }
         let (normals, flips) = match shape {
-            Shape::Sphere(_) | Shape::Cylinder(_) => (DirectionCone::ALL, false),
+            Shape::Sphere(_) | Shape::Cylinder(_) | Shape::Curve(_) => (DirectionCone::ALL, false),
             Shape::Disk(d) => (DirectionCone::of(d.normal()), false),
             Shape::Mesh(m) => {
                 let p = m.positions();

@@ -9,6 +9,7 @@
 //! Conventions: metres, radians; normals are unit; the geometric normal is the shape's outward or
 //! front-face normal and is *not* flipped toward the ray. All intersection tests are two-sided.
 
+mod curve;
 mod cylinder;
 mod disk;
 mod mesh;
@@ -22,6 +23,7 @@ mod sphere;
 mod triangle;
 mod triangle4;
 
+pub use curve::LinearCurve;
 pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use mesh::Mesh;
@@ -39,6 +41,8 @@ pub enum Shape {
     Disk(Disk),
     Cylinder(Cylinder),
     Mesh(Mesh),
+    /// Mitsuba's `linearcurve`: capsules along polylines.
+    Curve(LinearCurve),
 }
 
 /// A point sampled on a surface.
@@ -76,6 +80,10 @@ pub struct SolidAngleSample {
 pub enum PrimHit {
     Sphere,
     Cylinder,
+    /// The hit's position along a curve segment, in [0, 1].
+    Curve {
+        s: f32,
+    },
     /// Local disk coordinates: the hit is `centre + a·u + b·v` with a² + b² ≤ 1.
     Disk {
         a: f32,
@@ -124,6 +132,7 @@ impl Shape {
             Shape::Disk(d) => d.area(),
             Shape::Cylinder(c) => c.area(),
             Shape::Mesh(m) => m.area(),
+            Shape::Curve(c) => c.area(),
         }
     }
 
@@ -136,6 +145,7 @@ impl Shape {
             Shape::Disk(d) => d.sample_area(u),
             Shape::Cylinder(c) => c.sample_area(u),
             Shape::Mesh(m) => m.sample_area(u),
+            Shape::Curve(c) => c.sample_area(u),
         }
     }
 
@@ -225,6 +235,7 @@ impl Shape {
         match self {
             Shape::Sphere(_) | Shape::Disk(_) | Shape::Cylinder(_) => 1,
             Shape::Mesh(m) => m.triangle_count(),
+            Shape::Curve(c) => c.segment_count(),
         }
     }
 
@@ -236,6 +247,7 @@ impl Shape {
             Shape::Disk(d) if i == 0 => d.aabb(),
             Shape::Cylinder(c) if i == 0 => c.aabb(),
             Shape::Mesh(m) if i < m.triangle_count() => m.triangle_aabb(i),
+            Shape::Curve(c) if i < c.segment_count() => c.aabb(i),
             _ => (Vec3::INFINITY, Vec3::NEG_INFINITY),
         }
     }
@@ -251,6 +263,9 @@ impl Shape {
             Shape::Disk(d) if i == 0 => d.intersect(ray),
             Shape::Cylinder(c) if i == 0 => c.intersect(ray).map(|t| (t, PrimHit::Cylinder)),
             Shape::Mesh(m) if i < m.triangle_count() => m.intersect_triangle(i, ray),
+            Shape::Curve(c) if i < c.segment_count() => {
+                c.intersect(i, ray).map(|(t, s)| (t, PrimHit::Curve { s }))
+            }
             _ => None,
         }
     }
@@ -276,6 +291,8 @@ impl Shape {
             (Shape::Cylinder(c), _) => c.interaction(ray.at(t)),
             (Shape::Mesh(m), PrimHit::Triangle { b }) => m.interaction(prim, *b),
             (Shape::Mesh(m), _) => m.interaction(prim, [1.0 / 3.0; 3]),
+            (Shape::Curve(c), PrimHit::Curve { s }) => c.interaction(prim, ray.at(t), *s),
+            (Shape::Curve(c), _) => c.interaction(prim, ray.at(t), 0.5),
         };
         it.t = t;
         it.shape = shape_id;

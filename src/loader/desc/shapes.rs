@@ -56,6 +56,11 @@ pub enum ShapeKind {
         path: PathBuf,
         normals: MeshNormals,
     },
+    /// Mitsuba's `linearcurve` file (`x y z radius` per control point, an empty line between
+    /// curves); positions in the scene's length unit, radii in m untouched by the transform.
+    LinearCurve {
+        path: PathBuf,
+    },
     /// A triangle mesh written in the scene file: vertices in the scene's length unit and
     /// 0-based triangle indices.
     Inline {

@@ -124,6 +124,11 @@ pub(super) const SHAPES: &[(&str, Reader)] = &[
     ("sphere", sphere_shape),
     ("disk", |_, _| Ok(ShapeKind::Disk)),
     ("cylinder", cylinder_shape),
+    ("linearcurve", |cx, s| {
+        Ok(ShapeKind::LinearCurve {
+            path: filename(cx, s)?,
+        })
+    }),
 ];
 
 /// A mesh plugin's `filename`, resolved as Mitsuba resolves it.
