@@ -178,17 +178,15 @@ fn linear_curves_match_mitsuba() {
 #[test]
 fn curve_silhouette_is_its_diameter() {
     let (r, half_h) = (0.15, 1.0);
-    let body = format!(
-        r#"<integrator type="path"><integer name="max_depth" value="1"/></integrator>
+    let body = r#"<integrator type="path"><integer name="max_depth" value="1"/></integrator>
 <sensor type="orthographic"><transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/>
 </transform><sampler type="independent"><integer name="sample_count" value="64"/></sampler>
 <film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="32"/>
 <rfilter type="box"/><string name="pixel_format" value="xyz"/></film></sensor>
 <emitter type="constant"><rgb name="radiance" value="1"/></emitter>
-<shape type="linearcurve"><string name="filename" value="{{data}}/line.txt"/>
-<bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf></shape>"#
-    );
-    let (with, _) = render_mean(&body, 64);
+<shape type="linearcurve"><string name="filename" value="{data}/line.txt"/>
+<bsdf type="diffuse"><rgb name="reflectance" value="0"/></bsdf></shape>"#;
+    let (with, _) = render_mean(body, 64);
     let sky = render_mean(
         &body.replace("line.txt", "no_such_curve.txt").replace(
             r#"<shape type="linearcurve"><string name="filename" value="{data}/no_such_curve.txt"/>

@@ -42,7 +42,7 @@ impl LinearCurve {
                 )));
             }
             for (i, &(p, r)) in line.iter().enumerate() {
-                if !p.is_finite() || !(r > 0.0 && r.is_finite()) {
+                if !(p.is_finite() && r > 0.0 && r.is_finite()) {
                     return Err(bad(format!("curve {k}, control point {i}: {p} radius {r}")));
                 }
                 if i > 0 {
