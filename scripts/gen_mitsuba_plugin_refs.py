@@ -6,12 +6,16 @@ Each [[case]] is a small scene (16 × 16 pixels, box filter, XYZ film, `scalar_s
 the mean X, Y, Z over the image of two renders with seeds 0 and 1, with the standard error of
 that mean (the standard deviation of the per-pixel difference of the seeds / 2 / √pixels).
 
-Usage: pip install mitsuba==3.9.1; python3 scripts/gen_mitsuba_plugin_refs.py
+Usage: pip install mitsuba==3.9.1 (and apt-get install libllvm19 for the sdfgrid cases, which
+Mitsuba traces with its LLVM variant); python3 scripts/gen_mitsuba_plugin_refs.py
 """
 import os
 
-import mitsuba as mi
 import numpy as np
+
+# the LLVM variant (for sdfgrid) needs libLLVM: apt-get install libllvm19
+os.environ.setdefault("DRJIT_LIBLLVM_PATH", "/usr/lib/x86_64-linux-gnu/libLLVM.so.19.1")
+import mitsuba as mi  # noqa: E402
 
 mi.set_variant("scalar_spectral")
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -87,6 +91,16 @@ def image_files():
             lines.append(f"3 {tri[0]} {tri[1]} {tri[2]} {c[0]} {c[1]} {c[2]} {0.2 + 0.2 * k}")
     with open(os.path.join(folder, "grid_attributes.ply"), "w") as f:
         f.write("\n".join(lines) + "\n")
+    # a 20 × 20 × 20 .vol grid (version 3, float32, one channel, x fastest) of the distance to
+    # a torus of radii 0.28 and 0.12 around the cube's centre, tilted: an sdfgrid
+    n = 20
+    z, y, x = np.mgrid[0:n, 0:n, 0:n] / (n - 1) - 0.5
+    y, z = 0.8 * y - 0.6 * z, 0.6 * y + 0.8 * z
+    sdf = np.sqrt((np.sqrt(x * x + y * y) - 0.28) ** 2 + z * z) - 0.12
+    header = b"VOL" + bytes([3]) + np.array([1, n, n, n, 1], "<i4").tobytes() \
+        + np.array([0, 0, 0, 1, 1, 1], "<f4").tobytes()
+    with open(os.path.join(folder, "torus.vol"), "wb") as f:
+        f.write(header + sdf.astype("<f4").tobytes())
 
 
 # `{data}` stands for tests/data/mitsuba_plugins (the test substitutes its own path)
@@ -192,6 +206,22 @@ CASES = [
 <shape type="linearcurve"><string name="filename" value="{{data}}/zigzag.txt"/>
 <transform name="to_world"><rotate x="1" angle="70"/><scale x="1.2"/></transform>
 <bsdf type="diffuse"><rgb name="reflectance" value="0.8 0.3 0.1"/></bsdf></shape>"""),
+    # an sdfgrid (torus.vol) in a shapegroup placed by an instance, with smooth and analytic
+    # normals, on a floor
+    *[(f"sdfgrid_{normals}", f"""<integrator type="path"><integer name="max_depth" value="3"/></integrator>
+{sensor(fov=45)}{LIT}<shape type="rectangle"><transform name="to_world"><scale value="3"/>
+<translate z="-0.6"/></transform><bsdf type="diffuse"/></shape>
+<shape type="shapegroup" id="g"><shape type="sdfgrid"><string name="filename" value="{{data}}/torus.vol"/>
+<string name="normals" value="{normals}"/><bsdf type="diffuse"><rgb name="reflectance" value="0.2 0.3 0.8"/></bsdf>
+</shape></shape><shape type="instance"><ref id="g"/><transform name="to_world"><translate value="-0.5, -0.5, -0.5"/>
+<scale value="1.6"/><rotate z="1" angle="30"/></transform></shape>""")
+      for normals in ["smooth", "analytic"]],
+    # a cylinder stretched along its axis (test_various_shapes scales one so)
+    ("cylinder_stretched", f"""<integrator type="direct"/>{sensor(fov=45)}{LIT}
+<shape type="rectangle"><transform name="to_world"><scale value="3"/><translate z="-0.5"/></transform>
+<bsdf type="diffuse"/></shape><shape type="cylinder"><float name="radius" value="0.2"/>
+<transform name="to_world"><scale x="1.5" y="1.5" z="0.6"/><rotate x="1" angle="-35"/></transform>
+<bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.7 0.5 0.2"/></bsdf></bsdf></shape>"""),
     # a BMP as an emitter's radiance (sRGB 8-bit values, as a PNG's)
     ("bmp_radiance", f"""<integrator type="path"><integer name="max_depth" value="1"/></integrator>
 {sensor(fov=30)}<shape type="rectangle"><emitter type="area"><texture name="radiance" type="bitmap">
@@ -200,6 +230,9 @@ CASES = [
 
 
 def render(body, seed):
+    # Mitsuba's scalar variants trace an sdfgrid only with Embree; its LLVM variant always
+    variant = "llvm_ad_spectral" if "sdfgrid" in body else "scalar_spectral"
+    mi.set_variant(variant)
     data = os.path.join(ROOT, "tests", "data", "mitsuba_plugins")
     scene = mi.load_string(f'<scene version="3.0.0">{body.replace("{data}", data)}</scene>')
     return np.array(mi.render(scene, seed=seed), dtype=np.float64)[:, :, :3]

@@ -86,17 +86,25 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
             flipped,
         } => {
             let t = transform(s, false)?;
-            let axes = [Vec3::X, Vec3::Y, Vec3::Z].map(|a| t.vector(a).length());
-            if (axes[0] - axes[1]).abs() > 1e-5 * axes[0]
-                || (axes[0] - axes[2]).abs() > 1e-5 * axes[0]
+            // the cross-section must stay a circle perpendicular to the axis: the transform
+            // may stretch along the axis (as Mitsuba's scenes do) but not across it
+            let axis = (v3(p1) - v3(p0)).normalize_or_zero();
+            let e1 = axis.any_orthonormal_vector();
+            let (w1, w2, wa) = (t.vector(e1), t.vector(axis.cross(e1)), t.vector(axis));
+            let scale = w1.length();
+            let tol = 1e-5 * scale * scale;
+            if (w1.length() - w2.length()).abs() > 1e-5 * scale
+                || w1.dot(w2).abs() > tol
+                || w1.dot(wa).abs() > tol * wa.length() / scale.max(f32::MIN_POSITIVE)
+                || w2.dot(wa).abs() > tol * wa.length() / scale.max(f32::MIN_POSITIVE)
             {
-                return Err("a cylinder's transform must scale uniformly (non-uniform scale would make an elliptic tube)".into());
+                return Err("a cylinder's transform must scale its cross-section uniformly and keep it perpendicular to the axis (else the tube would be elliptic or oblique)".into());
             }
             Shape::Cylinder(
                 Cylinder::new(
                     t.point(v3(p0)),
                     t.point(v3(p1)),
-                    plain::metres(*radius) * axes[0],
+                    plain::metres(*radius) * scale,
                     *flipped,
                 )
                 .map_err(|e| e.to_string())?,
@@ -131,6 +139,22 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
                     .map_err(|e| e.to_string())?,
             )
         }
+        ShapeKind::SdfGrid {
+            res,
+            values,
+            smooth,
+        } => {
+            if s.emission.is_some() {
+                return Err("an SDF grid cannot be an area emitter".into());
+            }
+            let g = crate::geometry::shape::SdfGrid::new(
+                *res,
+                values.as_ref().clone(),
+                transform(s, true)?,
+                *smooth,
+            )?;
+            Shape::SdfGrid(Box::new(g))
+        }
         ShapeKind::Inline { vertices, faces } => {
             let positions = vertices
                 .iter()
@@ -140,7 +164,8 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
             Shape::Mesh(mesh.map_err(|e| e.to_string())?)
         }
     };
-    if !(shape.area() > 0.0) {
+    // an SDF grid has no area to sample (Mitsuba's is 0) and never emits
+    if !(shape.area() > 0.0 || matches!(shape, Shape::SdfGrid(_))) {
         return Err("the shape has zero area".into());
     }
     Ok(shape)

@@ -17,6 +17,8 @@ mod obj;
 mod obj_check;
 mod ply;
 mod ply_attributes;
+mod sdf_cubic;
+mod sdf_grid;
 pub use ply_attributes::MeshAttribute;
 mod serialized;
 mod sphere;
@@ -27,6 +29,7 @@ pub use curve::LinearCurve;
 pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use mesh::Mesh;
+pub use sdf_grid::SdfGrid;
 pub use sphere::Sphere;
 pub(crate) use triangle::{WatertightRay, intersect_triangle_with};
 pub(crate) use triangle4::Tri4;
@@ -43,6 +46,8 @@ pub enum Shape {
     Mesh(Mesh),
     /// Mitsuba's `linearcurve`: capsules along polylines.
     Curve(LinearCurve),
+    /// Mitsuba's `sdfgrid`: the zero set of a trilinearly interpolated distance grid.
+    SdfGrid(Box<SdfGrid>),
 }
 
 /// A point sampled on a surface.
@@ -133,6 +138,7 @@ impl Shape {
             Shape::Cylinder(c) => c.area(),
             Shape::Mesh(m) => m.area(),
             Shape::Curve(c) => c.area(),
+            Shape::SdfGrid(_) => 0.0,
         }
     }
 
@@ -146,6 +152,7 @@ impl Shape {
             Shape::Cylinder(c) => c.sample_area(u),
             Shape::Mesh(m) => m.sample_area(u),
             Shape::Curve(c) => c.sample_area(u),
+            Shape::SdfGrid(g) => g.sample_area(u),
         }
     }
 
@@ -236,6 +243,7 @@ impl Shape {
             Shape::Sphere(_) | Shape::Disk(_) | Shape::Cylinder(_) => 1,
             Shape::Mesh(m) => m.triangle_count(),
             Shape::Curve(c) => c.segment_count(),
+            Shape::SdfGrid(g) => g.voxel_count(),
         }
     }
 
@@ -248,6 +256,7 @@ impl Shape {
             Shape::Cylinder(c) if i == 0 => c.aabb(),
             Shape::Mesh(m) if i < m.triangle_count() => m.triangle_aabb(i),
             Shape::Curve(c) if i < c.segment_count() => c.aabb(i),
+            Shape::SdfGrid(g) if i < g.voxel_count() => g.aabb(i),
             _ => (Vec3::INFINITY, Vec3::NEG_INFINITY),
         }
     }
@@ -265,6 +274,9 @@ impl Shape {
             Shape::Mesh(m) if i < m.triangle_count() => m.intersect_triangle(i, ray),
             Shape::Curve(c) if i < c.segment_count() => {
                 c.intersect(i, ray).map(|(t, s)| (t, PrimHit::Curve { s }))
+            }
+            Shape::SdfGrid(g) if i < g.voxel_count() => {
+                g.intersect(i, ray).map(|t| (t, PrimHit::Sphere))
             }
             _ => None,
         }
@@ -293,6 +305,7 @@ impl Shape {
             (Shape::Mesh(m), _) => m.interaction(prim, [1.0 / 3.0; 3]),
             (Shape::Curve(c), PrimHit::Curve { s }) => c.interaction(prim, ray.at(t), *s),
             (Shape::Curve(c), _) => c.interaction(prim, ray.at(t), 0.5),
+            (Shape::SdfGrid(g), _) => g.interaction(prim, ray.at(t)),
         };
         it.t = t;
         it.shape = shape_id;

@@ -61,6 +61,13 @@ pub enum ShapeKind {
     LinearCurve {
         path: PathBuf,
     },
+    /// Mitsuba's `sdfgrid`: distances at `res` points (x fastest) over the object's unit cube;
+    /// `smooth` shading normals or the gradient's.
+    SdfGrid {
+        res: [usize; 3],
+        values: std::sync::Arc<Vec<f32>>,
+        smooth: bool,
+    },
     /// A triangle mesh written in the scene file: vertices in the scene's length unit and
     /// 0-based triangle indices.
     Inline {

@@ -124,6 +124,7 @@ pub(super) const SHAPES: &[(&str, Reader)] = &[
     ("sphere", sphere_shape),
     ("disk", |_, _| Ok(ShapeKind::Disk)),
     ("cylinder", cylinder_shape),
+    ("sdfgrid", sdfgrid_shape),
     ("linearcurve", |cx, s| {
         Ok(ShapeKind::LinearCurve {
             path: filename(cx, s)?,
@@ -341,5 +342,40 @@ pub(super) fn instance(cx: &Cx<'_>, s: &Element, groups: &[GroupDesc]) -> R<Inst
         transform,
         unit_m: 1.0,
         loc: cx.loc(s),
+    })
+}
+
+/// Mitsuba's `sdfgrid`: `filename` (a one-channel `.vol` grid over the object's unit cube),
+/// `normals` (`smooth`, the default, or `analytic`).
+fn sdfgrid_shape(cx: &Cx<'_>, s: &Element) -> R<ShapeKind> {
+    let at = |k: &str| cx.child(s, k).unwrap_or(s);
+    let path = filename(cx, s)?;
+    if !path.is_file() {
+        return Err(cx.err(
+            at("filename"),
+            format!("grid file {} does not exist", path.display()),
+        ));
+    }
+    let vol = super::vol::read(&path).map_err(|m| cx.err(at("filename"), m))?;
+    if vol.channels != 1 {
+        return Err(cx.err(
+            at("filename"),
+            format!("an SDF grid has one channel, this file {}", vol.channels),
+        ));
+    }
+    let smooth = match cx.string(s, "normals").as_deref() {
+        None | Some("smooth") => true,
+        Some("analytic") => false,
+        Some(o) => {
+            return Err(cx.err(
+                at("normals"),
+                format!("normals \"{o}\" is not one of \"analytic\", \"smooth\""),
+            ));
+        }
+    };
+    Ok(ShapeKind::SdfGrid {
+        res: vol.res,
+        values: std::sync::Arc::new(vol.values),
+        smooth,
     })
 }
