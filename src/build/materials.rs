@@ -26,35 +26,17 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
             ..
         } => Material::Dielectric(Dielectric::new(ior.clone(), *exterior_ior as f32)),
         MaterialKind::Dielectric {
-            ior,
-            exterior_ior,
-            roughness: Some(a),
-            distribution,
-            smith,
-        } => Material::RoughDielectric(
-            RoughDielectric::new(ior.clone(), *exterior_ior as f32, a[0] as f32)
-                .with_anisotropy(a[0] as f32, a[1] as f32)
-                .with_distribution(*distribution)
-                .with_smith(*smith),
-        ),
+            roughness: Some(_), ..
+        }
+        | MaterialKind::Conductor {
+            roughness: Some(_), ..
+        } => rough(k),
         MaterialKind::Conductor {
             ior,
             exterior_ior,
             roughness: None,
             ..
         } => Material::Conductor(Conductor::new(ior.clone(), *exterior_ior as f32)),
-        MaterialKind::Conductor {
-            ior,
-            exterior_ior,
-            roughness: Some(a),
-            distribution,
-            smith,
-        } => Material::RoughConductor(
-            RoughConductor::new(ior.clone(), *exterior_ior as f32, a[0] as f32)
-                .with_anisotropy(a[0] as f32, a[1] as f32)
-                .with_distribution(*distribution)
-                .with_smith(*smith),
-        ),
         MaterialKind::Null => Material::Null,
         MaterialKind::Coated { layers, inner } => coated(layers, inner)?,
         MaterialKind::ThinFilm {
@@ -240,6 +222,37 @@ fn textured(
         transmittance: textures::texture(transmittance)?,
         inner,
     })))
+}
+
+/// A rough dielectric or conductor (called for those only).
+fn rough(k: &MaterialKind) -> Material {
+    match k {
+        MaterialKind::Dielectric {
+            ior,
+            exterior_ior,
+            roughness: Some(a),
+            distribution,
+            smith,
+        } => Material::RoughDielectric(
+            RoughDielectric::new(ior.clone(), *exterior_ior as f32, a[0] as f32)
+                .with_anisotropy(a[0] as f32, a[1] as f32)
+                .with_distribution(*distribution)
+                .with_smith(*smith),
+        ),
+        MaterialKind::Conductor {
+            ior,
+            exterior_ior,
+            roughness: Some(a),
+            distribution,
+            smith,
+        } => Material::RoughConductor(
+            RoughConductor::new(ior.clone(), *exterior_ior as f32, a[0] as f32)
+                .with_anisotropy(a[0] as f32, a[1] as f32)
+                .with_distribution(*distribution)
+                .with_smith(*smith),
+        ),
+        _ => unreachable!("called for rough dielectrics and conductors only"),
+    }
 }
 
 /// A normal map around a material that is no normal or bump map.

@@ -41,14 +41,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         )
     })?;
 
-    textures::take_wanted();
-    let mut wants_mesh = Vec::with_capacity(desc.materials.len());
-    let mut materials = Vec::with_capacity(desc.materials.len());
-    for m in &desc.materials {
-        materials
-            .push(material(&m.kind).map_err(|e| err(m.loc, format!("materials.{}", m.name), e))?);
-        wants_mesh.push(textures::take_wanted());
-    }
+    let (mut materials, wants_mesh) = materials(desc)?;
 
     let mut shape_list = Vec::with_capacity(desc.shapes.len());
     for (i, s) in desc.shapes.iter().enumerate() {
@@ -56,13 +49,6 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
     }
 
     let (lights, light_sampling_weights, mut surfaces) = lights::lights(desc, &shape_list, range)?;
-    if textures::take_wanted() {
-        return Err(err(
-            Loc { line: 1, col: 1 },
-            "lights".into(),
-            "a mesh_attribute texture is only read as a material's texture here".into(),
-        ));
-    }
     bind_mesh_attributes(
         desc,
         &shape_list,
@@ -70,25 +56,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         &mut materials,
         &mut surfaces,
     )?;
-    // shape groups in their own object space, their surfaces after the scene's own
-    let mut groups = Vec::with_capacity(desc.groups.len());
-    for g in &desc.groups {
-        let base = surfaces.len() as u32;
-        let mut list = Vec::with_capacity(g.shapes.len());
-        for (i, s) in g.shapes.iter().enumerate() {
-            let field = || format!("shapegroup \"{}\".shapes[{i}]", g.id);
-            if s.material.is_some_and(|m| wants_mesh[m]) {
-                return Err(err(
-                    s.loc,
-                    field(),
-                    "a material reading mesh attributes is not supported in a shape group".into(),
-                ));
-            }
-            list.push(shapes::shape(s).map_err(|e| err(s.loc, field(), e))?);
-            surfaces.push(surface(s.material, s.two_sided, None));
-        }
-        groups.push(Arc::new(Group::new(list, base)));
-    }
+    let groups = groups(desc, &wants_mesh, &mut surfaces)?;
     let mut instances = Vec::with_capacity(desc.instances.len());
     for (i, d) in desc.instances.iter().enumerate() {
         let t = shapes::steps(&d.transform, d.unit_m, false)
@@ -232,6 +200,56 @@ fn meter(s: &crate::loader::desc::SensorDesc) -> crate::scene::Meter {
     }
 }
 
+/// The scene's materials, and for each whether it reads mesh attributes (and must be built
+/// again for each mesh it is on, see `bind_mesh_attributes`).
+fn materials(desc: &SceneDesc) -> Result<(Vec<crate::material::Material>, Vec<bool>), LoadError> {
+    textures::take_wanted();
+    let mut wants_mesh = Vec::with_capacity(desc.materials.len());
+    let mut materials = Vec::with_capacity(desc.materials.len());
+    for m in &desc.materials {
+        materials.push(
+            material(&m.kind).map_err(|e| {
+                LoadError::new(&desc.path, m.loc, format!("materials.{}", m.name), e)
+            })?,
+        );
+        wants_mesh.push(textures::take_wanted());
+    }
+    Ok((materials, wants_mesh))
+}
+
+/// The shape groups, in their own object space; their surfaces are appended to `surfaces`
+/// after the scene's own.
+fn groups(
+    desc: &SceneDesc,
+    wants_mesh: &[bool],
+    surfaces: &mut Vec<Surface>,
+) -> Result<Vec<Arc<Group>>, LoadError> {
+    let mut groups = Vec::with_capacity(desc.groups.len());
+    for g in &desc.groups {
+        let base = surfaces.len() as u32;
+        let mut list = Vec::with_capacity(g.shapes.len());
+        for (i, s) in g.shapes.iter().enumerate() {
+            let err = |m: String| {
+                LoadError::new(
+                    &desc.path,
+                    s.loc,
+                    format!("shapegroup \"{}\".shapes[{i}]", g.id),
+                    m,
+                )
+            };
+            if s.material.is_some_and(|m| wants_mesh[m]) {
+                return Err(err(
+                    "a material reading mesh attributes is not supported in a shape group".into(),
+                ));
+            }
+            list.push(shapes::shape(s).map_err(err)?);
+            surfaces.push(surface(s.material, s.two_sided, None));
+        }
+        groups.push(Arc::new(Group::new(list, base)));
+    }
+    Ok(groups)
+}
+
 /// Gives each shape whose material reads mesh attributes (`wants_mesh`) its own copy of the
 /// material, built with the shape's attributes bound (see `textures::with_mesh`); such a
 /// shape must be a PLY mesh.
@@ -242,6 +260,15 @@ fn bind_mesh_attributes(
     materials: &mut Vec<crate::material::Material>,
     surfaces: &mut [Surface],
 ) -> Result<(), LoadError> {
+    // the lights were built after the materials: a mesh attribute met there is an emitter's
+    if textures::take_wanted() {
+        return Err(LoadError::new(
+            &desc.path,
+            Loc { line: 1, col: 1 },
+            "lights".to_string(),
+            "a mesh_attribute texture is only read as a material's texture here".to_string(),
+        ));
+    }
     for (i, s) in desc.shapes.iter().enumerate() {
         let Some(m) = s.material.filter(|&m| wants_mesh[m]) else {
             continue;

@@ -202,20 +202,12 @@ fn run_scene(
     if args.mitsuba_units {
         crate::output::to_mitsuba_scale(&mut image);
     }
-    let mut info = base_info();
-    info.spp = stats.spp_done;
-    info.seconds = stats.elapsed.as_secs_f64();
-    info.partial = stats.partial;
-    info.nan_samples = stats.nan_samples;
-    info.inf_samples = stats.inf_samples;
-    info.stop = stats.stop.name();
-    info.rel_error = stats.rel_error;
     // AOVs of the whole image only (a part's are not merged)
     let aovs = match opts.part {
         None => crate::render::aov::render_aovs(scene, opts.seed, stats.spp_done),
         Some(_) => Vec::new(),
     };
-    info.aovs = &aovs;
+    let info = finished(base_info(), &stats, &aovs);
     write_exr_or_part(&exr, &image, &info, &film, &opts, &hash, args.mitsuba_units)?;
     let ev = write_png(
         &png,
@@ -349,6 +341,23 @@ fn resume_or_start<'a>(
             (None, None)
         }
     })
+}
+
+/// `info` of a finished render: its statistics and AOV channels.
+fn finished<'a>(
+    mut info: RenderInfo<'a>,
+    stats: &'a crate::render::RenderStats,
+    aovs: &'a [crate::render::aov::AovChannel],
+) -> RenderInfo<'a> {
+    info.spp = stats.spp_done;
+    info.seconds = stats.elapsed.as_secs_f64();
+    info.partial = stats.partial;
+    info.nan_samples = stats.nan_samples;
+    info.inf_samples = stats.inf_samples;
+    info.stop = stats.stop.name();
+    info.rel_error = stats.rel_error;
+    info.aovs = aovs;
+    info
 }
 
 /// The EXR: the image, with the exact sums and the part's attributes for `--part`.

@@ -1,14 +1,14 @@
-//! The GGX (Trowbridge–Reitz) and Beckmann microfacet distributions ([`Microfacet`]);
-//! GGX with the Smith shadowing model
-//! (Walter et al. 2007, "Microfacet Models for Refraction through Rough Surfaces") and sampling
-//! of the distribution of visible normals (Heitz 2018, "Sampling the GGX Distribution of Visible
-//! Normals", JCGT 7(4)).
+//! The GGX (Trowbridge–Reitz) and Beckmann microfacet distributions ([`Microfacet`]); GGX with
+//! the Smith shadowing model (Walter et al. 2007, "Microfacet Models for Refraction through
+//! Rough Surfaces") and sampling of the distribution of visible normals (Heitz 2018, "Sampling
+//! the GGX Distribution of Visible Normals", JCGT 7(4)).
 //!
 //! Directions are in the local shading frame (macro-normal +z). Microfacet normals `wm` are
 //! always taken on the +z side; a direction on the −z side sees the mirrored configuration
 //! (D depends on cos²θₘ only).
 
 use super::erf::{erf, erfc_parts, erfinv};
+pub use super::smith::Smith;
 use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
@@ -181,22 +181,9 @@ fn beckmann_visible_slopes(cos_t: f64, u: Vec2) -> (f64, f64) {
     (erfinv(xx.clamp(-1.0 + 1e-15, hi0)), y)
 }
 
-/// Which Smith masking–shadowing function G(wo, wi) a microfacet lobe uses.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Smith {
-    /// 1/(1 + Λ(wo) + Λ(wi)) (Heitz 2014, "Understanding the Masking-Shadowing Function",
-    /// §6): heights of masking and shadowing correlated, spectrace's own.
-    #[default]
-    HeightCorrelated,
-    /// G1(wo)·G1(wi), as Mitsuba 3 defines it (`MicrofacetDistribution::G`), for its scenes:
-    /// up to a few per cent darker at grazing angles.
-    Separable,
-}
-
 /// A microfacet distribution of roughness `alpha_u` along the shading frame's first tangent
-/// (x, Mitsuba's ∂p/∂u direction) and `alpha_v` along the second (y), each clamped to at least
-/// [`MIN_ALPHA`], with the Smith G of its own Λ (`smith`). Directions in the local shading
-/// frame, normals `wm` on the +z side (see the module docs).
+/// (x, Mitsuba's ∂p/∂u) and `alpha_v` along the second (y), each at least [`MIN_ALPHA`], with
+/// the Smith G of its own Λ (`smith`); local directions, `wm` on the +z side (module docs).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Microfacet {
     pub alpha_u: f32,

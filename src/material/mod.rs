@@ -53,6 +53,7 @@ mod polarised;
 mod pplastic;
 mod predicates;
 mod rough_dielectric;
+mod smith;
 mod textured;
 
 pub use blend::Blend;

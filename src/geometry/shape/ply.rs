@@ -215,25 +215,12 @@ impl Mesh {
                         }
                         None => {
                             let x = body.read(p.ty).ok_or_else(truncated)?;
-                            let slot = match p.name.as_str() {
-                                "x" => 0,
-                                "y" => 1,
-                                "z" => 2,
-                                "nx" => 3,
-                                "ny" => 4,
-                                "nz" => 5,
-                                "u" | "s" | "texture_u" => 6,
-                                "v" | "t" | "texture_v" => 7,
-                                _ => {
-                                    if e.name == "vertex" {
-                                        vertex_extra.push(pi, x);
-                                    } else if e.name == "face" {
-                                        face_values.push((pi, x));
-                                    }
-                                    continue;
-                                }
-                            };
-                            v[slot] = x;
+                            match (slot(&p.name), e.name.as_str()) {
+                                (Some(k), _) => v[k] = x,
+                                (None, "vertex") => vertex_extra.push(pi, x),
+                                (None, "face") => face_values.push((pi, x)),
+                                (None, _) => {}
+                            }
                         }
                     }
                 }
@@ -264,6 +251,21 @@ impl Mesh {
             .map_err(|e| bad(&e.to_string()))?;
         Ok((mesh, attributes))
     }
+}
+
+/// The slot of a vertex property in `x y z nx ny nz u v`; None for other properties.
+fn slot(name: &str) -> Option<usize> {
+    Some(match name {
+        "x" => 0,
+        "y" => 1,
+        "z" => 2,
+        "nx" => 3,
+        "ny" => 4,
+        "nz" => 5,
+        "u" | "s" | "texture_u" => 6,
+        "v" | "t" | "texture_v" => 7,
+        _ => return None,
+    })
 }
 
 /// The PLY header's format and elements (with their properties); `bad` makes the error.

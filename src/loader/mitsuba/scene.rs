@@ -7,6 +7,7 @@ use std::path::{Path, PathBuf};
 use super::bsdf::bsdf;
 use super::cx::{Cx, R};
 use super::emitters::emitter;
+use super::integrator::integrator_settings;
 use super::sensor::sensor;
 use super::shapes::{instance, shape, shapegroup};
 use super::xml::Element;
@@ -178,8 +179,7 @@ fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
         width: 768,
         height: 576,
         spp: 4,
-        // Mitsuba's default rfilter
-        filter: crate::film::filter::gaussian::Desc::mitsuba(0.5),
+        filter: crate::film::filter::gaussian::Desc::mitsuba(0.5), // Mitsuba's default
         spectral_bins: 0,
         exposure_ev: None,
         loc: Default::default(),
@@ -207,9 +207,7 @@ fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
     for c in &root.children {
         match c.tag.as_str() {
             "default" => {}
-            "integrator" => {
-                volumetric = super::integrator::integrator_settings(cx, c, &mut integrator)?
-            }
+            "integrator" => volumetric = integrator_settings(cx, c, &mut integrator)?,
             "sensor" => {
                 camera = Some(sensor(cx, c, &mut film)?);
                 camera_medium = super::media::sensor_medium(cx, c)?;
