@@ -73,16 +73,7 @@ impl Instance {
     /// transformed; None for an empty group.
     pub fn bounds(&self) -> Option<(Vec3, Vec3)> {
         let (lo, hi) = self.group.accel.bounds()?;
-        let mut b = (Vec3::INFINITY, Vec3::NEG_INFINITY);
-        for k in 0..8 {
-            let c = Vec3::new(
-                if k & 1 == 0 { lo.x } else { hi.x },
-                if k & 2 == 0 { lo.y } else { hi.y },
-                if k & 4 == 0 { lo.z } else { hi.z },
-            );
-            let w = self.to_world.point(c);
-            b = (b.0.min(w), b.1.max(w));
-        }
+        let b = self.to_world.box_bounds(lo, hi);
         // the corners' own rounding
         let pad = (b.0.abs().max(b.1.abs())) * gamma(4);
         Some((b.0 - pad, b.1 + pad))

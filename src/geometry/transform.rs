@@ -172,6 +172,22 @@ impl Transform {
         Mat3::from_mat4(self.inv).transpose() * n
     }
 
+    /// The bounds (min, max) of the box `lo`–`hi` transformed: its eight corners' (without
+    /// padding for their rounding).
+    pub fn box_bounds(&self, lo: Vec3, hi: Vec3) -> (Vec3, Vec3) {
+        let mut b = (Vec3::INFINITY, Vec3::NEG_INFINITY);
+        for k in 0..8 {
+            let c = Vec3::new(
+                if k & 1 == 0 { lo.x } else { hi.x },
+                if k & 2 == 0 { lo.y } else { hi.y },
+                if k & 4 == 0 { lo.z } else { hi.z },
+            );
+            let w = self.point(c);
+            b = (b.0.min(w), b.1.max(w));
+        }
+        b
+    }
+
     /// The inverse transform (world → object).
     pub fn inverse(&self) -> Transform {
         Transform {

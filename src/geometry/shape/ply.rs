@@ -105,14 +105,7 @@ impl Mesh {
     /// Loads a PLY file as one mesh, transformed by `transform`. Errors name the path, like
     /// [`Mesh::load_obj`].
     pub fn load_ply(path: &Path, transform: &Transform) -> Result<Mesh, GeometryError> {
-        let bytes =
-            crate::files::read_bytes(path, crate::files::MAX_MESH_BYTES).map_err(|source| {
-                GeometryError::MeshOpen {
-                    path: path.to_path_buf(),
-                    source,
-                }
-            })?;
-        Ok(Self::parse_ply(&bytes, path, transform)?.0)
+        Ok(Self::load_ply_attributes(path, transform)?.0)
     }
 
     /// [`Mesh::load_ply`] with the file's other vertex and face properties as Mitsuba's mesh

@@ -191,16 +191,7 @@ impl SdfGrid {
         let v = self.voxels[i].map(|c| c as f32);
         let h = self.h();
         let (lo, hi) = (Vec3::from(v) * h, (Vec3::from(v) + Vec3::ONE) * h);
-        let mut b = (Vec3::INFINITY, Vec3::NEG_INFINITY);
-        for k in 0..8 {
-            let c = Vec3::new(
-                if k & 1 == 0 { lo.x } else { hi.x },
-                if k & 2 == 0 { lo.y } else { hi.y },
-                if k & 4 == 0 { lo.z } else { hi.z },
-            );
-            let w = self.to_world.point(c);
-            b = (b.0.min(w), b.1.max(w));
-        }
+        let b = self.to_world.box_bounds(lo, hi);
         let pad = (b.1 - b.0).max_element() * 1e-5;
         (b.0 - Vec3::splat(pad), b.1 + Vec3::splat(pad))
     }
