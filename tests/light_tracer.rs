@@ -457,7 +457,9 @@ fn sky_and_sun_seen_directly() {
 /// with E = π·scale·v/d² everywhere inside its image (the intensity π·scale·v/cos³θ falls off
 /// exactly as the plane recedes), so a white diffuse plane has L = E/π = scale·v/4 at d = 2:
 /// checked for camera paths (`path`) and for particles from the projector (`light`, its image
-/// sampled uniformly on the plane z = 1).
+/// sampled uniformly on the plane z = 1). A bare number v is an emission, Mitsuba's D65 × v
+/// (the CIE D65 table / 98.997, so that its Y matches a flat v), as Mitsuba 3.9.1 renders it
+/// (`tests/mitsuba_data_plugins.rs`).
 #[test]
 fn projector_lights_a_facing_plane_uniformly() {
     let dir = std::env::temp_dir().join(format!("spectrace-projector-{}", std::process::id()));
@@ -484,9 +486,14 @@ fn projector_lights_a_facing_plane_uniformly() {
     .unwrap();
     let desc = spectrace::loader::load_any(&path, &[]).unwrap();
     let scene = spectrace::build::build(&desc).unwrap();
-    // `band` integrates the spectral radiance (here constant) over the simulated range
-    let range = (scene.wavelengths.max_nm - scene.wavelengths.min_nm) as f64;
-    let want = 2.0 * 0.5 / 4.0 * range;
+    // `band` integrates the spectral radiance (Mitsuba's D65 × v) over the simulated range
+    let Ok(spectrace::spectrum::named::Named::Curve { spectrum: d65, .. }) =
+        spectrace::spectrum::named::lookup("cie-d65")
+    else {
+        panic!("cie-d65 is a named curve")
+    };
+    let w = scene.wavelengths;
+    let want = 2.0 * 0.5 / 4.0 * d65.integrate(w.min_nm, w.max_nm, 0.5) / 98.99741751876255;
     for (kind, spp) in [
         (spectrace::loader::desc::IntegratorKind::Path, 64),
         (spectrace::loader::desc::IntegratorKind::Light, 1024),
