@@ -1,6 +1,6 @@
 //! Mitsuba 3's `measured_polarized` (issue 28) on a table made from a closed form: a GGX
 //! conductor (α, constant n + ik), its Mueller BRDF F(θ_d)·D(θ_h)·G / (4 cos θ_L cos θ_V)
-//! (G height-correlated, as spectrace's `roughconductor`)
+//! (G separable, as Mitsuba's `roughconductor`)
 //! written on a grid of Rusinkiewicz angles as a `.pbsdf` tensor file, as the KAIST pBRDF
 //! data are laid out (Mitsuba's `measured_polarized.cpp`: s = ω_L × ω_V on both beams, φ_d
 //! the light's azimuth about h). Mitsuba states that such a table renders as its
@@ -32,8 +32,8 @@ fn ggx_d(cos_h: f32) -> f32 {
     let t = 1.0 + (a2 - 1.0) * cos_h * cos_h;
     a2 / (PI * t * t)
 }
-/// Smith's Λ of GGX for a direction of cosine `c`; G = 1/(1 + Λ(ω_L) + Λ(ω_V)), the
-/// height-correlated form spectrace's `roughconductor` uses (Mitsuba's is G₁·G₁).
+/// Smith's Λ of GGX for a direction of cosine `c`; G = G₁(ω_L)·G₁(ω_V) with G₁ = 1/(1 + Λ),
+/// the separable form of Mitsuba's `roughconductor`, which the test scene's is.
 fn ggx_lambda(c: f32) -> f32 {
     let t2 = (1.0 - c * c).max(0.0) / (c * c);
     0.5 * ((1.0 + ALPHA * ALPHA * t2).sqrt() - 1.0)
@@ -48,7 +48,8 @@ fn closed_form(phi_d: f32, theta_d: f32, theta_h: f32) -> [[f32; 4]; 4] {
     let c_l = (ch * cd - sh * sd * phi_d.cos()).max(1e-4);
     let c_v = (ch * cd + sh * sd * phi_d.cos()).max(1e-4);
     let f = fresnel::reflection(cd, Complex::new(ETA, K));
-    let g = 1.0 / (1.0 + ggx_lambda(c_l) + ggx_lambda(c_v));
+    // Mitsuba's separable Smith G, as its `roughconductor` (the scene's) uses
+    let g = 1.0 / ((1.0 + ggx_lambda(c_l)) * (1.0 + ggx_lambda(c_v)));
     let s = ggx_d(ch) * g / (4.0 * c_l * c_v);
     f.0.map(|row| row.map(|x| x * s))
 }
