@@ -3,7 +3,7 @@
 //!
 //! A pass of its own after the render: each pixel's AOV is the mean over its first
 //! `min(spp, MAX_SAMPLES)` camera samples — the same rays the render traces (sample `i` of
-//! pixel (x, y) under the seed, [`super::camera_sample`]), whose offsets the film's filter
+//! pixel (x, y) under the seed, `render::camera_sample`), whose offsets the film's filter
 //! distributes, so the mean is the filter-weighted average Mitsuba's film accumulates. A ray that
 //! escapes contributes zeros (Mitsuba's invalid interaction). Deterministic: the same seed gives
 //! the same channels, whatever the thread count (one thread: a ray per sample is cheap beside
