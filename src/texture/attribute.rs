@@ -27,6 +27,8 @@ pub struct AttributeTexture {
     /// Whether the attribute has three fields (luminance when not a colour).
     three: bool,
     scale: f32,
+    /// [`AttributeTexture::mean`] before `scale`, found once.
+    mean: f32,
 }
 
 impl AttributeTexture {
@@ -65,12 +67,21 @@ impl AttributeTexture {
         } else {
             Vec::new()
         };
-        Ok(Self {
+        let mut t = Self {
             raw,
             colour,
             three: d == 3,
-            scale,
-        })
+            scale: 1.0,
+            mean: 0.0,
+        };
+        let third = [1.0 / 3.0; 3];
+        let n = t.raw.len().max(1) as f32;
+        t.mean = (0..t.raw.len() as u32)
+            .map(|p| t.value(p, third))
+            .sum::<f32>()
+            / n;
+        t.scale = scale;
+        Ok(t)
     }
 
     /// The same attribute times `k` more.
@@ -124,11 +135,6 @@ impl AttributeTexture {
     /// The mean over triangles and corners of [`AttributeTexture::value`] (unweighted by
     /// area), for sampling weights.
     pub fn mean(&self) -> f32 {
-        let third = [1.0 / 3.0; 3];
-        let n = self.raw.len().max(1) as f32;
-        (0..self.raw.len() as u32)
-            .map(|p| self.value(p, third))
-            .sum::<f32>()
-            / n
+        self.mean * self.scale
     }
 }

@@ -27,27 +27,26 @@ pub(super) fn voxel_cubic(c: &[f32; 8], p: Vec3, d: Vec3) -> [f32; 4] {
 /// derivative's roots and bisecting the first piece whose ends differ in sign.
 pub(super) fn first_root(c: [f32; 4], t_len: f32) -> Option<f32> {
     let f = |t: f32| ((c[3] * t + c[2]) * t + c[1]) * t + c[0];
-    let mut cuts = vec![0.0f32];
-    // f' = 3c3 t² + 2c2 t + c1
+    // f' = 3c3 t² + 2c2 t + c1; its roots (NaN where absent) cut [0, t_len] into monotone
+    // pieces (no allocation: this runs per ray and voxel)
     let (a, b, cc) = (3.0 * c[3], 2.0 * c[2], c[1]);
-    let mut roots = Vec::with_capacity(2);
+    let mut roots = [f32::NAN; 2];
     if a.abs() > 1e-12 {
         let disc = b * b - 4.0 * a * cc;
         if disc >= 0.0 {
-            let s = disc.sqrt();
-            let q = -0.5 * (b + b.signum() * s);
-            roots.push(q / a);
-            if q != 0.0 {
-                roots.push(cc / q);
-            }
+            let q = -0.5 * (b + b.signum() * disc.sqrt());
+            roots = [q / a, if q != 0.0 { cc / q } else { f32::NAN }];
         }
     } else if b.abs() > 1e-12 {
-        roots.push(-cc / b);
+        roots[0] = -cc / b;
     }
-    roots.sort_by(f32::total_cmp);
-    cuts.extend(roots.into_iter().filter(|&r| r > 0.0 && r < t_len));
-    cuts.push(t_len);
+    let inside = |r: f32| if r > 0.0 && r < t_len { r } else { t_len };
+    let (r0, r1) = (inside(roots[0]), inside(roots[1]));
+    let cuts = [0.0, r0.min(r1), r0.max(r1), t_len];
     for w in cuts.windows(2) {
+        if w[1] <= w[0] {
+            continue;
+        }
         let (mut lo, mut hi) = (w[0], w[1]);
         let (mut flo, fhi) = (f(lo), f(hi));
         if flo == 0.0 {
