@@ -222,6 +222,30 @@ CASES = [
 <bsdf type="diffuse"/></shape><shape type="cylinder"><float name="radius" value="0.2"/>
 <transform name="to_world"><scale x="1.5" y="1.5" z="0.6"/><rotate x="1" angle="-35"/></transform>
 <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.7 0.5 0.2"/></bsdf></bsdf></shape>"""),
+    # the principled BSDFs: every lobe on a sphere (anisotropic along the sphere's ∂p/∂u), the
+    # tints (Mitsuba's spectral luminance of the base colour), rough glass, and the thin sheet
+    # lit from both sides
+    *[(f"principled_{tag}", f"""<integrator type="path"><integer name="max_depth" value="6"/></integrator>
+{sensor(fov=40)}{LIT}<emitter type="constant"><rgb name="radiance" value="0.2"/></emitter>
+<shape type="rectangle"><transform name="to_world"><scale value="3"/><translate z="-0.5"/></transform>
+<bsdf type="diffuse"/></shape><shape type="sphere"><float name="radius" value="0.45"/>{bsdf}</shape>""")
+      for tag, bsdf in [
+          ("lobes", '<bsdf type="principled"><rgb name="base_color" value="0.8 0.3 0.1"/>'
+                    '<float name="roughness" value="0.35"/><float name="metallic" value="0.4"/>'
+                    '<float name="anisotropic" value="0.6"/><float name="sheen" value="0.8"/>'
+                    '<float name="clearcoat" value="0.7"/><float name="clearcoat_gloss" value="0.5"/>'
+                    '<float name="flatness" value="0.4"/><float name="specular" value="0.6"/></bsdf>'),
+          ("tints", '<bsdf type="principled"><rgb name="base_color" value="0.2 0.7 0.3"/>'
+                    '<float name="roughness" value="0.3"/><float name="spec_tint" value="0.8"/>'
+                    '<float name="sheen" value="1"/><float name="sheen_tint" value="0.9"/></bsdf>'),
+          ("glass", '<bsdf type="principled"><rgb name="base_color" value="0.9 0.8 0.6"/>'
+                    '<float name="roughness" value="0.3"/><float name="spec_trans" value="0.9"/>'
+                    '<float name="eta" value="1.5"/></bsdf>'),
+          ("thin", '<bsdf type="principledthin"><rgb name="base_color" value="0.3 0.6 0.9"/>'
+                   '<float name="roughness" value="0.4"/><float name="spec_trans" value="0.4"/>'
+                   '<float name="diff_trans" value="0.9"/><float name="sheen" value="0.5"/>'
+                   '<float name="eta" value="1.4"/></bsdf>'),
+      ]],
     # a BMP as an emitter's radiance (sRGB 8-bit values, as a PNG's)
     ("bmp_radiance", f"""<integrator type="path"><integer name="max_depth" value="1"/></integrator>
 {sensor(fov=30)}<shape type="rectangle"><emitter type="area"><texture name="radiance" type="bitmap">

@@ -217,3 +217,10 @@ fn sdf_grids_match_mitsuba() {
 fn stretched_cylinder_matches_mitsuba() {
     check_cases("cylinder_");
 }
+
+/// Mitsuba's `principled` (every lobe; its tints; rough glass) and `principledthin` on a sphere
+/// under a slanted light and a constant sky, against Mitsuba's renders.
+#[test]
+fn principled_matches_mitsuba() {
+    check_cases("principled_");
+}

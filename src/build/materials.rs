@@ -115,6 +115,7 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
             *distribution,
         )?,
         MaterialKind::MeasuredPolarized { .. } => measured(k),
+        MaterialKind::Principled(p) => principled(p)?,
     })
 }
 
@@ -177,10 +178,11 @@ fn blend(weight: &TextureDesc, a: &MaterialKind, b: &MaterialKind) -> Result<Mat
                 | Material::NormalMap(_)
                 | Material::BumpMap(_)
                 | Material::Textured(_)
+                | Material::Principled(_)
         )
     }) {
         return Err(
-            "a blend cannot hold a mask, another blend, a normal or bump map, or textured roughness or specular factors".into(),
+            "a blend cannot hold a mask, another blend, a normal or bump map, textured roughness or specular factors, or a principled material".into(),
         );
     }
     Ok(Material::Blend(Box::new(Blend { weight, a, b })))
@@ -357,4 +359,37 @@ fn coated(
             );
         }
     })
+}
+
+/// A principled material: its textures, the scalar ones grey.
+fn principled(p: &crate::loader::desc::PrincipledDesc) -> Result<Material, String> {
+    let grey = |name: &str, t: &TextureDesc| -> Result<crate::texture::Texture, String> {
+        let t = textures::texture(t)?;
+        if !textures::is_grey(&t) {
+            return Err(format!(
+                "a principled material's {name} must be a number or a grey image, the same at every wavelength"
+            ));
+        }
+        Ok(t)
+    };
+    let opt = |name: &str, t: &Option<TextureDesc>| t.as_ref().map(|t| grey(name, t)).transpose();
+    Ok(Material::Principled(Box::new(
+        crate::material::Principled {
+            base_color: textures::texture(&p.base_color)?,
+            roughness: grey("roughness", &p.roughness)?,
+            anisotropic: opt("anisotropic", &p.anisotropic)?,
+            spec_trans: opt("spec_trans", &p.spec_trans)?,
+            metallic: opt("metallic", &p.metallic)?,
+            clearcoat: opt("clearcoat", &p.clearcoat)?,
+            clearcoat_gloss: grey("clearcoat_gloss", &p.clearcoat_gloss)?,
+            sheen: opt("sheen", &p.sheen)?,
+            sheen_tint: opt("sheen_tint", &p.sheen_tint)?,
+            flatness: opt("flatness", &p.flatness)?,
+            spec_tint: opt("spec_tint", &p.spec_tint)?,
+            diff_trans: opt("diff_trans", &p.diff_trans)?,
+            eta: p.eta as f32,
+            rates: p.rates.map(|r| r as f32),
+            thin: p.thin,
+        },
+    )))
 }

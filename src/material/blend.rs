@@ -35,6 +35,7 @@ impl<const N: usize> Bsdf<'_, N> {
             alpha: self.alpha,
             spec_r: self.spec_r,
             spec_t: self.spec_t,
+            disney: self.disney,
         };
         let b = Bsdf {
             material: &m.b,

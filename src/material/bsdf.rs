@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{BsdfSample, Material, TransportMode};
+use super::{BsdfSample, DisneyAt, Material, TransportMode};
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
 /// A material at one surface point, for one set of wavelengths: its textured values looked up
@@ -26,6 +26,8 @@ pub struct Bsdf<'a, const N: usize> {
     /// A `TexturedLobes`' factors on the reflected and transmitted lobes; 1 otherwise.
     pub spec_r: SampledSpectrum<N>,
     pub spec_t: SampledSpectrum<N>,
+    /// A principled material's parameters at the point; unused otherwise.
+    pub disney: DisneyAt,
 }
 
 /// The identity frame of [`Bsdf::perturb`].
@@ -35,7 +37,23 @@ pub(super) const UNPERTURBED: crate::geometry::Frame = crate::geometry::Frame {
     n: Vec3::Z,
 };
 
-impl<const N: usize> Bsdf<'_, N> {
+impl<'a, const N: usize> Bsdf<'a, N> {
+    /// `material` with only a diffuse `albedo` looked up (every other value neutral).
+    #[inline]
+    pub(super) fn plain(material: &'a Material, albedo: SampledSpectrum<N>) -> Self {
+        Bsdf {
+            material,
+            albedo,
+            albedo_b: SampledSpectrum::zero(),
+            weight: 1.0,
+            perturb: UNPERTURBED,
+            alpha: [0.0; 2],
+            spec_r: SampledSpectrum::splat(1.0),
+            spec_t: SampledSpectrum::splat(1.0),
+            disney: DisneyAt::default(),
+        }
+    }
+
     /// f(wo, wi) per wavelength in sr⁻¹, without the cosine. 0 for delta lobes.
     #[inline]
     pub fn eval(
@@ -65,6 +83,7 @@ impl<const N: usize> Bsdf<'_, N> {
                 self.perturbed_eval_pdf(wo, wi, w, mode).0
             }
             Material::Textured(m) => self.textured_eval_pdf(m, wo, wi, w, mode).0,
+            Material::Principled(m) => m.eval(&self.disney, self.albedo, wo, wi, mode),
         }
     }
 
@@ -92,6 +111,7 @@ impl<const N: usize> Bsdf<'_, N> {
                 self.perturbed_eval_pdf(wo, wi, w, _mode).1
             }
             Material::Textured(m) => self.textured_eval_pdf(m, wo, wi, w, _mode).1,
+            Material::Principled(m) => m.pdf(&self.disney, wo, wi),
         }
     }
 
@@ -129,6 +149,10 @@ impl<const N: usize> Bsdf<'_, N> {
                 self.perturbed_eval_pdf(wo, wi, w, mode)
             }
             Material::Textured(m) => self.textured_eval_pdf(m, wo, wi, w, mode),
+            Material::Principled(m) => (
+                m.eval(&self.disney, self.albedo, wo, wi, mode),
+                m.pdf(&self.disney, wo, wi),
+            ),
         }
     }
 
@@ -181,6 +205,7 @@ impl<const N: usize> Bsdf<'_, N> {
                 self.perturbed_sample(wo, w, uc, u, mode)
             }
             Material::Textured(m) => self.textured_sample(m, wo, w, uc, u, mode),
+            Material::Principled(m) => m.sample(&self.disney, self.albedo, wo, uc, u, mode),
             // straight through: f·|cos θᵢ|/pdf = 1
             Material::Null => (wo.z != 0.0).then(|| BsdfSample {
                 f: SampledSpectrum::splat(1.0 / wo.z.abs()),
@@ -223,6 +248,7 @@ impl<const N: usize> Bsdf<'_, N> {
             alpha: self.alpha,
             spec_r: self.spec_r,
             spec_t: self.spec_t,
+            disney: self.disney,
         }
     }
 

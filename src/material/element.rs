@@ -109,6 +109,7 @@ impl super::Material {
             M::BumpMap(m) => m.inner.polarises(),
             M::Textured(m) => m.inner.polarises(),
             M::Diffuse(_)
+            | M::Principled(_)
             | M::Phong(_)
             | M::Dielectric(_)
             | M::RoughDielectric(_)

@@ -38,6 +38,7 @@ mod bsdf;
 pub mod coated;
 mod conductor;
 mod dielectric;
+mod disney;
 mod element;
 mod erf;
 pub mod fresnel;
@@ -52,6 +53,8 @@ mod plastic;
 mod polarised;
 mod pplastic;
 mod predicates;
+mod principled;
+mod principled_thin;
 mod rough_dielectric;
 mod smith;
 mod textured;
@@ -62,6 +65,7 @@ use bsdf::UNPERTURBED;
 pub use coated::ThinFilm;
 pub use conductor::{Conductor, RoughConductor};
 pub use dielectric::Dielectric;
+pub use disney::DisneyAt;
 pub use element::Element;
 pub use lambert::Lambert;
 pub use mask::Mask;
@@ -72,6 +76,7 @@ pub use phong::Phong;
 pub use plastic::{Plastic, RoughCoating, fresnel_diffuse_reflectance};
 pub use polarised::Polarising;
 pub use pplastic::PPlastic;
+pub use principled::Principled;
 pub use rough_dielectric::RoughDielectric;
 pub use textured::TexturedLobes;
 
@@ -166,6 +171,9 @@ pub enum Material {
     /// A conductor or dielectric with textured roughness or specular factors (see
     /// [`TexturedLobes`]).
     Textured(Box<TexturedLobes>),
+    /// Mitsuba's `principled` and `principledthin`: the Disney/Burley model (see
+    /// [`Principled`]).
+    Principled(Box<Principled>),
 }
 
 impl Material {
@@ -207,6 +215,7 @@ impl Material {
                     alpha: [0.0; 2],
                     spec_r: SampledSpectrum::splat(1.0),
                     spec_t: SampledSpectrum::splat(1.0),
+                    disney: DisneyAt::default(),
                 };
             }
             Material::NormalMap(m) => {
@@ -219,6 +228,13 @@ impl Material {
                 return Bsdf {
                     perturb: m.frame(s),
                     ..m.inner.at_surface(s, w).with_material(self)
+                };
+            }
+            Material::Principled(m) => {
+                let base = at(&m.base_color);
+                return Bsdf {
+                    disney: m.at_hit(at, base, w),
+                    ..Bsdf::plain(self, base)
                 };
             }
             Material::Textured(m) => {
@@ -241,16 +257,7 @@ impl Material {
             | Material::MeasuredPolarized(_)
             | Material::Null => SampledSpectrum::zero(),
         };
-        Bsdf {
-            material: self,
-            albedo,
-            albedo_b: SampledSpectrum::zero(),
-            weight: 1.0,
-            perturb: UNPERTURBED,
-            alpha: [0.0; 2],
-            spec_r: SampledSpectrum::splat(1.0),
-            spec_t: SampledSpectrum::splat(1.0),
-        }
+        Bsdf::plain(self, albedo)
     }
 
     /// [`Bsdf::eval`] at uv = (0, 0): for untextured materials, the value anywhere.
@@ -318,7 +325,8 @@ impl Material {
             | Material::Element(_)
             | Material::ThinFilm(_)
             | Material::ThinDielectric { .. } => true,
-            Material::Diffuse(_)
+            Material::Principled(_)
+            | Material::Diffuse(_)
             | Material::Phong(_)
             | Material::RoughDielectric(_)
             | Material::RoughConductor(_)
@@ -346,6 +354,7 @@ impl Material {
             Material::ThinDielectric { .. }
             | Material::Null
             | Material::Element(_)
+            | Material::Principled(_)
             | Material::Diffuse(_)
             | Material::Phong(_)
             | Material::Conductor(_)

@@ -97,9 +97,11 @@ fn of<const N: usize>(
 ) -> Polarising<N> {
     let straight = (wo + wi).length_squared() < 1e-10;
     match m {
-        Material::Diffuse(_) | Material::Phong(_) | Material::Plastic(_) | Material::Blend(_) => {
-            Polarising::Depolarise
-        }
+        Material::Diffuse(_)
+        | Material::Phong(_)
+        | Material::Plastic(_)
+        | Material::Blend(_)
+        | Material::Principled(_) => Polarising::Depolarise,
         Material::Null => Polarising::Keep,
         Material::Mask(_) | Material::ThinDielectric { .. } if straight => Polarising::Keep,
         Material::Mask(k) => of(&k.inner, frame, perturb, (wo, wi), rho, w),

@@ -20,6 +20,7 @@ impl Material {
             | Material::Textured(_)
             | Material::Element(_) => true,
             Material::Mask(m) => m.inner.needs_tangent(),
+            Material::Principled(m) => m.anisotropic.is_some(),
             Material::Blend(m) => m.a.needs_tangent() || m.b.needs_tangent(),
             Material::Diffuse(_)
             | Material::Phong(_)
@@ -54,6 +55,7 @@ impl Material {
             | Material::Null
             | Material::Element(_)
             | Material::Blend(_)
+            | Material::Principled(_)
             | Material::Textured(_) => false,
         }
     }
@@ -68,6 +70,8 @@ impl Material {
             Material::NormalMap(m) => m.inner.is_transmissive(),
             Material::BumpMap(m) => m.inner.is_transmissive(),
             Material::Textured(m) => m.inner.is_transmissive(),
+            // the sheet, and the solid one with transmission, tell their sides apart
+            Material::Principled(m) => m.thin || m.spec_trans.is_some(),
             Material::Dielectric(_)
             | Material::RoughDielectric(_)
             | Material::Null

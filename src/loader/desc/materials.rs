@@ -129,6 +129,33 @@ pub enum MaterialKind {
         layers: Vec<CoatingLayerDesc>,
         exterior_ior: f64,
     },
+    /// Mitsuba's `principled` or `principledthin` (see `crate::material::Principled`).
+    Principled(Box<PrincipledDesc>),
+}
+
+/// The parameters of a principled material, each a texture (scalar ones grey); a lobe's
+/// parameter that is `None` was not given (or given as 0), and the lobe is absent.
+#[derive(Clone, Debug)]
+pub struct PrincipledDesc {
+    /// A reflectance.
+    pub base_color: TextureDesc,
+    pub roughness: TextureDesc,
+    pub anisotropic: Option<TextureDesc>,
+    pub spec_trans: Option<TextureDesc>,
+    pub metallic: Option<TextureDesc>,
+    pub clearcoat: Option<TextureDesc>,
+    pub clearcoat_gloss: TextureDesc,
+    pub sheen: Option<TextureDesc>,
+    pub sheen_tint: Option<TextureDesc>,
+    pub flatness: Option<TextureDesc>,
+    pub spec_tint: Option<TextureDesc>,
+    /// The sheet's diffuse transmission, in [0, 2].
+    pub diff_trans: Option<TextureDesc>,
+    /// Index of the inside (the sheet) relative to the outside.
+    pub eta: f64,
+    /// Sampling rates (see `crate::material::Principled::rates`).
+    pub rates: [f64; 4],
+    pub thin: bool,
 }
 
 /// One thin-film layer: its material and thickness.

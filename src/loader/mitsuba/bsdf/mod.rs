@@ -10,6 +10,7 @@ use crate::spectrum::ior::{ComplexIor, Ior};
 
 mod lobes;
 mod nested;
+mod principled;
 
 use crate::spectrum::PiecewiseLinear;
 use lobes::{conductor, measured_polarized, plastic, pplastic};
@@ -130,6 +131,9 @@ pub(in crate::loader::mitsuba) const BSDFS: &[(&str, Reader)] = &[
     // whatever its name, times `scale` (1)
     ("normalmap", perturbed),
     ("bumpmap", perturbed),
+    // the Disney/Burley model, solid and as a thin sheet
+    ("principled", principled::principled),
+    ("principledthin", principled::principled),
 ];
 
 /// A one-sided material of `kind` named `name`, located at `b`.
