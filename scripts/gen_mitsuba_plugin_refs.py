@@ -206,6 +206,15 @@ CASES = [
 <shape type="linearcurve"><string name="filename" value="{{data}}/zigzag.txt"/>
 <transform name="to_world"><rotate x="1" angle="70"/><scale x="1.2"/></transform>
 <bsdf type="diffuse"><rgb name="reflectance" value="0.8 0.3 0.1"/></bsdf></shape>"""),
+    # B-spline curves (tests/data/mitsuba_plugins/wave.txt, written by hand): one of varying
+    # radius and a thinner one, scaled (radii are not), open at their ends
+    ("bsplinecurve_wave", f"""<integrator type="path"><integer name="max_depth" value="3"/></integrator>
+{sensor(fov=45)}{LIT}<shape type="rectangle"><transform name="to_world"><scale value="3"/>
+<translate z="-1.2"/></transform><bsdf type="diffuse"/></shape>
+<shape type="bsplinecurve"><string name="filename" value="{{data}}/wave.txt"/>
+<transform name="to_world"><rotate x="1" angle="60"/><rotate z="1" angle="20"/><scale x="1.2"/></transform>
+<bsdf type="diffuse"><texture type="checkerboard" name="reflectance"><rgb name="color0" value="0.8 0.3 0.1"/>
+<rgb name="color1" value="0.1 0.4 0.8"/><transform name="to_uv"><scale x="4" y="6"/></transform></texture></bsdf></shape>"""),
     # an sdfgrid (torus.vol) in a shapegroup placed by an instance, with smooth and analytic
     # normals, on a floor
     *[(f"sdfgrid_{normals}", f"""<integrator type="path"><integer name="max_depth" value="3"/></integrator>

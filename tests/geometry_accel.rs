@@ -223,7 +223,11 @@ fn normals_are_outward_and_hit_points_on_the_surface() {
                 assert!((it.n_geom - d.normal()).length() < 1e-6);
                 assert!((it.p - d.center()).dot(d.normal()).abs() < 1e-5);
             }
-            Shape::Mesh(_) | Shape::Cylinder(_) | Shape::Curve(_) | Shape::SdfGrid(_) => {}
+            Shape::Mesh(_)
+            | Shape::Cylinder(_)
+            | Shape::Curve(_)
+            | Shape::BSpline(_)
+            | Shape::SdfGrid(_) => {}
         }
     }
     // Box normals point outward even for the mirrored box (shape index 18).

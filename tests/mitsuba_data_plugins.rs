@@ -224,3 +224,10 @@ fn stretched_cylinder_matches_mitsuba() {
 fn principled_matches_mitsuba() {
     check_cases("principled_");
 }
+
+/// Mitsuba's `bsplinecurve`: a curve of varying radius and a thin one (checkered by their uv),
+/// against Mitsuba's renders.
+#[test]
+fn bspline_curves_match_mitsuba() {
+    check_cases("bsplinecurve_");
+}

@@ -139,6 +139,15 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
                     .map_err(|e| e.to_string())?,
             )
         }
+        ShapeKind::BSplineCurve { path } => {
+            if s.emission.is_some() {
+                return Err("a curve cannot be an area emitter".into());
+            }
+            Shape::BSpline(
+                crate::geometry::shape::BSplineCurve::load(path, &transform(s, true)?)
+                    .map_err(|e| e.to_string())?,
+            )
+        }
         ShapeKind::SdfGrid {
             res,
             values,
@@ -164,8 +173,8 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
             Shape::Mesh(mesh.map_err(|e| e.to_string())?)
         }
     };
-    // an SDF grid has no area to sample (Mitsuba's is 0) and never emits
-    if !(shape.area() > 0.0 || matches!(shape, Shape::SdfGrid(_))) {
+    // an SDF grid or a B-spline curve has no area to sample and never emits
+    if !(shape.area() > 0.0 || matches!(shape, Shape::SdfGrid(_) | Shape::BSpline(_))) {
         return Err("the shape has zero area".into());
     }
     Ok(shape)

@@ -56,9 +56,11 @@ impl AreaLight {
             (lo, hi) = (lo.min(a), hi.max(b));
         }
         let (normals, flips) = match shape {
-            Shape::Sphere(_) | Shape::Cylinder(_) | Shape::Curve(_) | Shape::SdfGrid(_) => {
-                (DirectionCone::ALL, false)
-            }
+            Shape::Sphere(_)
+            | Shape::Cylinder(_)
+            | Shape::Curve(_)
+            | Shape::BSpline(_)
+            | Shape::SdfGrid(_) => (DirectionCone::ALL, false),
             Shape::Disk(d) => (DirectionCone::of(d.normal()), false),
             Shape::Mesh(m) => {
                 let p = m.positions();

@@ -72,50 +72,13 @@ impl LinearCurve {
         })
     }
 
-    /// Reads Mitsuba's curve file: a control point per line, `x y z radius`; an empty line
-    /// starts a new curve. Positions are transformed, radii are not (Mitsuba's reading).
+    /// Reads Mitsuba's curve file ([`read_polylines`]).
     pub fn load(path: &Path, transform: &Transform) -> Result<Self, GeometryError> {
-        let text =
-            crate::files::read_text(path, crate::files::MAX_MESH_BYTES).map_err(|source| {
-                GeometryError::MeshOpen {
-                    path: path.to_path_buf(),
-                    source,
-                }
-            })?;
-        let located = |e: GeometryError| GeometryError::MeshParse {
+        let lines = read_polylines(path, transform)?;
+        Self::new(&lines).map_err(|e| GeometryError::MeshParse {
             path: path.to_path_buf(),
             message: e.to_string(),
-        };
-        let mut lines: Vec<Vec<(Vec3, f32)>> = vec![vec![]];
-        for (n, line) in text.lines().enumerate() {
-            let line = line.trim();
-            if line.is_empty() {
-                if !lines.last().is_some_and(Vec::is_empty) {
-                    lines.push(vec![]);
-                }
-                continue;
-            }
-            if line.starts_with('#') {
-                continue;
-            }
-            let v: Vec<f32> = line
-                .split_whitespace()
-                .filter_map(|t| t.parse().ok())
-                .collect();
-            if v.len() != 4 || line.split_whitespace().count() != 4 {
-                return Err(GeometryError::MeshParse {
-                    path: path.to_path_buf(),
-                    message: format!(
-                        "line {}: expected \"x y z radius\", found \"{line}\"",
-                        n + 1
-                    ),
-                });
-            }
-            let p = transform.point(Vec3::new(v[0], v[1], v[2]));
-            lines.last_mut().expect("one line at least").push((p, v[3]));
-        }
-        lines.retain(|l| !l.is_empty());
-        Self::new(&lines).map_err(located)
+        })
     }
 
     pub fn segment_count(&self) -> usize {
@@ -142,40 +105,7 @@ impl LinearCurve {
     /// clipped to the segment, else the nearer end's sphere).
     pub(crate) fn intersect(&self, i: usize, ray: &Ray) -> Option<(f32, f32)> {
         let (pa, pb, r) = self.segment(i);
-        let (ro, rd) = (ray.o, ray.d);
-        let ba = pb - pa;
-        let oa = ro - pa;
-        let baba = ba.dot(ba);
-        let bard = ba.dot(rd);
-        let baoa = ba.dot(oa);
-        let rdoa = rd.dot(oa);
-        let oaoa = oa.dot(oa);
-        let a = baba - bard * bard;
-        let b = baba * rdoa - baoa * bard;
-        let c = baba * oaoa - baoa * baoa - r * r * baba;
-        let h = b * b - a * c;
-        if h < 0.0 {
-            return None;
-        }
-        let ok = |t: f32| t > 1e-5 * r && t < ray.t_max;
-        if a > 0.0 {
-            let t = (-b - h.sqrt()) / a;
-            let y = baoa + t * bard;
-            if y > 0.0 && y < baba {
-                return ok(t).then_some((t, y / baba));
-            }
-        }
-        // the end sphere the body's hit lies beyond
-        let y = baoa + ((-b - h.max(0.0).sqrt()) / a.max(f32::MIN_POSITIVE)) * bard;
-        let (oc, s) = if y <= 0.0 { (oa, 0.0) } else { (ro - pb, 1.0) };
-        let bb = rd.dot(oc);
-        let cc = oc.dot(oc) - r * r;
-        let hh = bb * bb - cc;
-        if hh <= 0.0 {
-            return None;
-        }
-        let t = -bb - hh.sqrt();
-        ok(t).then_some((t, s))
+        capsule_hit(pa, pb, r, ray, 1e-5 * r)
     }
 
     /// The surface point at `p_approx` on segment `i` at position `s` along it.
@@ -187,17 +117,7 @@ impl LinearCurve {
             .try_normalize()
             .unwrap_or(axis.any_orthonormal_vector());
         let p = c + n * r;
-        let guide = Vec3::Z;
-        let rot = if guide.dot(axis).abs() == 1.0 {
-            Vec3::Y
-        } else {
-            (guide - axis * axis.dot(guide)).normalize()
-        };
-        let rad = rot.cross(axis);
-        let mut u = n.dot(rot).atan2(n.dot(rad));
-        if u < 0.0 {
-            u += 2.0 * PI;
-        }
+        let u = angle_around(axis, n);
         let count = self.segments.len() as f32;
         Intersection {
             t: 0.0,
@@ -239,6 +159,106 @@ impl LinearCurve {
             uv: Vec2::new(u.y, (s + i as f32) / self.segments.len() as f32),
         }
     }
+}
+
+/// Reads Mitsuba's curve file (`linearcurve`, `bsplinecurve`): a control point per line,
+/// `x y z radius`; an empty line starts a new curve. Positions are transformed, radii are not
+/// (Mitsuba's reading). An error names the file and the line.
+pub(crate) fn read_polylines(
+    path: &Path,
+    transform: &Transform,
+) -> Result<Vec<Vec<(Vec3, f32)>>, GeometryError> {
+    let text = crate::files::read_text(path, crate::files::MAX_MESH_BYTES).map_err(|source| {
+        GeometryError::MeshOpen {
+            path: path.to_path_buf(),
+            source,
+        }
+    })?;
+    let mut lines: Vec<Vec<(Vec3, f32)>> = vec![vec![]];
+    for (n, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() {
+            if !lines.last().is_some_and(Vec::is_empty) {
+                lines.push(vec![]);
+            }
+            continue;
+        }
+        if line.starts_with('#') {
+            continue;
+        }
+        let v: Vec<f32> = line
+            .split_whitespace()
+            .filter_map(|t| t.parse().ok())
+            .collect();
+        if v.len() != 4 || line.split_whitespace().count() != 4 {
+            return Err(GeometryError::MeshParse {
+                path: path.to_path_buf(),
+                message: format!(
+                    "line {}: expected \"x y z radius\", found \"{line}\"",
+                    n + 1
+                ),
+            });
+        }
+        let p = transform.point(Vec3::new(v[0], v[1], v[2]));
+        lines.last_mut().expect("one line at least").push((p, v[3]));
+    }
+    lines.retain(|l| !l.is_empty());
+    Ok(lines)
+}
+
+/// The entering hit of `ray` with the capsule of radius `r` around the segment `pa`–`pb`, t in
+/// (`t_min`, t_max), and the hit's position s ∈ [0, 1] along the segment (Quílez's capsule test:
+/// the body's quadratic clipped to the segment, else the nearer end's sphere).
+pub(crate) fn capsule_hit(pa: Vec3, pb: Vec3, r: f32, ray: &Ray, t_min: f32) -> Option<(f32, f32)> {
+    let (ro, rd) = (ray.o, ray.d);
+    let ba = pb - pa;
+    let oa = ro - pa;
+    let baba = ba.dot(ba);
+    let bard = ba.dot(rd);
+    let baoa = ba.dot(oa);
+    let rdoa = rd.dot(oa);
+    let oaoa = oa.dot(oa);
+    let a = baba - bard * bard;
+    let b = baba * rdoa - baoa * bard;
+    let c = baba * oaoa - baoa * baoa - r * r * baba;
+    let h = b * b - a * c;
+    if h < 0.0 {
+        return None;
+    }
+    let ok = |t: f32| t > t_min && t < ray.t_max;
+    if a > 0.0 {
+        let t = (-b - h.sqrt()) / a;
+        let y = baoa + t * bard;
+        if y > 0.0 && y < baba {
+            return ok(t).then_some((t, y / baba));
+        }
+    }
+    // the end sphere the body's hit lies beyond
+    let y = baoa + ((-b - h.max(0.0).sqrt()) / a.max(f32::MIN_POSITIVE)) * bard;
+    let (oc, s) = if y <= 0.0 { (oa, 0.0) } else { (ro - pb, 1.0) };
+    let bb = rd.dot(oc);
+    let cc = oc.dot(oc) - r * r;
+    let hh = bb * bb - cc;
+    if hh <= 0.0 {
+        return None;
+    }
+    let t = -bb - hh.sqrt();
+    ok(t).then_some((t, s))
+}
+
+/// Mitsuba's u of a curve's surface (`local_frame`): the angle of the unit `n` around the unit
+/// tangent `axis`, from `rad` toward `rot`, over 2π, in the frame `rot` = the +z guide made
+/// perpendicular to the axis (+y along z), `rad` = rot × axis. In [0, 2π).
+pub(crate) fn angle_around(axis: Vec3, n: Vec3) -> f32 {
+    let guide = Vec3::Z;
+    let rot = if guide.dot(axis).abs() == 1.0 {
+        Vec3::Y
+    } else {
+        (guide - axis * axis.dot(guide)).normalize()
+    };
+    let rad = rot.cross(axis);
+    let u = n.dot(rot).atan2(n.dot(rad));
+    if u < 0.0 { u + 2.0 * PI } else { u }
 }
 
 #[cfg(test)]

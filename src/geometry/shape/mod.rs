@@ -9,6 +9,7 @@
 //! Conventions: metres, radians; normals are unit; the geometric normal is the shape's outward or
 //! front-face normal and is *not* flipped toward the ray. All intersection tests are two-sided.
 
+mod bspline_curve;
 mod curve;
 mod cylinder;
 mod disk;
@@ -25,6 +26,7 @@ mod sphere;
 mod triangle;
 mod triangle4;
 
+pub use bspline_curve::BSplineCurve;
 pub use curve::LinearCurve;
 pub use cylinder::Cylinder;
 pub use disk::Disk;
@@ -46,6 +48,8 @@ pub enum Shape {
     Mesh(Mesh),
     /// Mitsuba's `linearcurve`: capsules along polylines.
     Curve(LinearCurve),
+    /// Mitsuba's `bsplinecurve`: spheres swept along cubic B-splines.
+    BSpline(BSplineCurve),
     /// Mitsuba's `sdfgrid`: the zero set of a trilinearly interpolated distance grid.
     SdfGrid(Box<SdfGrid>),
 }
@@ -138,6 +142,8 @@ impl Shape {
             Shape::Cylinder(c) => c.area(),
             Shape::Mesh(m) => m.area(),
             Shape::Curve(c) => c.area(),
+            // never an emitter (refused at build)
+            Shape::BSpline(_) => 0.0,
             Shape::SdfGrid(_) => 0.0,
         }
     }
@@ -152,6 +158,13 @@ impl Shape {
             Shape::Cylinder(c) => c.sample_area(u),
             Shape::Mesh(m) => m.sample_area(u),
             Shape::Curve(c) => c.sample_area(u),
+            Shape::BSpline(_) => SurfaceSample {
+                p: Vec3::ZERO,
+                p_error: Vec3::ZERO,
+                n: Vec3::Z,
+                pdf_area: 0.0,
+                uv: u,
+            },
             Shape::SdfGrid(g) => g.sample_area(u),
         }
     }
@@ -243,6 +256,7 @@ impl Shape {
             Shape::Sphere(_) | Shape::Disk(_) | Shape::Cylinder(_) => 1,
             Shape::Mesh(m) => m.triangle_count(),
             Shape::Curve(c) => c.segment_count(),
+            Shape::BSpline(c) => c.segment_count(),
             Shape::SdfGrid(g) => g.voxel_count(),
         }
     }
@@ -256,6 +270,7 @@ impl Shape {
             Shape::Cylinder(c) if i == 0 => c.aabb(),
             Shape::Mesh(m) if i < m.triangle_count() => m.triangle_aabb(i),
             Shape::Curve(c) if i < c.segment_count() => c.aabb(i),
+            Shape::BSpline(c) if i < c.segment_count() => c.aabb(i),
             Shape::SdfGrid(g) if i < g.voxel_count() => g.aabb(i),
             _ => (Vec3::INFINITY, Vec3::NEG_INFINITY),
         }
@@ -273,6 +288,9 @@ impl Shape {
             Shape::Cylinder(c) if i == 0 => c.intersect(ray).map(|t| (t, PrimHit::Cylinder)),
             Shape::Mesh(m) if i < m.triangle_count() => m.intersect_triangle(i, ray),
             Shape::Curve(c) if i < c.segment_count() => {
+                c.intersect(i, ray).map(|(t, s)| (t, PrimHit::Curve { s }))
+            }
+            Shape::BSpline(c) if i < c.segment_count() => {
                 c.intersect(i, ray).map(|(t, s)| (t, PrimHit::Curve { s }))
             }
             Shape::SdfGrid(g) if i < g.voxel_count() => {
@@ -305,6 +323,8 @@ impl Shape {
             (Shape::Mesh(m), _) => m.interaction(prim, [1.0 / 3.0; 3]),
             (Shape::Curve(c), PrimHit::Curve { s }) => c.interaction(prim, ray.at(t), *s),
             (Shape::Curve(c), _) => c.interaction(prim, ray.at(t), 0.5),
+            (Shape::BSpline(c), PrimHit::Curve { s }) => c.interaction(prim, ray.at(t), *s),
+            (Shape::BSpline(c), _) => c.interaction(prim, ray.at(t), 0.5),
             (Shape::SdfGrid(g), _) => g.interaction(prim, ray.at(t)),
         };
         it.t = t;

@@ -61,6 +61,11 @@ pub enum ShapeKind {
     LinearCurve {
         path: PathBuf,
     },
+    /// Mitsuba's `bsplinecurve`, from a file like `linearcurve`'s (four control points or more
+    /// per curve).
+    BSplineCurve {
+        path: PathBuf,
+    },
     /// Mitsuba's `sdfgrid`: distances at `res` points (x fastest) over the object's unit cube;
     /// `smooth` shading normals or the gradient's.
     SdfGrid {

@@ -130,6 +130,11 @@ pub(super) const SHAPES: &[(&str, Reader)] = &[
             path: filename(cx, s)?,
         })
     }),
+    ("bsplinecurve", |cx, s| {
+        Ok(ShapeKind::BSplineCurve {
+            path: filename(cx, s)?,
+        })
+    }),
 ];
 
 /// A mesh plugin's `filename`, resolved as Mitsuba resolves it.

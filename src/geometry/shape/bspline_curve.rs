@@ -1,0 +1,404 @@
+//! Mitsuba's `bsplinecurve`: uniform cubic B-splines of control points (x, y, z, radius), the
+//! surface swept by a sphere of the interpolated radius along the interpolated centre line
+//! (the "round B-spline curves" of Embree and OptiX that Mitsuba traces). Only hits entering
+//! the tube count (Mitsuba culls curve backfaces).
+//!
+//! Each segment (four consecutive control points; a curve of n points has n − 3) is
+//! c(s) = Σ Bₖ(s)·pₖ and r(s) = Σ Bₖ(s)·rₖ, s ∈ [0, 1], with the uniform cubic B-spline basis
+//! B = ((1−s)³, 3s³ − 6s² + 4, −3s³ + 3s² + 3s + 1, s³)/6 (Mitsuba's `cubic_interpolation`).
+//!
+//! Intersection, exact to f32 rounding rather than tessellated:
+//! 1. the segment is cut into [`PIECES`] chords; the capsule around each chord with the
+//!    piece's largest radius plus a bound on the curve's distance from the chord (|c''|·Δs²/8,
+//!    |c''| linear in s, so largest at an end) contains the piece's tube;
+//! 2. where the ray enters a capsule, Newton's method solves for (t, s) on the exact surface:
+//!    |q|² = r² and q·c' + r·r' = 0 with q = o + t·d − c(s) (the sphere at s touching the
+//!    envelope of the sweep);
+//! 3. the nearest converged hit that enters the surface wins, if the centre line's point
+//!    closest to it lies on the segment (its parameter s*, in [0, 1]). So the tube is cut open at a
+//!    curve's ends by the planes normal to the curve there, as Mitsuba's renders show.
+//!
+//! The hit's s is that closest point's s*, as Mitsuba's: Mitsuba's normal,
+//! (|c'|² − q·c'')·q − r·r'·c' with q = p − c(s*), is the gradient of |p − c(s*)|² − r(s*)², and
+//! its renders of a curve of varying radius match this reading only (`tests/mitsuba_data_plugins.rs`).
+//!
+//! uv as Mitsuba 3.9.1 defines it (`bsplinecurve.cpp`): v = (segment + s)/segments over all
+//! curves, u the angle of the hit around the tangent c'(s) (as `linearcurve`'s, over 2π).
+
+use super::Intersection;
+use super::curve::{angle_around, capsule_hit, read_polylines};
+use crate::geometry::error::GeometryError;
+use crate::geometry::ray::Ray;
+use crate::geometry::transform::Transform;
+use glam::{Vec2, Vec3};
+use std::f32::consts::PI;
+use std::path::Path;
+
+/// Chords per segment for the bounding capsules of step 1.
+const PIECES: usize = 8;
+
+/// Cubic B-spline curves of world-space control points (m) with radii (m, untouched by the
+/// transform).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BSplineCurve {
+    points: Vec<Vec3>,
+    radii: Vec<f32>,
+    /// Index of each segment's first control point (three more follow it).
+    segments: Vec<u32>,
+}
+
+/// A segment's centre line and radius at s, with their first and second derivatives in s.
+struct Eval {
+    c: Vec3,
+    dc: Vec3,
+    ddc: Vec3,
+    r: f32,
+    dr: f32,
+    ddr: f32,
+}
+
+impl BSplineCurve {
+    /// Curves from polylines of (point, radius); each needs four control points or more,
+    /// finite coordinates and radii > 0.
+    pub fn new(curves: &[Vec<(Vec3, f32)>]) -> Result<Self, GeometryError> {
+        let bad = |m: String| GeometryError::Curve(m);
+        let mut c = Self {
+            points: vec![],
+            radii: vec![],
+            segments: vec![],
+        };
+        for (k, line) in curves.iter().enumerate() {
+            if line.len() < 4 {
+                return Err(bad(format!(
+                    "B-spline curve {k} has {} control point(s); a B-spline curve needs four or more",
+                    line.len()
+                )));
+            }
+            let first = c.points.len() as u32;
+            for (i, &(p, r)) in line.iter().enumerate() {
+                if !(p.is_finite() && r > 0.0 && r.is_finite()) {
+                    return Err(bad(format!("curve {k}, control point {i}: {p} radius {r}")));
+                }
+                c.points.push(p);
+                c.radii.push(r);
+            }
+            let n = line.len() as u32 - 3;
+            c.segments.extend((0..n).map(|j| first + j));
+        }
+        if c.segments.is_empty() {
+            return Err(bad("no curves".into()));
+        }
+        Ok(c)
+    }
+
+    /// Reads Mitsuba's curve file (as `linearcurve`'s: `x y z radius` per line, an empty line
+    /// between curves; positions transformed, radii not).
+    pub fn load(path: &Path, transform: &Transform) -> Result<Self, GeometryError> {
+        let lines = read_polylines(path, transform)?;
+        Self::new(&lines).map_err(|e| GeometryError::MeshParse {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        })
+    }
+
+    pub fn segment_count(&self) -> usize {
+        self.segments.len()
+    }
+
+    fn control(&self, i: usize) -> ([Vec3; 4], [f32; 4]) {
+        let k = self.segments[i] as usize;
+        (
+            [0, 1, 2, 3].map(|j| self.points[k + j]),
+            [0, 1, 2, 3].map(|j| self.radii[k + j]),
+        )
+    }
+
+    fn eval(&self, i: usize, s: f32) -> Eval {
+        let (p, r) = self.control(i);
+        let (s2, s3) = (s * s, s * s * s);
+        let b = [
+            (1.0 - s) * (1.0 - s) * (1.0 - s) / 6.0,
+            (3.0 * s3 - 6.0 * s2 + 4.0) / 6.0,
+            (-3.0 * s3 + 3.0 * s2 + 3.0 * s + 1.0) / 6.0,
+            s3 / 6.0,
+        ];
+        let db = [
+            -(1.0 - s) * (1.0 - s) / 2.0,
+            (3.0 * s2 - 4.0 * s) / 2.0,
+            (-3.0 * s2 + 2.0 * s + 1.0) / 2.0,
+            s2 / 2.0,
+        ];
+        let ddb = [1.0 - s, 3.0 * s - 2.0, -3.0 * s + 1.0, s];
+        let dot3 = |w: [f32; 4]| w[0] * p[0] + w[1] * p[1] + w[2] * p[2] + w[3] * p[3];
+        let dot1 = |w: [f32; 4]| w[0] * r[0] + w[1] * r[1] + w[2] * r[2] + w[3] * r[3];
+        Eval {
+            c: dot3(b),
+            dc: dot3(db),
+            ddc: dot3(ddb),
+            r: dot1(b),
+            dr: dot1(db),
+            ddr: dot1(ddb),
+        }
+    }
+
+    /// Bounds of segment `i`: its control points' box (the convex hull holds the segment)
+    /// grown by the largest radius.
+    pub(crate) fn aabb(&self, i: usize) -> (Vec3, Vec3) {
+        let (p, r) = self.control(i);
+        let rmax = Vec3::splat(r.into_iter().fold(0.0, f32::max));
+        let lo = p.into_iter().fold(Vec3::INFINITY, Vec3::min);
+        let hi = p.into_iter().fold(Vec3::NEG_INFINITY, Vec3::max);
+        (lo - rmax, hi + rmax)
+    }
+
+    /// The entering hit of `ray` with segment `i`, t in (0, t_max), and its s ∈ [0, 1] (module
+    /// docs, steps 1–3).
+    pub(crate) fn intersect(&self, i: usize, ray: &Ray) -> Option<(f32, f32)> {
+        let (_, radii) = self.control(i);
+        let scale = radii.into_iter().fold(0.0, f32::max);
+        let t_min = 1e-4 * scale;
+        let mut best: Option<(f32, f32)> = None;
+        let mut prev = self.eval(i, 0.0);
+        for k in 0..PIECES {
+            let (s0, s1) = (k as f32 / PIECES as f32, (k + 1) as f32 / PIECES as f32);
+            let next = self.eval(i, s1);
+            let ds = s1 - s0;
+            let sag = prev.ddc.length().max(next.ddc.length()) * ds * ds / 8.0;
+            let bound = prev.r.max(next.r) + sag + 1e-4 * scale;
+            let mut shrunk = *ray;
+            shrunk.t_max = best.map_or(ray.t_max, |b| b.0);
+            if let Some((t0, f)) = capsule_hit(prev.c, next.c, bound, &shrunk, f32::NEG_INFINITY) {
+                if let Some(h) = self.newton(i, ray, t0.max(0.0), s0 + f * ds, t_min) {
+                    if best.is_none_or(|b| h.0 < b.0) {
+                        best = Some(h);
+                    }
+                }
+            }
+            prev = next;
+        }
+        best
+    }
+
+    /// Newton's method on (t, s) from (t, s) (module docs, step 2); the hit if it converges
+    /// with s ∈ [0, 1], t in (t_min, t_max), entering the surface.
+    fn newton(
+        &self,
+        i: usize,
+        ray: &Ray,
+        mut t: f32,
+        mut s: f32,
+        t_min: f32,
+    ) -> Option<(f32, f32)> {
+        for _ in 0..12 {
+            let e = self.eval(i, s.clamp(-0.05, 1.05));
+            let q = ray.o + ray.d * t - e.c;
+            let f1 = q.dot(q) - e.r * e.r;
+            let f2 = q.dot(e.dc) + e.r * e.dr;
+            // Jacobian of (f1, f2) in (t, s)
+            let (a, b) = (2.0 * q.dot(ray.d), -2.0 * f2);
+            let (c, d) = (
+                ray.d.dot(e.dc),
+                -e.dc.dot(e.dc) + q.dot(e.ddc) + e.dr * e.dr + e.r * e.ddr,
+            );
+            let det = a * d - b * c;
+            if det == 0.0 || !det.is_finite() {
+                return None;
+            }
+            let dt = (f1 * d - b * f2) / det;
+            let dsv = (a * f2 - c * f1) / det;
+            t -= dt;
+            s -= dsv;
+            if !(t.is_finite() && s.is_finite()) || !(-0.5..=1.5).contains(&s) {
+                return None;
+            }
+            if dt.abs() <= 1e-6 * (1.0 + t.abs()) && dsv.abs() <= 1e-6 {
+                break;
+            }
+        }
+        if !(t > t_min && t < ray.t_max) {
+            return None;
+        }
+        let e = self.eval(i, s);
+        let p = ray.o + ray.d * t;
+        let q = p - e.c;
+        // converged onto the surface (not a stationary point off it), and entering it
+        if (q.length() - e.r).abs() > 1e-3 * e.r || q.dot(ray.d) >= 0.0 {
+            return None;
+        }
+        // the hit belongs to this segment where the closest point of the centre line does
+        self.closest(i, p, s).map(|s| (t, s))
+    }
+
+    /// The parameter of the centre line's point closest to `p`, from `s` ((p − c)·c' = 0 by
+    /// Newton's method); `None` if it leaves the segment.
+    fn closest(&self, i: usize, p: Vec3, mut s: f32) -> Option<f32> {
+        for _ in 0..8 {
+            let e = self.eval(i, s);
+            let q = p - e.c;
+            let g = q.dot(e.dc);
+            let dg = -e.dc.dot(e.dc) + q.dot(e.ddc);
+            if dg == 0.0 {
+                break;
+            }
+            let step = g / dg;
+            s -= step;
+            if !(-0.01..=1.01).contains(&s) {
+                return None;
+            }
+            if step.abs() <= 1e-7 {
+                break;
+            }
+        }
+        (-1e-4..=1.0 + 1e-4)
+            .contains(&s)
+            .then_some(s.clamp(0.0, 1.0))
+    }
+
+    /// The surface point at `p_approx` on segment `i`, its closest centre-line point at `s`
+    /// (Mitsuba's normal: (|c'|² − q·c'')·q − r·r'·c', q = p − c).
+    pub(crate) fn interaction(&self, i: usize, p_approx: Vec3, s: f32) -> Intersection {
+        let e = self.eval(i, s);
+        let axis = e.dc.try_normalize().unwrap_or(Vec3::X);
+        let q = (p_approx - e.c)
+            .try_normalize()
+            .unwrap_or(axis.any_orthonormal_vector());
+        let p = p_approx;
+        let qr = q * e.r;
+        let n = ((e.dc.dot(e.dc) - qr.dot(e.ddc)) * qr - (e.dr * e.r) * e.dc)
+            .try_normalize()
+            .unwrap_or(q);
+        let count = self.segments.len() as f32;
+        Intersection {
+            t: 0.0,
+            p,
+            p_error: Vec3::splat(1e-4 * (p.abs().max_element() + e.r)),
+            n_geom: n,
+            n_shading: n,
+            uv: Vec2::new(angle_around(axis, q) / (2.0 * PI), (s + i as f32) / count),
+            dpdu: axis.cross(qr) * (2.0 * PI),
+            dpdv: e.dc * count,
+            shape: 0,
+            prim: i as u32,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A straight B-spline (collinear, evenly spaced points) is a cylinder of its radius
+    /// between c(0) and c(1) of each segment, open at the curve's ends.
+    #[test]
+    fn straight_curve_is_a_capsule() {
+        let r = 0.25;
+        let pts: Vec<(Vec3, f32)> = (0..6).map(|k| (Vec3::new(k as f32, 0.0, 0.0), r)).collect();
+        let c = BSplineCurve::new(&[pts]).unwrap();
+        assert_eq!(c.segment_count(), 3);
+        let first = |o: Vec3, d: Vec3| {
+            let ray = Ray::new(o, d.normalize());
+            (0..c.segment_count())
+                .filter_map(|i| c.intersect(i, &ray).map(|h| (i, h)))
+                .min_by(|a, b| a.1.0.total_cmp(&b.1.0))
+        };
+        // the centre line runs from c(0) of segment 0 = x 1 to c(1) of segment 2 = x 4
+        let (i, (t, s)) = first(Vec3::new(2.3, 0.0, 5.0), -Vec3::Z).unwrap();
+        assert!((t - (5.0 - r)).abs() < 1e-4, "{t}");
+        let x = c.eval(i, s).c.x;
+        assert!((x - 2.3).abs() < 1e-4, "{x}");
+        // along the axis into the open end: only the inside, culled; just past the end: nothing
+        assert!(first(Vec3::new(-5.0, 0.0, 0.0), Vec3::X).is_none());
+        assert!(first(Vec3::new(0.95, 0.0, 5.0), -Vec3::Z).is_none());
+        assert!(first(Vec3::new(1.05, 0.0, 5.0), -Vec3::Z).is_some());
+        // a grazing miss just outside the radius, and a ray from inside: nothing
+        assert!(first(Vec3::new(2.0, r * 1.001, 5.0), -Vec3::Z).is_none());
+        assert!(first(Vec3::new(2.0, 0.0, 0.0), Vec3::Z).is_none());
+        // uv: v over the three segments, the normal outward
+        let it = c.interaction(1, Vec3::new(2.5, 0.0, r), 0.5);
+        assert!((it.uv.y - 0.5).abs() < 1e-6 && (it.n_geom - Vec3::Z).length() < 1e-5);
+    }
+
+    /// On a bent curve, every hit lies at distance r(s) from c(s) with q ⟂ c' (the sweep's
+    /// envelope), for rays from many directions.
+    #[test]
+    fn hits_lie_on_the_envelope() {
+        let pts = vec![
+            (Vec3::new(-1.0, 0.0, -1.0), 0.1),
+            (Vec3::new(-0.5, 0.0, 1.0), 0.1),
+            (Vec3::new(-0.25, 0.0, -1.0), 0.1),
+            (Vec3::new(0.0, 0.0, 1.0), 0.1),
+            (Vec3::new(0.25, 0.0, -1.0), 0.1),
+        ];
+        let c = BSplineCurve::new(&[pts]).unwrap();
+        let mut hits = 0;
+        for k in 0..400 {
+            let x = -0.6 + 1.2 * (k as f32 + 0.5) / 400.0;
+            let ray = Ray::new(Vec3::new(x, -3.0, 0.13 * (k % 7) as f32 - 0.4), Vec3::Y);
+            for i in 0..c.segment_count() {
+                if let Some((t, s)) = c.intersect(i, &ray) {
+                    let e = c.eval(i, s);
+                    let q = ray.at(t) - e.c;
+                    assert!((q.length() - e.r).abs() < 1e-4, "{} vs {}", q.length(), e.r);
+                    assert!(q.normalize().dot(e.dc.normalize()).abs() < 1e-3);
+                    hits += 1;
+                }
+            }
+        }
+        assert!(hits > 50, "{hits}");
+    }
+
+    /// With a varying radius, a hit's s is the centre line's closest point ((p − c)·c' = 0) and
+    /// its normal is the gradient of |p − c(s*(p))|² − r(s*(p))² (Mitsuba's), checked by finite
+    /// differences of that function.
+    #[test]
+    fn varying_radius_normal_is_mitsubas() {
+        let radii = [0.06, 0.10, 0.14, 0.10, 0.08];
+        let xs = [-1.0f32, -0.6, -0.3, 0.0, 0.3];
+        let zs = [-0.6f32, 0.6, -0.6, 0.6, -0.6];
+        let pts: Vec<(Vec3, f32)> = (0..5)
+            .map(|k| (Vec3::new(xs[k], 0.0, zs[k]), radii[k]))
+            .collect();
+        let c = BSplineCurve::new(&[pts]).unwrap();
+        let field = |i: usize, p: Vec3, s0: f32| -> Option<f32> {
+            let s = c.closest(i, p, s0)?;
+            let e = c.eval(i, s);
+            Some((p - e.c).length_squared() - e.r * e.r)
+        };
+        let mut checked = 0;
+        for k in 0..60 {
+            let x = -0.55 + 0.7 * (k as f32 + 0.5) / 60.0;
+            let ray = Ray::new(Vec3::new(x, -3.0, 0.05), Vec3::Y);
+            for i in 0..c.segment_count() {
+                let Some((t, s)) = c.intersect(i, &ray) else {
+                    continue;
+                };
+                let p = ray.at(t);
+                let e = c.eval(i, s);
+                assert!(
+                    (p - e.c).dot(e.dc).abs() < 1e-4 * e.dc.length(),
+                    "not the closest point"
+                );
+                let h = 1e-3;
+                let g = Vec3::new(
+                    field(i, p + Vec3::X * h, s).unwrap() - field(i, p - Vec3::X * h, s).unwrap(),
+                    field(i, p + Vec3::Y * h, s).unwrap() - field(i, p - Vec3::Y * h, s).unwrap(),
+                    field(i, p + Vec3::Z * h, s).unwrap() - field(i, p - Vec3::Z * h, s).unwrap(),
+                )
+                .normalize();
+                let n = c.interaction(i, p, s).n_geom;
+                assert!(n.dot(g) > 0.9999, "normal {n} vs gradient {g}");
+                checked += 1;
+            }
+        }
+        assert!(checked > 10, "{checked}");
+    }
+
+    #[test]
+    fn too_few_points_is_an_error() {
+        let pts: Vec<(Vec3, f32)> = (0..3)
+            .map(|k| (Vec3::new(k as f32, 0.0, 0.0), 0.1))
+            .collect();
+        let e = BSplineCurve::new(&[pts]).unwrap_err().to_string();
+        assert!(e.contains("four or more"), "{e}");
+    }
+}
