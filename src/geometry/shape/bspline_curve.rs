@@ -18,9 +18,8 @@
 //!    closest to it lies on the segment (its parameter s*, in [0, 1]). So the tube is cut open at a
 //!    curve's ends by the planes normal to the curve there, as Mitsuba's renders show.
 //!
-//! The hit's s is that closest point's s*, as Mitsuba's: Mitsuba's normal,
-//! (|c'|² − q·c'')·q − r·r'·c' with q = p − c(s*), is the gradient of |p − c(s*)|² − r(s*)², and
-//! its renders of a curve of varying radius match this reading only (`tests/mitsuba_data_plugins.rs`).
+//! The hit's s is s*, as Mitsuba's: its normal (|c'|² − q·c'')·q − r·r'·c', q = p − c(s*), is the
+//! gradient of |p − c(s*)|² − r(s*)², and its renders of a varying radius match this reading only.
 //!
 //! uv as Mitsuba 3.9.1 defines it (`bsplinecurve.cpp`): v = (segment + s)/segments over all
 //! curves, u the angle of the hit around the tangent c'(s) (as `linearcurve`'s, over 2π).
@@ -167,12 +166,10 @@ impl BSplineCurve {
             let bound = prev.r.max(next.r) + sag + 1e-4 * scale;
             let mut shrunk = *ray;
             shrunk.t_max = best.map_or(ray.t_max, |b| b.0);
-            if let Some((t0, f)) = capsule_hit(prev.c, next.c, bound, &shrunk, f32::NEG_INFINITY) {
-                if let Some(h) = self.newton(i, ray, t0.max(0.0), s0 + f * ds, t_min) {
-                    if best.is_none_or(|b| h.0 < b.0) {
-                        best = Some(h);
-                    }
-                }
+            let hit = capsule_hit(prev.c, next.c, bound, &shrunk, f32::NEG_INFINITY)
+                .and_then(|(t0, f)| self.newton(i, ray, t0.max(0.0), s0 + f * ds, t_min));
+            if let Some(h) = hit.filter(|h| best.is_none_or(|b| h.0 < b.0)) {
+                best = Some(h);
             }
             prev = next;
         }
@@ -208,7 +205,7 @@ impl BSplineCurve {
             let dsv = (a * f2 - c * f1) / det;
             t -= dt;
             s -= dsv;
-            if !(t.is_finite() && s.is_finite()) || !(-0.5..=1.5).contains(&s) {
+            if !(t.is_finite() && s.is_finite() && (-0.5..=1.5).contains(&s)) {
                 return None;
             }
             if dt.abs() <= 1e-6 * (1.0 + t.abs()) && dsv.abs() <= 1e-6 {
@@ -395,9 +392,7 @@ mod tests {
 
     #[test]
     fn too_few_points_is_an_error() {
-        let pts: Vec<(Vec3, f32)> = (0..3)
-            .map(|k| (Vec3::new(k as f32, 0.0, 0.0), 0.1))
-            .collect();
+        let pts: Vec<_> = (0..3).map(|k| (Vec3::X * k as f32, 0.1)).collect();
         let e = BSplineCurve::new(&[pts]).unwrap_err().to_string();
         assert!(e.contains("four or more"), "{e}");
     }
