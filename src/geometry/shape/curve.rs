@@ -72,7 +72,8 @@ impl LinearCurve {
         })
     }
 
-    /// Reads Mitsuba's curve file ([`read_polylines`]).
+    /// Reads Mitsuba's curve file: `x y z radius` per line, an empty line between curves;
+    /// positions transformed, radii not.
     pub fn load(path: &Path, transform: &Transform) -> Result<Self, GeometryError> {
         let lines = read_polylines(path, transform)?;
         Self::new(&lines).map_err(|e| GeometryError::MeshParse {
