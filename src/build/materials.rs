@@ -116,6 +116,7 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
         )?,
         MaterialKind::MeasuredPolarized { .. } => measured(k),
         MaterialKind::Principled(p) => principled(p)?,
+        MaterialKind::Hair(h) => hair(h),
     })
 }
 
@@ -179,10 +180,11 @@ fn blend(weight: &TextureDesc, a: &MaterialKind, b: &MaterialKind) -> Result<Mat
                 | Material::BumpMap(_)
                 | Material::Textured(_)
                 | Material::Principled(_)
+                | Material::Hair(_)
         )
     }) {
         return Err(
-            "a blend cannot hold a mask, another blend, a normal or bump map, textured roughness or specular factors, or a principled material".into(),
+            "a blend cannot hold a mask, another blend, a normal or bump map, textured roughness or specular factors, a principled material or hair".into(),
         );
     }
     Ok(Material::Blend(Box::new(Blend { weight, a, b })))
@@ -359,6 +361,28 @@ fn coated(
             );
         }
     })
+}
+
+/// A hair fibre: its absorption per radius as two spectra (the pigments', or σₐ·scale).
+fn hair(h: &crate::loader::desc::HairDesc) -> Material {
+    use crate::loader::desc::HairAbsorption;
+    use crate::spectrum::Spectrum;
+    let sigma_a = match &h.absorption {
+        HairAbsorption::Pigments {
+            eumelanin,
+            pheomelanin,
+        } => crate::material::Hair::pigments(*eumelanin as f32, *pheomelanin as f32),
+        HairAbsorption::Sigma { sigma_a, scale } => {
+            [sigma_a.scaled(*scale as f32), Spectrum::Constant(0.0)]
+        }
+    };
+    Material::Hair(Box::new(crate::material::Hair::new(
+        sigma_a,
+        h.eta as f32,
+        h.roughness[0] as f32,
+        h.roughness[1] as f32,
+        radians(&h.scale_tilt),
+    )))
 }
 
 /// A principled material: its textures, the scalar ones grey.

@@ -84,6 +84,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             }
             Material::Textured(m) => self.textured_eval_pdf(m, wo, wi, w, mode).0,
             Material::Principled(m) => m.eval(&self.disney, self.albedo, wo, wi, mode),
+            Material::Hair(m) => m.eval(self.albedo, wo, wi, mode),
         }
     }
 
@@ -112,6 +113,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             }
             Material::Textured(m) => self.textured_eval_pdf(m, wo, wi, w, _mode).1,
             Material::Principled(m) => m.pdf(&self.disney, wo, wi),
+            Material::Hair(m) => m.pdf(self.albedo, wo, wi, w),
         }
     }
 
@@ -152,6 +154,10 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             Material::Principled(m) => (
                 m.eval(&self.disney, self.albedo, wo, wi, mode),
                 m.pdf(&self.disney, wo, wi),
+            ),
+            Material::Hair(m) => (
+                m.eval(self.albedo, wo, wi, mode),
+                m.pdf(self.albedo, wo, wi, w),
             ),
         }
     }
@@ -206,6 +212,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             }
             Material::Textured(m) => self.textured_sample(m, wo, w, uc, u, mode),
             Material::Principled(m) => m.sample(&self.disney, self.albedo, wo, uc, u, mode),
+            Material::Hair(m) => m.sample(self.albedo, wo, w, uc, u, mode),
             // straight through: f·|cos θᵢ|/pdf = 1
             Material::Null => (wo.z != 0.0).then(|| BsdfSample {
                 f: SampledSpectrum::splat(1.0 / wo.z.abs()),

@@ -110,6 +110,7 @@ impl super::Material {
             M::Textured(m) => m.inner.polarises(),
             M::Diffuse(_)
             | M::Principled(_)
+            | M::Hair(_)
             | M::Phong(_)
             | M::Dielectric(_)
             | M::RoughDielectric(_)

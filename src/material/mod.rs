@@ -42,6 +42,7 @@ mod disney;
 mod element;
 mod erf;
 pub mod fresnel;
+mod hair;
 mod lambert;
 mod mask;
 mod measured_polarized;
@@ -67,6 +68,7 @@ pub use conductor::{Conductor, RoughConductor};
 pub use dielectric::Dielectric;
 pub use disney::DisneyAt;
 pub use element::Element;
+pub use hair::Hair;
 pub use lambert::Lambert;
 pub use mask::Mask;
 pub use measured_polarized::MeasuredPolarized;
@@ -174,6 +176,8 @@ pub enum Material {
     /// Mitsuba's `principled` and `principledthin`: the Disney/Burley model (see
     /// [`Principled`]).
     Principled(Box<Principled>),
+    /// Mitsuba's `hair`: Chiang et al.'s fibre model on a curve's frame (see [`Hair`]).
+    Hair(Box<Hair>),
 }
 
 impl Material {
@@ -237,6 +241,8 @@ impl Material {
                     ..Bsdf::plain(self, base)
                 };
             }
+            // the absorption σₐ per radius in the albedo's place
+            Material::Hair(m) => m.sigma_a[0].sample(w) + m.sigma_a[1].sample(w),
             Material::Textured(m) => {
                 return Bsdf {
                     alpha: m.alpha_at(uv, w),
@@ -326,6 +332,7 @@ impl Material {
             | Material::ThinFilm(_)
             | Material::ThinDielectric { .. } => true,
             Material::Principled(_)
+            | Material::Hair(_)
             | Material::Diffuse(_)
             | Material::Phong(_)
             | Material::RoughDielectric(_)
@@ -355,6 +362,7 @@ impl Material {
             | Material::Null
             | Material::Element(_)
             | Material::Principled(_)
+            | Material::Hair(_)
             | Material::Diffuse(_)
             | Material::Phong(_)
             | Material::Conductor(_)

@@ -101,7 +101,8 @@ fn of<const N: usize>(
         | Material::Phong(_)
         | Material::Plastic(_)
         | Material::Blend(_)
-        | Material::Principled(_) => Polarising::Depolarise,
+        | Material::Principled(_)
+        | Material::Hair(_) => Polarising::Depolarise,
         Material::Null => Polarising::Keep,
         Material::Mask(_) | Material::ThinDielectric { .. } if straight => Polarising::Keep,
         Material::Mask(k) => of(&k.inner, frame, perturb, (wo, wi), rho, w),

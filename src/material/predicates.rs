@@ -21,6 +21,8 @@ impl Material {
             | Material::Element(_) => true,
             Material::Mask(m) => m.inner.needs_tangent(),
             Material::Principled(m) => m.anisotropic.is_some(),
+            // the fibre's axis is the frame's second tangent, n × ∂p/∂u
+            Material::Hair(_) => true,
             Material::Blend(m) => m.a.needs_tangent() || m.b.needs_tangent(),
             Material::Diffuse(_)
             | Material::Phong(_)
@@ -56,6 +58,7 @@ impl Material {
             | Material::Element(_)
             | Material::Blend(_)
             | Material::Principled(_)
+            | Material::Hair(_)
             | Material::Textured(_) => false,
         }
     }
@@ -78,8 +81,9 @@ impl Material {
             | Material::Element(_)
             | Material::ThinFilm(_)
             | Material::ThinDielectric { .. } => true,
-            // a mask's pass-through does not distinguish the sides
+            // a mask's pass-through does not distinguish the sides, nor does a fibre
             Material::Mask(_)
+            | Material::Hair(_)
             | Material::Diffuse(_)
             | Material::Phong(_)
             | Material::Conductor(_)

@@ -131,6 +131,32 @@ pub enum MaterialKind {
     },
     /// Mitsuba's `principled` or `principledthin` (see `crate::material::Principled`).
     Principled(Box<PrincipledDesc>),
+    /// Mitsuba's `hair` (see `crate::material::Hair`).
+    Hair(Box<HairDesc>),
+}
+
+/// The parameters of a hair fibre.
+#[derive(Clone, Debug)]
+pub struct HairDesc {
+    pub absorption: HairAbsorption,
+    /// Index of the fibre relative to the outside.
+    pub eta: f64,
+    /// Longitudinal and azimuthal roughness β_m, β_n, in (0, 1].
+    pub roughness: [f64; 2],
+    /// Tilt of the cuticle's scales.
+    pub scale_tilt: Angle,
+}
+
+/// How a fibre absorbs, per fibre radius (dimensionless).
+#[derive(Clone, Debug)]
+pub enum HairAbsorption {
+    /// Concentrations of eumelanin and pheomelanin (d'Eon et al. 2011's per-radius units).
+    Pigments { eumelanin: f64, pheomelanin: f64 },
+    /// σₐ itself, times `scale`.
+    Sigma {
+        sigma_a: crate::spectrum::Spectrum,
+        scale: f64,
+    },
 }
 
 /// The parameters of a principled material, each a texture (scalar ones grey); a lobe's

@@ -270,6 +270,21 @@ pub fn unbounded(rgb: [f32; 3]) -> Result<Spectrum, RgbError> {
     })
 }
 
+/// [`unbounded`] as Mitsuba 3 upsamples an unbounded colour (`srgb` with `unbounded`): the
+/// table's coefficients for the RGB over 2m, not refined.
+pub fn unbounded_table(rgb: [f32; 3]) -> Result<Spectrum, RgbError> {
+    check(rgb)?;
+    let m = rgb.iter().copied().fold(0.0f32, f32::max);
+    if m == 0.0 {
+        return Ok(Spectrum::Constant(0.0));
+    }
+    let scale = 2.0 * m;
+    Ok(Spectrum::Rgb {
+        poly: srgb_table().lookup(rgb.map(|v| v / scale)),
+        scale,
+    })
+}
+
 /// D65 relative SPD normalised so that ∫ D65(λ) ȳ(λ) dλ = 1 over 360–830 nm (unit nm⁻¹).
 pub fn d65_unit_luminance() -> Arc<PiecewiseLinear> {
     static D: OnceLock<Arc<PiecewiseLinear>> = OnceLock::new();

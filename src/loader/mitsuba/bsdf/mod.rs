@@ -8,6 +8,7 @@ use crate::loader::desc::*;
 use crate::material::microfacet::Distribution;
 use crate::spectrum::ior::{ComplexIor, Ior};
 
+mod hair;
 mod lobes;
 mod nested;
 mod principled;
@@ -134,6 +135,8 @@ pub(in crate::loader::mitsuba) const BSDFS: &[(&str, Reader)] = &[
     // the Disney/Burley model, solid and as a thin sheet
     ("principled", principled::principled),
     ("principledthin", principled::principled),
+    // Chiang et al.'s fibre, for curves
+    ("hair", hair::hair),
 ];
 
 /// A one-sided material of `kind` named `name`, located at `b`.
