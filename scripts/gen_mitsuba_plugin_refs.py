@@ -19,7 +19,7 @@ import mitsuba as mi  # noqa: E402
 
 mi.set_variant("scalar_spectral")
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-SPP = 64
+SPP = int(os.environ.get("SPP", "64"))
 
 
 def sensor(origin="0, 0, 3", target="0, 0, 0", up="0, 1, 0", fov=10):
@@ -254,6 +254,29 @@ CASES = [
                    '<float name="roughness" value="0.4"/><float name="spec_trans" value="0.4"/>'
                    '<float name="diff_trans" value="0.9"/><float name="sheen" value="0.5"/>'
                    '<float name="eta" value="1.4"/></bsdf>'),
+      ]],
+    # Chiang's hair under a slanted light and a constant sky, on a patch of twelve parallel
+    # fibres that fills the view (tests/data/mitsuba_plugins/hair_patch.txt, written by a
+    # loop: 7 points each along +y, radius 0.09, spaced 0.2): the default brown on B-splines;
+    # light pigments with a steep scale tilt (which tells the fibres' direction apart); a σₐ
+    # spectrum
+    *[(f"hair_{tag}", f"""<integrator type="path"><integer name="max_depth" value="12"/></integrator>
+{sensor(fov=30)}{LIT}<emitter type="constant"><rgb name="radiance" value="0.3"/></emitter>
+<shape type="rectangle"><transform name="to_world"><scale value="3"/><translate z="-0.6"/></transform>
+<bsdf type="diffuse"/></shape><shape type="{curve}"><string name="filename" value="{{data}}/{file}"/>
+<transform name="to_world"><rotate z="1" angle="20"/></transform>
+{bsdf}</shape>""")
+      for tag, curve, file, bsdf in [
+          ("brown", "bsplinecurve", "hair_patch.txt", '<bsdf type="hair"/>'),
+          ("light_tilted", "bsplinecurve", "hair_patch.txt",
+           '<bsdf type="hair"><float name="eumelanin" value="0.1"/><float name="pheomelanin" value="0.3"/>'
+           '<float name="scale_tilt" value="8"/><float name="longitudinal_roughness" value="0.2"/>'
+           '<float name="azimuthal_roughness" value="0.4"/></bsdf>'),
+          # (on B-splines: Mitsuba 3.9.1 gives a linearcurve no ∂p/∂u, so that its hair
+          # sees an arbitrary frame there; see the README)
+          ("sigma", "bsplinecurve", "hair_patch.txt",
+           '<bsdf type="hair"><spectrum name="sigma_a" value="400:0.1, 500:0.3, 600:0.6, 700:1.2"/>'
+           '<float name="scale" value="0.8"/><float name="int_ior" value="1.5"/></bsdf>'),
       ]],
     # a BMP as an emitter's radiance (sRGB 8-bit values, as a PNG's)
     ("bmp_radiance", f"""<integrator type="path"><integer name="max_depth" value="1"/></integrator>
