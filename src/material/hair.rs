@@ -374,7 +374,10 @@ impl Hair {
         let s = sin_i * sin_o * kappa;
         if self.mitsuba_bessel {
             if kappa > 10.0 {
-                (-s + log_i0_mitsuba(c) - kappa + 0.6931 + (0.5 * kappa).ln()).exp()
+                // Mitsuba writes ln 2 as 0.6931
+                #[allow(clippy::approx_constant)]
+                let ln2 = 0.6931;
+                (-s + log_i0_mitsuba(c) - kappa + ln2 + (0.5 * kappa).ln()).exp()
             } else {
                 (-s).exp() * i0_mitsuba(c) * kappa / (2.0 * kappa.sinh())
             }
