@@ -124,7 +124,8 @@ impl Hair {
     }
 
     /// The absorption of `eumelanin` and `pheomelanin` concentrations (per radius), as
-    /// Mitsuba's spectral variants make it (the sigmoid coefficients its `srgb_model_fetch` gives d'Eon's RGB absorptions).
+    /// Mitsuba's spectral variants make it (the sigmoid coefficients its `srgb_model_fetch`
+    /// gives d'Eon's RGB absorptions).
     pub fn pigments(eumelanin: f32, pheomelanin: f32) -> [Spectrum; 2] {
         let curve = |c: [f64; 3], scale: f32| Spectrum::Rgb {
             poly: poly_from_nm(c),
