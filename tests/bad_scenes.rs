@@ -1,4 +1,4 @@
-//! Every file in `tests/bad_scenes/` (spectrace TOML, or Mitsuba XML read by the importer)
+//! Every file in `tests/bad_scenes/` (spectrace TOML, Mitsuba XML or pbrt-v4 read by the importers)
 //! fails to load with the error its header promises.
 //!
 //! Header lines `# expect: TEXT` list substrings the message must contain, `# not: TEXT`
@@ -15,7 +15,10 @@ fn corpus() -> Vec<PathBuf> {
     let mut v: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("corpus folder")
         .map(|e| e.expect("entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml" || e == "xml"))
+        .filter(|p| {
+            p.extension()
+                .is_some_and(|e| e == "toml" || e == "xml" || e == "pbrt")
+        })
         .collect();
     v.sort();
     v
@@ -24,6 +27,8 @@ fn corpus() -> Vec<PathBuf> {
 fn load_and_build(path: &Path) -> Result<(), String> {
     let desc = if path.extension().is_some_and(|e| e == "xml") {
         spectrace::loader::mitsuba::load(path, &[])
+    } else if path.extension().is_some_and(|e| e == "pbrt") {
+        spectrace::loader::pbrt::load(path)
     } else {
         spectrace::loader::load(path)
     }

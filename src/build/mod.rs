@@ -5,6 +5,7 @@ mod lens;
 pub use lens::{focused_lens, lens_system, located as lens_error};
 mod lights;
 mod materials;
+mod materials_mitsuba;
 mod media;
 
 use materials::material;
@@ -316,7 +317,10 @@ pub(super) fn v3(p: &crate::loader::desc::Point) -> Vec3 {
 fn camera(desc: &SceneDesc) -> Result<Camera, String> {
     let c = &desc.camera;
     let up = Vec3::new(c.up[0] as f32, c.up[1] as f32, c.up[2] as f32);
-    let to_world = Transform::look_at(v3(&c.eye), v3(&c.target), up).map_err(|e| e.to_string())?;
+    let look = Transform::look_at(v3(&c.eye), v3(&c.target), up).map_err(|e| e.to_string())?;
+    // a mirrored camera reverses camera-space x before its placement
+    let flip = Transform::scale(Vec3::new(if c.mirror { -1.0 } else { 1.0 }, 1.0, 1.0));
+    let to_world = flip.map_err(|e| e.to_string())?.then(&look);
     let (w, h) = (desc.film.width, desc.film.height);
     let axis = |a: FovAxis| match a {
         FovAxis::X => CamAxis::X,

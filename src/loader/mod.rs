@@ -9,6 +9,7 @@ pub mod desc;
 pub mod error;
 pub mod lens;
 pub mod mitsuba;
+pub mod pbrt;
 pub mod photometric;
 mod raw;
 
@@ -18,13 +19,13 @@ pub use desc::SceneDesc;
 pub use error::{LoadError, Loc};
 
 /// Reads a scene file by its extension: `.xml` is a Mitsuba scene (with `defines` for its
-/// parameters), anything else spectrace's TOML.
+/// parameters), `.pbrt` a pbrt-v4 scene, anything else spectrace's TOML.
 pub fn load_any(path: &Path, defines: &[(String, String)]) -> Result<SceneDesc, LoadError> {
-    if path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("xml"))
-    {
+    let ext = |x: &str| path.extension().is_some_and(|e| e.eq_ignore_ascii_case(x));
+    if ext("xml") {
         mitsuba::load(path, defines)
+    } else if ext("pbrt") {
+        pbrt::load(path)
     } else {
         load(path)
     }

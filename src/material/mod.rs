@@ -43,6 +43,7 @@ mod element;
 mod erf;
 pub mod fresnel;
 mod hair;
+mod hair_terms;
 mod lambert;
 mod mask;
 mod measured_polarized;

@@ -123,6 +123,10 @@ pub struct CameraDesc {
     pub target: Point,
     /// Dimensionless direction.
     pub up: [f64; 3],
+    /// The image mirrored left to right: the camera's +x (up × view direction) on the image's
+    /// right, as in pbrt's left-handed cameras, where spectrace's (and Mitsuba's) have it on the
+    /// left.
+    pub mirror: bool,
     /// `[camera.sensor]`.
     pub sensor: Option<CameraSensorDesc>,
     pub loc: Loc,

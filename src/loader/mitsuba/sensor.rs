@@ -127,6 +127,7 @@ pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraD
             ));
         }
         return Ok(CameraDesc {
+            mirror: false,
             sensor: None,
             kind: CameraKind::Orthographic {
                 view_width: Length::new::<length::meter>(2.0 * sx),
@@ -157,6 +158,7 @@ pub(super) fn sensor(cx: &Cx<'_>, s: &Element, film: &mut FilmDesc) -> R<CameraD
         CameraKind::Perspective { projection }
     };
     Ok(CameraDesc {
+        mirror: false,
         sensor: None,
         kind,
         eye,

@@ -21,6 +21,7 @@ pub(super) fn camera(cx: &Cx<'_>, c: &S<RawCamera>) -> R<CameraDesc> {
         None => None,
     };
     Ok(CameraDesc {
+        mirror: false,
         kind,
         eye,
         target,

@@ -1,0 +1,324 @@
+//! The pbrt-v4 kinds spectrace reads: each reads its own parameters (pbrt-v4's names and
+//! defaults, `src/pbrt/shapes.cpp`, `materials.cpp`, `lights.cpp`, `cameras.cpp`, `film.cpp`)
+//! into the scene description. Lengths are read as metres (pbrt's files have no unit).
+
+use glam::{DMat4, DVec3};
+
+use super::params::{Params, R};
+use super::shapes::len;
+use super::{Reader, spectra};
+use crate::loader::desc::*;
+use crate::loader::{LoadError, Loc};
+use crate::spectrum::Spectrum;
+use crate::units::{Angle, Length, angle::degree};
+
+/// An `AreaLightSource "diffuse"`: its emitted radiance (W·m⁻²·sr⁻¹·nm⁻¹ per unit of pbrt's
+/// spectrum, see [`spectra::illuminant`]) and whether both sides emit.
+#[derive(Clone, Debug)]
+pub(super) struct AreaLight {
+    pub spectrum: Spectrum,
+    pub scale: f64,
+    pub two_sided: bool,
+    pub loc: Loc,
+}
+
+/// A `Material` or `MakeNamedMaterial` of `kind`.
+pub(super) fn material(kind: &str, p: &Params, loc: Loc, name: &str) -> R<MaterialDesc> {
+    let kind = match kind {
+        "diffuse" => MaterialKind::Diffuse {
+            reflectance: spectra::reflectance(p, "reflectance", 0.5)?.into(),
+        },
+        "dielectric" => {
+            let roughness = roughness(p)?;
+            MaterialKind::Dielectric {
+                ior: spectra::ior(p, "eta", 1.5)?,
+                exterior_ior: 1.0,
+                roughness,
+                distribution: crate::material::microfacet::Distribution::Ggx,
+                smith: Smith::HeightCorrelated,
+            }
+        }
+        "conductor" => {
+            let roughness = roughness(p)?;
+            MaterialKind::Conductor {
+                ior: spectra::conductor(p)?,
+                exterior_ior: 1.0,
+                roughness,
+                distribution: crate::material::microfacet::Distribution::Ggx,
+                smith: Smith::HeightCorrelated,
+            }
+        }
+        other => {
+            return Err(p.err(
+                loc,
+                format!("the material \"{other}\" is not read yet (spectrace reads diffuse, dielectric and conductor)"),
+            ));
+        }
+    };
+    Ok(MaterialDesc {
+        name: name.to_string(),
+        kind,
+        loc,
+    })
+}
+
+/// pbrt-v4's microfacet roughness: `roughness`, or `uroughness`/`vroughness` (0), turned into
+/// α by `remaproughness` (true: α = √r, pbrt-v4's `TrowbridgeReitzDistribution::RoughnessToAlpha`);
+/// None when smooth (α = 0 in pbrt-v4 is its specular case).
+fn roughness(p: &Params) -> R<Option<[f64; 2]>> {
+    let r = p.float("roughness", 0.0)?;
+    let (u, v) = (p.float("uroughness", r)?, p.float("vroughness", r)?);
+    let remap = p.bool("remaproughness", true)?;
+    let alpha = |x: f64| if remap { x.max(0.0).sqrt() } else { x };
+    let (au, av) = (alpha(u), alpha(v));
+    // pbrt-v4's `EffectivelySmooth`: max(α_x, α_y) < 10⁻³
+    Ok((au.max(av) >= 1e-3).then_some([au, av]))
+}
+
+/// A `LightSource`.
+pub(super) fn light(kind: &str, p: &Params, ctm: &DMat4, loc: Loc, r: &Reader) -> R<LightDesc> {
+    let _ = r;
+    let scale = p.float("scale", 1.0)?;
+    let (kind, spectrum) = match kind {
+        "point" => {
+            let from = ctm.transform_point3(DVec3::from(p.vec3("from", [0.0; 3])?));
+            let (s, k) = spectra::illuminant(p, "I")?;
+            let power = p.float("power", -1.0)?;
+            let amount = if power > 0.0 {
+                PointAmount::Power(crate::units::Power::new::<crate::units::power::watt>(power))
+            } else {
+                PointAmount::Scale(scale * k)
+            };
+            (
+                LightKind::Point {
+                    position: [len(from.x), len(from.y), len(from.z)],
+                    amount,
+                },
+                s,
+            )
+        }
+        "distant" => {
+            let from = DVec3::from(p.vec3("from", [0.0, 0.0, 0.0])?);
+            let to = DVec3::from(p.vec3("to", [0.0, 0.0, 1.0])?);
+            let dir = ctm.transform_vector3(to - from);
+            let Some(dir) = dir.try_normalize() else {
+                return Err(p.err(loc, "a distant light's from and to coincide"));
+            };
+            let (s, k) = spectra::illuminant(p, "L")?;
+            if p.get("illuminance").is_some() {
+                return Err(p.err(
+                    p.loc_of("illuminance"),
+                    "a distant light's illuminance is not read yet",
+                ));
+            }
+            (
+                LightKind::Directional {
+                    direction: dir.to_array(),
+                    angular_diameter: Angle::new::<degree>(0.0),
+                    amount: DirectionalAmount::Scale(scale * k),
+                },
+                s,
+            )
+        }
+        "infinite" => {
+            if p.get("filename").is_some() {
+                return Err(p.err(
+                    p.loc_of("filename"),
+                    "an image infinite light is not read yet",
+                ));
+            }
+            if p.get("illuminance").is_some() {
+                return Err(p.err(
+                    p.loc_of("illuminance"),
+                    "an infinite light's illuminance is not read yet",
+                ));
+            }
+            let (s, k) = spectra::illuminant(p, "L")?;
+            (
+                LightKind::Environment {
+                    amount: EmitAmount::Scale(scale * k),
+                },
+                s,
+            )
+        }
+        other => {
+            return Err(p.err(
+                loc,
+                format!("the light \"{other}\" is not read yet (spectrace reads point, distant and infinite)"),
+            ));
+        }
+    };
+    Ok(LightDesc {
+        kind,
+        spectrum,
+        sampling_weight: 1.0,
+        loc,
+    })
+}
+
+/// An `AreaLightSource`.
+pub(super) fn area_light(kind: &str, p: &Params, loc: Loc) -> R<AreaLight> {
+    if kind != "diffuse" {
+        return Err(p.err(
+            loc,
+            format!("the area light \"{kind}\" is not read (pbrt-v4 has only \"diffuse\")"),
+        ));
+    }
+    if p.get("power").is_some() || p.get("filename").is_some() {
+        return Err(p.err(loc, "an area light's power or image is not read yet"));
+    }
+    let (spectrum, k) = spectra::illuminant(p, "L")?;
+    Ok(AreaLight {
+        spectrum,
+        scale: p.float("scale", 1.0)? * k,
+        two_sided: p.bool("twosided", false)?,
+        loc,
+    })
+}
+
+/// The scene: camera, film, sampler and integrator from their directives, and what the world
+/// block made.
+pub(super) fn finish(r: Reader) -> Result<SceneDesc, LoadError> {
+    let file = r.root.clone();
+    let Some((ctm, cam, kind, cam_loc)) = &r.camera else {
+        return Err(LoadError::new(
+            &file,
+            Loc { line: 1, col: 1 },
+            "",
+            "the scene has no Camera",
+        ));
+    };
+    let (width, height, film_loc) = match &r.film {
+        Some((p, kind, loc)) => {
+            if kind != "rgb" {
+                return Err(p.err(
+                    *loc,
+                    format!("the film \"{kind}\" is not read yet (spectrace reads \"rgb\")"),
+                ));
+            }
+            let w = p.int("xresolution", 1280)?;
+            let h = p.int("yresolution", 720)?;
+            let _ = p.string("filename")?;
+            p.check_unused("film \"rgb\"")?;
+            (w, h, *loc)
+        }
+        None => (1280, 720, Loc { line: 0, col: 0 }),
+    };
+    if !(1..=32768).contains(&width) || !(1..=32768).contains(&height) {
+        return Err(LoadError::new(
+            &file,
+            film_loc,
+            "",
+            format!("a film of {width} × {height} pixels"),
+        ));
+    }
+    let spp = match &r.sampler {
+        Some((p, _, _)) => {
+            let n = p.int("pixelsamples", 16)?;
+            p.check_unused("the sampler")?;
+            n
+        }
+        None => 16,
+    };
+    let max_depth = match &r.integrator {
+        Some((p, kind, loc)) => {
+            if kind != "path" {
+                return Err(p.err(
+                    *loc,
+                    format!("the integrator \"{kind}\" is not read yet (spectrace reads \"path\")"),
+                ));
+            }
+            let d = p.int("maxdepth", 5)?;
+            p.check_unused("integrator \"path\"")?;
+            d
+        }
+        None => 5,
+    };
+    let camera = camera(ctm, cam, kind, *cam_loc, width, height)?;
+    cam.check_unused(&format!("camera \"{kind}\""))?;
+    let nm = |x: f64| Length::new::<crate::units::length::nanometer>(x);
+    Ok(SceneDesc {
+        path: file.clone(),
+        wavelength_range: [nm(360.0), nm(830.0)],
+        camera,
+        film: FilmDesc {
+            width: width as u32,
+            height: height as u32,
+            spp: spp.clamp(1, 1 << 24) as u32,
+            // pbrt-v4's default pixel filter: a Gaussian of radius 1.5 px, σ 0.5
+            filter: crate::film::filter::gaussian::Desc::mitsuba(0.5),
+            spectral_bins: 0,
+            exposure_ev: None,
+            loc: film_loc,
+        },
+        integrator: IntegratorDesc {
+            kind: IntegratorKind::Path,
+            max_depth: max_depth.clamp(0, 1 << 16) as u32,
+            rr_depth: 1,
+            light_selection: LightSelection::Tree,
+            moment: false,
+            polarised: false,
+            split_dispersion: true,
+            aovs: Vec::new(),
+        },
+        materials: r.materials,
+        shapes: r.shapes,
+        groups: Vec::new(),
+        instances: Vec::new(),
+        lights: r.lights,
+        media: Vec::new(),
+        camera_medium: None,
+        sensors: Vec::new(),
+        notes: r.notes,
+    })
+}
+
+/// A `perspective` camera: pbrt-v4's `fov` spans the image's shorter axis; its camera space
+/// has +x to the image's right, so the image is spectrace's mirrored left to right.
+fn camera(ctm: &DMat4, p: &Params, kind: &str, loc: Loc, w: i64, h: i64) -> R<CameraDesc> {
+    if kind != "perspective" {
+        return Err(p.err(
+            loc,
+            format!("the camera \"{kind}\" is not read yet (spectrace reads \"perspective\")"),
+        ));
+    }
+    let fov = p.float("fov", 90.0)?;
+    if !(fov > 0.0 && fov < 180.0) {
+        return Err(p.err(
+            p.loc_of("fov"),
+            format!("fov must lie in (0, 180) degrees, not {fov}"),
+        ));
+    }
+    for unread in [
+        "lensradius",
+        "focaldistance",
+        "screenwindow",
+        "frameaspectratio",
+    ] {
+        if p.get(unread).is_some() {
+            return Err(p.err(
+                p.loc_of(unread),
+                format!("a perspective camera's \"{unread}\" is not read yet"),
+            ));
+        }
+    }
+    let _ = (w, h);
+    let world_from_camera = ctm.inverse();
+    let eye = world_from_camera.transform_point3(DVec3::ZERO);
+    let target = world_from_camera.transform_point3(DVec3::Z);
+    let up = world_from_camera.transform_vector3(DVec3::Y);
+    Ok(CameraDesc {
+        kind: CameraKind::Perspective {
+            projection: Projection::Fov {
+                fov: Angle::new::<degree>(fov),
+                axis: FovAxis::Smaller,
+            },
+        },
+        eye: [len(eye.x), len(eye.y), len(eye.z)],
+        target: [len(target.x), len(target.y), len(target.z)],
+        up: up.to_array(),
+        mirror: true,
+        sensor: None,
+        loc,
+    })
+}

@@ -1,0 +1,150 @@
+//! The directives that change pbrt-v4's current transformation, and the bare arguments of
+//! directives (a quoted name, a fixed count of numbers).
+
+use std::path::Path;
+
+use glam::DMat4;
+
+use super::Reader;
+use super::lexer::{Tok, Token};
+use super::params::R;
+use super::shapes;
+use crate::loader::{LoadError, Loc};
+
+impl Reader {
+    /// The next token as a string argument of directive `d`.
+    pub(super) fn string_arg(
+        toks: &[Token],
+        i: &mut usize,
+        file: &Path,
+        d: &str,
+        loc: Loc,
+    ) -> R<String> {
+        match toks.get(*i) {
+            Some(Token {
+                kind: Tok::Str(s), ..
+            }) => {
+                *i += 1;
+                Ok(s.clone())
+            }
+            _ => Err(LoadError::new(
+                file,
+                loc,
+                "",
+                format!("{d} needs a quoted name"),
+            )),
+        }
+    }
+
+    /// `n` numbers after directive `d`, bare or in brackets.
+    pub(super) fn numbers(
+        toks: &[Token],
+        i: &mut usize,
+        file: &Path,
+        d: &str,
+        loc: Loc,
+        n: usize,
+    ) -> R<Vec<f64>> {
+        let bracket = matches!(
+            toks.get(*i),
+            Some(Token {
+                kind: Tok::Open,
+                ..
+            })
+        );
+        if bracket {
+            *i += 1;
+        }
+        let mut v = Vec::new();
+        while v.len() < n {
+            match toks.get(*i) {
+                Some(Token {
+                    kind: Tok::Word(w),
+                    loc: l,
+                }) => {
+                    v.push(w.parse::<f64>().map_err(|_| {
+                        LoadError::new(file, *l, "", format!("{d}: \"{w}\" is not a number"))
+                    })?);
+                    *i += 1;
+                }
+                _ => {
+                    return Err(LoadError::new(
+                        file,
+                        loc,
+                        "",
+                        format!("{d} takes {n} numbers, found {}", v.len()),
+                    ));
+                }
+            }
+        }
+        if bracket {
+            match toks.get(*i) {
+                Some(Token {
+                    kind: Tok::Close, ..
+                }) => *i += 1,
+                _ => return Err(LoadError::new(file, loc, "", format!("{d}: missing ]"))),
+            }
+        }
+        Ok(v)
+    }
+
+    /// The directives that change the current transformation.
+    pub(super) fn transform(
+        &mut self,
+        d: &str,
+        toks: &[Token],
+        i: &mut usize,
+        file: &Path,
+        loc: Loc,
+    ) -> R<()> {
+        let err = |m: String| LoadError::new(file, loc, "", m);
+        let nums = |i: &mut usize, n: usize| Self::numbers(toks, i, file, d, loc, n);
+        match d {
+            "Identity" => self.state.ctm = DMat4::IDENTITY,
+            "Translate" => {
+                let v = nums(i, 3)?;
+                self.concat(DMat4::from_translation([v[0], v[1], v[2]].into()));
+            }
+            "Scale" => {
+                let v = nums(i, 3)?;
+                self.concat(DMat4::from_scale([v[0], v[1], v[2]].into()));
+            }
+            "Rotate" => {
+                let v = nums(i, 4)?;
+                let axis = glam::DVec3::new(v[1], v[2], v[3]);
+                let Some(axis) = axis.try_normalize() else {
+                    return Err(err("Rotate: the axis is zero".into()));
+                };
+                self.concat(DMat4::from_axis_angle(axis, v[0].to_radians()));
+            }
+            "LookAt" => {
+                let v = nums(i, 9)?;
+                let m = shapes::look_at(&v).map_err(err)?;
+                self.concat(m);
+            }
+            "Transform" | "ConcatTransform" => {
+                let v = nums(i, 16)?;
+                // pbrt lists the matrix column by column (its `Transpose` of the row-major read)
+                let m = DMat4::from_cols_slice(&v);
+                if d == "Transform" {
+                    self.state.ctm = m;
+                } else {
+                    self.concat(m);
+                }
+            }
+            "CoordinateSystem" => {
+                let n = Self::string_arg(toks, i, file, d, loc)?;
+                self.coordinate_systems.insert(n, self.state.ctm);
+            }
+            "CoordSysTransform" => {
+                let n = Self::string_arg(toks, i, file, d, loc)?;
+                match self.coordinate_systems.get(&n) {
+                    Some(m) => self.state.ctm = *m,
+                    None => return Err(err(format!("no coordinate system named \"{n}\""))),
+                }
+            }
+            _ => unreachable!("only transformation directives are passed here"),
+        }
+        Ok(())
+    }
+}

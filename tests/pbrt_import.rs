@@ -1,0 +1,95 @@
+//! pbrt-v4 scenes (`spectrace::loader::pbrt`) against closed forms: pbrt-v4's light
+//! normalisation (∫ȳ·L dλ = `scale`, its film's Y; spectrace's Y is 683 lm/W times it), a
+//! diffuse sphere under a uniform sky (Y = ρ·scale), and the side of the image its camera puts
+//! `up × view direction` on. Located errors are in `tests/bad_scenes/pbrt_*.pbrt`.
+
+mod support;
+
+use std::path::Path;
+
+use spectrace::colour::cie::K_M;
+
+fn render(name: &str) -> (Vec<[f32; 3]>, u32, u32) {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data/pbrt")
+        .join(name);
+    let desc = spectrace::loader::pbrt::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    let (w, h) = (desc.film.width, desc.film.height);
+    let scene = spectrace::build::build(&desc).unwrap_or_else(|e| panic!("{e}"));
+    let (img, _) = support::render::render_with(&scene, |_| {});
+    (img.xyz, w, h)
+}
+
+/// Y over the pixels whose centres lie within `r0` ≤ r < `r1` pixels of the image centre.
+fn ring_mean(img: &[[f32; 3]], w: u32, h: u32, r0: f64, r1: f64) -> (f64, usize) {
+    let (mut sum, mut n) = (0.0, 0);
+    for y in 0..h {
+        for x in 0..w {
+            let (dx, dy) = (
+                x as f64 + 0.5 - w as f64 / 2.0,
+                y as f64 + 0.5 - h as f64 / 2.0,
+            );
+            let r = (dx * dx + dy * dy).sqrt();
+            if r >= r0 && r < r1 {
+                sum += img[(y * w + x) as usize][1] as f64;
+                n += 1;
+            }
+        }
+    }
+    (sum / n as f64, n)
+}
+
+/// The sky reads Y = 683 × 2 cd/m² (pbrt-v4's `scale` 2 on a blackbody normalised to ∫ȳ = 1),
+/// the sphere half of it. The sphere spans 9.1 pixels of radius (its angular radius
+/// asin(1/5) against the 15° half-field): its inside within 7, the sky beyond 11.
+#[test]
+fn sphere_under_a_uniform_sky_reflects_rho() {
+    let (img, w, h) = render("furnace.pbrt");
+    let sky = 2.0 * K_M;
+    let (inside, n_in) = ring_mean(&img, w, h, 0.0, 7.0);
+    let (outside, n_out) = ring_mean(&img, w, h, 11.5, 100.0);
+    println!(
+        "sphere {inside} ({n_in} px), sky {outside} ({n_out} px), want {} and {sky}",
+        0.5 * sky
+    );
+    assert!(
+        (outside / sky - 1.0).abs() < 1e-4,
+        "sky {outside} against {sky}"
+    );
+    assert!(
+        (inside / (0.5 * sky) - 1.0).abs() < 2e-3,
+        "sphere {inside} against {}",
+        0.5 * sky
+    );
+}
+
+/// The square at world −x shows on the image's right (pbrt-v4's `up × dir`), at Y = 683 × 3.
+#[test]
+fn camera_puts_up_cross_dir_on_the_right() {
+    let (img, w, h) = render("mirror.pbrt");
+    let half = |right: bool| -> f64 {
+        let mut s = 0.0;
+        for y in 0..h {
+            for x in 0..w {
+                if (x >= w / 2) == right {
+                    s += img[(y * w + x) as usize][1] as f64;
+                }
+            }
+        }
+        s
+    };
+    let (l, r) = (half(false), half(true));
+    println!("left {l}, right {r}");
+    assert!(l == 0.0 && r > 0.0, "left half {l}, right half {r}");
+    // 5.5 px per unit at 5 m (10 px for tan 20°): the square spans 2.75 to 8.2 px right of the
+    // centre and ±2.75 px up and down; this pixel's centre is 5.5 px right, 0.5 px down, 2.25 px
+    // or more from its edges (the filter reaches 1.5)
+    let x = w / 2 + 5;
+    let y = h / 2;
+    let v = img[(y * w + x) as usize][1] as f64;
+    assert!(
+        (v / (3.0 * K_M) - 1.0).abs() < 1e-3,
+        "{v} against {}",
+        3.0 * K_M
+    );
+}
