@@ -219,6 +219,26 @@ pub mod embedded {
         "TiC_palik" "TiN" "TiN_palik" "TiO2-e" "TiO2-e_palik" "TiO2" "TiO2_palik" "VC"
         "VC_palik" "VN" "VN_palik" "V_palik" "W" "a-C" "d-C" "d-C_palik"
     }
+    macro_rules! pbrt_spectra {
+        ($($name:literal)+) => {
+            /// pbrt-v4's named glass and metal spectra (`glass-BK7`, `metal-Au-eta`, …): (name,
+            /// (path, contents)) of `spectra/pbrt/<name>.csv`, written by
+            /// `scripts/gen_pbrt_spectra.py` from pbrt-v4's `src/pbrt/util/spectrum.cpp`.
+            pub const PBRT_SPECTRA: &[(&str, (&str, &str))] = &[$((
+                $name,
+                (
+                    concat!("spectra/pbrt/", $name, ".csv"),
+                    include_str!(concat!("../spectra/pbrt/", $name, ".csv")),
+                ),
+            )),+];
+        };
+    }
+    pbrt_spectra! {
+        "glass-BK7" "glass-BAF10" "glass-FK51A" "glass-LASF9" "glass-F5" "glass-F10" "glass-F11"
+        "metal-Ag-eta" "metal-Ag-k" "metal-Al-eta" "metal-Al-k" "metal-Au-eta" "metal-Au-k"
+        "metal-Cu-eta" "metal-Cu-k" "metal-CuZn-eta" "metal-CuZn-k" "metal-MgO-eta" "metal-MgO-k"
+        "metal-TiO2-eta" "metal-TiO2-k"
+    }
 }
 
 /// Parses an embedded table. The files are part of the build and covered by tests, so a parse

@@ -15,40 +15,36 @@ use crate::spectrum::ior::{ComplexIor, Ior};
 use crate::spectrum::named::{Named, lookup};
 use crate::spectrum::{PiecewiseLinear, Spectrum, rgb2spec};
 
-/// spectrace's name for one of pbrt-v4's named spectra (its `Spectra::Init` list).
-fn spectrace_name(pbrt: &str) -> Option<String> {
-    let glass = |g: &str| Some(format!("glass:{g}"));
-    match pbrt {
-        "glass-BK7" => glass("N-BK7"),
-        "glass-BAF10" => glass("N-BAF10"),
-        "glass-FK51A" => glass("N-FK51A"),
-        "glass-LASF9" => glass("N-LASF9"),
-        // pbrt-v4's F5, F10 and F11 hold Schott's SF5, SF10 and SF11
-        "glass-F5" => glass("SF5"),
-        "glass-F10" => glass("SF10"),
-        "glass-F11" => glass("SF11"),
-        "stdillum-A" => Some("cie-a".into()),
-        "stdillum-D50" => Some("cie-d50".into()),
-        "stdillum-D65" => Some("cie-d65".into()),
-        "stdillum-F2" => Some("cie-f2".into()),
-        "stdillum-F11" => Some("cie-f11".into()),
-        _ => None,
-    }
+/// spectrace's name for one of pbrt-v4's standard illuminants (the CIE's tables, the same data).
+fn spectrace_name(pbrt: &str) -> Option<&'static str> {
+    Some(match pbrt {
+        "stdillum-A" => "cie-a",
+        "stdillum-D50" => "cie-d50",
+        "stdillum-D65" => "cie-d65",
+        "stdillum-F2" => "cie-f2",
+        "stdillum-F11" => "cie-f11",
+        _ => return None,
+    })
 }
 
-/// The metal of a pbrt-v4 `metal-<X>-eta` or `metal-<X>-k` name, as spectrace names it.
-fn metal(pbrt: &str) -> Option<(String, bool)> {
-    let rest = pbrt.strip_prefix("metal-")?;
-    let (m, eta) = match (rest.strip_suffix("-eta"), rest.strip_suffix("-k")) {
-        (Some(m), _) => (m, true),
-        (None, Some(m)) => (m, false),
-        _ => return None,
-    };
-    let name = ["metal:", "mitsuba:"]
+/// One of pbrt-v4's named glass or metal tables (`spectra/pbrt/`, pbrt-v4's own arrays),
+/// extended with its end values to 359 and 831 nm as pbrt-v4's `FromInterleaved` does.
+fn pbrt_table(name: &str) -> Option<Arc<PiecewiseLinear>> {
+    let (_, file) = crate::data::embedded::PBRT_SPECTRA
         .iter()
-        .map(|p| format!("{p}{m}"))
-        .find(|n| matches!(lookup(n), Ok(Named::Conductor(_))))?;
-    Some((name, eta))
+        .find(|(n, _)| *n == name)?;
+    let t = crate::data::embedded_table(*file);
+    let curve = crate::spectrum::data::table_to_curve(&t, 0, 1, file.0).ok()?;
+    let (mut l, mut v) = (curve.wavelengths().to_vec(), curve.values().to_vec());
+    if l[0] > 360.0 {
+        l.insert(0, 359.0);
+        v.insert(0, v[0]);
+    }
+    if l[l.len() - 1] < 830.0 {
+        l.push(831.0);
+        v.push(v[v.len() - 1]);
+    }
+    PiecewiseLinear::new(l, v).ok().map(Arc::new)
 }
 
 /// A `"spectrum"` parameter's λ/value pairs as a table (0 outside it, as pbrt-v4).
@@ -71,8 +67,11 @@ fn pairs(p: &Params, q: &Param) -> R<Arc<PiecewiseLinear>> {
 
 /// A named spectrum's curve, for a reflectance or an illuminant.
 fn named_curve(p: &Params, q: &Param, name: &str) -> R<Spectrum> {
-    let ours = spectrace_name(name).unwrap_or_else(|| name.to_string());
-    match lookup(&ours) {
+    if let Some(t) = pbrt_table(name) {
+        return Ok(Spectrum::Piecewise(t));
+    }
+    let ours = spectrace_name(name).unwrap_or(name);
+    match lookup(ours) {
         Ok(Named::Curve { spectrum, .. }) => Ok(spectrum),
         Ok(_) => Err(p.err(q.loc, format!("\"{}\": \"{name}\" is an index, not a spectrum of values", q.name))),
         Err(e) => Err(p.err(
@@ -117,16 +116,14 @@ pub(super) fn ior(p: &Params, name: &str, default: f64) -> R<Ior> {
     };
     match (q.ty.as_str(), &q.nums[..], &q.strs[..]) {
         ("float", &[n], _) if n > 0.0 => Ok(Ior::Constant(n as f32)),
-        ("spectrum", [], [s]) => {
-            let ours = spectrace_name(s).unwrap_or_else(|| s.clone());
-            match lookup(&ours) {
-                Ok(Named::Dielectric(g)) => Ok(g.ior),
-                _ => Err(p.err(
-                    q.loc,
-                    format!("\"{name}\": \"{s}\" is not a glass spectrace knows"),
-                )),
-            }
-        }
+        // pbrt-v4's glass-* names, with its own tables
+        ("spectrum", [], [s]) => match pbrt_table(s) {
+            Some(t) if s.starts_with("glass-") => Ok(Ior::Table(t)),
+            _ => Err(p.err(
+                q.loc,
+                format!("\"{name}\": \"{s}\" is not one of pbrt-v4's glasses (glass-BK7, glass-BAF10, glass-FK51A, glass-LASF9, glass-F5, glass-F10, glass-F11)"),
+            )),
+        },
         ("spectrum", v, []) if !v.is_empty() => Ok(Ior::Table(pairs(p, q)?)),
         _ => Err(p.err(
             q.loc,
@@ -158,18 +155,12 @@ pub(super) fn conductor(p: &Params) -> R<ComplexIor> {
             },
         };
         let loc = q.map_or(p.loc_of(name), |q| q.loc);
-        let Some((ours, is_eta)) = metal(&named) else {
-            return Err(p.err(
+        match pbrt_table(&named) {
+            Some(t) if named.starts_with("metal-") => Ok(t),
+            _ => Err(p.err(
                 loc,
-                format!("\"{name}\": \"{named}\" is not a metal spectrace knows"),
-            ));
-        };
-        if is_eta != (name == "eta") {
-            return Err(p.err(loc, format!("\"{name}\" given \"{named}\"")));
-        }
-        match lookup(&ours) {
-            Ok(Named::Conductor(m)) => Ok(if is_eta { m.ior.n } else { m.ior.k }),
-            _ => Err(p.err(loc, format!("\"{named}\" is not a metal spectrace knows"))),
+                format!("\"{name}\": \"{named}\" is not one of pbrt-v4's metals (metal-<Ag, Al, Au, Cu, CuZn, MgO or TiO2>-eta and -k)"),
+            )),
         }
     };
     Ok(ComplexIor {

@@ -1,0 +1,93 @@
+#!/usr/bin/env python3
+"""Writes tests/data/pbrt_refs.toml: numbers pbrt-v4 itself renders for small pbrt-v4 scenes,
+which tests/pbrt_import.rs holds spectrace's pbrt-v4 reader to.
+
+Each [[case]] is a scene (16 × 16 pixels, `zsobol`, the default Gaussian filter) and the mean
+R, G, B and Y = 0.2126 R + 0.7152 G + 0.0722 B over the image of two renders with seeds 1 and
+2 (pbrt-v4's film: Y = ∫ȳ·L dλ), with the standard error of the mean Y (the standard deviation
+of the per-pixel difference of the seeds / 2 / √pixels).
+
+Usage: build pbrt-v4 with ../shared/tools/pbrt/build_pbrt.sh (it lands in
+~/.cache/pbrt-v4/bin/pbrt, or set PBRT), pip install numpy OpenImageIO;
+python3 scripts/gen_pbrt_refs.py
+"""
+import os
+import subprocess
+import tempfile
+
+import numpy as np
+import OpenImageIO as oiio
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+PBRT = os.environ.get("PBRT", os.path.expanduser("~/.cache/pbrt-v4/bin/pbrt"))
+SPP = 256
+
+HEAD = f"""LookAt 0 0 5  0 0 0  0 1 0
+Camera "perspective" "float fov" [30]
+Film "rgb" "integer xresolution" 16 "integer yresolution" 16
+Sampler "zsobol" "integer pixelsamples" {SPP}
+"""
+SKY = 'LightSource "infinite" "blackbody L" 5000 "float scale" 2\n'
+
+CASES = [
+    # metals by pbrt-v4's names, smooth and rough, under a uniform sky
+    ("gold_rough", HEAD + 'Integrator "path" "integer maxdepth" 5\nWorldBegin\n' + SKY
+     + 'Material "conductor" "spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k" '
+       '"float roughness" 0.05\nShape "sphere" "float radius" 1\n'),
+    ("copper_default", HEAD + 'Integrator "path" "integer maxdepth" 5\nWorldBegin\n' + SKY
+     + 'Material "conductor"\nShape "sphere" "float radius" 1\n'),
+    # a named glass (dispersive) sphere in front of a lit diffuse wall
+    ("bk7_sphere", HEAD + 'Integrator "path" "integer maxdepth" 8\nWorldBegin\n'
+     + 'LightSource "distant" "point3 from" [1 2 3] "point3 to" [0 0 0] "blackbody L" 4000 "float scale" 3\n'
+     + 'LightSource "infinite" "rgb L" [0.2 0.3 0.5]\n'
+     + 'AttributeBegin\nMaterial "diffuse" "rgb reflectance" [0.7 0.6 0.3]\nTranslate 0 0 -2\n'
+       'Shape "trianglemesh" "point3 P" [-4 -4 0  4 -4 0  4 4 0  -4 4 0] "integer indices" [0 1 2 0 2 3]\n'
+       'AttributeEnd\n'
+     + 'Material "dielectric" "spectrum eta" "glass-BK7"\nShape "sphere" "float radius" 1\n'),
+    # a box lit by a two-sided area light and a point light, diffuse walls (interreflection)
+    ("box_lights", HEAD + 'Integrator "path" "integer maxdepth" 6\nWorldBegin\n'
+     + 'LightSource "point" "point3 from" [0.5 0.8 1] "spectrum I" [400 1 500 2 600 3 700 2] "float scale" 4\n'
+     + 'AttributeBegin\nAreaLightSource "diffuse" "blackbody L" 6500 "float scale" 5 "bool twosided" true\n'
+       'Translate 0 1.9 0\nRotate 90 1 0 0\nShape "disk" "float radius" 0.5\nAttributeEnd\n'
+     + 'Material "diffuse" "spectrum reflectance" [400 0.3 550 0.6 700 0.8]\n'
+       'Shape "trianglemesh" "point3 P" [-2 -2 -2  2 -2 -2  2 2 -2  -2 2 -2  -2 -2 2  2 -2 2  2 2 2  -2 2 2]\n'
+       '  "integer indices" [0 1 2 0 2 3  0 4 5 0 5 1  3 2 6 3 6 7  0 3 7 0 7 4  1 5 6 1 6 2]\n'),
+]
+
+
+def read_rgb(path):
+    i = oiio.ImageInput.open(path)
+    a = np.array(i.read_image(format="float"))
+    i.close()
+    return a[..., :3].astype(np.float64)
+
+
+def main():
+    out = ["# Written by scripts/gen_pbrt_refs.py with pbrt-v4 (../shared/tools/pbrt/build_pbrt.sh,",
+           f"# mmp/pbrt-v4 5f7a6068): mean R, G, B, Y of 16 × 16 renders at {SPP} spp, seeds 1 and 2.", ""]
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, text in CASES:
+            scene = os.path.join(tmp, name + ".pbrt")
+            with open(scene, "w") as f:
+                f.write(text)
+            imgs = []
+            for seed in (1, 2):
+                exr = os.path.join(tmp, f"{name}_{seed}.exr")
+                subprocess.run([PBRT, "--quiet", "--seed", str(seed), "--outfile", exr, scene],
+                               check=True, cwd=tmp)
+                imgs.append(read_rgb(exr))
+            ys = [0.2126 * a[..., 0] + 0.7152 * a[..., 1] + 0.0722 * a[..., 2] for a in imgs]
+            n = ys[0].size
+            se = float((ys[0] - ys[1]).std() / 2 / np.sqrt(n))
+            rgb = ((imgs[0] + imgs[1]) / 2).reshape(-1, 3).mean(0)
+            y = float((ys[0] + ys[1]).mean() / 2)
+            print(name, rgb, y, se)
+            out += ["[[case]]", f'name = "{name}"', f"spp = {SPP}", f"pbrt = '''\n{text}'''",
+                    "rgb = [" + ", ".join(f"{v:.7g}" for v in rgb) + "]",
+                    f"y = {y:.7g}", f"stderr = {se:.4g}", ""]
+    with open(os.path.join(ROOT, "tests", "data", "pbrt_refs.toml"), "w") as f:
+        f.write("\n".join(out))
+
+
+if __name__ == "__main__":
+    main()
