@@ -51,7 +51,9 @@ CASES = [
        'Translate 0 1.9 0\nRotate 90 1 0 0\nShape "disk" "float radius" 0.5\nAttributeEnd\n'
      + 'Material "diffuse" "spectrum reflectance" [400 0.3 550 0.6 700 0.8]\n'
        'Shape "trianglemesh" "point3 P" [-2 -2 -2  2 -2 -2  2 2 -2  -2 2 -2  -2 -2 2  2 -2 2  2 2 2  -2 2 2]\n'
-       '  "integer indices" [0 1 2 0 2 3  0 4 5 0 5 1  3 2 6 3 6 7  0 3 7 0 7 4  1 5 6 1 6 2]\n'),
+       '  "integer indices" [0 1 2 0 2 3  0 4 5 0 5 1  3 2 6 3 6 7  0 3 7 0 7 4  1 5 6 1 6 2]\n'
+     + 'AttributeBegin\nMaterial "diffuse" "blackbody reflectance" 3000\nRotate 60 1 0 0\n'
+       'Shape "cylinder" "float radius" 0.4 "float zmin" -0.8 "float zmax" 0.6\nAttributeEnd\n'),
 ]
 
 

@@ -78,6 +78,26 @@ pub(super) fn shape(kind: &str, p: &Params, loc: Loc, r: &mut Reader, file: &Pat
                 radius: len(radius),
             }
         }
+        // pbrt-v4's cylinder: around z from zmin to zmax, open at both ends, normals outwards
+        "cylinder" => {
+            let radius = p.float("radius", 1.0)?;
+            let (z0, z1) = (p.float("zmin", -1.0)?, p.float("zmax", 1.0)?);
+            if p.get("phimax").is_some() {
+                return Err(p.err(
+                    p.loc_of("phimax"),
+                    "a partial cylinder (\"phimax\") is not read yet",
+                ));
+            }
+            if !(radius > 0.0) || z0 == z1 {
+                return Err(p.err(loc, "a cylinder needs a positive radius and zmin ≠ zmax"));
+            }
+            ShapeKind::Cylinder {
+                p0: [len(0.0), len(0.0), len(z0.min(z1))],
+                p1: [len(0.0), len(0.0), len(z0.max(z1))],
+                radius: len(radius),
+                flipped: false,
+            }
+        }
         "trianglemesh" => triangle_mesh(p, loc)?,
         "plymesh" => {
             let name = p
@@ -109,7 +129,7 @@ pub(super) fn shape(kind: &str, p: &Params, loc: Loc, r: &mut Reader, file: &Pat
         other => {
             return Err(p.err(
                 loc,
-                format!("the shape \"{other}\" is not read yet (spectrace reads sphere, disk, trianglemesh and plymesh)"),
+                format!("the shape \"{other}\" is not read yet (spectrace reads sphere, cylinder, disk, trianglemesh and plymesh)"),
             ));
         }
     };

@@ -98,6 +98,10 @@ pub(super) fn reflectance(p: &Params, name: &str, default: f64) -> R<Spectrum> {
             }),
         ("spectrum", [], [s]) => named_curve(p, q, s),
         ("spectrum", v, []) if !v.is_empty() => Ok(Spectrum::Piecewise(pairs(p, q)?)),
+        // Planck's curve of peak 1, a reflectance in [0, 1]
+        ("blackbody", &[t], _) if t > 0.0 => Ok(Spectrum::Blackbody(
+            crate::spectrum::blackbody::Blackbody::normalized(t as f32),
+        )),
         ("texture", _, _) => Err(p.err(q.loc, format!("\"{name}\": textures are not read yet"))),
         _ => Err(p.err(
             q.loc,

@@ -258,6 +258,14 @@ pub fn albedo_table(rgb: [f32; 3]) -> Result<Spectrum, RgbError> {
 /// A spectrum for a linear sRGB with components ≥ 0 and possibly above 1:
 /// `2m · s(…)` for the RGB divided by `2m`, where m is the largest component.
 pub fn unbounded(rgb: [f32; 3]) -> Result<Spectrum, RgbError> {
+    unbounded_by(rgb, fit_srgb)
+}
+
+/// `2m · s(…)` with the sigmoid `fit` gives the RGB divided by `2m`.
+fn unbounded_by(
+    rgb: [f32; 3],
+    fit: impl Fn([f32; 3]) -> SigmoidPolynomial,
+) -> Result<Spectrum, RgbError> {
     check(rgb)?;
     let m = rgb.iter().copied().fold(0.0f32, f32::max);
     if m == 0.0 {
@@ -265,7 +273,7 @@ pub fn unbounded(rgb: [f32; 3]) -> Result<Spectrum, RgbError> {
     }
     let scale = 2.0 * m;
     Ok(Spectrum::Rgb {
-        poly: fit_srgb(rgb.map(|v| v / scale)),
+        poly: fit(rgb.map(|v| v / scale)),
         scale,
     })
 }
@@ -273,16 +281,7 @@ pub fn unbounded(rgb: [f32; 3]) -> Result<Spectrum, RgbError> {
 /// [`unbounded`] as Mitsuba 3 upsamples an unbounded colour (`srgb` with `unbounded`): the
 /// table's coefficients for the RGB over 2m, not refined.
 pub fn unbounded_table(rgb: [f32; 3]) -> Result<Spectrum, RgbError> {
-    check(rgb)?;
-    let m = rgb.iter().copied().fold(0.0f32, f32::max);
-    if m == 0.0 {
-        return Ok(Spectrum::Constant(0.0));
-    }
-    let scale = 2.0 * m;
-    Ok(Spectrum::Rgb {
-        poly: srgb_table().lookup(rgb.map(|v| v / scale)),
-        scale,
-    })
+    unbounded_by(rgb, |c| srgb_table().lookup(c))
 }
 
 /// D65 relative SPD normalised so that ∫ D65(λ) ȳ(λ) dλ = 1 over 360–830 nm (unit nm⁻¹).
