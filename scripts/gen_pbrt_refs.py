@@ -54,6 +54,20 @@ CASES = [
        '  "integer indices" [0 1 2 0 2 3  0 4 5 0 5 1  3 2 6 3 6 7  0 3 7 0 7 4  1 5 6 1 6 2]\n'
      + 'AttributeBegin\nMaterial "diffuse" "blackbody reflectance" 3000\nRotate 60 1 0 0\n'
        'Shape "cylinder" "float radius" 0.4 "float zmin" -0.8 "float zmax" 0.6\nAttributeEnd\n'),
+    # pbrt-v4's photometric amounts: a point light's `power`, a distant light's and a uniform
+    # sky's `illuminance`, over a diffuse floor seen from above
+    ("photometric", """LookAt 0 6 0.5  0 0 0  0 0 1
+Camera "perspective" "float fov" [60]
+Film "rgb" "integer xresolution" 16 "integer yresolution" 16
+Sampler "zsobol" "integer pixelsamples" 256
+Integrator "path" "integer maxdepth" 3
+WorldBegin
+LightSource "point" "point3 from" [1 2 0] "blackbody I" 3000 "float power" 40
+LightSource "distant" "point3 from" [1 3 2] "point3 to" [0 0 0] "rgb L" [0.9 0.7 0.4] "float illuminance" 2
+LightSource "infinite" "blackbody L" 9000 "float illuminance" 0.6
+Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]
+Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indices" [0 2 1 0 3 2]
+"""),
 ]
 
 

@@ -2,6 +2,8 @@
 //! defaults, `src/pbrt/shapes.cpp`, `materials.cpp`, `lights.cpp`, `cameras.cpp`, `film.cpp`)
 //! into the scene description. Lengths are read as metres (pbrt's files have no unit).
 
+use std::f64::consts::PI;
+
 use glam::{DMat4, DVec3};
 
 use super::params::{Params, R};
@@ -83,16 +85,17 @@ pub(super) fn light(kind: &str, p: &Params, ctm: &DMat4, loc: Loc, r: &Reader) -
         "point" => {
             let from = ctm.transform_point3(DVec3::from(p.vec3("from", [0.0; 3])?));
             let (s, k) = spectra::illuminant(p, "I")?;
+            // pbrt-v4's `power` sets ∫ȳ·Φ dλ (its luminous units) over 4π sr
             let power = p.float("power", -1.0)?;
-            let amount = if power > 0.0 {
-                PointAmount::Power(crate::units::Power::new::<crate::units::power::watt>(power))
+            let k = if power > 0.0 {
+                k * power / (4.0 * PI)
             } else {
-                PointAmount::Scale(scale * k)
+                k
             };
             (
                 LightKind::Point {
                     position: [len(from.x), len(from.y), len(from.z)],
-                    amount,
+                    amount: PointAmount::Scale(scale * k),
                 },
                 s,
             )
@@ -105,12 +108,9 @@ pub(super) fn light(kind: &str, p: &Params, ctm: &DMat4, loc: Loc, r: &Reader) -
                 return Err(p.err(loc, "a distant light's from and to coincide"));
             };
             let (s, k) = spectra::illuminant(p, "L")?;
-            if p.get("illuminance").is_some() {
-                return Err(p.err(
-                    p.loc_of("illuminance"),
-                    "a distant light's illuminance is not read yet",
-                ));
-            }
+            // `illuminance`: ∫ȳ·E dλ on a plane facing the light
+            let e = p.float("illuminance", -1.0)?;
+            let k = if e > 0.0 { k * e } else { k };
             (
                 LightKind::Directional {
                     direction: dir.to_array(),
@@ -127,13 +127,10 @@ pub(super) fn light(kind: &str, p: &Params, ctm: &DMat4, loc: Loc, r: &Reader) -
                     "an image infinite light is not read yet",
                 ));
             }
-            if p.get("illuminance").is_some() {
-                return Err(p.err(
-                    p.loc_of("illuminance"),
-                    "an infinite light's illuminance is not read yet",
-                ));
-            }
             let (s, k) = spectra::illuminant(p, "L")?;
+            // `illuminance`: ∫ȳ·E dλ on an upward plane, π·L for a uniform sky
+            let e = p.float("illuminance", -1.0)?;
+            let k = if e > 0.0 { k * e / PI } else { k };
             (
                 LightKind::Environment {
                     amount: EmitAmount::Scale(scale * k),
