@@ -117,6 +117,7 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
         MaterialKind::MeasuredPolarized { .. } => measured(k),
         MaterialKind::Principled(p) => super::materials_mitsuba::principled(p)?,
         MaterialKind::Hair(h) => super::materials_mitsuba::hair(h),
+        MaterialKind::Layered(d) => super::materials_pbrt::layered(d)?,
     })
 }
 
@@ -181,10 +182,11 @@ fn blend(weight: &TextureDesc, a: &MaterialKind, b: &MaterialKind) -> Result<Mat
                 | Material::Textured(_)
                 | Material::Principled(_)
                 | Material::Hair(_)
+                | Material::Layered(_)
         )
     }) {
         return Err(
-            "a blend cannot hold a mask, another blend, a normal or bump map, textured roughness or specular factors, a principled material or hair".into(),
+            "a blend cannot hold a mask, another blend, a normal or bump map, textured roughness or specular factors, a principled material, hair or a coated (layered) material".into(),
         );
     }
     Ok(Material::Blend(Box::new(Blend { weight, a, b })))

@@ -6,6 +6,7 @@ pub use lens::{focused_lens, lens_system, located as lens_error};
 mod lights;
 mod materials;
 mod materials_mitsuba;
+mod materials_pbrt;
 mod media;
 
 use materials::material;

@@ -85,6 +85,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             Material::Textured(m) => self.textured_eval_pdf(m, wo, wi, w, mode).0,
             Material::Principled(m) => m.eval(&self.disney, self.albedo, wo, wi, mode),
             Material::Hair(m) => m.eval(self.albedo, wo, wi, mode),
+            Material::Layered(m) => self.slab(m, w).eval(wo, wi, mode),
         }
     }
 
@@ -114,6 +115,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             Material::Textured(m) => self.textured_eval_pdf(m, wo, wi, w, _mode).1,
             Material::Principled(m) => m.pdf(&self.disney, wo, wi),
             Material::Hair(m) => m.pdf(self.albedo, wo, wi, w),
+            Material::Layered(m) => self.slab(m, w).pdf(wo, wi, _mode),
         }
     }
 
@@ -159,6 +161,10 @@ impl<'a, const N: usize> Bsdf<'a, N> {
                 m.eval(self.albedo, wo, wi, mode),
                 m.pdf(self.albedo, wo, wi, w),
             ),
+            Material::Layered(m) => {
+                let slab = self.slab(m, w);
+                (slab.eval(wo, wi, mode), slab.pdf(wo, wi, mode))
+            }
         }
     }
 
@@ -213,6 +219,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             Material::Textured(m) => self.textured_sample(m, wo, w, uc, u, mode),
             Material::Principled(m) => m.sample(&self.disney, self.albedo, wo, uc, u, mode),
             Material::Hair(m) => m.sample(self.albedo, wo, w, uc, u, mode),
+            Material::Layered(m) => self.slab(m, w).sample(wo, uc, u, mode),
             // straight through: f·|cos θᵢ|/pdf = 1
             Material::Null => (wo.z != 0.0).then(|| BsdfSample {
                 f: SampledSpectrum::splat(1.0 / wo.z.abs()),
@@ -234,6 +241,12 @@ impl<'a, const N: usize> Bsdf<'a, N> {
                 eta: 1.0,
             }),
         }
+    }
+
+    /// A layered material's slab at this point (its base and albedo looked up).
+    #[inline]
+    fn slab(&self, m: &super::Layered, w: &SampledWavelengths<N>) -> super::layered::Slab<N> {
+        m.slab((self.albedo, self.albedo_b), self.spec_r, w)
     }
 
     /// Whether the material has only delta lobes (smooth dielectric, smooth conductor), so that

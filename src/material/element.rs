@@ -111,6 +111,7 @@ impl super::Material {
             M::Diffuse(_)
             | M::Principled(_)
             | M::Hair(_)
+            | M::Layered(_)
             | M::Phong(_)
             | M::Dielectric(_)
             | M::RoughDielectric(_)

@@ -45,6 +45,8 @@ pub mod fresnel;
 mod hair;
 mod hair_terms;
 mod lambert;
+mod layer_interfaces;
+mod layered;
 mod mask;
 mod measured_polarized;
 pub mod microfacet;
@@ -71,6 +73,7 @@ pub use disney::DisneyAt;
 pub use element::Element;
 pub use hair::Hair;
 pub use lambert::Lambert;
+pub use layered::{Layered, LayeredBase};
 pub use mask::Mask;
 pub use measured_polarized::MeasuredPolarized;
 pub use null::thin_reflectance;
@@ -179,6 +182,9 @@ pub enum Material {
     Principled(Box<Principled>),
     /// Mitsuba's `hair`: Chiang et al.'s fibre model on a curve's frame (see [`Hair`]).
     Hair(Box<Hair>),
+    /// pbrt-v4's `coateddiffuse` and `coatedconductor`: a dielectric coating over a base,
+    /// evaluated by random walks as pbrt-v4 does (see [`Layered`]).
+    Layered(Box<Layered>),
 }
 
 impl Material {
@@ -240,6 +246,16 @@ impl Material {
                 return Bsdf {
                     disney: m.at_hit(at, base, w),
                     ..Bsdf::plain(self, base)
+                };
+            }
+            // the base's reflectance or relative (η, k), and the slab's albedo
+            Material::Layered(m) => {
+                let (a, b) = m.base_at(at(&m.reflectance), w);
+                return Bsdf {
+                    albedo: a,
+                    albedo_b: b,
+                    spec_r: at(&m.albedo),
+                    ..Bsdf::plain(self, a)
                 };
             }
             // the absorption σₐ per radius in the albedo's place
@@ -326,6 +342,7 @@ impl Material {
             Material::BumpMap(m) => m.inner.is_specular(),
             Material::Textured(m) => m.inner.is_specular(),
             Material::Blend(m) => m.a.is_specular() && m.b.is_specular(),
+            Material::Layered(m) => m.is_specular(),
             Material::Dielectric(_)
             | Material::Conductor(_)
             | Material::Null
@@ -358,6 +375,8 @@ impl Material {
             Material::BumpMap(m) => m.inner.is_dispersive(),
             Material::Textured(m) => m.inner.is_dispersive(),
             Material::Blend(m) => m.a.is_dispersive() || m.b.is_dispersive(),
+            // the coating's index at the hero wavelength sets the walk (pbrt-v4 terminates)
+            Material::Layered(m) => m.eta.is_dispersive(),
             // a thin sheet sends light on undeviated, and the rest do not transmit
             Material::ThinDielectric { .. }
             | Material::Null

@@ -102,7 +102,8 @@ fn of<const N: usize>(
         | Material::Plastic(_)
         | Material::Blend(_)
         | Material::Principled(_)
-        | Material::Hair(_) => Polarising::Depolarise,
+        | Material::Hair(_)
+        | Material::Layered(_) => Polarising::Depolarise,
         Material::Null => Polarising::Keep,
         Material::Mask(_) | Material::ThinDielectric { .. } if straight => Polarising::Keep,
         Material::Mask(k) => of(&k.inner, frame, perturb, (wo, wi), rho, w),

@@ -23,6 +23,7 @@ impl Material {
             Material::Principled(m) => m.anisotropic.is_some(),
             // the fibre's axis is the frame's second tangent, n × ∂p/∂u
             Material::Hair(_) => true,
+            Material::Layered(m) => m.is_anisotropic(),
             Material::Blend(m) => m.a.needs_tangent() || m.b.needs_tangent(),
             Material::Diffuse(_)
             | Material::Phong(_)
@@ -59,6 +60,7 @@ impl Material {
             | Material::Blend(_)
             | Material::Principled(_)
             | Material::Hair(_)
+            | Material::Layered(_)
             | Material::Textured(_) => false,
         }
     }
@@ -84,6 +86,7 @@ impl Material {
             // a mask's pass-through does not distinguish the sides, nor does a fibre
             Material::Mask(_)
             | Material::Hair(_)
+            | Material::Layered(_)
             | Material::Diffuse(_)
             | Material::Phong(_)
             | Material::Conductor(_)

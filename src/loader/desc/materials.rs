@@ -133,6 +133,28 @@ pub enum MaterialKind {
     Principled(Box<PrincipledDesc>),
     /// Mitsuba's `hair` (see `crate::material::Hair`).
     Hair(Box<HairDesc>),
+    /// pbrt-v4's `coateddiffuse` and `coatedconductor` (see `crate::material::Layered`).
+    Layered(Box<LayeredDesc>),
+}
+
+/// A dielectric coating over a base, with a slab between them (pbrt-v4's layered materials).
+#[derive(Clone, Debug)]
+pub struct LayeredDesc {
+    /// None: a Lambertian base of `reflectance`; Some: a conductor of this index (None inside:
+    /// of the index pbrt-v4 makes of `reflectance`) and roughness α [α_u, α_v] (None: smooth).
+    pub conductor: Option<(Option<ComplexIor>, Option<[f64; 2]>)>,
+    /// The diffuse base's reflectance, or the conductor's r.
+    pub reflectance: TextureDesc,
+    /// The coating's index and roughness α (None: smooth).
+    pub eta: Ior,
+    pub roughness: Option<[f64; 2]>,
+    /// The slab's optical thickness (σₜ = 1), albedo and Henyey–Greenstein g.
+    pub thickness: f64,
+    pub albedo: TextureDesc,
+    pub g: f64,
+    /// pbrt-v4's `maxdepth` and `nsamples`.
+    pub max_depth: u32,
+    pub n_samples: u32,
 }
 
 /// The parameters of a hair fibre.

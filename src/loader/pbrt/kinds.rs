@@ -31,7 +31,7 @@ pub(super) fn material(kind: &str, p: &Params, loc: Loc, name: &str) -> R<Materi
             reflectance: spectra::reflectance(p, "reflectance", 0.5)?.into(),
         },
         "dielectric" => {
-            let roughness = roughness(p)?;
+            let roughness = roughness(p, "")?;
             MaterialKind::Dielectric {
                 ior: spectra::ior(p, "eta", 1.5)?,
                 exterior_ior: 1.0,
@@ -41,19 +41,42 @@ pub(super) fn material(kind: &str, p: &Params, loc: Loc, name: &str) -> R<Materi
             }
         }
         "conductor" => {
-            let roughness = roughness(p)?;
+            let roughness = roughness(p, "")?;
+            let ior = match spectra::conductor(p, "")? {
+                Some(ior) => ior,
+                None => {
+                    spectra::conductor_of_reflectance(&spectra::reflectance(p, "reflectance", 0.0)?)
+                }
+            };
             MaterialKind::Conductor {
-                ior: spectra::conductor(p)?,
+                ior,
                 exterior_ior: 1.0,
                 roughness,
                 distribution: crate::material::microfacet::Distribution::Ggx,
                 smith: Smith::HeightCorrelated,
             }
         }
+        "coateddiffuse" => MaterialKind::Layered(Box::new(LayeredDesc {
+            conductor: None,
+            reflectance: spectra::reflectance(p, "reflectance", 0.5)?.into(),
+            roughness: roughness(p, "")?,
+            eta: spectra::ior(p, "eta", 1.5)?,
+            ..slab(p)?
+        })),
+        "coatedconductor" => MaterialKind::Layered(Box::new(LayeredDesc {
+            conductor: Some((
+                spectra::conductor(p, "conductor.")?,
+                roughness(p, "conductor.")?,
+            )),
+            reflectance: spectra::reflectance(p, "reflectance", 0.0)?.into(),
+            roughness: roughness(p, "interface.")?,
+            eta: spectra::ior(p, "interface.eta", 1.5)?,
+            ..slab(p)?
+        })),
         other => {
             return Err(p.err(
                 loc,
-                format!("the material \"{other}\" is not read yet (spectrace reads diffuse, dielectric and conductor)"),
+                format!("the material \"{other}\" is not read yet (spectrace reads diffuse, dielectric, conductor, coateddiffuse and coatedconductor)"),
             ));
         }
     };
@@ -67,14 +90,39 @@ pub(super) fn material(kind: &str, p: &Params, loc: Loc, name: &str) -> R<Materi
 /// pbrt-v4's microfacet roughness: `roughness`, or `uroughness`/`vroughness` (0), turned into
 /// α by `remaproughness` (true: α = √r, pbrt-v4's `TrowbridgeReitzDistribution::RoughnessToAlpha`);
 /// None when smooth (α = 0 in pbrt-v4 is its specular case).
-fn roughness(p: &Params) -> R<Option<[f64; 2]>> {
-    let r = p.float("roughness", 0.0)?;
-    let (u, v) = (p.float("uroughness", r)?, p.float("vroughness", r)?);
+fn roughness(p: &Params, prefix: &str) -> R<Option<[f64; 2]>> {
+    let r = p.float(&format!("{prefix}roughness"), 0.0)?;
+    let u = p.float(&format!("{prefix}uroughness"), r)?;
+    let v = p.float(&format!("{prefix}vroughness"), r)?;
     let remap = p.bool("remaproughness", true)?;
     let alpha = |x: f64| if remap { x.max(0.0).sqrt() } else { x };
     let (au, av) = (alpha(u), alpha(v));
     // pbrt-v4's `EffectivelySmooth`: max(α_x, α_y) < 10⁻³
     Ok((au.max(av) >= 1e-3).then_some([au, av]))
+}
+
+/// The slab of a layered material (pbrt-v4's `thickness` 0.01, `albedo` 0, `g` 0, `maxdepth`
+/// 10, `nsamples` 1); the base and coating are the caller's.
+fn slab(p: &Params) -> R<LayeredDesc> {
+    let count = |name: &str, default: i64| -> R<u32> {
+        let n = p.int(name, default)?;
+        u32::try_from(n).map_err(|_| p.err(p.loc_of(name), format!("\"{name}\" must be ≥ 0")))
+    };
+    let n_samples = count("nsamples", 1)?;
+    if n_samples == 0 {
+        return Err(p.err(p.loc_of("nsamples"), "\"nsamples\" must be ≥ 1"));
+    }
+    Ok(LayeredDesc {
+        conductor: None,
+        reflectance: Spectrum::Constant(0.0).into(),
+        eta: crate::spectrum::ior::Ior::Constant(1.5),
+        roughness: None,
+        thickness: p.float("thickness", 0.01)?,
+        albedo: spectra::reflectance(p, "albedo", 0.0)?.into(),
+        g: p.float("g", 0.0)?,
+        max_depth: count("maxdepth", 10)?,
+        n_samples,
+    })
 }
 
 /// A `LightSource`.

@@ -136,13 +136,21 @@ pub(super) fn ior(p: &Params, name: &str, default: f64) -> R<Ior> {
     }
 }
 
-/// A conductor's `eta` and `k` (pbrt-v4's defaults: copper); `reflectance` is not read yet.
-pub(super) fn conductor(p: &Params) -> R<ComplexIor> {
+/// A conductor's index: `<prefix>eta` and `<prefix>k` (pbrt-v4's defaults: copper), or, when
+/// `reflectance` r is given (with neither, as pbrt-v4 requires), None: pbrt-v4 then takes
+/// n = 1, k = 2√r/√(1 − r).
+pub(super) fn conductor(p: &Params, prefix: &str) -> R<Option<ComplexIor>> {
+    let (eta_name, k_name) = (format!("{prefix}eta"), format!("{prefix}k"));
     if let Some(q) = p.get("reflectance") {
-        return Err(p.err(
-            q.loc,
-            "a conductor's \"reflectance\" is not read yet; give eta and k",
-        ));
+        if p.get(&eta_name).is_some() || p.get(&k_name).is_some() {
+            return Err(p.err(
+                q.loc,
+                format!(
+                    "\"reflectance\" and \"{eta_name}\"/\"{k_name}\" cannot both be given (pbrt-v4)"
+                ),
+            ));
+        }
+        return Ok(None);
     }
     let part = |name: &str, default: &str| -> R<Arc<PiecewiseLinear>> {
         let (named, q) = match p.get(name) {
@@ -167,10 +175,28 @@ pub(super) fn conductor(p: &Params) -> R<ComplexIor> {
             )),
         }
     };
-    Ok(ComplexIor {
-        n: part("eta", "metal-Cu-eta")?,
-        k: part("k", "metal-Cu-k")?,
-    })
+    Ok(Some(ComplexIor {
+        n: part(&eta_name, "metal-Cu-eta")?,
+        k: part(&k_name, "metal-Cu-k")?,
+    }))
+}
+
+/// The index pbrt-v4 makes of a conductor's reflectance r: n = 1, k = 2√r/√(1 − r) with r
+/// clamped to [0, 0.9999], tabulated every nanometre from 360 to 830 nm.
+pub(super) fn conductor_of_reflectance(r: &Spectrum) -> ComplexIor {
+    let lambda: Vec<f32> = (360..=830).map(|l| l as f32).collect();
+    let k = lambda
+        .iter()
+        .map(|&l| {
+            let x = r.eval(l).clamp(0.0, 0.9999);
+            2.0 * x.sqrt() / (1.0 - x).sqrt()
+        })
+        .collect();
+    let table = |v| Arc::new(PiecewiseLinear::new(lambda.clone(), v).expect("increasing"));
+    ComplexIor {
+        n: table(vec![1.0; lambda.len()]),
+        k: table(k),
+    }
 }
 
 /// A light's spectrum (`I` or `L`; pbrt-v4's default, the colour space's D65) and the factor

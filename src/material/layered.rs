@@ -1,0 +1,476 @@
+//! pbrt-v4's `coateddiffuse` and `coatedconductor`: a dielectric coating over a Lambertian or
+//! conductor base, with a homogeneous slab between them, evaluated stochastically as pbrt-v4
+//! does (Guo, Hašan, Yan and Zhao 2018, "Position-free Monte Carlo simulation for arbitrary
+//! layered BSDFs"; pbrt-v4 book §14.3, `LayeredBxDF` in `src/pbrt/bxdfs.h`).
+//!
+//! **Why stochastic, and what that means here.** A layered BSDF has no closed form. pbrt-v4
+//! estimates f, the pdf and a sample each by random walks through the slab, and that estimate
+//! *is* its material: its expected value, truncated at `max_depth` walk steps, is what a
+//! pbrt-v4 render converges to. spectrace follows the same walks step for step (so its
+//! truncation is pbrt-v4's), with its own random numbers: each call seeds a PCG32 from its
+//! arguments (pbrt-v4 hashes them too), so images do not depend on the thread count.
+//!
+//! Contract (the module's conventions): f in sr⁻¹ without the cosine, an unbiased estimate
+//! with `n_samples` walks; the pdf a stochastic estimate in sr⁻¹, mixed with a uniform sphere
+//! (0.1/(4π) + 0.9·estimate, as pbrt-v4) so it is never 0; a sample's f/pdf is the walk's
+//! unbiased weight and its pdf is that estimate (pbrt-v4's `pdfIsProportional`, whose path
+//! integrator asks `PDF()` for MIS). Both sides of the surface see the coating (pbrt-v4's
+//! `twoSided`); the bases do not transmit, so there is no transmission.
+//!
+//! The slab's medium has σₜ = 1 per unit `thickness`, single-scattering `albedo` and a
+//! Henyey–Greenstein phase function of mean cosine `g`; with albedo 0 it only attenuates, by
+//! exp(−thickness/|cos θ|) per crossing.
+
+use std::f32::consts::PI;
+
+use glam::{Vec2, Vec3};
+
+use super::layer_interfaces::{BaseIf, DielectricIf, Events, Scatter, trowbridge_reitz};
+use super::{BsdfSample, TransportMode};
+use crate::medium::PhaseFunction;
+use crate::sampling::power_heuristic;
+use crate::spectrum::ior::{ComplexIor, Ior};
+use crate::spectrum::{SampledSpectrum, SampledWavelengths};
+use crate::texture::Texture;
+
+/// The base under the coating.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LayeredBase {
+    /// Lambertian of the material's `reflectance` (`coateddiffuse`).
+    Diffuse,
+    /// A conductor (`coatedconductor`) of index `ior` (absolute; divided by the coating's at
+    /// the hit), or, when None, of the index pbrt-v4 makes of `reflectance` r: n = 1,
+    /// k = 2√r/√(1 − r), r clamped to [0, 0.9999]. Smooth, or microfacets of α [α_u, α_v].
+    Conductor {
+        ior: Option<ComplexIor>,
+        alpha: Option<[f32; 2]>,
+    },
+}
+
+/// A coated material (see the module's docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Layered {
+    pub base: LayeredBase,
+    /// The diffuse base's reflectance, or a conductor base's r (dimensionless, in [0, 1]).
+    pub reflectance: Texture,
+    /// The coating's index (relative to the outside); a dispersive one keeps only the hero
+    /// wavelength, as pbrt-v4 does (`TerminateSecondary`).
+    pub eta: Ior,
+    /// The coating's microfacet α [α_u, α_v] (Trowbridge–Reitz); None when smooth.
+    pub alpha: Option<[f32; 2]>,
+    /// The slab's optical thickness (σₜ = 1), dimensionless.
+    pub thickness: f32,
+    /// The slab's single-scattering albedo (0: absorbing only).
+    pub albedo: Texture,
+    /// The slab's Henyey–Greenstein mean cosine, in (−1, 1).
+    pub g: f32,
+    /// Walk steps before a walk is cut (pbrt-v4's `maxdepth`, 10 by default).
+    pub max_depth: u32,
+    /// Walks per estimate (pbrt-v4's `nsamples`, 1 by default).
+    pub n_samples: u32,
+}
+
+impl Layered {
+    /// The base's values at a hit, from the textured `reflectance` r: (r, 0) for a diffuse
+    /// base, a conductor's (η, k) relative to the coating.
+    pub fn base_at<const N: usize>(
+        &self,
+        r: SampledSpectrum<N>,
+        w: &SampledWavelengths<N>,
+    ) -> (SampledSpectrum<N>, SampledSpectrum<N>) {
+        let ieta = self.coat_eta(w);
+        match &self.base {
+            LayeredBase::Diffuse => (r.map(|x| x.clamp(0.0, 1.0)), SampledSpectrum::zero()),
+            LayeredBase::Conductor { ior: Some(ior), .. } => {
+                let (mut n, mut k) = (SampledSpectrum::zero(), SampledSpectrum::zero());
+                for j in 0..N {
+                    (n[j], k[j]) = ior.eval(w.lambda[j]);
+                }
+                (n * (1.0 / ieta), k * (1.0 / ieta))
+            }
+            LayeredBase::Conductor { ior: None, .. } => {
+                let k = r.map(|x| {
+                    let x = x.clamp(0.0, 0.9999);
+                    2.0 * x.sqrt() / (1.0 - x).sqrt()
+                });
+                (SampledSpectrum::splat(1.0 / ieta), k * (1.0 / ieta))
+            }
+        }
+    }
+
+    /// The coating's index at the hero wavelength (1 where pbrt-v4 would read 0).
+    fn coat_eta<const N: usize>(&self, w: &SampledWavelengths<N>) -> f32 {
+        let e = self.eta.eval(w.lambda[0]);
+        if e == 0.0 { 1.0 } else { e }
+    }
+
+    /// The slab at a hit: `base` from [`Layered::base_at`], the medium's `albedo` looked up.
+    pub fn slab<const N: usize>(
+        &self,
+        base: (SampledSpectrum<N>, SampledSpectrum<N>),
+        albedo: SampledSpectrum<N>,
+        w: &SampledWavelengths<N>,
+    ) -> Slab<N> {
+        let bottom = match &self.base {
+            LayeredBase::Diffuse => BaseIf::Diffuse(base.0),
+            LayeredBase::Conductor { alpha, .. } => BaseIf::Conductor {
+                eta: base.0,
+                k: base.1,
+                mf: alpha.and_then(trowbridge_reitz),
+            },
+        };
+        Slab {
+            top: DielectricIf {
+                eta: self.coat_eta(w),
+                mf: self.alpha.and_then(trowbridge_reitz),
+            },
+            bottom,
+            thickness: self.thickness.max(f32::MIN_POSITIVE),
+            albedo: albedo.map(|a| a.clamp(0.0, 1.0)),
+            phase: PhaseFunction::HenyeyGreenstein { g: self.g },
+            max_depth: self.max_depth,
+            n_samples: self.n_samples.max(1),
+            dispersive: self.eta.is_dispersive(),
+        }
+    }
+
+    /// Whether an interface's roughness differs along the two tangents (which then need ∂p/∂u).
+    pub fn is_anisotropic(&self) -> bool {
+        let base = match &self.base {
+            LayeredBase::Conductor { alpha: Some(a), .. } => a[0] != a[1],
+            _ => false,
+        };
+        base || self.alpha.is_some_and(|a| a[0] != a[1])
+    }
+
+    /// Whether every lobe is a delta: a smooth coating over a smooth conductor and a clear slab
+    /// (with a constant albedo texture of 0).
+    pub fn is_specular(&self) -> bool {
+        let clear = matches!(&self.albedo, Texture::Uniform(crate::spectrum::Spectrum::Constant(a)) if *a == 0.0);
+        self.alpha.is_none()
+            && clear
+            && matches!(self.base, LayeredBase::Conductor { alpha: None, .. })
+    }
+}
+
+/// A layered BSDF at one hit (see the module's docs).
+#[derive(Clone, Copy, Debug)]
+pub struct Slab<const N: usize> {
+    pub top: DielectricIf,
+    pub bottom: BaseIf<N>,
+    pub thickness: f32,
+    pub albedo: SampledSpectrum<N>,
+    pub phase: PhaseFunction,
+    pub max_depth: u32,
+    pub n_samples: u32,
+    pub dispersive: bool,
+}
+
+/// PCG32 (O'Neill 2014), seeded by hashing a call's arguments.
+pub(super) struct Pcg(u64, u64);
+
+impl Pcg {
+    pub(super) fn new(a: u64, b: u64) -> Self {
+        let mut r = Pcg(0, (splitmix(b) << 1) | 1);
+        r.next();
+        r.0 = r.0.wrapping_add(splitmix(a));
+        r.next();
+        r
+    }
+    fn next(&mut self) -> u32 {
+        let old = self.0;
+        self.0 = old
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(self.1);
+        let x = (((old >> 18) ^ old) >> 27) as u32;
+        x.rotate_right((old >> 59) as u32)
+    }
+    /// Uniform in [0, 1).
+    pub(super) fn u(&mut self) -> f32 {
+        (self.next() >> 8) as f32 * (1.0 / 16_777_216.0)
+    }
+    pub(super) fn u2(&mut self) -> Vec2 {
+        Vec2::new(self.u(), self.u())
+    }
+}
+
+fn splitmix(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// A hash of a direction's bits, to seed [`Pcg`].
+pub(super) fn hash_vec(v: Vec3) -> u64 {
+    let [x, y, z] = v.to_array().map(|c| c.to_bits() as u64);
+    splitmix(x ^ splitmix(y ^ splitmix(z)))
+}
+
+/// The slab's transmittance over height `dz` along `w`: exp(−|dz/cos θ|).
+pub(super) fn tr(dz: f32, w: Vec3) -> f32 {
+    if dz.abs() <= f32::MIN_POSITIVE {
+        1.0
+    } else {
+        (-(dz / w.z).abs()).exp()
+    }
+}
+
+/// Whether an interface sample is usable (pbrt-v4: non-zero f and pdf, not grazing).
+pub(super) fn usable<const N: usize>(s: &Option<Scatter<N>>) -> Option<Scatter<N>> {
+    s.filter(|s| !s.f.is_zero() && s.pdf > 0.0 && s.wi.z != 0.0)
+}
+
+pub(super) fn adjoint(mode: TransportMode) -> TransportMode {
+    match mode {
+        TransportMode::Radiance => TransportMode::Importance,
+        TransportMode::Importance => TransportMode::Radiance,
+    }
+}
+
+impl<const N: usize> Slab<N> {
+    /// The estimate of f(wo, wi) (pbrt-v4's `LayeredBxDF::f`, entered from the top).
+    pub fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> SampledSpectrum<N> {
+        let (wo, wi) = if wo.z < 0.0 { (-wo, -wi) } else { (wo, wi) };
+        // the bases reflect only: nothing crosses the slab
+        if wo.z * wi.z <= 0.0 {
+            return SampledSpectrum::zero();
+        }
+        let (top, th) = (&self.top, self.thickness);
+        let mut f = top.f::<N>(wo, wi, mode) * self.n_samples as f32;
+        let mut rng = Pcg::new(hash_vec(wo), hash_vec(wi));
+        let exit_specular = top.is_specular();
+        let clear = self.albedo.is_zero();
+        for _ in 0..self.n_samples {
+            // transmission into the slab along wo, and toward wi (the adjoint direction)
+            let (uc, u) = (rng.u(), rng.u2());
+            let Some(wos) = usable(&top.sample(wo, uc, u, mode, Events::Transmission)) else {
+                continue;
+            };
+            let (uc, u) = (rng.u(), rng.u2());
+            let Some(wis) = usable(&top.sample(wi, uc, u, adjoint(mode), Events::Transmission))
+            else {
+                continue;
+            };
+            let mut beta = wos.f * (wos.wi.z.abs() / wos.pdf);
+            let (mut z, mut w) = (th, wos.wi);
+            for depth in 0..self.max_depth {
+                // Russian roulette (pbrt-v4's thresholds)
+                if depth > 3 && beta.max_component() < 0.25 {
+                    let q = (1.0 - beta.max_component()).max(0.0);
+                    if rng.u() < q {
+                        break;
+                    }
+                    beta /= 1.0 - q;
+                }
+                if clear {
+                    z = if z == th { 0.0 } else { th };
+                    beta *= tr(th, w);
+                } else {
+                    let dz = -(1.0 - rng.u()).ln() * w.z.abs();
+                    let zp = if w.z > 0.0 { z + dz } else { z - dz };
+                    if zp == z {
+                        continue;
+                    }
+                    if 0.0 < zp && zp < th {
+                        // scattering in the slab: next event out through the top along wis
+                        let p = self.phase.eval(-w, -wis.wi);
+                        let wt = if exit_specular {
+                            1.0
+                        } else {
+                            power_heuristic(1.0, wis.pdf, 1.0, p)
+                        };
+                        f += beta * self.albedo * wis.f * (p * wt * tr(zp - th, wis.wi) / wis.pdf);
+                        let ps = self.phase.sample(-w, rng.u2());
+                        if ps.pdf == 0.0 || ps.wi.z == 0.0 {
+                            continue;
+                        }
+                        beta *= self.albedo * (self.phase.eval(-w, ps.wi) / ps.pdf);
+                        (w, z) = (ps.wi, zp);
+                        if z < th && w.z > 0.0 && !exit_specular {
+                            let f_exit = top.f::<N>(-w, wi, mode);
+                            if !f_exit.is_zero() {
+                                let exit_pdf = top.pdf(-w, wi, Events::Transmission);
+                                let wt = power_heuristic(1.0, ps.pdf, 1.0, exit_pdf);
+                                f += beta * f_exit * (tr(zp - th, ps.wi) * wt);
+                            }
+                        }
+                        continue;
+                    }
+                    z = zp.clamp(0.0, th);
+                }
+                if z == th {
+                    // reflection back into the slab at the top
+                    let (uc, u) = (rng.u(), rng.u2());
+                    let Some(bs) = usable(&top.sample(-w, uc, u, mode, Events::Reflection)) else {
+                        break;
+                    };
+                    beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
+                    w = bs.wi;
+                } else {
+                    let bottom = &self.bottom;
+                    if !bottom.is_specular() {
+                        // next event at the base, out through the top along wis
+                        let wt = if exit_specular {
+                            1.0
+                        } else {
+                            power_heuristic(1.0, wis.pdf, 1.0, bottom.pdf(-w, -wis.wi, Events::All))
+                        };
+                        f += beta
+                            * bottom.f(-w, -wis.wi)
+                            * wis.f
+                            * (wis.wi.z.abs() * wt * tr(th, wis.wi) / wis.pdf);
+                    }
+                    let _uc = rng.u();
+                    let Some(bs) = usable(&bottom.sample(-w, rng.u2(), Events::Reflection)) else {
+                        break;
+                    };
+                    beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
+                    w = bs.wi;
+                    if !exit_specular {
+                        // next event along the base's sample, out through the top toward wi
+                        let f_exit = top.f::<N>(-w, wi, mode);
+                        if !f_exit.is_zero() {
+                            let wt = if bottom.is_specular() {
+                                1.0
+                            } else {
+                                let exit_pdf = top.pdf(-w, wi, Events::Transmission);
+                                power_heuristic(1.0, bs.pdf, 1.0, exit_pdf)
+                            };
+                            f += beta * f_exit * (tr(th, bs.wi) * wt);
+                        }
+                    }
+                }
+            }
+        }
+        f * (1.0 / self.n_samples as f32)
+    }
+
+    /// Samples wi by a walk through the slab (pbrt-v4's `LayeredBxDF::Sample_f`); see the
+    /// module's docs for the returned f and pdf.
+    pub fn sample(&self, wo: Vec3, uc: f32, u: Vec2, mode: TransportMode) -> Option<BsdfSample<N>> {
+        let flip = wo.z < 0.0;
+        let wo_l = if flip { -wo } else { wo };
+        let (top, th) = (&self.top, self.thickness);
+        let bs = usable(&top.sample::<N>(wo_l, uc, u, mode, Events::All))?;
+        let out = |f: SampledSpectrum<N>, wi: Vec3, pdf: f32, specular: bool| {
+            let wi = if flip { -wi } else { wi };
+            // a walk's f/pdf is its weight; its pdf for MIS is the estimate (pbrt-v4's
+            // `pdfIsProportional`)
+            let (f, pdf) = if specular {
+                (f, pdf)
+            } else {
+                let est = self.pdf(wo, wi, mode);
+                (f * (est / pdf), est)
+            };
+            Some(BsdfSample {
+                f,
+                wi,
+                pdf,
+                specular,
+                transmission: false,
+                dispersive: self.dispersive,
+                eta: 1.0,
+            })
+        };
+        if !bs.transmission {
+            return out(bs.f, bs.wi, bs.pdf, bs.specular);
+        }
+        let mut rng = Pcg::new(
+            hash_vec(wo_l),
+            ((uc.to_bits() as u64) << 32) ^ hash_vec(u.extend(0.0)),
+        );
+        let (mut f, mut pdf) = (bs.f * bs.wi.z.abs(), bs.pdf);
+        let (mut z, mut w, mut specular) = (th, bs.wi, bs.specular);
+        let clear = self.albedo.is_zero();
+        for depth in 0..self.max_depth {
+            let rr = f.max_component() / pdf;
+            if depth > 3 && rr < 0.25 {
+                let q = (1.0 - rr).max(0.0);
+                if rng.u() < q {
+                    return None;
+                }
+                pdf *= 1.0 - q;
+            }
+            if w.z == 0.0 {
+                return None;
+            }
+            if clear {
+                z = if z == th { 0.0 } else { th };
+                f *= tr(th, w);
+            } else {
+                let dz = -(1.0 - rng.u()).ln() * w.z.abs();
+                let zp = if w.z > 0.0 { z + dz } else { z - dz };
+                if zp == z {
+                    return None;
+                }
+                if 0.0 < zp && zp < th {
+                    let ps = self.phase.sample(-w, rng.u2());
+                    if ps.pdf == 0.0 || ps.wi.z == 0.0 {
+                        return None;
+                    }
+                    f *= self.albedo * self.phase.eval(-w, ps.wi);
+                    pdf *= ps.pdf;
+                    specular = false;
+                    (w, z) = (ps.wi, zp);
+                    continue;
+                }
+                z = zp.clamp(0.0, th);
+            }
+            let (uc, u) = (rng.u(), rng.u2());
+            let s = if z == 0.0 {
+                self.bottom.sample(-w, u, Events::All)
+            } else {
+                top.sample(-w, uc, u, mode, Events::All)
+            };
+            let s = usable(&s)?;
+            f *= s.f;
+            pdf *= s.pdf;
+            specular &= s.specular;
+            w = s.wi;
+            if s.transmission {
+                return out(f, w, pdf, specular);
+            }
+            f *= s.wi.z.abs();
+        }
+        None
+    }
+
+    /// The estimate of the sampling density of wi in sr⁻¹ (pbrt-v4's `LayeredBxDF::PDF`).
+    pub fn pdf(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> f32 {
+        let (wo, wi) = if wo.z < 0.0 { (-wo, -wi) } else { (wo, wi) };
+        let mut rng = Pcg::new(hash_vec(wi), hash_vec(wo));
+        let (top, bottom) = (&self.top, &self.bottom);
+        let mut sum = 0.0;
+        if wo.z * wi.z > 0.0 {
+            sum += self.n_samples as f32 * top.pdf(wo, wi, Events::Reflection);
+            for _ in 0..self.n_samples {
+                // the TRT term: in through the top, off the base, out through the top
+                let (uc, u) = (rng.u(), rng.u2());
+                let wos = usable(&top.sample::<N>(wo, uc, u, mode, Events::Transmission));
+                let (uc, u) = (rng.u(), rng.u2());
+                let wis = usable(&top.sample::<N>(wi, uc, u, adjoint(mode), Events::Transmission));
+                let (Some(wos), Some(wis)) = (wos, wis) else {
+                    continue;
+                };
+                if top.is_specular() {
+                    sum += bottom.pdf(-wos.wi, -wis.wi, Events::All);
+                    continue;
+                }
+                let _uc = rng.u();
+                let Some(rs) = usable(&bottom.sample(-wos.wi, rng.u2(), Events::All)) else {
+                    continue;
+                };
+                if bottom.is_specular() {
+                    sum += top.pdf(-rs.wi, wi, Events::All);
+                } else {
+                    let r_pdf = bottom.pdf(-wos.wi, -wis.wi, Events::All);
+                    sum += power_heuristic(1.0, wis.pdf, 1.0, r_pdf) * r_pdf;
+                    let t_pdf = top.pdf(-rs.wi, wi, Events::All);
+                    sum += power_heuristic(1.0, rs.pdf, 1.0, t_pdf) * t_pdf;
+                }
+            }
+        }
+        0.1 / (4.0 * PI) + 0.9 * sum / self.n_samples as f32
+    }
+}
