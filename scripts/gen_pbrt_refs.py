@@ -28,6 +28,7 @@ Film "rgb" "integer xresolution" 16 "integer yresolution" 16
 Sampler "zsobol" "integer pixelsamples" {SPP}
 """
 SKY = 'LightSource "infinite" "blackbody L" 5000 "float scale" 2\n'
+SUN = 'LightSource "distant" "point3 from" [2 3 4] "point3 to" [0 0 0] "blackbody L" 5500 "float scale" 3\n'
 
 CASES = [
     # metals by pbrt-v4's names, smooth and rough, under a uniform sky
@@ -68,6 +69,32 @@ LightSource "infinite" "blackbody L" 9000 "float illuminance" 0.6
 Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]
 Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indices" [0 2 1 0 3 2]
 """),
+    # pbrt-v4's layered materials (its stochastic LayeredBxDF), each under a sky and a sun
+    ("coated_diffuse_default", HEAD + 'Integrator "path" "integer maxdepth" 5\nWorldBegin\n' + SKY + SUN
+     + 'Material "coateddiffuse"\nShape "sphere" "float radius" 1\n'),
+    ("coated_diffuse_scattering", HEAD + 'Integrator "path" "integer maxdepth" 5\nWorldBegin\n' + SKY + SUN
+     + 'Material "coateddiffuse" "rgb reflectance" [0.2 0.5 0.8] "float roughness" 0.1 '
+       '"rgb albedo" [0.9 0.6 0.3] "float g" 0.4 "float thickness" 0.3 "float eta" 1.4\n'
+       'Shape "sphere" "float radius" 1\n'),
+    ("coated_gold", HEAD + 'Integrator "path" "integer maxdepth" 5\nWorldBegin\n' + SKY + SUN
+     + 'Material "coatedconductor" "float interface.roughness" 0.05 "spectrum conductor.eta" "metal-Au-eta" '
+       '"spectrum conductor.k" "metal-Au-k" "float conductor.roughness" 0.2\n'
+       'Shape "sphere" "float radius" 1\n'),
+    ("coated_conductor_reflectance", HEAD + 'Integrator "path" "integer maxdepth" 5\nWorldBegin\n' + SKY + SUN
+     + 'Material "coatedconductor" "rgb reflectance" [0.9 0.4 0.2] "spectrum interface.eta" "glass-BK7" '
+       '"float thickness" 0.05 "integer maxdepth" 4 "integer nsamples" 2\n'
+       'Shape "sphere" "float radius" 1\n'),
+    # Loop subdivision surfaces: a closed tetrahedron (interior rules) and an open pyramid
+    # (boundary rules), shaded by their limit normals
+    ("loop_subdiv", HEAD + 'Integrator "path" "integer maxdepth" 5\nWorldBegin\n' + SKY + SUN
+     + 'AttributeBegin\nTranslate -0.55 0 0\nRotate 30 0 1 0\nScale 0.5 0.5 0.5\n'
+       'Material "coateddiffuse" "rgb reflectance" [0.7 0.3 0.2] "float roughness" 0.05\n'
+       'Shape "loopsubdiv" "integer levels" 3 "point3 P" [1 1 1  -1 -1 1  -1 1 -1  1 -1 -1]\n'
+       '  "integer indices" [0 1 2  0 3 1  0 2 3  1 3 2]\nAttributeEnd\n'
+       'AttributeBegin\nTranslate 0.6 -0.3 0\nRotate -70 1 0 0\nScale 0.6 0.6 0.6\n'
+       'Material "conductor" "spectrum eta" "metal-Ag-eta" "spectrum k" "metal-Ag-k" "float roughness" 0.01\n'
+       'Shape "loopsubdiv" "integer levels" 2 "point3 P" [-1 -1 0  1 -1 0  1 1 0  -1 1 0  0 0 1.2]\n'
+       '  "integer indices" [0 1 4  1 2 4  2 3 4  3 0 4]\nAttributeEnd\n'),
 ]
 
 

@@ -164,12 +164,21 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
             )?;
             Shape::SdfGrid(Box::new(g))
         }
-        ShapeKind::Inline { vertices, faces } => {
-            let positions = vertices
-                .iter()
-                .map(|v| Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32))
-                .collect();
-            let mesh = Mesh::new(positions, None, None, faces.clone(), &transform(s, true)?);
+        ShapeKind::Inline {
+            vertices,
+            faces,
+            normals,
+            uvs,
+        } => {
+            let v3 = |v: &[f64; 3]| Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32);
+            let positions = vertices.iter().map(v3).collect();
+            let normals = normals.as_ref().map(|n| n.iter().map(v3).collect());
+            let uvs = uvs.as_ref().map(|t| {
+                t.iter()
+                    .map(|t| glam::Vec2::new(t[0] as f32, t[1] as f32))
+                    .collect()
+            });
+            let mesh = Mesh::new(positions, normals, uvs, faces.clone(), &transform(s, true)?);
             Shape::Mesh(mesh.map_err(|e| e.to_string())?)
         }
     };

@@ -74,10 +74,13 @@ pub enum ShapeKind {
         smooth: bool,
     },
     /// A triangle mesh written in the scene file: vertices in the scene's length unit and
-    /// 0-based triangle indices.
+    /// 0-based triangle indices; optional per-vertex shading normals (object space, any
+    /// length) and surface coordinates.
     Inline {
         vertices: Vec<[f64; 3]>,
         faces: Vec<[u32; 3]>,
+        normals: Option<Vec<[f64; 3]>>,
+        uvs: Option<Vec<[f64; 2]>>,
     },
 }
 

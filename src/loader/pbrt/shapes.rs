@@ -98,7 +98,8 @@ pub(super) fn shape(kind: &str, p: &Params, loc: Loc, r: &mut Reader, file: &Pat
                 flipped: false,
             }
         }
-        "trianglemesh" => triangle_mesh(p, loc)?,
+        "trianglemesh" => triangle_mesh(p, loc, r.state.reverse_orientation)?,
+        "loopsubdiv" => loop_subdiv(p, loc)?,
         "plymesh" => {
             let name = p
                 .string("filename")?
@@ -129,7 +130,7 @@ pub(super) fn shape(kind: &str, p: &Params, loc: Loc, r: &mut Reader, file: &Pat
         other => {
             return Err(p.err(
                 loc,
-                format!("the shape \"{other}\" is not read yet (spectrace reads sphere, cylinder, disk, trianglemesh and plymesh)"),
+                format!("the shape \"{other}\" is not read yet (spectrace reads sphere, cylinder, disk, trianglemesh, plymesh and loopsubdiv)"),
             ));
         }
     };
@@ -188,39 +189,58 @@ fn finish_shape(kind: ShapeKind, m: DMat4, p: &Params, loc: Loc, r: &mut Reader)
     })
 }
 
-/// `trianglemesh`: `point3 P` and `integer indices` (optional for a single triangle).
-fn triangle_mesh(p: &Params, loc: Loc) -> R<ShapeKind> {
+/// `P` and `indices` of a mesh: whole indices below the vertex count, `per` to a face.
+fn positions_and_indices(
+    p: &Params,
+    loc: Loc,
+    kind: &str,
+    per: usize,
+) -> R<(Vec<[f64; 3]>, Vec<u32>)> {
     let pts = p
         .nums("P", &["point3", "point"])?
-        .ok_or_else(|| p.err(loc, "a trianglemesh needs \"point3 P\""))?;
-    if !pts.len().is_multiple_of(3) || pts.len() < 9 {
+        .ok_or_else(|| p.err(loc, format!("a {kind} needs \"point3 P\"")))?;
+    if !pts.len().is_multiple_of(3) || pts.len() < 3 * per {
         return Err(p.err(
             p.loc_of("P"),
-            "\"P\" must hold 3 numbers per vertex, 3 vertices or more",
+            format!("\"P\" must hold 3 numbers per vertex, {per} vertices or more"),
         ));
     }
     let n = pts.len() / 3;
     let idx: Vec<f64> = match p.nums("indices", &["integer"])? {
         Some(v) => v.to_vec(),
-        None if n == 3 => vec![0.0, 1.0, 2.0],
+        // pbrt-v4: a single triangle (or patch) needs no indices
+        None if n == per => (0..per).map(|i| i as f64).collect(),
         None => {
             return Err(p.err(
                 loc,
-                "a trianglemesh of more than 3 vertices needs \"integer indices\"",
+                format!("a {kind} of more than {per} vertices needs \"integer indices\""),
             ));
         }
     };
-    if !idx.len().is_multiple_of(3)
+    if !idx.len().is_multiple_of(per)
         || idx
             .iter()
             .any(|&i| i < 0.0 || i.fract() != 0.0 || i as usize >= n)
     {
         return Err(p.err(
             p.loc_of("indices"),
-            format!("\"indices\" must be whole numbers below {n}, 3 per triangle"),
+            format!("\"indices\" must be whole numbers below {n}, {per} per face"),
         ));
     }
-    for unread in ["N", "uv", "S", "faceIndices"] {
+    Ok((
+        pts.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
+        idx.iter().map(|&i| i as u32).collect(),
+    ))
+}
+
+/// `trianglemesh`: `point3 P`, `integer indices` (optional for a single triangle), and
+/// optional `point2 uv` and `normal N` (one per vertex). With N, each triangle is wound so
+/// that its geometric normal lies on N's side, as pbrt-v4 turns it (its normals are
+/// authoritative; `ReverseOrientation` negates them).
+fn triangle_mesh(p: &Params, loc: Loc, reverse: bool) -> R<ShapeKind> {
+    let (vertices, idx) = positions_and_indices(p, loc, "trianglemesh", 3)?;
+    let n = vertices.len();
+    for unread in ["S", "faceIndices"] {
         if p.get(unread).is_some() {
             return Err(p.err(
                 p.loc_of(unread),
@@ -228,11 +248,61 @@ fn triangle_mesh(p: &Params, loc: Loc) -> R<ShapeKind> {
             ));
         }
     }
+    let per_vertex = |name: &str, ty: &[&str], k: usize| -> R<Option<Vec<f64>>> {
+        let Some(v) = p.nums(name, ty)? else {
+            return Ok(None);
+        };
+        if v.len() != k * n {
+            return Err(p.err(
+                p.loc_of(name),
+                format!("\"{name}\" must hold {k} numbers for each of the {n} vertices"),
+            ));
+        }
+        Ok(Some(v.to_vec()))
+    };
+    let uvs =
+        per_vertex("uv", &["point2"], 2)?.map(|v| v.chunks(2).map(|c| [c[0], c[1]]).collect());
+    let normals: Option<Vec<[f64; 3]>> = per_vertex("N", &["normal"], 3)?.map(|v| {
+        let sign = if reverse { -1.0 } else { 1.0 };
+        v.chunks(3)
+            .map(|c| [sign * c[0], sign * c[1], sign * c[2]])
+            .collect()
+    });
+    let mut faces: Vec<[u32; 3]> = idx.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
+    if let Some(ns) = &normals {
+        let v = |i: u32| DVec3::from(vertices[i as usize]);
+        for f in &mut faces {
+            let g = (v(f[1]) - v(f[0])).cross(v(f[2]) - v(f[0]));
+            let s: DVec3 = f.iter().map(|&i| DVec3::from(ns[i as usize])).sum();
+            if g.dot(s) < 0.0 {
+                f.swap(1, 2);
+            }
+        }
+    }
     Ok(ShapeKind::Inline {
-        vertices: pts.chunks(3).map(|c| [c[0], c[1], c[2]]).collect(),
-        faces: idx
-            .chunks(3)
-            .map(|c| [c[0] as u32, c[1] as u32, c[2] as u32])
-            .collect(),
+        vertices,
+        faces,
+        normals,
+        uvs,
+    })
+}
+
+/// `loopsubdiv`: `levels` (3) rounds of Loop subdivision of `P` and `indices`, with the limit
+/// surface's positions and normals (`crate::geometry::shape::loop_subdivide`).
+fn loop_subdiv(p: &Params, loc: Loc) -> R<ShapeKind> {
+    let (vertices, idx) = positions_and_indices(p, loc, "loopsubdiv", 3)?;
+    let levels = p.int("levels", 3)?;
+    if !(0..=8).contains(&levels) {
+        return Err(p.err(p.loc_of("levels"), "\"levels\" must be from 0 to 8"));
+    }
+    let pos: Vec<DVec3> = vertices.iter().map(|&v| DVec3::from(v)).collect();
+    let faces: Vec<[u32; 3]> = idx.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
+    let s = crate::geometry::shape::loop_subdivide(&pos, &faces, levels as u32)
+        .map_err(|e| p.err(loc, format!("loopsubdiv: {e}")))?;
+    Ok(ShapeKind::Inline {
+        vertices: s.positions.iter().map(|v| v.to_array()).collect(),
+        faces: s.triangles,
+        normals: Some(s.normals.iter().map(|v| v.to_array()).collect()),
+        uvs: None,
     })
 }

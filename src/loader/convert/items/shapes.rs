@@ -263,7 +263,12 @@ fn inline_mesh(cx: &Cx<'_>, s: &RawShape, sp: &Range<usize>, f: &str) -> R<Shape
         }
         faces.push(idx.map(|k| k as u32));
     }
-    Ok(ShapeKind::Inline { vertices, faces })
+    Ok(ShapeKind::Inline {
+        vertices,
+        faces,
+        normals: None,
+        uvs: None,
+    })
 }
 
 /// The index of the shape's `material` among the file's materials, an error naming them if
