@@ -5,7 +5,9 @@ which tests/pbrt_import.rs holds spectrace's pbrt-v4 reader to.
 Each [[case]] is a scene (16 × 16 pixels, `zsobol`, the default Gaussian filter) and the mean
 R, G, B and Y = 0.2126 R + 0.7152 G + 0.0722 B over the image of two renders with seeds 1 and
 2 (pbrt-v4's film: Y = ∫ȳ·L dλ), with the standard error of the mean Y (the standard deviation
-of the per-pixel difference of the seeds / 2 / √pixels).
+of the per-pixel difference of the seeds / 2 / √pixels); and the same over the object's pixels
+(`object`, row-major indices: those more than 2 % off the corners' median, the sky's value
+where there is one).
 
 Usage: build pbrt-v4 with ../shared/tools/pbrt/build_pbrt.sh (it lands in
 ~/.cache/pbrt-v4/bin/pbrt, or set PBRT), pip install numpy OpenImageIO;
@@ -20,7 +22,7 @@ import OpenImageIO as oiio
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 PBRT = os.environ.get("PBRT", os.path.expanduser("~/.cache/pbrt-v4/bin/pbrt"))
-SPP = 256
+SPP = int(os.environ.get("SPP", "256"))
 
 HEAD = f"""LookAt 0 0 5  0 0 0  0 1 0
 Camera "perspective" "float fov" [30]
@@ -87,11 +89,11 @@ Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indice
     # Loop subdivision surfaces: a closed tetrahedron (interior rules) and an open pyramid
     # (boundary rules), shaded by their limit normals
     ("loop_subdiv", HEAD + 'Integrator "path" "integer maxdepth" 5\nWorldBegin\n' + SKY + SUN
-     + 'AttributeBegin\nTranslate -0.55 0 0\nRotate 30 0 1 0\nScale 0.5 0.5 0.5\n'
+     + 'AttributeBegin\nTranslate -0.6 0.1 0\nRotate 30 0 1 0\nScale 1.1 1.1 1.1\n'
        'Material "coateddiffuse" "rgb reflectance" [0.7 0.3 0.2] "float roughness" 0.05\n'
        'Shape "loopsubdiv" "integer levels" 3 "point3 P" [1 1 1  -1 -1 1  -1 1 -1  1 -1 -1]\n'
        '  "integer indices" [0 1 2  0 3 1  0 2 3  1 3 2]\nAttributeEnd\n'
-       'AttributeBegin\nTranslate 0.6 -0.3 0\nRotate -70 1 0 0\nScale 0.6 0.6 0.6\n'
+       'AttributeBegin\nTranslate 0.65 -0.5 0\nRotate -70 1 0 0\nScale 0.8 0.8 0.8\n'
        'Material "conductor" "spectrum eta" "metal-Ag-eta" "spectrum k" "metal-Ag-k" "float roughness" 0.01\n'
        'Shape "loopsubdiv" "integer levels" 2 "point3 P" [-1 -1 0  1 -1 0  1 1 0  -1 1 0  0 0 1.2]\n'
        '  "integer indices" [0 1 4  1 2 4  2 3 4  3 0 4]\nAttributeEnd\n'),
@@ -124,10 +126,22 @@ def main():
             se = float((ys[0] - ys[1]).std() / 2 / np.sqrt(n))
             rgb = ((imgs[0] + imgs[1]) / 2).reshape(-1, 3).mean(0)
             y = float((ys[0] + ys[1]).mean() / 2)
-            print(name, rgb, y, se)
+            # the object's pixels: those that differ from the background (the corners' value:
+            # the sky, where a scene has one) by more than 2 %, so that an error in a shape or
+            # a BSDF is not diluted by the background
+            img = (ys[0] + ys[1]) / 2
+            bg = float(np.median([img[0, 0], img[0, -1], img[-1, 0], img[-1, -1]]))
+            mean = img.ravel()
+            mask = np.nonzero(np.abs(mean - bg) > 0.02 * abs(bg) + 1e-9)[0]
+            ym = float(mean[mask].mean()) if len(mask) else 0.0
+            dm = (ys[0] - ys[1]).ravel()[mask]
+            sem = float(dm.std() / 2 / np.sqrt(len(mask))) if len(mask) else 0.0
+            print(name, rgb, y, se, len(mask), ym, sem)
             out += ["[[case]]", f'name = "{name}"', f"spp = {SPP}", f"pbrt = '''\n{text}'''",
                     "rgb = [" + ", ".join(f"{v:.7g}" for v in rgb) + "]",
-                    f"y = {y:.7g}", f"stderr = {se:.4g}", ""]
+                    f"y = {y:.7g}", f"stderr = {se:.4g}",
+                    "object = [" + ", ".join(str(int(i)) for i in mask) + "]",
+                    f"y_object = {ym:.7g}", f"stderr_object = {sem:.4g}", ""]
     with open(os.path.join(ROOT, "tests", "data", "pbrt_refs.toml"), "w") as f:
         f.write("\n".join(out))
 

@@ -106,11 +106,15 @@ struct RefCase {
     pbrt: String,
     y: f64,
     stderr: f64,
+    /// Row-major indices of the object's pixels (more than 2 % off the background).
+    object: Vec<usize>,
+    y_object: f64,
+    stderr_object: f64,
 }
 
 /// The mean Y of a pbrt-v4 scene rendered by spectrace, on pbrt-v4's scale (Y / 683), with its
-/// standard error from two seeds.
-fn mean_y(text: &str, spp: u32) -> (f64, f64) {
+/// standard error from two seeds: over the pixels `subset`, or all when None.
+fn mean_y(text: &str, spp: u32, subsets: [Option<&[usize]>; 2]) -> [(f64, f64); 2] {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/pbrt/inline.pbrt");
     let desc = spectrace::loader::pbrt::load_str(text, &path).unwrap_or_else(|e| panic!("{e}"));
     let scene = spectrace::build::build(&desc).unwrap_or_else(|e| panic!("{e}"));
@@ -124,37 +128,45 @@ fn mean_y(text: &str, spp: u32) -> (f64, f64) {
             img.xyz.iter().map(|p| p[1] as f64 / K_M).collect()
         })
         .collect();
-    let n = ys[0].len() as f64;
-    let d: Vec<f64> = ys[0].iter().zip(&ys[1]).map(|(a, b)| a - b).collect();
-    let dm = d.iter().sum::<f64>() / n;
-    let var = d.iter().map(|x| (x - dm).powi(2)).sum::<f64>() / n;
-    let mean = ys.iter().flatten().sum::<f64>() / (2.0 * n);
-    (mean, var.sqrt() / 2.0 / n.sqrt())
+    subsets.map(|subset| {
+        let all: Vec<usize> = (0..ys[0].len()).collect();
+        let idx = subset.unwrap_or(&all);
+        let n = idx.len() as f64;
+        let d: Vec<f64> = idx.iter().map(|&i| ys[0][i] - ys[1][i]).collect();
+        let dm = d.iter().sum::<f64>() / n;
+        let var = d.iter().map(|x| (x - dm).powi(2)).sum::<f64>() / n;
+        let mean = idx.iter().map(|&i| ys[0][i] + ys[1][i]).sum::<f64>() / (2.0 * n);
+        (mean, var.sqrt() / 2.0 / n.sqrt())
+    })
 }
 
 /// Small scenes against pbrt-v4's own renders (`tests/data/pbrt_refs.toml`, written by
-/// `scripts/gen_pbrt_refs.py` with a pbrt-v4 build): named metals smooth and rough, a BK7 sphere
-/// before a lit wall, a box lit by a disk and a point light. Within 5 standard errors of the
-/// two renderers' difference plus the spread of the named tables: spectrace's metals and glasses
-/// come from its own sources, not pbrt-v4's arrays.
+/// `scripts/gen_pbrt_refs.py` with a pbrt-v4 build): named metals smooth and rough, a BK7
+/// sphere before a lit wall, a box lit by a disk and a point light, photometric amounts,
+/// layered materials and Loop subdivision surfaces. The mean Y of the whole image and of the
+/// object's pixels each within 5 standard errors of the two renderers' difference.
 #[test]
 fn scenes_match_pbrt_v4() {
     let p = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/pbrt_refs.toml");
     let refs: Refs = toml::from_str(&std::fs::read_to_string(&p).expect("pbrt_refs.toml")).unwrap();
     let mut failures = Vec::new();
     for c in refs.case {
-        let (y, se) = mean_y(&c.pbrt, c.spp);
-        let tol = 5.0 * (se * se + c.stderr * c.stderr).sqrt();
-        let line = format!(
-            "{}: spectrace {y:.5} ± {se:.5}, pbrt-v4 {:.5} ± {:.5} ({:+.2} %)",
-            c.name,
-            c.y,
-            c.stderr,
-            (y / c.y - 1.0) * 100.0
-        );
-        println!("{line}");
-        if (y - c.y).abs() > tol {
-            failures.push(line);
+        let [(y, se), (yo, seo)] = mean_y(&c.pbrt, c.spp, [None, Some(&c.object)]);
+        for (what, y, se, ry, rse) in [
+            ("image", y, se, c.y, c.stderr),
+            ("object", yo, seo, c.y_object, c.stderr_object),
+        ] {
+            let tol = 5.0 * (se * se + rse * rse).sqrt();
+            let line = format!(
+                "{} ({what}): spectrace {y:.5} ± {se:.5}, pbrt-v4 {ry:.5} ± {rse:.5} ({:+.2} %, z {:+.1})",
+                c.name,
+                (y / ry - 1.0) * 100.0,
+                (y - ry) / (se * se + rse * rse).sqrt()
+            );
+            println!("{line}");
+            if (y - ry).abs() > tol {
+                failures.push(line);
+            }
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
