@@ -89,6 +89,24 @@ Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indice
      + 'Material "coatedconductor" "rgb reflectance" [0.9 0.4 0.2] "spectrum interface.eta" "glass-BK7" '
        '"float thickness" 0.05 "integer maxdepth" 4 "integer nsamples" 2\n'
        'Shape "sphere" "float radius" 1\n'),
+    # pbrt-v4's spot light with its `power` (smoothstep falloff over conedeltaangle) on a floor
+    ("spot_power", """LookAt 0 6 0.5  0 0 0  0 0 1
+Camera "perspective" "float fov" [60]
+Film "rgb" "integer xresolution" 16 "integer yresolution" 16
+Sampler "zsobol" "integer pixelsamples" SPP
+Integrator "path" "integer maxdepth" 3
+WorldBegin
+LightSource "spot" "point3 from" [0.5 3 0.2] "point3 to" [0 0 0] "float coneangle" 25 "float conedeltaangle" 10 "blackbody I" 3200 "float power" 30
+Material "diffuse" "rgb reflectance" [0.6 0.5 0.4]
+Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indices" [0 2 1 0 3 2]
+""".replace("SPP", str(SPP))),
+    # a BK7 prism (pbrt-v4's named glass, dispersive) on a floor under a sky and a sun
+    ("bk7_prism", HEAD + 'Integrator "path" "integer maxdepth" 10\nWorldBegin\n' + SKY + SUN
+     + 'Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]\n'
+       'Shape "trianglemesh" "point3 P" [-4 -1 -4  4 -1 -4  4 -1 4  -4 -1 4] "integer indices" [0 1 2 0 2 3]\n'
+     + 'AttributeBegin\nRotate 20 0 1 0\nMaterial "dielectric" "spectrum eta" "glass-BK7"\n'
+       'Shape "trianglemesh" "point3 P" [-1 -1 0.6  1 -1 0.6  0 0.7 0.6  -1 -1 -0.6  1 -1 -0.6  0 0.7 -0.6]\n'
+       '  "integer indices" [0 1 2  3 5 4  0 3 4  0 4 1  1 4 5  1 5 2  2 5 3  2 3 0]\nAttributeEnd\n'),
     # Loop subdivision surfaces: a closed tetrahedron (interior rules) and an open pyramid
     # (boundary rules), shaded by their limit normals
     ("loop_subdiv", HEAD + 'Integrator "path" "integer maxdepth" 5\nWorldBegin\n' + SKY

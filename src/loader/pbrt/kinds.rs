@@ -148,6 +148,44 @@ pub(super) fn light(kind: &str, p: &Params, ctm: &DMat4, loc: Loc, r: &Reader) -
                 s,
             )
         }
+        // pbrt-v4's spot: full inside coneangle − conedeltaangle, smoothstep in cos θ to 0 at
+        // coneangle (`SpotLight::I`); `power` over the cone as pbrt-v4 integrates it
+        "spot" => {
+            let from = DVec3::from(p.vec3("from", [0.0; 3])?);
+            let to = DVec3::from(p.vec3("to", [0.0, 0.0, 1.0])?);
+            if (to - from).length() == 0.0 {
+                return Err(p.err(loc, "a spot light's from and to coincide"));
+            }
+            let cone = p.float("coneangle", 30.0)?;
+            let delta = p.float("conedeltaangle", 5.0)?;
+            if !(cone > 0.0 && cone <= 180.0) || !(0.0..=cone).contains(&delta) {
+                return Err(p.err(
+                    loc,
+                    "a spot light needs 0 < coneangle ≤ 180 and 0 ≤ conedeltaangle ≤ coneangle (degrees)",
+                ));
+            }
+            let (s, k) = spectra::illuminant(p, "I")?;
+            let power = p.float("power", -1.0)?;
+            let (cos_end, cos_start) = (cone.to_radians().cos(), (cone - delta).to_radians().cos());
+            let k = if power > 0.0 {
+                k * power / (2.0 * PI * ((1.0 - cos_start) + (cos_start - cos_end) / 2.0))
+            } else {
+                k
+            };
+            let (from, to) = (ctm.transform_point3(from), ctm.transform_point3(to));
+            (
+                LightKind::Spot {
+                    position: [len(from.x), len(from.y), len(from.z)],
+                    target: [len(to.x), len(to.y), len(to.z)],
+                    cone_angle: Angle::new::<degree>(cone),
+                    falloff_start: Angle::new::<degree>(cone - delta),
+                    falloff: crate::light::SpotFalloff::SmoothstepCos,
+                    amount: PointAmount::Scale(scale * k),
+                    texture: None,
+                },
+                s,
+            )
+        }
         "distant" => {
             let from = DVec3::from(p.vec3("from", [0.0, 0.0, 0.0])?);
             let to = DVec3::from(p.vec3("to", [0.0, 0.0, 1.0])?);
@@ -189,7 +227,7 @@ pub(super) fn light(kind: &str, p: &Params, ctm: &DMat4, loc: Loc, r: &Reader) -
         other => {
             return Err(p.err(
                 loc,
-                format!("the light \"{other}\" is not read yet (spectrace reads point, distant and infinite)"),
+                format!("the light \"{other}\" is not read yet (spectrace reads point, spot, distant and infinite)"),
             ));
         }
     };
