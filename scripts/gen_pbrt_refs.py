@@ -100,6 +100,32 @@ LightSource "spot" "point3 from" [0.5 3 0.2] "point3 to" [0 0 0] "float coneangl
 Material "diffuse" "rgb reflectance" [0.6 0.5 0.4]
 Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indices" [0 2 1 0 3 2]
 """.replace("SPP", str(SPP))),
+    # area lights' `power` as pbrt-v4 spreads it: over a sphere's and a disk's object-space
+    # area, and over each triangle of a mesh (each triangle emits the whole power)
+    ("area_power", """LookAt 0 6 0.5  0 0 0  0 0 1
+Camera "perspective" "float fov" [60]
+Film "rgb" "integer xresolution" 16 "integer yresolution" 16
+Sampler "zsobol" "integer pixelsamples" SPP
+Integrator "path" "integer maxdepth" 3
+WorldBegin
+AttributeBegin
+AreaLightSource "diffuse" "blackbody L" 4000 "float power" 20
+Translate -1.5 1.5 0
+Shape "sphere" "float radius" 0.3
+AttributeEnd
+AttributeBegin
+AreaLightSource "diffuse" "rgb L" [0.3 0.6 0.9] "float power" 8 "bool twosided" true
+Translate 1.5 2 0
+Rotate 90 1 0 0
+Shape "disk" "float radius" 0.4
+AttributeEnd
+AttributeBegin
+AreaLightSource "diffuse" "blackbody L" 6500 "float power" 5 "float scale" 2
+Shape "trianglemesh" "point3 P" [-0.5 2.5 -1.5  -0.5 2.5 -0.5  0.5 2.5 -0.5  0.5 2.5 -1.5] "integer indices" [0 2 1 0 3 2]
+AttributeEnd
+Material "diffuse" "rgb reflectance" [0.6 0.6 0.6]
+Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indices" [0 2 1 0 3 2]
+""".replace("SPP", str(SPP))),
     # a BK7 prism (pbrt-v4's named glass, dispersive) on a floor under a sky and a sun
     ("bk7_prism", HEAD + 'Integrator "path" "integer maxdepth" 10\nWorldBegin\n' + SKY + SUN
      + 'Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]\n'

@@ -21,6 +21,8 @@ pub(super) struct AreaLight {
     pub spectrum: Spectrum,
     pub scale: f64,
     pub two_sided: bool,
+    /// pbrt-v4's `power` (∫ȳ·Φ dλ of each shape, each triangle of a mesh), if given.
+    pub power: Option<f64>,
     pub loc: Loc,
 }
 
@@ -247,14 +249,19 @@ pub(super) fn area_light(kind: &str, p: &Params, loc: Loc) -> R<AreaLight> {
             format!("the area light \"{kind}\" is not read (pbrt-v4 has only \"diffuse\")"),
         ));
     }
-    if p.get("power").is_some() || p.get("filename").is_some() {
-        return Err(p.err(loc, "an area light's power or image is not read yet"));
+    if p.get("filename").is_some() {
+        return Err(p.err(
+            p.loc_of("filename"),
+            "an area light's image is not read yet",
+        ));
     }
     let (spectrum, k) = spectra::illuminant(p, "L")?;
+    let power = p.float("power", -1.0)?;
     Ok(AreaLight {
         spectrum,
         scale: p.float("scale", 1.0)? * k,
         two_sided: p.bool("twosided", false)?,
+        power: (power > 0.0).then_some(power),
         loc,
     })
 }

@@ -234,9 +234,9 @@ impl Reader {
             "Shape" => {
                 let kind = Self::string_arg(toks, i, file, d, loc)?;
                 let p = Params::parse(toks, i, file)?;
-                let shape = shapes::shape(&kind, &p, loc, self, file)?;
+                let shapes = shapes::shape(&kind, &p, loc, self, file)?;
                 p.check_unused(&format!("shape \"{kind}\""))?;
-                self.shapes.push(shape);
+                self.shapes.extend(shapes);
             }
             "Texture" | "MakeNamedMedium" | "MediumInterface" | "ObjectBegin" | "ObjectEnd"
             | "ObjectInstance" | "Attribute" | "TransformTimes" | "ActiveTransform" => {

@@ -2,6 +2,7 @@
 //! scene description, under the current transformation, material and area light; and pbrt's
 //! `LookAt`.
 
+use std::f64::consts::PI;
 use std::path::Path;
 
 use glam::{DMat4, DVec3};
@@ -57,8 +58,30 @@ fn matrix_step(m: &DMat4) -> TransformStep {
     TransformStep::Matrix(r)
 }
 
-/// A `Shape`: its geometry, the current transformation, material, orientation and area light.
-pub(super) fn shape(kind: &str, p: &Params, loc: Loc, r: &mut Reader, file: &Path) -> R<ShapeDesc> {
+/// A `Shape`: its geometry, the current transformation, material, orientation and area light;
+/// several when an area light's `power` is shared per triangle (pbrt-v4 makes a light of each).
+pub(super) fn shape(
+    kind: &str,
+    p: &Params,
+    loc: Loc,
+    r: &mut Reader,
+    file: &Path,
+) -> R<Vec<ShapeDesc>> {
+    // the object-space area pbrt-v4's `Shape::Area` gives a quadric (its transform not applied)
+    let quadric_area = |kind: &str| -> R<f64> {
+        let radius = p.float("radius", 1.0)?;
+        Ok(match kind {
+            "sphere" => 4.0 * PI * radius * radius,
+            "cylinder" => {
+                2.0 * PI * radius * (p.float("zmax", 1.0)? - p.float("zmin", -1.0)?).abs()
+            }
+            _ => PI * radius * radius,
+        })
+    };
+    let area = match kind {
+        "sphere" | "cylinder" | "disk" => Some(quadric_area(kind)?),
+        _ => None,
+    };
     let geometry = match kind {
         "sphere" => {
             let radius = p.float("radius", 1.0)?;
@@ -125,7 +148,7 @@ pub(super) fn shape(kind: &str, p: &Params, loc: Loc, r: &mut Reader, file: &Pat
             let m = r.state.ctm
                 * DMat4::from_translation(DVec3::new(0.0, 0.0, height))
                 * DMat4::from_scale(DVec3::splat(radius));
-            return finish_shape(ShapeKind::Disk, m, p, loc, r);
+            return finish_shape(ShapeKind::Disk, m, area, p, loc, r).map(|s| vec![s]);
         }
         other => {
             return Err(p.err(
@@ -135,11 +158,50 @@ pub(super) fn shape(kind: &str, p: &Params, loc: Loc, r: &mut Reader, file: &Pat
         }
     };
     let m = r.state.ctm;
-    finish_shape(geometry, m, p, loc, r)
+    let power = r.state.area_light.as_ref().and_then(|a| a.power);
+    match geometry {
+        ShapeKind::Inline {
+            vertices,
+            faces,
+            normals,
+            uvs,
+        } if power.is_some() => {
+            // pbrt-v4 gives each triangle the whole `power`: one shape per triangle
+            let world = |i: u32| m.transform_point3(DVec3::from(vertices[i as usize]));
+            let pick = |f: &[u32; 3]| f.map(|i| i as usize);
+            faces
+                .iter()
+                .map(|f| {
+                    let a = 0.5 * (world(f[1]) - world(f[0])).cross(world(f[2]) - world(f[0])).length();
+                    let [i, j, k] = pick(f);
+                    let tri = ShapeKind::Inline {
+                        vertices: vec![vertices[i], vertices[j], vertices[k]],
+                        faces: vec![[0, 1, 2]],
+                        normals: normals.as_ref().map(|n| vec![n[i], n[j], n[k]]),
+                        uvs: uvs.as_ref().map(|t| vec![t[i], t[j], t[k]]),
+                    };
+                    finish_shape(tri, m, Some(a), p, loc, r)
+                })
+                .collect()
+        }
+        ShapeKind::Ply { .. } if power.is_some() => Err(p.err(
+            loc,
+            "an area light's \"power\" on a plymesh is not read yet (pbrt-v4 applies it per triangle)",
+        )),
+        g => finish_shape(g, m, area, p, loc, r).map(|s| vec![s]),
+    }
 }
 
-/// The shape's transform, material, emission and orientation.
-fn finish_shape(kind: ShapeKind, m: DMat4, p: &Params, loc: Loc, r: &mut Reader) -> R<ShapeDesc> {
+/// The shape's transform, material, emission and orientation; `area` (m²) is what an area
+/// light's `power` is spread over: L = power / (sides · area · π) per unit of ∫ȳ·S dλ.
+fn finish_shape(
+    kind: ShapeKind,
+    m: DMat4,
+    area: Option<f64>,
+    p: &Params,
+    loc: Loc,
+    r: &mut Reader,
+) -> R<ShapeDesc> {
     // pbrt-v4's materials reflect on both sides, so orientation matters only for a one-sided
     // area light: which side emits after `ReverseOrientation` and mirroring transforms
     // (pbrt-v4 flips quadrics and meshes differently) is not read yet
@@ -170,7 +232,13 @@ fn finish_shape(kind: ShapeKind, m: DMat4, p: &Params, loc: Loc, r: &mut Reader)
     let emission = r.state.area_light.as_ref().map(|a| EmissionDesc {
         spectrum: a.spectrum.clone(),
         texture: None,
-        amount: EmitAmount::Scale(a.scale),
+        amount: EmitAmount::Scale(match (a.power, area) {
+            (Some(power), Some(area)) if area > 0.0 => {
+                let sides = if a.two_sided { 2.0 } else { 1.0 };
+                a.scale * power / (sides * area * PI)
+            }
+            _ => a.scale,
+        }),
         two_sided: a.two_sided,
         sampling_weight: 1.0,
         loc: a.loc,
