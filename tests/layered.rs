@@ -43,6 +43,7 @@ fn coated(base: LayeredBase, rho: f32, eta: f32, thickness: f32) -> Material {
         g: 0.0,
         max_depth: 400,
         n_samples: 1,
+        pbrt_exit_weight: false,
     }))
 }
 
@@ -196,6 +197,7 @@ fn rough_coatings_sample_what_they_evaluate() {
             g: 0.3,
             max_depth: 10,
             n_samples: 1,
+            pbrt_exit_weight: false,
         }));
         for &c in &[0.9f32, 0.5, 0.2] {
             let ((s, se_s), (e, se_e)) = albedos(&m, view(c), 400_000, 3);
@@ -206,4 +208,86 @@ fn rough_coatings_sample_what_they_evaluate() {
             assert!(z.abs() < 5.0);
         }
     }
+}
+
+#[derive(serde::Deserialize)]
+struct PbrtAlbedos {
+    case: Vec<PbrtAlbedo>,
+}
+
+#[derive(serde::Deserialize)]
+struct PbrtAlbedo {
+    name: String,
+    cos: f32,
+    params: std::collections::BTreeMap<String, toml::Value>,
+    sampled: f64,
+    sampled_se: f64,
+    evaluated: f64,
+    evaluated_se: f64,
+}
+
+/// Directional albedos against pbrt-v4's own layered BSDF (`tests/data/pbrt_layered_albedo.toml`,
+/// from `scripts/gen_pbrt_layered_albedo.py`): spectrace's sampler against pbrt-v4's sampler;
+/// spectrace's f with pbrt-v4's exit weight against pbrt-v4's f (which is biased high); and
+/// spectrace's own f against pbrt-v4's sampler, the unbiased figure.
+#[test]
+fn albedos_match_pbrt_v4s_own_bsdf() {
+    let p = support::data_path("pbrt_layered_albedo.toml");
+    let data: PbrtAlbedos = toml::from_str(&std::fs::read_to_string(&p).unwrap()).unwrap();
+    let table = |v: f32| Arc::new(PiecewiseLinear::new(vec![360.0, 830.0], vec![v; 2]).unwrap());
+    let mut failures = Vec::new();
+    for c in &data.case {
+        let num = |k: &str| c.params[k].as_float().unwrap() as f32;
+        let base = match c.params["base"].as_str().unwrap() {
+            "diffuse" => LayeredBase::Diffuse,
+            _ => LayeredBase::Conductor {
+                ior: Some(ComplexIor {
+                    n: table(num("n")),
+                    k: table(num("k")),
+                }),
+                alpha: Some([num("conductor_alpha"); 2]),
+            },
+        };
+        let layered = |pbrt_exit_weight: bool| {
+            Material::Layered(Box::new(Layered {
+                base: base.clone(),
+                reflectance: Spectrum::Constant(
+                    c.params
+                        .get("rho")
+                        .map_or(0.0, |v| v.as_float().unwrap() as f32),
+                )
+                .into(),
+                eta: Ior::Constant(num("eta")),
+                alpha: Some([num("alpha"); 2]),
+                thickness: num("thickness"),
+                albedo: Spectrum::Constant(num("albedo")).into(),
+                g: num("g"),
+                max_depth: 10,
+                n_samples: 1,
+                pbrt_exit_weight,
+            }))
+        };
+        let (sampled, own) = albedos(&layered(false), view(c.cos), 400_000, 5);
+        let (_, pbrt_weight) = albedos(&layered(true), view(c.cos), 400_000, 6);
+        for (what, (m, se), (r, rse)) in [
+            ("sampled", sampled, (c.sampled, c.sampled_se)),
+            (
+                "f with pbrt-v4's weight",
+                pbrt_weight,
+                (c.evaluated, c.evaluated_se),
+            ),
+            ("f", own, (c.sampled, c.sampled_se)),
+        ] {
+            let z = (m - r) / (se * se + rse * rse).sqrt();
+            let line = format!(
+                "{} cos {}: {what} {m:.5} ± {se:.5} against pbrt-v4 {r:.5} ± {rse:.5} (z {z:+.1})",
+                c.name, c.cos
+            );
+            println!("{line}");
+            if z.abs() > 5.0 {
+                failures.push(line);
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

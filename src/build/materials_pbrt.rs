@@ -26,5 +26,6 @@ pub(super) fn layered(d: &LayeredDesc) -> Result<Material, String> {
         g: d.g.clamp(-0.999, 0.999) as f32,
         max_depth: d.max_depth,
         n_samples: d.n_samples,
+        pbrt_exit_weight: d.pbrt_exit_weight,
     })))
 }

@@ -76,6 +76,10 @@ pub struct Layered {
     pub max_depth: u32,
     /// Walks per estimate (pbrt-v4's `nsamples`, 1 by default).
     pub n_samples: u32,
+    /// Weigh the exit's second estimate against the opposite crossing's density, as pbrt-v4
+    /// does (see the module's docs): its f is then biased high. Only for comparing renders
+    /// with pbrt-v4's; no reader sets it.
+    pub pbrt_exit_weight: bool,
 }
 
 impl Layered {
@@ -139,6 +143,7 @@ impl Layered {
             max_depth: self.max_depth,
             n_samples: self.n_samples.max(1),
             dispersive: self.eta.is_dispersive(),
+            pbrt_exit_weight: self.pbrt_exit_weight,
         }
     }
 
@@ -172,6 +177,7 @@ pub struct Slab<const N: usize> {
     pub max_depth: u32,
     pub n_samples: u32,
     pub dispersive: bool,
+    pub pbrt_exit_weight: bool,
 }
 
 /// PCG32 (O'Neill 2014), seeded by hashing a call's arguments.
@@ -237,6 +243,16 @@ pub(super) fn adjoint(mode: TransportMode) -> TransportMode {
 }
 
 impl<const N: usize> Slab<N> {
+    /// The MIS competitor of a walk leaving the slab along −`w` toward `wi`: the density of
+    /// sampling −`w` from `wi` through the coating, or pbrt-v4's (module docs).
+    fn exit_pdf(&self, w: Vec3, wi: Vec3) -> f32 {
+        if self.pbrt_exit_weight {
+            self.top.pdf(-w, wi, Events::Transmission)
+        } else {
+            self.top.pdf(wi, -w, Events::Transmission)
+        }
+    }
+
     /// The estimate of f(wo, wi) (pbrt-v4's `LayeredBxDF::f`, entered from the top).
     pub fn eval(&self, wo: Vec3, wi: Vec3, mode: TransportMode) -> SampledSpectrum<N> {
         let (wo, wi) = if wo.z < 0.0 { (-wo, -wi) } else { (wo, wi) };
@@ -300,7 +316,7 @@ impl<const N: usize> Slab<N> {
                             if !f_exit.is_zero() {
                                 // the first strategy's density of this direction (pbrt-v4:
                                 // top.pdf(-w, wi), see the module's docs)
-                                let exit_pdf = top.pdf(wi, -w, Events::Transmission);
+                                let exit_pdf = self.exit_pdf(w, wi);
                                 let wt = power_heuristic(1.0, ps.pdf, 1.0, exit_pdf);
                                 f += beta * f_exit * (tr(zp - th, ps.wi) * wt);
                             }
@@ -345,7 +361,7 @@ impl<const N: usize> Slab<N> {
                                 1.0
                             } else {
                                 // as above: the density of sampling -w from wi
-                                let exit_pdf = top.pdf(wi, -w, Events::Transmission);
+                                let exit_pdf = self.exit_pdf(w, wi);
                                 power_heuristic(1.0, bs.pdf, 1.0, exit_pdf)
                             };
                             f += beta * f_exit * (tr(th, bs.wi) * wt);

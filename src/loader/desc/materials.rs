@@ -155,6 +155,9 @@ pub struct LayeredDesc {
     /// pbrt-v4's `maxdepth` and `nsamples`.
     pub max_depth: u32,
     pub n_samples: u32,
+    /// Weigh the exit's second estimate as pbrt-v4 does (biased; see
+    /// `crate::material::Layered::pbrt_exit_weight`): false from every reader.
+    pub pbrt_exit_weight: bool,
 }
 
 /// The parameters of a hair fibre.

@@ -124,6 +124,7 @@ fn slab(p: &Params) -> R<LayeredDesc> {
         g: p.float("g", 0.0)?,
         max_depth: count("maxdepth", 10)?,
         n_samples,
+        pbrt_exit_weight: false,
     })
 }
 
