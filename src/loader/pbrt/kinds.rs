@@ -161,7 +161,7 @@ pub(super) fn light(kind: &str, p: &Params, ctm: &DMat4, loc: Loc, r: &Reader) -
             }
             let cone = p.float("coneangle", 30.0)?;
             let delta = p.float("conedeltaangle", 5.0)?;
-            if !(cone > 0.0 && cone <= 180.0) || !(0.0..=cone).contains(&delta) {
+            if !(cone > 0.0 && cone <= 180.0 && (0.0..=cone).contains(&delta)) {
                 return Err(p.err(
                     loc,
                     "a spot light needs 0 < coneangle ≤ 180 and 0 ≤ conedeltaangle ≤ coneangle (degrees)",
