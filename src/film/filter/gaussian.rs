@@ -6,6 +6,8 @@
 //!   gaussian.cpp, src/core/rfilter.cpp): per axis exp(−x²/2σ²) − exp(−r²/2σ²) of standard
 //!   deviation `stddev` (default 0.5 px) with r = 4σ, zero beyond r, tabulated in 31 steps of
 //!   |x| over [0, r], each step holding the value at its inner end (`eval_discretized`).
+//! - pbrt-v4's `gaussian` (src/pbrt/filters.h, `GaussianFilter`): per axis
+//!   max(0, G(x) − G(r)) of `sigma` 0.5 and `xradius`/`yradius` 1.5 px, evaluated exactly.
 
 use super::{FilterDesc, MITSUBA_FILTER_RESOLUTION, stepped};
 use crate::params::{Dialect, Kind, ParamError, Params};
@@ -20,6 +22,8 @@ pub struct Desc {
     /// Mitsuba's form: shifted down by its value at `radius` so it reaches 0 there, and
     /// evaluated from Mitsuba's 31-step table.
     pub mitsuba: bool,
+    /// pbrt-v4's form: shifted down by its value at `radius`, evaluated exactly.
+    pub shifted: bool,
 }
 
 impl Desc {
@@ -29,6 +33,17 @@ impl Desc {
             sigma: radius / 3.0,
             radius,
             mitsuba: false,
+            shifted: false,
+        })
+    }
+
+    /// pbrt-v4's `gaussian` of standard deviation `sigma` px cut at `radius` px.
+    pub fn pbrt(sigma: f64, radius: f64) -> FilterDesc {
+        FilterDesc::Gaussian(Desc {
+            sigma,
+            radius,
+            mitsuba: false,
+            shifted: true,
         })
     }
 
@@ -38,6 +53,7 @@ impl Desc {
             sigma: stddev,
             radius: 4.0 * stddev,
             mitsuba: true,
+            shifted: true,
         })
     }
 
@@ -48,11 +64,15 @@ impl Desc {
     pub(super) fn kernel(&self) -> Kernel {
         let alpha = (1.0 / (2.0 * self.sigma * self.sigma)) as f32;
         let r = self.radius as f32;
-        if self.mitsuba {
+        if self.shifted {
             Kernel {
                 alpha,
                 bias: (-alpha * r * r).exp(),
-                step: r / MITSUBA_FILTER_RESOLUTION,
+                step: if self.mitsuba {
+                    r / MITSUBA_FILTER_RESOLUTION
+                } else {
+                    0.0
+                },
             }
         } else {
             Kernel {
@@ -91,4 +111,23 @@ fn read(p: &mut dyn Params) -> Result<FilterDesc, ParamError> {
         Dialect::Toml => Desc::native(p.positive("radius", 1.5)?),
         Dialect::Mitsuba => Desc::mitsuba(p.positive("stddev", 0.5)?),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// pbrt-v4's Gaussian: G(x) − G(r) with G(x) = exp(−x²/2σ²), exactly (no table).
+    #[test]
+    fn pbrt_form_is_shifted_and_continuous() {
+        let FilterDesc::Gaussian(d) = Desc::pbrt(0.5, 1.5) else {
+            unreachable!()
+        };
+        let k = d.kernel();
+        let g = |x: f32| (-x * x / 0.5).exp();
+        for x in [0.0f32, 0.3, 0.75, 1.2, 1.49] {
+            assert!((k.eval(x) - (g(x) - g(1.5))).abs() < 1e-6, "{x}");
+        }
+        assert_eq!(k.eval(1.5), 0.0);
+    }
 }

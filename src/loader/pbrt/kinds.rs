@@ -337,7 +337,7 @@ pub(super) fn finish(r: Reader) -> Result<SceneDesc, LoadError> {
             height: height as u32,
             spp: spp.clamp(1, 1 << 24) as u32,
             // pbrt-v4's default pixel filter: a Gaussian of radius 1.5 px, σ 0.5
-            filter: crate::film::filter::gaussian::Desc::mitsuba(0.5),
+            filter: crate::film::filter::gaussian::Desc::pbrt(0.5, 1.5),
             spectral_bins: 0,
             exposure_ev: None,
             loc: film_loc,

@@ -1,0 +1,97 @@
+#!/usr/bin/env python3
+"""Renders the pbrt-v4 reference scenes (tests/reference/pbrt/<name>/scene.pbrt) with pbrt-v4
+and writes each folder's refs.toml, which tests/pbrt_reference.rs holds spectrace to.
+
+For every 8 × 8 block of pixels: the mean Y = 0.2126 R + 0.7152 G + 0.0722 B (pbrt-v4's film:
+Y = ∫ȳ·L dλ) of two renders with seeds 1 and 2, and its standard error from the pixels'
+differences between the seeds (√Σ(a − b)² / 2n, the pixels taken as independent).
+
+It also writes killeroo_style/geometry/blob.pbrt: a `loopsubdiv` control mesh (an icosahedron,
+its vertices moved by a fixed pseudo-random amount), the stand-in for the killeroo model of
+pbrt-v4-scenes' killeroo-simple.pbrt, whose layout the scene copies.
+
+Usage: build pbrt-v4 (../shared/tools/pbrt/build_pbrt.sh), pip install numpy OpenImageIO;
+python3 scripts/gen_pbrt_reference.py [name ...]
+"""
+import math
+import os
+import random
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+import OpenImageIO as oiio
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BASE = os.path.join(ROOT, "tests", "reference", "pbrt")
+PBRT = os.environ.get("PBRT", os.path.expanduser("~/.cache/pbrt-v4/bin/pbrt"))
+BLOCK = 8
+
+
+def blob():
+    t = (1 + 5 ** 0.5) / 2
+    v = [(-1, t, 0), (1, t, 0), (-1, -t, 0), (1, -t, 0), (0, -1, t), (0, 1, t), (0, -1, -t), (0, 1, -t),
+         (t, 0, -1), (t, 0, 1), (-t, 0, -1), (-t, 0, 1)]
+    f = [(0, 11, 5), (0, 5, 1), (0, 1, 7), (0, 7, 10), (0, 10, 11), (1, 5, 9), (5, 11, 4), (11, 10, 2),
+         (10, 7, 6), (7, 1, 8), (3, 9, 4), (3, 4, 2), (3, 2, 6), (3, 6, 8), (3, 8, 9), (4, 9, 5),
+         (2, 4, 11), (6, 2, 10), (8, 6, 7), (9, 8, 1)]
+    rng = random.Random(32)
+    r = 65 / math.sqrt(1 + t * t)
+    pts = []
+    for x, y, z in v:
+        k = r * rng.uniform(0.75, 1.25)
+        pts.append((k * x, 25 + k * 1.3 * y, -70 + k * 0.9 * z))
+    lines = ['# written by scripts/gen_pbrt_reference.py: an icosahedron moved at random (seed 32)',
+             'Shape "loopsubdiv"', '    "integer levels" [ 3 ]',
+             '    "point3 P" [ ' + "  ".join(" ".join(f"{c:.4f}" for c in p) for p in pts) + " ]",
+             '    "integer indices" [ ' + "  ".join(" ".join(str(i) for i in tri) for tri in f) + " ]", ""]
+    with open(os.path.join(BASE, "killeroo_style", "geometry", "blob.pbrt"), "w") as out:
+        out.write("\n".join(lines))
+
+
+def read_y(path):
+    i = oiio.ImageInput.open(path)
+    a = np.array(i.read_image(format="float")).astype(np.float64)
+    i.close()
+    return 0.2126 * a[..., 0] + 0.7152 * a[..., 1] + 0.0722 * a[..., 2]
+
+
+def blocks(a, b):
+    h, w = a.shape
+    mean, se = [], []
+    for by in range(0, h, BLOCK):
+        for bx in range(0, w, BLOCK):
+            pa, pb = a[by:by + BLOCK, bx:bx + BLOCK], b[by:by + BLOCK, bx:bx + BLOCK]
+            n = pa.size
+            mean.append(float((pa + pb).mean() / 2))
+            se.append(float(np.sqrt(((pa - pb) ** 2).sum()) / (2 * n)))
+    return mean, se
+
+
+def main():
+    blob()
+    names = sys.argv[1:] or sorted(d for d in os.listdir(BASE) if os.path.isfile(os.path.join(BASE, d, "scene.pbrt")))
+    for name in names:
+        folder = os.path.join(BASE, name)
+        with tempfile.TemporaryDirectory() as tmp:
+            imgs = []
+            for seed in (1, 2):
+                exr = os.path.join(tmp, f"{seed}.exr")
+                subprocess.run([PBRT, "--quiet", "--seed", str(seed), "--outfile", exr,
+                                os.path.join(folder, "scene.pbrt")], check=True, cwd=folder)
+                imgs.append(read_y(exr))
+        mean, se = blocks(*imgs)
+        h, w = imgs[0].shape
+        print(name, w, h, float((imgs[0] + imgs[1]).mean() / 2))
+        with open(os.path.join(folder, "refs.toml"), "w") as out:
+            out.write("\n".join([
+                "# Written by scripts/gen_pbrt_reference.py with pbrt-v4 (mmp/pbrt-v4 5f7a6068): per",
+                f"# {BLOCK} × {BLOCK} block (row-major), the mean Y of seeds 1 and 2 and its standard error.",
+                f"width = {w}", f"height = {h}", f"block = {BLOCK}",
+                "mean = [" + ", ".join(f"{m:.7g}" for m in mean) + "]",
+                "stderr = [" + ", ".join(f"{s:.4g}" for s in se) + "]", ""]))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,129 @@
+//! pbrt-v4 reference scenes (`tests/reference/pbrt/<name>/scene.pbrt`, each with pbrt-v4's own
+//! renders in `refs.toml` from `scripts/gen_pbrt_reference.py`): spectrace reads the scene
+//! unchanged, renders it with two seeds at the scene's sample count, and every 8 × 8 block's
+//! mean Y must lie within 5 standard errors of pbrt-v4's (both renderers' noise, measured from
+//! their seeds' differences). `compare.toml` in a folder may ask for pbrt-v4's layered exit
+//! weight (`pbrt_exit_weight`), for scenes where pbrt-v4's layered f is biased.
+
+mod support;
+
+use std::path::Path;
+
+use spectrace::colour::cie::K_M;
+use spectrace::loader::desc::MaterialKind;
+
+#[derive(serde::Deserialize)]
+struct Refs {
+    width: usize,
+    height: usize,
+    block: usize,
+    mean: Vec<f64>,
+    stderr: Vec<f64>,
+}
+
+#[derive(serde::Deserialize, Default)]
+struct Compare {
+    #[serde(default)]
+    pbrt_exit_weight: bool,
+}
+
+/// Per block: the mean Y (pbrt-v4's scale) of two seeds and its standard error.
+fn blocks(a: &[f64], b: &[f64], w: usize, h: usize, k: usize) -> (Vec<f64>, Vec<f64>) {
+    let (mut mean, mut se) = (Vec::new(), Vec::new());
+    for by in (0..h).step_by(k) {
+        for bx in (0..w).step_by(k) {
+            let (mut s, mut d2, mut n) = (0.0, 0.0, 0.0);
+            for y in by..(by + k).min(h) {
+                for x in bx..(bx + k).min(w) {
+                    let (p, q) = (a[y * w + x], b[y * w + x]);
+                    s += p + q;
+                    d2 += (p - q) * (p - q);
+                    n += 1.0;
+                }
+            }
+            mean.push(s / (2.0 * n));
+            se.push(d2.sqrt() / (2.0 * n));
+        }
+    }
+    (mean, se)
+}
+
+/// The scene's Y images (pbrt-v4's scale) for seeds 1 and 2.
+fn render(path: &Path, pbrt_exit_weight: bool) -> (Vec<f64>, Vec<f64>, u32) {
+    let mut desc = spectrace::loader::pbrt::load(path).unwrap_or_else(|e| panic!("{e}"));
+    for m in &mut desc.materials {
+        if let MaterialKind::Layered(l) = &mut m.kind {
+            l.pbrt_exit_weight = pbrt_exit_weight;
+        }
+    }
+    let spp = desc.film.spp;
+    let scene = spectrace::build::build(&desc).unwrap_or_else(|e| panic!("{e}"));
+    let y = |seed: u32| -> Vec<f64> {
+        let (img, _) = support::render::render_with(&scene, |o| o.seed = seed);
+        img.xyz.iter().map(|p| p[1] as f64 / K_M).collect()
+    };
+    (y(1), y(2), spp)
+}
+
+#[test]
+fn reference_scenes_match_pbrt_v4() {
+    let base = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference/pbrt");
+    let mut names: Vec<_> = std::fs::read_dir(&base)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.path().join("refs.toml").is_file())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert!(!names.is_empty());
+    let mut failures = Vec::new();
+    for name in names {
+        let dir = base.join(&name);
+        let refs: Refs =
+            toml::from_str(&std::fs::read_to_string(dir.join("refs.toml")).unwrap()).unwrap();
+        let cmp: Compare = std::fs::read_to_string(dir.join("compare.toml"))
+            .map(|t| toml::from_str(&t).unwrap())
+            .unwrap_or_default();
+        let (a, b, spp) = render(&dir.join("scene.pbrt"), cmp.pbrt_exit_weight);
+        let (mean, se) = blocks(&a, &b, refs.width, refs.height, refs.block);
+        assert_eq!(mean.len(), refs.mean.len(), "{name}: block count");
+        let (mut worst, mut at) = (0.0f64, 0);
+        for i in 0..mean.len() {
+            let z = (mean[i] - refs.mean[i])
+                / (se[i].powi(2) + refs.stderr[i].powi(2)).sqrt().max(1e-12);
+            if z.abs() > worst.abs() {
+                (worst, at) = (z, i);
+            }
+        }
+        if std::env::var("PBRT_REF_BLOCKS").is_ok() {
+            for i in 0..mean.len() {
+                let z = (mean[i] - refs.mean[i]) / (se[i].powi(2) + refs.stderr[i].powi(2)).sqrt();
+                println!(
+                    "  block {i}: {:.5} vs {:.5} (z {z:+.1})",
+                    mean[i], refs.mean[i]
+                );
+            }
+        }
+        let total = |v: &[f64]| v.iter().sum::<f64>();
+        println!(
+            "{name} ({spp} spp): Y sum ratio {:.4}; worst block {at}: spectrace {:.5} ± {:.5}, pbrt-v4 {:.5} ± {:.5} (z {worst:+.2})",
+            total(&mean) / total(&refs.mean),
+            mean[at],
+            se[at],
+            refs.mean[at],
+            refs.stderr[at]
+        );
+        if worst.abs() > 5.0 {
+            failures.push(format!("{name}: block {at} z {worst:.2}"));
+        }
+        if cmp.pbrt_exit_weight {
+            let (a2, b2, _) = render(&dir.join("scene.pbrt"), false);
+            let (own, _) = blocks(&a2, &b2, refs.width, refs.height, refs.block);
+            println!(
+                "{name}: with spectrace's own exit weight, Y sum ratio {:.4} (pbrt-v4's layered bias)",
+                total(&own) / total(&refs.mean)
+            );
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
