@@ -14,6 +14,7 @@ Usage: build pbrt-v4 with ../shared/tools/pbrt/build_pbrt.sh (it lands in
 python3 scripts/gen_pbrt_refs.py
 """
 import os
+import shutil
 import subprocess
 import tempfile
 
@@ -133,6 +134,14 @@ Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indice
      + 'AttributeBegin\nRotate 20 0 1 0\nMaterial "dielectric" "spectrum eta" "glass-BK7"\n'
        'Shape "trianglemesh" "point3 P" [-1 -1 0.6  1 -1 0.6  0 0.7 0.6  -1 -1 -0.6  1 -1 -0.6  0 0.7 -0.6]\n'
        '  "integer indices" [0 1 2  3 5 4  0 3 4  0 4 1  1 4 5  1 5 2  2 5 3  2 3 0]\nAttributeEnd\n'),
+    # pbrt-v4's image infinite light: an equal-area octahedral map (tests/data/pbrt/eqarea.exr,
+    # written here), rotated, over a gold sphere and a diffuse floor
+    ("gold_equal_area", HEAD + 'Integrator "path" "integer maxdepth" 5\nWorldBegin\n'
+     + 'AttributeBegin\nRotate -90 1 0 0\nRotate 30 0 0 1\nLightSource "infinite" "string filename" "eqarea.exr" "float scale" 1.5\nAttributeEnd\n'
+     + 'Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]\n'
+       'Shape "trianglemesh" "point3 P" [-4 -1 -4  4 -1 -4  4 -1 4  -4 -1 4] "integer indices" [0 1 2 0 2 3]\n'
+     + 'Material "conductor" "spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k" "float roughness" 0.02\n'
+       'Shape "sphere" "float radius" 0.8\n'),
     # Loop subdivision surfaces: a closed tetrahedron (interior rules) and an open pyramid
     # (boundary rules), shaded by their limit normals
     ("loop_subdiv", HEAD + 'Integrator "path" "integer maxdepth" 5\nWorldBegin\n' + SKY
@@ -147,6 +156,35 @@ Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indice
 ]
 
 
+def square_to_sphere(u, v):
+    """pbrt-v4's EqualAreaSquareToSphere (Clarberg's equal-area octahedral mapping)."""
+    u, v = 2 * u - 1, 2 * v - 1
+    up, vp = abs(u), abs(v)
+    sd = 1 - (up + vp)
+    r = 1 - abs(sd)
+    phi = ((vp - up) / r + 1 if r != 0 else 1) * np.pi / 4
+    z = np.copysign(1 - r * r, sd)
+    s = r * np.sqrt(max(0.0, 2 - r * r))
+    return np.copysign(np.cos(phi), u) * s, np.copysign(np.sin(phi), v) * s, z
+
+
+def write_equal_area_map(path, n=32):
+    """A test map: a bluish sky brighter towards +z, a warm glow around (1, 1, 2), a dim ground."""
+    img = np.zeros((n, n, 3), np.float32)
+    sun = np.array([1.0, 1.0, 2.0]) / np.sqrt(6.0)
+    for y in range(n):
+        for x in range(n):
+            d = np.array(square_to_sphere((x + 0.5) / n, (y + 0.5) / n))
+            sky = np.array([0.3, 0.5, 0.9]) * (0.4 + 0.6 * max(d[2], 0.0))
+            glow = np.array([3.0, 2.2, 1.2]) * max(float(d @ sun), 0.0) ** 8
+            ground = np.array([0.2, 0.15, 0.1]) if d[2] < 0 else 0.0
+            img[y, x] = sky + glow + ground
+    out = oiio.ImageOutput.create(path)
+    out.open(path, oiio.ImageSpec(n, n, 3, "float"))
+    out.write_image(img)
+    out.close()
+
+
 def read_rgb(path):
     i = oiio.ImageInput.open(path)
     a = np.array(i.read_image(format="float"))
@@ -157,7 +195,10 @@ def read_rgb(path):
 def main():
     out = ["# Written by scripts/gen_pbrt_refs.py with pbrt-v4 (../shared/tools/pbrt/build_pbrt.sh,",
            f"# mmp/pbrt-v4 5f7a6068): mean R, G, B, Y of 16 × 16 renders at {SPP} spp, seeds 1 and 2.", ""]
+    eqarea = os.path.join(ROOT, "tests", "data", "pbrt", "eqarea.exr")
+    write_equal_area_map(eqarea)
     with tempfile.TemporaryDirectory() as tmp:
+        shutil.copy(eqarea, tmp)
         for name, text in CASES:
             scene = os.path.join(tmp, name + ".pbrt")
             with open(scene, "w") as f:

@@ -22,6 +22,7 @@ mod distribution2d;
 mod environment;
 mod envmap;
 mod goniometric;
+mod octahedral;
 mod point;
 mod projector;
 mod sample;
@@ -35,6 +36,7 @@ pub use directional::DirectionalLight;
 pub use environment::EnvironmentLight;
 pub use envmap::EnvMapLight;
 pub use goniometric::{Fold, GoniometricLight, IntensityTable};
+pub use octahedral::{OctahedralMapLight, sphere_to_square, square_to_sphere};
 pub use point::PointLight;
 pub use projector::ProjectorLight;
 use sample::point_like_sample;
@@ -56,6 +58,8 @@ pub enum Light {
     Directional(DirectionalLight),
     Environment(EnvironmentLight),
     EnvMap(Box<EnvMapLight>),
+    /// pbrt-v4's image `infinite` light: an equal-area octahedral map.
+    Octahedral(Box<OctahedralMapLight>),
     Beam(BeamLight),
     /// Mitsuba's `projector`: an image projected from a point.
     Projector(Box<ProjectorLight>),
@@ -81,6 +85,7 @@ impl Light {
             Light::Directional(l) => l.sample_li(w, u),
             Light::Environment(l) => l.sample_li(w, u),
             Light::EnvMap(l) => l.sample_li(w, u),
+            Light::Octahedral(l) => l.sample_li(w, u),
             Light::Beam(l) => l.sample_li(p, w),
             Light::Projector(l) => l.sample_li(p, w),
             Light::Goniometric(l) => l.sample_li(p, w),
@@ -96,6 +101,7 @@ impl Light {
             Light::Directional(l) => l.pdf_li(wi),
             Light::Environment(_) => crate::sampling::UNIFORM_SPHERE_PDF,
             Light::EnvMap(l) => l.pdf_li(wi),
+            Light::Octahedral(l) => l.pdf_li(wi),
             Light::Point(_)
             | Light::Spot(_)
             | Light::Beam(_)
@@ -130,6 +136,7 @@ impl Light {
         match self {
             Light::Environment(l) => l.radiance.sample(w),
             Light::EnvMap(l) => l.escaped(dir, w),
+            Light::Octahedral(l) => l.escaped(dir, w),
             Light::Directional(l) => l.escaped(dir, w),
             _ => SampledSpectrum::zero(),
         }
@@ -158,6 +165,7 @@ impl Light {
             Light::Directional(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
             Light::Environment(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
             Light::EnvMap(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
+            Light::Octahedral(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
         }
     }
 
@@ -197,6 +205,10 @@ impl Light {
                 pos: disk,
                 dir: l.pdf_li(-d),
             },
+            Light::Octahedral(l) => EmissionPdf {
+                pos: disk,
+                dir: l.pdf_li(-d),
+            },
         }
     }
 
@@ -207,9 +219,11 @@ impl Light {
     /// pbrt-v4's `PdfLightOrigin`/`PdfLight` for infinite lights).
     pub fn emits_parallel(&self) -> bool {
         match self {
-            Light::Directional(_) | Light::Environment(_) | Light::EnvMap(_) | Light::Beam(_) => {
-                true
-            }
+            Light::Directional(_)
+            | Light::Environment(_)
+            | Light::EnvMap(_)
+            | Light::Octahedral(_)
+            | Light::Beam(_) => true,
             Light::Point(_)
             | Light::Spot(_)
             | Light::Area(_)
@@ -221,7 +235,10 @@ impl Light {
     /// Whether the light is at infinity: the only kind [`Light::escaped`] can be non-zero for.
     pub fn is_at_infinity(&self) -> bool {
         match self {
-            Light::Environment(_) | Light::EnvMap(_) | Light::Directional(_) => true,
+            Light::Environment(_)
+            | Light::EnvMap(_)
+            | Light::Octahedral(_)
+            | Light::Directional(_) => true,
             Light::Point(_)
             | Light::Spot(_)
             | Light::Area(_)
@@ -240,7 +257,9 @@ impl Light {
             | Light::Projector(_)
             | Light::Goniometric(_) => true,
             Light::Directional(l) => l.is_delta(),
-            Light::Area(_) | Light::Environment(_) | Light::EnvMap(_) => false,
+            Light::Area(_) | Light::Environment(_) | Light::EnvMap(_) | Light::Octahedral(_) => {
+                false
+            }
         }
     }
 
@@ -254,9 +273,11 @@ impl Light {
             Light::Area(l) => Some(l.bounds(&shapes[l.shape as usize], phi)),
             Light::Projector(l) => Some(l.bounds(phi)),
             Light::Goniometric(l) => Some(l.bounds(phi)),
-            Light::Directional(_) | Light::Environment(_) | Light::EnvMap(_) | Light::Beam(_) => {
-                None
-            }
+            Light::Directional(_)
+            | Light::Environment(_)
+            | Light::EnvMap(_)
+            | Light::Octahedral(_)
+            | Light::Beam(_) => None,
         }
     }
 
@@ -282,6 +303,9 @@ impl Light {
                 4.0 * pi * pi * (scene_radius as f64).powi(2) * band(&l.radiance)
             }
             Light::EnvMap(l) => pi * (scene_radius as f64).powi(2) * l.band_radiant_exitance(range),
+            Light::Octahedral(l) => {
+                pi * (scene_radius as f64).powi(2) * l.band_radiant_exitance(range)
+            }
             Light::Beam(l) => band(&l.power),
             // through the image on the plane z = 1: π·band(spectrum)·mean(image)·area
             Light::Projector(l) => {

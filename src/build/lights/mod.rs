@@ -29,6 +29,7 @@
 //! (ȳ is zero outside). `tests/light_power.rs`
 //! (`named_illuminants_band_radiance_and_lumens_over_the_range`) checks both against closed forms.
 
+mod octahedral;
 mod scale;
 mod sources;
 
@@ -213,6 +214,17 @@ fn light(l: &LightDesc, r: WavelengthRange) -> Result<Light, String> {
             transform,
             amount,
         } => Light::EnvMap(Box::new(envmap(path, transform, amount, &l.spectrum, r)?)),
+        LightKind::OctahedralMap {
+            path,
+            transform,
+            amount,
+        } => Light::Octahedral(Box::new(octahedral::octahedral(
+            path,
+            transform,
+            amount,
+            &l.spectrum,
+            r,
+        )?)),
     })
 }
 

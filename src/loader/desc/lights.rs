@@ -74,6 +74,16 @@ pub enum LightKind {
         transform: Vec<TransformStep>,
         amount: EnvMapAmount,
     },
+    /// Radiance from a square image in pbrt-v4's equal-area octahedral layout (see
+    /// `crate::light::OctahedralMapLight`): the light's `spectrum` is the illuminant of an RGB
+    /// (1, 1, 1) pixel, `amount` scales it (irradiance and illuminance on a plane facing the
+    /// map's +z, pbrt-v4's "up").
+    OctahedralMap {
+        path: PathBuf,
+        /// Rotation from the map's frame to the world.
+        transform: Vec<TransformStep>,
+        amount: EnvMapAmount,
+    },
     /// Mitsuba's `projector`: `image` projected from the origin of `transform` (rigid) along
     /// its +z, with the field of view `fov` across the image's x (`fov_axis_y`: across y), the
     /// light's `spectrum` multiplying the image (see `crate::light::ProjectorLight`).

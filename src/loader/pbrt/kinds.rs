@@ -130,7 +130,6 @@ fn slab(p: &Params) -> R<LayeredDesc> {
 
 /// A `LightSource`.
 pub(super) fn light(kind: &str, p: &Params, ctm: &DMat4, loc: Loc, r: &Reader) -> R<LightDesc> {
-    let _ = r;
     let scale = p.float("scale", 1.0)?;
     let (kind, spectrum) = match kind {
         "point" => {
@@ -209,13 +208,10 @@ pub(super) fn light(kind: &str, p: &Params, ctm: &DMat4, loc: Loc, r: &Reader) -
                 s,
             )
         }
+        "infinite" if p.get("filename").is_some() => {
+            return image_infinite(p, ctm, loc, r, scale);
+        }
         "infinite" => {
-            if p.get("filename").is_some() {
-                return Err(p.err(
-                    p.loc_of("filename"),
-                    "an image infinite light is not read yet",
-                ));
-            }
             let (s, k) = spectra::illuminant(p, "L")?;
             // `illuminance`: ∫ȳ·E dλ on an upward plane, π·L for a uniform sky
             let e = p.float("illuminance", -1.0)?;
@@ -237,6 +233,51 @@ pub(super) fn light(kind: &str, p: &Params, ctm: &DMat4, loc: Loc, r: &Reader) -
     Ok(LightDesc {
         kind,
         spectrum,
+        sampling_weight: 1.0,
+        loc,
+    })
+}
+
+/// An image `infinite` light: a square image in pbrt-v4's equal-area octahedral layout under
+/// the CTM, each pixel's RGB an `RGBIlluminantSpectrum` of the sRGB space (its D65 of luminance
+/// 1), times `scale`; `illuminance` (∫ȳ·E dλ on a plane facing the map's +z) sets the map's
+/// illuminance to `scale` times it. pbrt-v4 measures the map's own illuminance with half each
+/// pixel's solid angle (2π/N² for 4π/N²), so its renders of such a map are twice as bright as
+/// asked (README); spectrace gives the illuminance asked for.
+fn image_infinite(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> R<LightDesc> {
+    if let Some(q) = p.get("L") {
+        return Err(p.err(
+            q.loc,
+            "an infinite light takes \"L\" or \"filename\", not both (pbrt-v4)",
+        ));
+    }
+    if let Some(q) = p.get("portal") {
+        return Err(p.err(q.loc, "an infinite light's \"portal\" is not read yet"));
+    }
+    let name = p.string("filename")?.unwrap_or_default();
+    let path = r.resolve(&r.root, &name);
+    if !path.is_file() {
+        return Err(p.err(
+            p.loc_of("filename"),
+            format!("no image \"{}\"", path.display()),
+        ));
+    }
+    let e = p.float("illuminance", -1.0)?;
+    let amount = if e > 0.0 {
+        let lux = crate::colour::cie::K_M * scale * e;
+        EnvMapAmount::Illuminance(crate::units::Illuminance::new::<
+            crate::units::illuminance::lux,
+        >(lux))
+    } else {
+        EnvMapAmount::Scale(scale)
+    };
+    Ok(LightDesc {
+        kind: LightKind::OctahedralMap {
+            path,
+            transform: vec![super::shapes::matrix_step(ctm)],
+            amount,
+        },
+        spectrum: Spectrum::Piecewise(crate::spectrum::rgb2spec::d65_unit_luminance()),
         sampling_weight: 1.0,
         loc,
     })

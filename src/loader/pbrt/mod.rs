@@ -254,7 +254,7 @@ impl Reader {
         self.state.ctm *= m;
     }
 
-    fn resolve(&self, from: &Path, name: &str) -> PathBuf {
+    pub(super) fn resolve(&self, from: &Path, name: &str) -> PathBuf {
         let p = Path::new(name);
         if p.is_absolute() {
             return p.to_path_buf();

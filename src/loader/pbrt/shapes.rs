@@ -47,7 +47,7 @@ pub(super) fn len(x: f64) -> Length {
 }
 
 /// A 4×4 matrix as the row-major transform step spectrace's build applies.
-fn matrix_step(m: &DMat4) -> TransformStep {
+pub(super) fn matrix_step(m: &DMat4) -> TransformStep {
     let c = m.to_cols_array_2d();
     let mut r = [0.0; 16];
     for (row, out) in r.chunks_mut(4).enumerate() {
