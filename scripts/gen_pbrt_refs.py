@@ -197,6 +197,12 @@ def main():
            f"# mmp/pbrt-v4 5f7a6068): mean R, G, B, Y of 16 × 16 renders at {SPP} spp, seeds 1 and 2.", ""]
     eqarea = os.path.join(ROOT, "tests", "data", "pbrt", "eqarea.exr")
     write_equal_area_map(eqarea)
+    # a white 16 × 16 map for tests/pbrt_import.rs's illuminance closed form
+    white = os.path.join(ROOT, "tests", "data", "pbrt", "white.exr")
+    out_img = oiio.ImageOutput.create(white)
+    out_img.open(white, oiio.ImageSpec(16, 16, 3, "float"))
+    out_img.write_image(np.ones((16, 16, 3), np.float32))
+    out_img.close()
     with tempfile.TemporaryDirectory() as tmp:
         shutil.copy(eqarea, tmp)
         for name, text in CASES:

@@ -171,3 +171,41 @@ fn scenes_match_pbrt_v4() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// An equal-area map's `illuminance` as pbrt-v4 documents it: a white map asked for ∫ȳ·E dλ = 2
+/// on an upward plane lights a floor of reflectance 1 to Y = 2/π (×683 in cd/m²), seen by an
+/// orthographic camera (pbrt-v4 itself renders 2 × 2/π: it measures the map with half each
+/// pixel's solid angle, README).
+#[test]
+fn equal_area_map_gives_the_illuminance_asked_for() {
+    let text = r#"LookAt 0 5 0  0 0 0  0 0 1
+Camera "orthographic"
+Film "rgb" "integer xresolution" 8 "integer yresolution" 8
+Sampler "zsobol" "integer pixelsamples" 64
+Integrator "path" "integer maxdepth" 1
+WorldBegin
+AttributeBegin
+Rotate -90 1 0 0
+LightSource "infinite" "string filename" "white.exr" "float illuminance" 2
+AttributeEnd
+Material "diffuse" "spectrum reflectance" [300 1 900 1]
+Shape "trianglemesh" "point3 P" [-50 0 -50  50 0 -50  50 0 50  -50 0 50] "integer indices" [0 2 1 0 3 2]
+"#;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/pbrt/inline.pbrt");
+    let desc = spectrace::loader::pbrt::load_str(text, &path).unwrap_or_else(|e| panic!("{e}"));
+    let scene = spectrace::build::build(&desc).unwrap_or_else(|e| panic!("{e}"));
+    let ys: Vec<f64> = [1u32, 2]
+        .iter()
+        .map(|&seed| {
+            let (img, _) = support::render::render_with(&scene, |o| o.seed = seed);
+            img.xyz.iter().map(|p| p[1] as f64 / K_M).sum::<f64>() / img.xyz.len() as f64
+        })
+        .collect();
+    let (y, se) = ((ys[0] + ys[1]) / 2.0, (ys[0] - ys[1]).abs() / 2.0);
+    let truth = 2.0 / std::f64::consts::PI;
+    println!("Y {y:.5} ± {se:.5} against 2/π = {truth:.5}");
+    assert!(
+        (y / truth - 1.0).abs() < 2e-3 + 5.0 * se / truth,
+        "{y} against {truth}"
+    );
+}

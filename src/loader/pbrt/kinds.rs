@@ -408,19 +408,6 @@ pub(super) fn finish(r: Reader) -> Result<SceneDesc, LoadError> {
 /// A `perspective` camera: pbrt-v4's `fov` spans the image's shorter axis; its camera space
 /// has +x to the image's right, so the image is spectrace's mirrored left to right.
 fn camera(ctm: &DMat4, p: &Params, kind: &str, loc: Loc, w: i64, h: i64) -> R<CameraDesc> {
-    if kind != "perspective" {
-        return Err(p.err(
-            loc,
-            format!("the camera \"{kind}\" is not read yet (spectrace reads \"perspective\")"),
-        ));
-    }
-    let fov = p.float("fov", 90.0)?;
-    if !(fov > 0.0 && fov < 180.0) {
-        return Err(p.err(
-            p.loc_of("fov"),
-            format!("fov must lie in (0, 180) degrees, not {fov}"),
-        ));
-    }
     for unread in [
         "lensradius",
         "focaldistance",
@@ -430,22 +417,48 @@ fn camera(ctm: &DMat4, p: &Params, kind: &str, loc: Loc, w: i64, h: i64) -> R<Ca
         if p.get(unread).is_some() {
             return Err(p.err(
                 p.loc_of(unread),
-                format!("a perspective camera's \"{unread}\" is not read yet"),
+                format!("a camera's \"{unread}\" is not read yet"),
             ));
         }
     }
-    let _ = (w, h);
     let world_from_camera = ctm.inverse();
+    let kind = match kind {
+        "perspective" => {
+            let fov = p.float("fov", 90.0)?;
+            if !(fov > 0.0 && fov < 180.0) {
+                return Err(p.err(
+                    p.loc_of("fov"),
+                    format!("fov must lie in (0, 180) degrees, not {fov}"),
+                ));
+            }
+            CameraKind::Perspective {
+                projection: Projection::Fov {
+                    fov: Angle::new::<degree>(fov),
+                    axis: FovAxis::Smaller,
+                },
+            }
+        }
+        // pbrt-v4's default screen window spans [−1, 1] of camera space across the shorter
+        // image axis
+        "orthographic" => {
+            let aspect = w as f64 / h as f64;
+            let unit = world_from_camera.transform_vector3(DVec3::X).length();
+            CameraKind::Orthographic {
+                view_width: len(2.0 * aspect.max(1.0) * unit),
+            }
+        }
+        other => {
+            return Err(p.err(
+                loc,
+                format!("the camera \"{other}\" is not read yet (spectrace reads \"perspective\" and \"orthographic\")"),
+            ));
+        }
+    };
     let eye = world_from_camera.transform_point3(DVec3::ZERO);
     let target = world_from_camera.transform_point3(DVec3::Z);
     let up = world_from_camera.transform_vector3(DVec3::Y);
     Ok(CameraDesc {
-        kind: CameraKind::Perspective {
-            projection: Projection::Fov {
-                fov: Angle::new::<degree>(fov),
-                axis: FovAxis::Smaller,
-            },
-        },
+        kind,
         eye: [len(eye.x), len(eye.y), len(eye.z)],
         target: [len(target.x), len(target.y), len(target.z)],
         up: up.to_array(),
