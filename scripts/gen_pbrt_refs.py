@@ -58,6 +58,16 @@ CASES = [
        '  "integer indices" [0 1 2 0 2 3  0 4 5 0 5 1  3 2 6 3 6 7  0 3 7 0 7 4  1 5 6 1 6 2]\n'
      + 'AttributeBegin\nMaterial "diffuse" "blackbody reflectance" 3000\nRotate 60 1 0 0\n'
        'Shape "cylinder" "float radius" 0.4 "float zmin" -0.8 "float zmax" 0.6\nAttributeEnd\n'),
+    # the same box with pbrt-v4's bidirectional path tracer
+    ("box_lights_bdpt", HEAD + 'Integrator "bdpt" "integer maxdepth" 6\nWorldBegin\n'
+     + 'LightSource "point" "point3 from" [0.5 0.8 1] "spectrum I" [400 1 500 2 600 3 700 2] "float scale" 4\n'
+     + 'AttributeBegin\nAreaLightSource "diffuse" "blackbody L" 6500 "float scale" 5 "bool twosided" true\n'
+       'Translate 0 1.9 0\nRotate 90 1 0 0\nShape "disk" "float radius" 0.5\nAttributeEnd\n'
+     + 'Material "diffuse" "spectrum reflectance" [400 0.3 550 0.6 700 0.8]\n'
+       'Shape "trianglemesh" "point3 P" [-2 -2 -2  2 -2 -2  2 2 -2  -2 2 -2  -2 -2 2  2 -2 2  2 2 2  -2 2 2]\n'
+       '  "integer indices" [0 1 2 0 2 3  0 4 5 0 5 1  3 2 6 3 6 7  0 3 7 0 7 4  1 5 6 1 6 2]\n'
+     + 'AttributeBegin\nMaterial "diffuse" "blackbody reflectance" 3000\nRotate 60 1 0 0\n'
+       'Shape "cylinder" "float radius" 0.4 "float zmin" -0.8 "float zmax" 0.6\nAttributeEnd\n'),
     # pbrt-v4's photometric amounts: a point light's `power`, a distant light's and a uniform
     # sky's `illuminance`, over a diffuse floor seen from above
     ("photometric", """LookAt 0 6 0.5  0 0 0  0 0 1

@@ -308,6 +308,74 @@ pub(super) fn area_light(kind: &str, p: &Params, loc: Loc) -> R<AreaLight> {
     })
 }
 
+/// The samples per pixel a `Sampler` asks for (pbrt-v4's defaults: 16, `independent` 4,
+/// `stratified` `xsamples` × `ysamples`, 4 × 4); spectrace samples with its own sequence.
+fn sampler_spp(p: &Params, kind: &str) -> R<i64> {
+    let n = match kind {
+        "zsobol" | "halton" | "sobol" | "paddedsobol" | "pmj02bn" => p.int("pixelsamples", 16)?,
+        "independent" => p.int("pixelsamples", 4)?,
+        "stratified" => {
+            let _ = p.bool("jitter", true)?;
+            p.int("xsamples", 4)? * p.int("ysamples", 4)?
+        }
+        other => {
+            return Err(p.err(
+                p.loc_of("pixelsamples"),
+                format!("unknown sampler \"{other}\""),
+            ));
+        }
+    };
+    // read as pbrt-v4 reads them; spectrace's sampler has its own scrambling
+    let _ = (p.int("seed", 0)?, p.string("randomization")?);
+    p.check_unused(&format!("sampler \"{kind}\""))?;
+    Ok(n)
+}
+
+/// An `Integrator`: `path` and `volpath` (spectrace's path tracer: media are not read yet),
+/// `bdpt`, `lightpath` (spectrace's light tracer); `maxdepth` (5), `lightsampler` (`bvh`,
+/// `power`, `uniform`).
+fn integrator(p: &Params, kind: &str, loc: Loc) -> R<(IntegratorKind, i64, LightSelection)> {
+    let k = match kind {
+        "path" | "volpath" => IntegratorKind::Path,
+        "bdpt" => IntegratorKind::Bdpt,
+        "lightpath" => IntegratorKind::Light,
+        other => {
+            return Err(p.err(
+                loc,
+                format!("the integrator \"{other}\" is not read yet (spectrace reads path, volpath, bdpt and lightpath)"),
+            ));
+        }
+    };
+    let depth = p.int("maxdepth", 5)?;
+    let selection = if matches!(kind, "path" | "volpath") {
+        match p.string("lightsampler")?.as_deref().unwrap_or("bvh") {
+            "bvh" => LightSelection::Tree,
+            "power" => LightSelection::Power,
+            "uniform" => LightSelection::Uniform,
+            other => {
+                return Err(p.err(
+                    p.loc_of("lightsampler"),
+                    format!("the light sampler \"{other}\" is not read (spectrace reads bvh, power and uniform)"),
+                ));
+            }
+        }
+    } else {
+        LightSelection::Tree
+    };
+    if p.bool("regularize", false)? {
+        return Err(p.err(p.loc_of("regularize"), "\"regularize\" is not read yet"));
+    }
+    if kind == "bdpt" {
+        for v in ["visualizestrategies", "visualizeweights"] {
+            if p.bool(v, false)? {
+                return Err(p.err(p.loc_of(v), format!("\"{v}\" is not read")));
+            }
+        }
+    }
+    p.check_unused(&format!("integrator \"{kind}\""))?;
+    Ok((k, depth, selection))
+}
+
 /// The scene: camera, film, sampler and integrator from their directives, and what the world
 /// block made.
 pub(super) fn finish(r: Reader) -> Result<SceneDesc, LoadError> {
@@ -345,26 +413,13 @@ pub(super) fn finish(r: Reader) -> Result<SceneDesc, LoadError> {
         ));
     }
     let spp = match &r.sampler {
-        Some((p, _, _)) => {
-            let n = p.int("pixelsamples", 16)?;
-            p.check_unused("the sampler")?;
-            n
-        }
+        Some((p, kind, _)) => sampler_spp(p, kind)?,
         None => 16,
     };
-    let max_depth = match &r.integrator {
-        Some((p, kind, loc)) => {
-            if kind != "path" {
-                return Err(p.err(
-                    *loc,
-                    format!("the integrator \"{kind}\" is not read yet (spectrace reads \"path\")"),
-                ));
-            }
-            let d = p.int("maxdepth", 5)?;
-            p.check_unused("integrator \"path\"")?;
-            d
-        }
-        None => 5,
+    let (integrator, max_depth, light_selection) = match &r.integrator {
+        Some((p, kind, loc)) => integrator(p, kind, *loc)?,
+        // pbrt-v4's default, `volpath`: `path` where there are no media
+        None => (IntegratorKind::Path, 5, LightSelection::Tree),
     };
     let camera = camera(ctm, cam, kind, *cam_loc, width, height)?;
     cam.check_unused(&format!("camera \"{kind}\""))?;
@@ -384,10 +439,10 @@ pub(super) fn finish(r: Reader) -> Result<SceneDesc, LoadError> {
             loc: film_loc,
         },
         integrator: IntegratorDesc {
-            kind: IntegratorKind::Path,
+            kind: integrator,
             max_depth: max_depth.clamp(0, 1 << 16) as u32,
             rr_depth: 1,
-            light_selection: LightSelection::Tree,
+            light_selection,
             moment: false,
             polarised: false,
             split_dispersion: true,
