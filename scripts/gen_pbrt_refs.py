@@ -152,6 +152,14 @@ Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indice
        'Shape "trianglemesh" "point3 P" [-4 -1 -4  4 -1 -4  4 -1 4  -4 -1 4] "integer indices" [0 1 2 0 2 3]\n'
      + 'Material "conductor" "spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k" "float roughness" 0.02\n'
        'Shape "sphere" "float radius" 0.8\n'),
+    # a mix (pbrt-v4 picks one material per hit; its expectation is the blend) and a thin
+    # dielectric sheet before it
+    ("mix_thin", HEAD + 'Integrator "path" "integer maxdepth" 5\nWorldBegin\n' + SKY + SUN
+     + 'MakeNamedMaterial "red" "string type" "diffuse" "rgb reflectance" [0.8 0.2 0.1]\n'
+       'MakeNamedMaterial "gold" "string type" "conductor" "spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k" "float roughness" 0.1\n'
+       'Material "mix" "string materials" ["red" "gold"] "float amount" 0.3\nShape "sphere" "float radius" 1\n'
+       'Material "thindielectric" "float eta" 1.7\n'
+       'Shape "trianglemesh" "point3 P" [-1.2 -1.2 1.5  1.2 -1.2 1.5  1.2 0 1.5  -1.2 0 1.5] "integer indices" [0 1 2 0 2 3]\n'),
     # Loop subdivision surfaces: a closed tetrahedron (interior rules) and an open pyramid
     # (boundary rules), shaded by their limit normals
     ("loop_subdiv", HEAD + 'Integrator "path" "integer maxdepth" 5\nWorldBegin\n' + SKY

@@ -26,9 +26,69 @@ pub(super) struct AreaLight {
     pub loc: Loc,
 }
 
+/// The named materials defined so far (pbrt-v4 creates them in order, so a `mix` names
+/// earlier ones).
+pub(super) struct Named<'a> {
+    pub index: &'a std::collections::HashMap<String, usize>,
+    pub materials: &'a [MaterialDesc],
+}
+
 /// A `Material` or `MakeNamedMaterial` of `kind`.
-pub(super) fn material(kind: &str, p: &Params, loc: Loc, name: &str) -> R<MaterialDesc> {
+pub(super) fn material(
+    kind: &str,
+    p: &Params,
+    loc: Loc,
+    name: &str,
+    named: Named<'_>,
+) -> R<MaterialDesc> {
     let kind = match kind {
+        // a surface that only bounds media: light passes straight through (media are not read
+        // yet; spectrace counts the crossing as a scattering event, pbrt-v4 does not)
+        "interface" | "" | "none" => MaterialKind::Null,
+        "thindielectric" => {
+            let eta = match spectra::ior(p, "eta", 1.5)? {
+                crate::spectrum::ior::Ior::Constant(e) => e as f64,
+                _ => {
+                    return Err(p.err(
+                        p.loc_of("eta"),
+                        "a thindielectric's spectral \"eta\" is not read yet (give a float)",
+                    ));
+                }
+            };
+            MaterialKind::ThinDielectric {
+                int_ior: eta,
+                exterior_ior: 1.0,
+            }
+        }
+        // pbrt-v4 picks the second material with probability `amount` per hit, whose
+        // expectation is the blend (1 − amount)·f₀ + amount·f₁
+        "mix" => {
+            let names = match p.get("materials") {
+                Some(q) if q.ty == "string" && q.strs.len() == 2 => q.strs.clone(),
+                _ => {
+                    return Err(p.err(
+                        p.loc_of("materials"),
+                        "a mix needs \"string materials\" with two names",
+                    ));
+                }
+            };
+            let mut kinds = Vec::new();
+            for n in &names {
+                let Some(&i) = named.index.get(n) else {
+                    return Err(p.err(
+                        p.loc_of("materials"),
+                        format!("no material named \"{n}\" defined before the mix"),
+                    ));
+                };
+                kinds.push(named.materials[i].kind.clone());
+            }
+            let amount = p.float("amount", 0.5)?;
+            MaterialKind::Blend {
+                weight: Spectrum::Constant(amount.clamp(0.0, 1.0) as f32).into(),
+                a: Box::new(kinds[0].clone()),
+                b: Box::new(kinds[1].clone()),
+            }
+        }
         "diffuse" => MaterialKind::Diffuse {
             reflectance: spectra::reflectance(p, "reflectance", 0.5)?.into(),
         },
@@ -78,7 +138,7 @@ pub(super) fn material(kind: &str, p: &Params, loc: Loc, name: &str) -> R<Materi
         other => {
             return Err(p.err(
                 loc,
-                format!("the material \"{other}\" is not read yet (spectrace reads diffuse, dielectric, conductor, coateddiffuse and coatedconductor)"),
+                format!("the material \"{other}\" is not read yet (spectrace reads diffuse, dielectric, thindielectric, conductor, coateddiffuse, coatedconductor, mix and interface)"),
             ));
         }
     };

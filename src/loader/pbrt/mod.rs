@@ -193,7 +193,7 @@ impl Reader {
                         "MakeNamedMaterial \"{name}\" needs a \"string type\""
                     ))
                 })?;
-                let m = kinds::material(&kind, &p, loc, &name)?;
+                let m = kinds::material(&kind, &p, loc, &name, self.named())?;
                 p.check_unused(&format!("material \"{kind}\""))?;
                 self.materials.push(m);
                 self.named_materials.insert(name, self.materials.len() - 1);
@@ -201,12 +201,7 @@ impl Reader {
             "Material" => {
                 let kind = Self::string_arg(toks, i, file, d, loc)?;
                 let p = Params::parse(toks, i, file)?;
-                if kind == "interface" || kind.is_empty() || kind == "none" {
-                    return Err(err(format!(
-                        "Material \"{kind}\" (media boundaries) is not read yet"
-                    )));
-                }
-                let m = kinds::material(&kind, &p, loc, &kind)?;
+                let m = kinds::material(&kind, &p, loc, &kind, self.named())?;
                 p.check_unused(&format!("material \"{kind}\""))?;
                 self.materials.push(m);
                 self.state.material = Some(self.materials.len() - 1);
@@ -252,6 +247,14 @@ impl Reader {
     /// pbrt's CTM times `m` (post-multiplied: `m` acts first, in object space).
     fn concat(&mut self, m: DMat4) {
         self.state.ctm *= m;
+    }
+
+    /// The named materials defined so far, by name (for `mix`).
+    fn named(&self) -> kinds::Named<'_> {
+        kinds::Named {
+            index: &self.named_materials,
+            materials: &self.materials,
+        }
     }
 
     pub(super) fn resolve(&self, from: &Path, name: &str) -> PathBuf {
