@@ -6,7 +6,8 @@ For every 8 × 8 block of pixels: the mean Y = 0.2126 R + 0.7152 G + 0.0722 B (p
 Y = ∫ȳ·L dλ) of two renders with seeds 1 and 2, and its standard error from the pixels'
 differences between the seeds (√Σ(a − b)² / 2n, the pixels taken as independent).
 
-It also writes gold_equal_area/eqarea.exr (the map of scripts/gen_pbrt_refs.py) and
+It also writes gold_equal_area/eqarea.exr and glass_machines/sky.exr (the map of
+scripts/gen_pbrt_refs.py, the latter without its glow) and
 killeroo_style/geometry/blob.pbrt: a `loopsubdiv` control mesh (an icosahedron,
 its vertices moved by a fixed pseudo-random amount), the stand-in for the killeroo model of
 pbrt-v4-scenes' killeroo-simple.pbrt, whose layout the scene copies.
@@ -75,6 +76,9 @@ def main():
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     from gen_pbrt_refs import write_equal_area_map
     write_equal_area_map(os.path.join(BASE, "gold_equal_area", "eqarea.exr"))
+    # without the glow: a small bright source seen through glass on a diffuse floor makes
+    # caustics whose rare, bright samples no two-seed estimate of the noise can bound
+    write_equal_area_map(os.path.join(BASE, "glass_machines", "sky.exr"), glow=False)
     names = sys.argv[1:] or sorted(d for d in os.listdir(BASE) if os.path.isfile(os.path.join(BASE, d, "scene.pbrt")))
     for name in names:
         folder = os.path.join(BASE, name)

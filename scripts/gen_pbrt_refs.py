@@ -186,17 +186,18 @@ def square_to_sphere(u, v):
     return np.copysign(np.cos(phi), u) * s, np.copysign(np.sin(phi), v) * s, z
 
 
-def write_equal_area_map(path, n=32):
-    """A test map: a bluish sky brighter towards +z, a warm glow around (1, 1, 2), a dim ground."""
+def write_equal_area_map(path, n=32, glow=True):
+    """A test map: a bluish sky brighter towards +z, a warm glow around (1, 1, 2) (unless
+    `glow` is false), a dim ground."""
     img = np.zeros((n, n, 3), np.float32)
     sun = np.array([1.0, 1.0, 2.0]) / np.sqrt(6.0)
     for y in range(n):
         for x in range(n):
             d = np.array(square_to_sphere((x + 0.5) / n, (y + 0.5) / n))
             sky = np.array([0.3, 0.5, 0.9]) * (0.4 + 0.6 * max(d[2], 0.0))
-            glow = np.array([3.0, 2.2, 1.2]) * max(float(d @ sun), 0.0) ** 8
+            glow_v = np.array([3.0, 2.2, 1.2]) * max(float(d @ sun), 0.0) ** 8 if glow else 0.0
             ground = np.array([0.2, 0.15, 0.1]) if d[2] < 0 else 0.0
-            img[y, x] = sky + glow + ground
+            img[y, x] = sky + glow_v + ground
     out = oiio.ImageOutput.create(path)
     out.open(path, oiio.ImageSpec(n, n, 3, "float"))
     out.write_image(img)

@@ -79,6 +79,11 @@ struct Reader {
     shapes: Vec<ShapeDesc>,
     lights: Vec<LightDesc>,
     notes: Vec<String>,
+    /// Object definitions (`ObjectBegin`) by name, and the one being defined.
+    groups: Vec<GroupDesc>,
+    group_names: HashMap<String, usize>,
+    defining: Option<usize>,
+    instances: Vec<InstanceDesc>,
 }
 
 impl Reader {
@@ -92,6 +97,10 @@ impl Reader {
                 area_light: None,
             },
             stack: Vec::new(),
+            groups: Vec::new(),
+            group_names: HashMap::new(),
+            defining: None,
+            instances: Vec::new(),
             named_materials: HashMap::new(),
             coordinate_systems: HashMap::new(),
             in_world: false,
@@ -231,10 +240,63 @@ impl Reader {
                 let p = Params::parse(toks, i, file)?;
                 let shapes = shapes::shape(&kind, &p, loc, self, file)?;
                 p.check_unused(&format!("shape \"{kind}\""))?;
-                self.shapes.extend(shapes);
+                match self.defining {
+                    Some(g) => {
+                        if self.state.area_light.is_some() {
+                            return Err(err(
+                                "an area light inside an object definition (pbrt-v4 does not support it and drops its emission)".into(),
+                            ));
+                        }
+                        self.groups[g].shapes.extend(shapes);
+                    }
+                    None => self.shapes.extend(shapes),
+                }
             }
-            "Texture" | "MakeNamedMedium" | "MediumInterface" | "ObjectBegin" | "ObjectEnd"
-            | "ObjectInstance" | "Attribute" | "TransformTimes" | "ActiveTransform" => {
+            "ObjectBegin" => {
+                let name = Self::string_arg(toks, i, file, d, loc)?;
+                if self.defining.is_some() {
+                    return Err(err("ObjectBegin inside another object definition".into()));
+                }
+                if self.group_names.contains_key(&name) {
+                    return Err(err(format!("the object \"{name}\" is defined twice")));
+                }
+                // pbrt-v4: an object definition opens an attribute block
+                self.stack.push((self.state.clone(), loc));
+                self.groups.push(GroupDesc {
+                    id: name.clone(),
+                    shapes: Vec::new(),
+                    loc,
+                });
+                self.group_names.insert(name, self.groups.len() - 1);
+                self.defining = Some(self.groups.len() - 1);
+            }
+            "ObjectEnd" => {
+                if self.defining.take().is_none() {
+                    return Err(err("ObjectEnd without ObjectBegin".into()));
+                }
+                let Some((s, _)) = self.stack.pop() else {
+                    return Err(err("ObjectEnd without ObjectBegin".into()));
+                };
+                self.state = s;
+            }
+            // the object's shapes, defined under their own transformations, placed by the CTM
+            "ObjectInstance" => {
+                let name = Self::string_arg(toks, i, file, d, loc)?;
+                if self.defining.is_some() {
+                    return Err(err("ObjectInstance inside an object definition".into()));
+                }
+                let Some(&g) = self.group_names.get(&name) else {
+                    return Err(err(format!("no object named \"{name}\"")));
+                };
+                self.instances.push(InstanceDesc {
+                    group: g,
+                    transform: vec![shapes::matrix_step(&self.state.ctm)],
+                    unit_m: 1.0,
+                    loc,
+                });
+            }
+            "Texture" | "MakeNamedMedium" | "MediumInterface" | "Attribute" | "TransformTimes"
+            | "ActiveTransform" => {
                 return Err(err(format!(
                     "the directive {d} is not read yet (spectrace's pbrt-v4 reader: see the README's pbrt-v4 table)"
                 )));
