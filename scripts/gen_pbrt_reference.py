@@ -6,7 +6,7 @@ For every 8 × 8 block of pixels: the mean Y = 0.2126 R + 0.7152 G + 0.0722 B (p
 Y = ∫ȳ·L dλ) of two renders with seeds 1 and 2, and its standard error from the pixels'
 differences between the seeds (√Σ(a − b)² / 2n, the pixels taken as independent).
 
-It also writes gold_equal_area/eqarea.exr and glass_machines/sky.exr (the map of
+It also writes imagemap/tex.png, gold_equal_area/eqarea.exr and glass_machines/sky.exr (the map of
 scripts/gen_pbrt_refs.py, the latter without its glow) and
 killeroo_style/geometry/blob.pbrt: a `loopsubdiv` control mesh (an icosahedron,
 its vertices moved by a fixed pseudo-random amount), the stand-in for the killeroo model of
@@ -52,6 +52,20 @@ def blob():
         out.write("\n".join(lines))
 
 
+def write_tiles(path):
+    """An 8-bit sRGB texture of 16 × 8 pixels: coloured tiles and an asymmetric mark."""
+    img = np.zeros((8, 16, 3), np.uint8)
+    for y in range(8):
+        for x in range(16):
+            img[y, x] = [40 + 13 * x, 60 + 20 * y, 220 - 9 * x - 8 * y]
+    for x, y in [(2, 1), (2, 2), (2, 3), (3, 1), (4, 1), (3, 3), (2, 4), (2, 5)]:
+        img[y, x] = [250, 250, 240]
+    out = oiio.ImageOutput.create(path)
+    out.open(path, oiio.ImageSpec(16, 8, 3, "uint8"))
+    out.write_image(img)
+    out.close()
+
+
 def read_y(path):
     i = oiio.ImageInput.open(path)
     a = np.array(i.read_image(format="float")).astype(np.float64)
@@ -75,6 +89,7 @@ def main():
     blob()
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     from gen_pbrt_refs import write_equal_area_map
+    write_tiles(os.path.join(BASE, "imagemap", "tex.png"))
     write_equal_area_map(os.path.join(BASE, "gold_equal_area", "eqarea.exr"))
     # without the glow: a small bright source seen through glass on a diffuse floor makes
     # caustics whose rare, bright samples no two-seed estimate of the noise can bound

@@ -31,6 +31,26 @@ pub(super) struct AreaLight {
 pub(super) struct Named<'a> {
     pub index: &'a std::collections::HashMap<String, usize>,
     pub materials: &'a [MaterialDesc],
+    /// The named spectrum textures defined so far.
+    pub textures: &'a std::collections::HashMap<String, TextureDesc>,
+}
+
+impl Named<'_> {
+    /// A reflectance that may be a named texture (`"texture <name>" "<texture>"`).
+    fn reflectance(&self, p: &Params, name: &str, default: f64) -> R<TextureDesc> {
+        match p.get(name) {
+            Some(q) if q.ty == "texture" => {
+                let t = q.strs.first().cloned().unwrap_or_default();
+                self.textures.get(&t).cloned().ok_or_else(|| {
+                    p.err(
+                        q.loc,
+                        format!("\"{name}\": no spectrum texture named \"{t}\""),
+                    )
+                })
+            }
+            _ => Ok(spectra::reflectance(p, name, default)?.into()),
+        }
+    }
 }
 
 /// A `Material` or `MakeNamedMaterial` of `kind`.
@@ -90,7 +110,7 @@ pub(super) fn material(
             }
         }
         "diffuse" => MaterialKind::Diffuse {
-            reflectance: spectra::reflectance(p, "reflectance", 0.5)?.into(),
+            reflectance: named.reflectance(p, "reflectance", 0.5)?,
         },
         "dielectric" => {
             let roughness = roughness(p, "")?;
@@ -120,7 +140,7 @@ pub(super) fn material(
         }
         "coateddiffuse" => MaterialKind::Layered(Box::new(LayeredDesc {
             conductor: None,
-            reflectance: spectra::reflectance(p, "reflectance", 0.5)?.into(),
+            reflectance: named.reflectance(p, "reflectance", 0.5)?,
             roughness: roughness(p, "")?,
             eta: spectra::ior(p, "eta", 1.5)?,
             ..slab(p)?

@@ -12,6 +12,7 @@ mod lexer;
 mod params;
 mod shapes;
 mod spectra;
+mod textures;
 mod transforms;
 
 use std::collections::HashMap;
@@ -79,6 +80,8 @@ struct Reader {
     shapes: Vec<ShapeDesc>,
     lights: Vec<LightDesc>,
     notes: Vec<String>,
+    /// Named spectrum textures (`Texture "name" "spectrum" …`).
+    textures: HashMap<String, TextureDesc>,
     /// Object definitions (`ObjectBegin`) by name, and the one being defined.
     groups: Vec<GroupDesc>,
     group_names: HashMap<String, usize>,
@@ -97,6 +100,7 @@ impl Reader {
                 area_light: None,
             },
             stack: Vec::new(),
+            textures: HashMap::new(),
             groups: Vec::new(),
             group_names: HashMap::new(),
             defining: None,
@@ -295,7 +299,16 @@ impl Reader {
                     loc,
                 });
             }
-            "Texture" | "MakeNamedMedium" | "MediumInterface" | "Attribute" | "TransformTimes"
+            "Texture" => {
+                let name = Self::string_arg(toks, i, file, d, loc)?;
+                let ty = Self::string_arg(toks, i, file, d, loc)?;
+                let class = Self::string_arg(toks, i, file, d, loc)?;
+                let p = Params::parse(toks, i, file)?;
+                let t = textures::texture(&ty, &class, &p, loc, self)?;
+                p.check_unused(&format!("texture \"{class}\""))?;
+                self.textures.insert(name, t);
+            }
+            "MakeNamedMedium" | "MediumInterface" | "Attribute" | "TransformTimes"
             | "ActiveTransform" => {
                 return Err(err(format!(
                     "the directive {d} is not read yet (spectrace's pbrt-v4 reader: see the README's pbrt-v4 table)"
@@ -316,6 +329,7 @@ impl Reader {
         kinds::Named {
             index: &self.named_materials,
             materials: &self.materials,
+            textures: &self.textures,
         }
     }
 

@@ -192,6 +192,17 @@ pub(super) fn shape(
     }
 }
 
+/// Whether a material looks an image up by uv.
+fn image_textured(k: &MaterialKind) -> bool {
+    let image = |t: &TextureDesc| matches!(t, TextureDesc::Bitmap { .. });
+    match k {
+        MaterialKind::Diffuse { reflectance } => image(reflectance),
+        MaterialKind::Layered(l) => image(&l.reflectance) || image(&l.albedo),
+        MaterialKind::Blend { a, b, .. } => image_textured(a) || image_textured(b),
+        _ => false,
+    }
+}
+
 /// The shape's transform, material, emission and orientation; `area` (m²) is what an area
 /// light's `power` is spread over: L = power / (sides · area · π) per unit of ∫ȳ·S dλ.
 fn finish_shape(
@@ -202,6 +213,16 @@ fn finish_shape(
     loc: Loc,
     r: &mut Reader,
 ) -> R<ShapeDesc> {
+    let has_uv = matches!(&kind, ShapeKind::Inline { uvs: Some(_), .. });
+    if !has_uv
+        && let Some(i) = r.state.material
+        && image_textured(&r.materials[i].kind)
+    {
+        return Err(p.err(
+            loc,
+            "an image texture on a shape without \"uv\" is not read yet (pbrt-v4's default uv of triangles and quadrics differ from spectrace's)",
+        ));
+    }
     // pbrt-v4's materials reflect on both sides, so orientation matters only for a one-sided
     // area light: which side emits after `ReverseOrientation` and mirroring transforms
     // (pbrt-v4 flips quadrics and meshes differently) is not read yet
