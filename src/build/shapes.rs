@@ -164,23 +164,7 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
             )?;
             Shape::SdfGrid(Box::new(g))
         }
-        ShapeKind::Inline {
-            vertices,
-            faces,
-            normals,
-            uvs,
-        } => {
-            let v3 = |v: &[f64; 3]| Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32);
-            let positions = vertices.iter().map(v3).collect();
-            let normals = normals.as_ref().map(|n| n.iter().map(v3).collect());
-            let uvs = uvs.as_ref().map(|t| {
-                t.iter()
-                    .map(|t| glam::Vec2::new(t[0] as f32, t[1] as f32))
-                    .collect()
-            });
-            let mesh = Mesh::new(positions, normals, uvs, faces.clone(), &transform(s, true)?);
-            Shape::Mesh(mesh.map_err(|e| e.to_string())?)
-        }
+        ShapeKind::Inline { .. } => Shape::Mesh(inline_mesh(&s.kind, &transform(s, true)?)?),
     };
     // an SDF grid or a B-spline curve has no area to sample and never emits
     if !(shape.area() > 0.0 || matches!(shape, Shape::SdfGrid(_) | Shape::BSpline(_))) {
@@ -198,4 +182,30 @@ fn with_normals(mut mesh: Mesh, normals: MeshNormals) -> Mesh {
         MeshNormals::Flat => mesh.drop_normals(),
     }
     mesh
+}
+
+/// A mesh written in the scene file (`ShapeKind::Inline`), with its optional vertex normals
+/// and uv.
+fn inline_mesh(
+    kind: &ShapeKind,
+    t: &crate::geometry::transform::Transform,
+) -> Result<Mesh, String> {
+    let ShapeKind::Inline {
+        vertices,
+        faces,
+        normals,
+        uvs,
+    } = kind
+    else {
+        return Err("not a mesh written in the scene file".into());
+    };
+    let v3 = |v: &[f64; 3]| Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32);
+    let positions = vertices.iter().map(v3).collect();
+    let normals = normals.as_ref().map(|n| n.iter().map(v3).collect());
+    let uvs = uvs.as_ref().map(|t| {
+        t.iter()
+            .map(|t| glam::Vec2::new(t[0] as f32, t[1] as f32))
+            .collect()
+    });
+    Mesh::new(positions, normals, uvs, faces.to_vec(), t).map_err(|e| e.to_string())
 }

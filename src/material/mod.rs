@@ -47,6 +47,7 @@ mod hair_terms;
 mod lambert;
 mod layer_interfaces;
 mod layered;
+mod layered_walk;
 mod mask;
 mod measured_polarized;
 pub mod microfacet;

@@ -9,6 +9,10 @@
 
 mod kinds;
 mod lexer;
+mod lights;
+mod materials;
+mod meshes;
+mod objects;
 mod params;
 mod shapes;
 mod spectra;
@@ -60,7 +64,7 @@ struct State {
     /// Index into the scene's materials (`None`: pbrt-v4's default diffuse, made on first use).
     material: Option<usize>,
     /// The current `AreaLightSource "diffuse"`, if any.
-    area_light: Option<kinds::AreaLight>,
+    area_light: Option<lights::AreaLight>,
 }
 
 /// The reader's whole state, and the scene it builds.
@@ -198,44 +202,19 @@ impl Reader {
                 let p = Params::parse(toks, i, file)?;
                 self.options(d, kind, p, loc, file)?;
             }
-            "MakeNamedMaterial" => {
-                let name = Self::string_arg(toks, i, file, d, loc)?;
-                let p = Params::parse(toks, i, file)?;
-                let kind = p.string("type")?.ok_or_else(|| {
-                    err(format!(
-                        "MakeNamedMaterial \"{name}\" needs a \"string type\""
-                    ))
-                })?;
-                let m = kinds::material(&kind, &p, loc, &name, self.named())?;
-                p.check_unused(&format!("material \"{kind}\""))?;
-                self.materials.push(m);
-                self.named_materials.insert(name, self.materials.len() - 1);
-            }
-            "Material" => {
-                let kind = Self::string_arg(toks, i, file, d, loc)?;
-                let p = Params::parse(toks, i, file)?;
-                let m = kinds::material(&kind, &p, loc, &kind, self.named())?;
-                p.check_unused(&format!("material \"{kind}\""))?;
-                self.materials.push(m);
-                self.state.material = Some(self.materials.len() - 1);
-            }
-            "NamedMaterial" => {
-                let name = Self::string_arg(toks, i, file, d, loc)?;
-                match self.named_materials.get(&name) {
-                    Some(&m) => self.state.material = Some(m),
-                    None => return Err(err(format!("no material named \"{name}\""))),
-                }
+            "MakeNamedMaterial" | "Material" | "NamedMaterial" => {
+                self.material_directive(d, toks, i, file, loc)?;
             }
             "AreaLightSource" => {
                 let kind = Self::string_arg(toks, i, file, d, loc)?;
                 let p = Params::parse(toks, i, file)?;
-                self.state.area_light = Some(kinds::area_light(&kind, &p, loc)?);
+                self.state.area_light = Some(lights::area_light(&kind, &p, loc)?);
                 p.check_unused(&format!("area light \"{kind}\""))?;
             }
             "LightSource" => {
                 let kind = Self::string_arg(toks, i, file, d, loc)?;
                 let p = Params::parse(toks, i, file)?;
-                let l = kinds::light(&kind, &p, &self.state.ctm, loc, self)?;
+                let l = lights::light(&kind, &p, &self.state.ctm, loc, self)?;
                 p.check_unused(&format!("light \"{kind}\""))?;
                 self.lights.push(l);
             }
@@ -244,70 +223,14 @@ impl Reader {
                 let p = Params::parse(toks, i, file)?;
                 let shapes = shapes::shape(&kind, &p, loc, self, file)?;
                 p.check_unused(&format!("shape \"{kind}\""))?;
-                match self.defining {
-                    Some(g) => {
-                        if self.state.area_light.is_some() {
-                            return Err(err(
-                                "an area light inside an object definition (pbrt-v4 does not support it and drops its emission)".into(),
-                            ));
-                        }
-                        self.groups[g].shapes.extend(shapes);
-                    }
-                    None => self.shapes.extend(shapes),
-                }
+                self.add_shapes(shapes).map_err(err)?;
             }
-            "ObjectBegin" => {
+            "ObjectBegin" | "ObjectInstance" => {
                 let name = Self::string_arg(toks, i, file, d, loc)?;
-                if self.defining.is_some() {
-                    return Err(err("ObjectBegin inside another object definition".into()));
-                }
-                if self.group_names.contains_key(&name) {
-                    return Err(err(format!("the object \"{name}\" is defined twice")));
-                }
-                // pbrt-v4: an object definition opens an attribute block
-                self.stack.push((self.state.clone(), loc));
-                self.groups.push(GroupDesc {
-                    id: name.clone(),
-                    shapes: Vec::new(),
-                    loc,
-                });
-                self.group_names.insert(name, self.groups.len() - 1);
-                self.defining = Some(self.groups.len() - 1);
+                self.instancing(d, Some(name), loc).map_err(err)?;
             }
-            "ObjectEnd" => {
-                if self.defining.take().is_none() {
-                    return Err(err("ObjectEnd without ObjectBegin".into()));
-                }
-                let Some((s, _)) = self.stack.pop() else {
-                    return Err(err("ObjectEnd without ObjectBegin".into()));
-                };
-                self.state = s;
-            }
-            // the object's shapes, defined under their own transformations, placed by the CTM
-            "ObjectInstance" => {
-                let name = Self::string_arg(toks, i, file, d, loc)?;
-                if self.defining.is_some() {
-                    return Err(err("ObjectInstance inside an object definition".into()));
-                }
-                let Some(&g) = self.group_names.get(&name) else {
-                    return Err(err(format!("no object named \"{name}\"")));
-                };
-                self.instances.push(InstanceDesc {
-                    group: g,
-                    transform: vec![shapes::matrix_step(&self.state.ctm)],
-                    unit_m: 1.0,
-                    loc,
-                });
-            }
-            "Texture" => {
-                let name = Self::string_arg(toks, i, file, d, loc)?;
-                let ty = Self::string_arg(toks, i, file, d, loc)?;
-                let class = Self::string_arg(toks, i, file, d, loc)?;
-                let p = Params::parse(toks, i, file)?;
-                let t = textures::texture(&ty, &class, &p, loc, self)?;
-                p.check_unused(&format!("texture \"{class}\""))?;
-                self.textures.insert(name, t);
-            }
+            "ObjectEnd" => self.instancing(d, None, loc).map_err(err)?,
+            "Texture" => self.texture_directive(d, toks, i, file, loc)?,
             "MakeNamedMedium" | "MediumInterface" | "Attribute" | "TransformTimes"
             | "ActiveTransform" => {
                 return Err(err(format!(
@@ -325,8 +248,8 @@ impl Reader {
     }
 
     /// The named materials defined so far, by name (for `mix`).
-    fn named(&self) -> kinds::Named<'_> {
-        kinds::Named {
+    fn named(&self) -> materials::Named<'_> {
+        materials::Named {
             index: &self.named_materials,
             materials: &self.materials,
             textures: &self.textures,

@@ -7,7 +7,10 @@
 //! One difference: a lookup blends the four texels' spectra (spectrace's image textures),
 //! pbrt-v4 their RGB before turning it into a spectrum.
 
+use std::path::Path;
+
 use super::Reader;
+use super::lexer::Token;
 use super::params::{Params, R};
 use super::spectra;
 use crate::loader::Loc;
@@ -124,4 +127,25 @@ fn imagemap(p: &Params, loc: Loc, r: &Reader) -> R<TextureDesc> {
         to_uv,
         loc,
     })
+}
+
+impl Reader {
+    /// `Texture "name" "type" "class" …`: kept by name.
+    pub(super) fn texture_directive(
+        &mut self,
+        d: &str,
+        toks: &[Token],
+        i: &mut usize,
+        file: &Path,
+        loc: Loc,
+    ) -> R<()> {
+        let name = Self::string_arg(toks, i, file, d, loc)?;
+        let ty = Self::string_arg(toks, i, file, d, loc)?;
+        let class = Self::string_arg(toks, i, file, d, loc)?;
+        let p = Params::parse(toks, i, file)?;
+        let t = texture(&ty, &class, &p, loc, self)?;
+        p.check_unused(&format!("texture \"{class}\""))?;
+        self.textures.insert(name, t);
+        Ok(())
+    }
 }

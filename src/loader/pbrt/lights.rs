@@ -1,0 +1,206 @@
+//! pbrt-v4's lights (`src/pbrt/lights.cpp`): `LightSource` kinds and the `AreaLightSource`
+//! state, with pbrt-v4's photometric normalisations.
+
+use std::f64::consts::PI;
+
+use glam::{DMat4, DVec3};
+
+use super::params::{Params, R};
+use super::shapes::len;
+use super::{Reader, spectra};
+use crate::loader::Loc;
+use crate::loader::desc::*;
+use crate::spectrum::Spectrum;
+use crate::units::{Angle, angle::degree};
+
+/// An `AreaLightSource "diffuse"`: its emitted radiance (W·m⁻²·sr⁻¹·nm⁻¹ per unit of pbrt's
+/// spectrum, see [`spectra::illuminant`]) and whether both sides emit.
+#[derive(Clone, Debug)]
+pub(super) struct AreaLight {
+    pub spectrum: Spectrum,
+    pub scale: f64,
+    pub two_sided: bool,
+    /// pbrt-v4's `power` (∫ȳ·Φ dλ of each shape, each triangle of a mesh), if given.
+    pub power: Option<f64>,
+    pub loc: Loc,
+}
+
+/// A `LightSource`.
+pub(super) fn light(kind: &str, p: &Params, ctm: &DMat4, loc: Loc, r: &Reader) -> R<LightDesc> {
+    let scale = p.float("scale", 1.0)?;
+    let (kind, spectrum) = match kind {
+        "point" => {
+            let from = ctm.transform_point3(DVec3::from(p.vec3("from", [0.0; 3])?));
+            let (s, k) = spectra::illuminant(p, "I")?;
+            // pbrt-v4's `power` sets ∫ȳ·Φ dλ (its luminous units) over 4π sr
+            let power = p.float("power", -1.0)?;
+            let k = if power > 0.0 {
+                k * power / (4.0 * PI)
+            } else {
+                k
+            };
+            (
+                LightKind::Point {
+                    position: [len(from.x), len(from.y), len(from.z)],
+                    amount: PointAmount::Scale(scale * k),
+                },
+                s,
+            )
+        }
+        // pbrt-v4's spot: full inside coneangle − conedeltaangle, smoothstep in cos θ to 0 at
+        // coneangle (`SpotLight::I`); `power` over the cone as pbrt-v4 integrates it
+        "spot" => {
+            let from = DVec3::from(p.vec3("from", [0.0; 3])?);
+            let to = DVec3::from(p.vec3("to", [0.0, 0.0, 1.0])?);
+            if (to - from).length() == 0.0 {
+                return Err(p.err(loc, "a spot light's from and to coincide"));
+            }
+            let cone = p.float("coneangle", 30.0)?;
+            let delta = p.float("conedeltaangle", 5.0)?;
+            if !(cone > 0.0 && cone <= 180.0 && (0.0..=cone).contains(&delta)) {
+                return Err(p.err(
+                    loc,
+                    "a spot light needs 0 < coneangle ≤ 180 and 0 ≤ conedeltaangle ≤ coneangle (degrees)",
+                ));
+            }
+            let (s, k) = spectra::illuminant(p, "I")?;
+            let power = p.float("power", -1.0)?;
+            let (cos_end, cos_start) = (cone.to_radians().cos(), (cone - delta).to_radians().cos());
+            let k = if power > 0.0 {
+                k * power / (2.0 * PI * ((1.0 - cos_start) + (cos_start - cos_end) / 2.0))
+            } else {
+                k
+            };
+            let (from, to) = (ctm.transform_point3(from), ctm.transform_point3(to));
+            (
+                LightKind::Spot {
+                    position: [len(from.x), len(from.y), len(from.z)],
+                    target: [len(to.x), len(to.y), len(to.z)],
+                    cone_angle: Angle::new::<degree>(cone),
+                    falloff_start: Angle::new::<degree>(cone - delta),
+                    falloff: crate::light::SpotFalloff::SmoothstepCos,
+                    amount: PointAmount::Scale(scale * k),
+                    texture: None,
+                },
+                s,
+            )
+        }
+        "distant" => {
+            let from = DVec3::from(p.vec3("from", [0.0, 0.0, 0.0])?);
+            let to = DVec3::from(p.vec3("to", [0.0, 0.0, 1.0])?);
+            let dir = ctm.transform_vector3(to - from);
+            let Some(dir) = dir.try_normalize() else {
+                return Err(p.err(loc, "a distant light's from and to coincide"));
+            };
+            let (s, k) = spectra::illuminant(p, "L")?;
+            // `illuminance`: ∫ȳ·E dλ on a plane facing the light
+            let e = p.float("illuminance", -1.0)?;
+            let k = if e > 0.0 { k * e } else { k };
+            (
+                LightKind::Directional {
+                    direction: dir.to_array(),
+                    angular_diameter: Angle::new::<degree>(0.0),
+                    amount: DirectionalAmount::Scale(scale * k),
+                },
+                s,
+            )
+        }
+        "infinite" if p.get("filename").is_some() => {
+            return image_infinite(p, ctm, loc, r, scale);
+        }
+        "infinite" => {
+            let (s, k) = spectra::illuminant(p, "L")?;
+            // `illuminance`: ∫ȳ·E dλ on an upward plane, π·L for a uniform sky
+            let e = p.float("illuminance", -1.0)?;
+            let k = if e > 0.0 { k * e / PI } else { k };
+            (
+                LightKind::Environment {
+                    amount: EmitAmount::Scale(scale * k),
+                },
+                s,
+            )
+        }
+        other => {
+            return Err(p.err(
+                loc,
+                format!("the light \"{other}\" is not read yet (spectrace reads point, spot, distant and infinite)"),
+            ));
+        }
+    };
+    Ok(LightDesc {
+        kind,
+        spectrum,
+        sampling_weight: 1.0,
+        loc,
+    })
+}
+
+/// An image `infinite` light: a square image in pbrt-v4's equal-area octahedral layout under
+/// the CTM, each pixel's RGB an `RGBIlluminantSpectrum` of the sRGB space (its D65 of luminance
+/// 1), times `scale`; `illuminance` (∫ȳ·E dλ on a plane facing the map's +z) sets the map's
+/// illuminance to `scale` times it. pbrt-v4 measures the map's own illuminance with half each
+/// pixel's solid angle (2π/N² for 4π/N²), so its renders of such a map are twice as bright as
+/// asked (README); spectrace gives the illuminance asked for.
+fn image_infinite(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> R<LightDesc> {
+    if let Some(q) = p.get("L") {
+        return Err(p.err(
+            q.loc,
+            "an infinite light takes \"L\" or \"filename\", not both (pbrt-v4)",
+        ));
+    }
+    if let Some(q) = p.get("portal") {
+        return Err(p.err(q.loc, "an infinite light's \"portal\" is not read yet"));
+    }
+    let name = p.string("filename")?.unwrap_or_default();
+    let path = r.resolve(&r.root, &name);
+    if !path.is_file() {
+        return Err(p.err(
+            p.loc_of("filename"),
+            format!("no image \"{}\"", path.display()),
+        ));
+    }
+    let e = p.float("illuminance", -1.0)?;
+    let amount = if e > 0.0 {
+        let lux = crate::colour::cie::K_M * scale * e;
+        EnvMapAmount::Illuminance(crate::units::Illuminance::new::<
+            crate::units::illuminance::lux,
+        >(lux))
+    } else {
+        EnvMapAmount::Scale(scale)
+    };
+    Ok(LightDesc {
+        kind: LightKind::OctahedralMap {
+            path,
+            transform: vec![super::shapes::matrix_step(ctm)],
+            amount,
+        },
+        spectrum: Spectrum::Piecewise(crate::spectrum::rgb2spec::d65_unit_luminance()),
+        sampling_weight: 1.0,
+        loc,
+    })
+}
+
+/// An `AreaLightSource`.
+pub(super) fn area_light(kind: &str, p: &Params, loc: Loc) -> R<AreaLight> {
+    if kind != "diffuse" {
+        return Err(p.err(
+            loc,
+            format!("the area light \"{kind}\" is not read (pbrt-v4 has only \"diffuse\")"),
+        ));
+    }
+    if p.get("filename").is_some() {
+        return Err(p.err(
+            p.loc_of("filename"),
+            "an area light's image is not read yet",
+        ));
+    }
+    let (spectrum, k) = spectra::illuminant(p, "L")?;
+    let power = p.float("power", -1.0)?;
+    Ok(AreaLight {
+        spectrum,
+        scale: p.float("scale", 1.0)? * k,
+        two_sided: p.bool("twosided", false)?,
+        power: (power > 0.0).then_some(power),
+        loc,
+    })
+}

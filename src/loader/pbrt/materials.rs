@@ -1,0 +1,237 @@
+//! pbrt-v4's materials (`src/pbrt/materials.cpp`), each reading its own parameters (pbrt-v4's
+//! names and defaults) into the scene description.
+
+use std::path::Path;
+
+use super::lexer::Token;
+use super::params::{Params, R};
+use super::{Reader, spectra};
+use crate::loader::desc::*;
+use crate::loader::{LoadError, Loc};
+use crate::spectrum::Spectrum;
+
+/// The named materials defined so far (pbrt-v4 creates them in order, so a `mix` names
+/// earlier ones).
+pub(super) struct Named<'a> {
+    pub index: &'a std::collections::HashMap<String, usize>,
+    pub materials: &'a [MaterialDesc],
+    /// The named spectrum textures defined so far.
+    pub textures: &'a std::collections::HashMap<String, TextureDesc>,
+}
+
+impl Named<'_> {
+    /// A reflectance that may be a named texture (`"texture <name>" "<texture>"`).
+    fn reflectance(&self, p: &Params, name: &str, default: f64) -> R<TextureDesc> {
+        match p.get(name) {
+            Some(q) if q.ty == "texture" => {
+                let t = q.strs.first().cloned().unwrap_or_default();
+                self.textures.get(&t).cloned().ok_or_else(|| {
+                    p.err(
+                        q.loc,
+                        format!("\"{name}\": no spectrum texture named \"{t}\""),
+                    )
+                })
+            }
+            _ => Ok(spectra::reflectance(p, name, default)?.into()),
+        }
+    }
+}
+
+/// A `Material` or `MakeNamedMaterial` of `kind`.
+pub(super) fn material(
+    kind: &str,
+    p: &Params,
+    loc: Loc,
+    name: &str,
+    named: Named<'_>,
+) -> R<MaterialDesc> {
+    let kind = match kind {
+        // a surface that only bounds media: light passes straight through (media are not read
+        // yet; spectrace counts the crossing as a scattering event, pbrt-v4 does not)
+        "interface" | "" | "none" => MaterialKind::Null,
+        "thindielectric" => {
+            let eta = match spectra::ior(p, "eta", 1.5)? {
+                crate::spectrum::ior::Ior::Constant(e) => e as f64,
+                _ => {
+                    return Err(p.err(
+                        p.loc_of("eta"),
+                        "a thindielectric's spectral \"eta\" is not read yet (give a float)",
+                    ));
+                }
+            };
+            MaterialKind::ThinDielectric {
+                int_ior: eta,
+                exterior_ior: 1.0,
+            }
+        }
+        // pbrt-v4 picks the second material with probability `amount` per hit, whose
+        // expectation is the blend (1 − amount)·f₀ + amount·f₁
+        "mix" => {
+            let names = match p.get("materials") {
+                Some(q) if q.ty == "string" && q.strs.len() == 2 => q.strs.clone(),
+                _ => {
+                    return Err(p.err(
+                        p.loc_of("materials"),
+                        "a mix needs \"string materials\" with two names",
+                    ));
+                }
+            };
+            let mut kinds = Vec::new();
+            for n in &names {
+                let Some(&i) = named.index.get(n) else {
+                    return Err(p.err(
+                        p.loc_of("materials"),
+                        format!("no material named \"{n}\" defined before the mix"),
+                    ));
+                };
+                kinds.push(named.materials[i].kind.clone());
+            }
+            let amount = p.float("amount", 0.5)?;
+            MaterialKind::Blend {
+                weight: Spectrum::Constant(amount.clamp(0.0, 1.0) as f32).into(),
+                a: Box::new(kinds[0].clone()),
+                b: Box::new(kinds[1].clone()),
+            }
+        }
+        "diffuse" => MaterialKind::Diffuse {
+            reflectance: named.reflectance(p, "reflectance", 0.5)?,
+        },
+        "dielectric" => {
+            let roughness = roughness(p, "")?;
+            MaterialKind::Dielectric {
+                ior: spectra::ior(p, "eta", 1.5)?,
+                exterior_ior: 1.0,
+                roughness,
+                distribution: crate::material::microfacet::Distribution::Ggx,
+                smith: Smith::HeightCorrelated,
+            }
+        }
+        "conductor" => {
+            let roughness = roughness(p, "")?;
+            let ior = match spectra::conductor(p, "")? {
+                Some(ior) => ior,
+                None => {
+                    spectra::conductor_of_reflectance(&spectra::reflectance(p, "reflectance", 0.0)?)
+                }
+            };
+            MaterialKind::Conductor {
+                ior,
+                exterior_ior: 1.0,
+                roughness,
+                distribution: crate::material::microfacet::Distribution::Ggx,
+                smith: Smith::HeightCorrelated,
+            }
+        }
+        "coateddiffuse" => MaterialKind::Layered(Box::new(LayeredDesc {
+            conductor: None,
+            reflectance: named.reflectance(p, "reflectance", 0.5)?,
+            roughness: roughness(p, "")?,
+            eta: spectra::ior(p, "eta", 1.5)?,
+            ..slab(p)?
+        })),
+        "coatedconductor" => MaterialKind::Layered(Box::new(LayeredDesc {
+            conductor: Some((
+                spectra::conductor(p, "conductor.")?,
+                roughness(p, "conductor.")?,
+            )),
+            reflectance: spectra::reflectance(p, "reflectance", 0.0)?.into(),
+            roughness: roughness(p, "interface.")?,
+            eta: spectra::ior(p, "interface.eta", 1.5)?,
+            ..slab(p)?
+        })),
+        other => {
+            return Err(p.err(
+                loc,
+                format!("the material \"{other}\" is not read yet (spectrace reads diffuse, dielectric, thindielectric, conductor, coateddiffuse, coatedconductor, mix and interface)"),
+            ));
+        }
+    };
+    Ok(MaterialDesc {
+        name: name.to_string(),
+        kind,
+        loc,
+    })
+}
+
+/// pbrt-v4's microfacet roughness: `roughness`, or `uroughness`/`vroughness` (0), turned into
+/// α by `remaproughness` (true: α = √r, pbrt-v4's `TrowbridgeReitzDistribution::RoughnessToAlpha`);
+/// None when smooth (α = 0 in pbrt-v4 is its specular case).
+fn roughness(p: &Params, prefix: &str) -> R<Option<[f64; 2]>> {
+    let r = p.float(&format!("{prefix}roughness"), 0.0)?;
+    let u = p.float(&format!("{prefix}uroughness"), r)?;
+    let v = p.float(&format!("{prefix}vroughness"), r)?;
+    let remap = p.bool("remaproughness", true)?;
+    let alpha = |x: f64| if remap { x.max(0.0).sqrt() } else { x };
+    let (au, av) = (alpha(u), alpha(v));
+    // pbrt-v4's `EffectivelySmooth`: max(α_x, α_y) < 10⁻³
+    Ok((au.max(av) >= 1e-3).then_some([au, av]))
+}
+
+/// The slab of a layered material (pbrt-v4's `thickness` 0.01, `albedo` 0, `g` 0, `maxdepth`
+/// 10, `nsamples` 1); the base and coating are the caller's.
+fn slab(p: &Params) -> R<LayeredDesc> {
+    let count = |name: &str, default: i64| -> R<u32> {
+        let n = p.int(name, default)?;
+        u32::try_from(n).map_err(|_| p.err(p.loc_of(name), format!("\"{name}\" must be ≥ 0")))
+    };
+    let n_samples = count("nsamples", 1)?;
+    if n_samples == 0 {
+        return Err(p.err(p.loc_of("nsamples"), "\"nsamples\" must be ≥ 1"));
+    }
+    Ok(LayeredDesc {
+        conductor: None,
+        reflectance: Spectrum::Constant(0.0).into(),
+        eta: crate::spectrum::ior::Ior::Constant(1.5),
+        roughness: None,
+        thickness: p.float("thickness", 0.01)?,
+        albedo: spectra::reflectance(p, "albedo", 0.0)?.into(),
+        g: p.float("g", 0.0)?,
+        max_depth: count("maxdepth", 10)?,
+        n_samples,
+        pbrt_exit_weight: false,
+    })
+}
+
+impl Reader {
+    /// `MakeNamedMaterial "name" "string type" …`, `Material "type" …` and
+    /// `NamedMaterial "name"`.
+    pub(super) fn material_directive(
+        &mut self,
+        d: &str,
+        toks: &[Token],
+        i: &mut usize,
+        file: &Path,
+        loc: Loc,
+    ) -> R<()> {
+        let err = |m: String| LoadError::new(file, loc, "", m);
+        let name = Self::string_arg(toks, i, file, d, loc)?;
+        if d == "NamedMaterial" {
+            return match self.named_materials.get(&name) {
+                Some(&m) => {
+                    self.state.material = Some(m);
+                    Ok(())
+                }
+                None => Err(err(format!("no material named \"{name}\""))),
+            };
+        }
+        let p = Params::parse(toks, i, file)?;
+        let kind = if d == "Material" {
+            name.clone()
+        } else {
+            p.string("type")?.ok_or_else(|| {
+                err(format!(
+                    "MakeNamedMaterial \"{name}\" needs a \"string type\""
+                ))
+            })?
+        };
+        let m = material(&kind, &p, loc, &name, self.named())?;
+        p.check_unused(&format!("material \"{kind}\""))?;
+        self.materials.push(m);
+        if d == "Material" {
+            self.state.material = Some(self.materials.len() - 1);
+        } else {
+            self.named_materials.insert(name, self.materials.len() - 1);
+        }
+        Ok(())
+    }
+}
