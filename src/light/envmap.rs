@@ -263,16 +263,7 @@ impl EnvMapLight {
         u: Vec2,
     ) -> Option<LightSample<N>> {
         let (wi, uv, pdf) = self.sample_dir(u)?;
-        Some(LightSample {
-            wi,
-            li: self.eval_uv(uv, w),
-            pdf,
-            delta: false,
-            p: Vec3::ZERO,
-            p_error: Vec3::ZERO,
-            n: Vec3::ZERO,
-            distance: f32::INFINITY,
-        })
+        Some(LightSample::at_infinity(wi, self.eval_uv(uv, w), pdf))
     }
 
     /// Density per unit solid angle with which [`EnvMapLight::sample_li`] returns `wi` (world,

@@ -315,3 +315,22 @@ impl Light {
         }
     }
 }
+
+/// The midpoints of 10-nm steps over `range` (nm) and, at each, illuminant(λ)·g(λ)·Δλ: the
+/// spectral quadrature the image lights' integrals share.
+pub(crate) fn spectral_steps(
+    range: WavelengthRange,
+    illuminant: &Spectrum,
+    g: &impl Fn(f32) -> f64,
+) -> (Vec<f32>, Vec<f64>) {
+    let steps = ((range.max_nm - range.min_nm) / 10.0).ceil().max(1.0) as usize;
+    let dl = (range.max_nm - range.min_nm) as f64 / steps as f64;
+    let lambdas: Vec<f32> = (0..steps)
+        .map(|k| range.min_nm + (k as f32 + 0.5) * dl as f32)
+        .collect();
+    let shape = lambdas
+        .iter()
+        .map(|&l| illuminant.eval(l) as f64 * g(l) * dl)
+        .collect();
+    (lambdas, shape)
+}

@@ -169,16 +169,7 @@ impl OctahedralMapLight {
         u: Vec2,
     ) -> Option<LightSample<N>> {
         let (wi, k, pdf) = self.sample_dir(u)?;
-        Some(LightSample {
-            wi,
-            li: self.eval_pixel(k, w),
-            pdf,
-            delta: false,
-            p: Vec3::ZERO,
-            p_error: Vec3::ZERO,
-            n: Vec3::ZERO,
-            distance: f32::INFINITY,
-        })
+        Some(LightSample::at_infinity(wi, self.eval_pixel(k, w), pdf))
     }
 
     /// Density per unit solid angle with which [`OctahedralMapLight::sample_li`] returns `wi`.
@@ -227,15 +218,7 @@ impl OctahedralMapLight {
         g: &impl Fn(f32) -> f64,
         h: impl Fn(Vec3) -> f64,
     ) -> f64 {
-        let steps = ((range.max_nm - range.min_nm) / 10.0).ceil().max(1.0) as usize;
-        let dl = (range.max_nm - range.min_nm) as f64 / steps as f64;
-        let lambdas: Vec<f32> = (0..steps)
-            .map(|k| range.min_nm + (k as f32 + 0.5) * dl as f32)
-            .collect();
-        let shape: Vec<f64> = lambdas
-            .iter()
-            .map(|&l| self.illuminant.eval(l) as f64 * g(l) * dl)
-            .collect();
+        let (lambdas, shape) = super::spectral_steps(range, &self.illuminant, g);
         let n = self.res;
         let sub = 256usize.div_ceil(n).max(1);
         let mut total = 0.0;

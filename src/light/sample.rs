@@ -25,6 +25,23 @@ pub struct LightSample<const N: usize> {
     pub distance: f32,
 }
 
+impl<const N: usize> LightSample<N> {
+    /// A sample of a light at infinity toward unit `wi` (world), with radiance `li` and a
+    /// solid-angle density `pdf`; not a delta.
+    pub(crate) fn at_infinity(wi: Vec3, li: SampledSpectrum<N>, pdf: f32) -> Self {
+        LightSample {
+            wi,
+            li,
+            pdf,
+            delta: false,
+            p: Vec3::ZERO,
+            p_error: Vec3::ZERO,
+            n: Vec3::ZERO,
+            distance: f32::INFINITY,
+        }
+    }
+}
+
 /// A particle leaving a light: the emission sample of light tracing and of bidirectional path
 /// tracing's light subpaths (Veach 1997 §8.3.2 and §10.2; pbrt-v4 §12.5, `SampleLe`). Every
 /// light owns its sampling ([`super::Light::sample_le`]) and the densities of it ([`super::Light::pdf_le`]).

@@ -51,40 +51,60 @@ fn envmap_of(
 ) -> Result<EnvMapLight, String> {
     let at = |s: Spectrum| EnvMapLight::new(width, height, rgb, s, rot);
     let unit = at(illuminant.clone())?;
+    // cos θ on a plane facing the map's zenith
+    let zenith = rot.mul_vec3(glam::Vec3::Y).normalize();
+    let k = map_scale(amount, r, zenith, |range, g, h| {
+        unit.integral_where(range, &g, h)
+    })
+    .map_err(|k| {
+        format!(
+            "the environment map's scale ({k}) is not a finite number ≥ 0 (is the image black?)"
+        )
+    })?;
+    at(illuminant.scaled(k as f32))
+}
+
+/// The factor on an image light's illuminant that `amount` asks for, from the light's own
+/// integral ∫ g(λ)·L(λ, ω)·h(ω) dλ dω (`integral(range, g, h)`) at factor 1: `Scale(k)` is k;
+/// `Radiance` and `Luminance` set the mean over the sphere, 1/(4π) ∫ L dω, of the band radiance
+/// or of K_m ∫ L ȳ dλ; `Irradiance` and `Illuminance` set ∫ L cos θ dω (band, or K_m ∫ ȳ) on a
+/// plane facing `zenith`. Err(k) when k is not a finite number ≥ 0.
+pub(super) fn map_scale(
+    amount: &EnvMapAmount,
+    r: WavelengthRange,
+    zenith: Vec3,
+    integral: impl Fn(WavelengthRange, &dyn Fn(f32) -> f64, &dyn Fn(Vec3) -> f64) -> f64,
+) -> Result<f64, f64> {
     let four_pi = 4.0 * std::f64::consts::PI;
     let visible = WavelengthRange {
         min_nm: r.min_nm.max(360.0),
         max_nm: r.max_nm.min(830.0),
     };
     let y_bar = |l: f32| cmf().y_bar(l) as f64;
-    // cos θ on a plane facing the map's zenith
-    let zenith = rot.mul_vec3(glam::Vec3::Y).normalize();
-    let cosine = |d: glam::Vec3| d.dot(zenith).max(0.0) as f64;
+    let one = |_: f32| 1.0;
+    let all = |_: Vec3| 1.0;
+    let cosine = |d: Vec3| d.dot(zenith).max(0.0) as f64;
     let k = match amount {
         EnvMapAmount::Scale(k) => *k,
         EnvMapAmount::Radiance(l) => {
-            let b = unit.band_radiant_exitance(r) / four_pi;
-            l.get::<radiance::watt_per_square_meter_steradian>() / b
+            l.get::<radiance::watt_per_square_meter_steradian>() * four_pi / integral(r, &one, &all)
         }
         EnvMapAmount::Luminance(lv) => {
-            let y = K_M * unit.weighted_integral(visible, y_bar) / four_pi;
-            lv.get::<luminance::candela_per_square_meter>() / y
+            lv.get::<luminance::candela_per_square_meter>() * four_pi
+                / (K_M * integral(visible, &y_bar, &all))
         }
         EnvMapAmount::Irradiance(e) => {
-            let b = unit.integral_where(r, &|_| 1.0, cosine);
-            e.get::<irradiance::watt_per_square_meter>() / b
+            e.get::<irradiance::watt_per_square_meter>() / integral(r, &one, &cosine)
         }
         EnvMapAmount::Illuminance(ev) => {
-            let y = K_M * unit.integral_where(visible, &y_bar, cosine);
-            ev.get::<illuminance::lux>() / y
+            ev.get::<illuminance::lux>() / (K_M * integral(visible, &y_bar, &cosine))
         }
     };
-    if !(k.is_finite() && k >= 0.0) {
-        return Err(format!(
-            "the environment map's scale ({k}) is not a finite number ≥ 0 (is the image black?)"
-        ));
+    if k.is_finite() && k >= 0.0 {
+        Ok(k)
+    } else {
+        Err(k)
     }
-    at(illuminant.scaled(k as f32))
 }
 
 /// A CIE sky baked into a 1024 × 513 latitude–longitude map (the horizon on row 256, the

@@ -28,15 +28,7 @@ impl EnvMapLight {
         g: &impl Fn(f32) -> f64,
         h: impl Fn(Vec3) -> f64,
     ) -> f64 {
-        let steps = ((range.max_nm - range.min_nm) / 10.0).ceil().max(1.0) as usize;
-        let dl = (range.max_nm - range.min_nm) as f64 / steps as f64;
-        let lambdas: Vec<f32> = (0..steps)
-            .map(|k| range.min_nm + (k as f32 + 0.5) * dl as f32)
-            .collect();
-        let shape: Vec<f64> = lambdas
-            .iter()
-            .map(|&l| self.illuminant.eval(l) as f64 * g(l) * dl)
-            .collect();
+        let (lambdas, shape) = super::super::spectral_steps(range, &self.illuminant, g);
         let (wd, ht) = (self.width, self.height);
         // Each pixel's radiance spreads over the sphere as the lookup's bilinear tent around
         // it: ± one column in u, ± one row in v. Its share of the integral is
