@@ -30,7 +30,7 @@ pub enum FalseColourScale {
 #[derive(Args, Debug, Default, Clone, serde::Serialize, serde::Deserialize)]
 #[serde(default)]
 pub struct RenderArgs {
-    /// Scene file: spectrace TOML, or Mitsuba 3 XML (.xml).
+    /// Scene file: spectrace TOML, Mitsuba 3 XML (.xml) or pbrt-v4 (.pbrt).
     #[arg(required_unless_present = "resume")]
     pub scene: Option<PathBuf>,
     /// Output EXR (float32: X, Y, Z in cd/m², linear sRGB R, G, B, band radiance L in
