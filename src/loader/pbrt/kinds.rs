@@ -13,6 +13,43 @@ use crate::loader::desc::*;
 use crate::loader::{LoadError, Loc};
 use crate::units::{Angle, Length, angle::degree};
 
+/// A `PixelFilter` (pbrt-v4's default: `gaussian`, σ 0.5, radius 1.5 px): `gaussian`
+/// (`sigma`, `xradius` = `yradius`), `box` (radius 0.5 px), `triangle` (radius 2 px).
+fn pixel_filter(f: &Option<(Params, String, Loc)>) -> R<crate::film::FilterDesc> {
+    use crate::film::filter::{box_filter, gaussian, tent};
+    let Some((p, kind, loc)) = f else {
+        return Ok(gaussian::Desc::pbrt(0.5, 1.5));
+    };
+    let default = match kind.as_str() {
+        "gaussian" => 1.5,
+        "box" => 0.5,
+        "triangle" => 2.0,
+        other => {
+            return Err(p.err(
+                *loc,
+                format!("the pixel filter \"{other}\" is not read yet (spectrace reads gaussian, box and triangle)"),
+            ));
+        }
+    };
+    let (rx, ry) = (p.float("xradius", default)?, p.float("yradius", default)?);
+    if rx != ry || !(rx > 0.0) {
+        return Err(p.err(
+            *loc,
+            "a pixel filter's xradius and yradius must be equal and positive",
+        ));
+    }
+    let f = match kind.as_str() {
+        "gaussian" => gaussian::Desc::pbrt(p.float("sigma", 0.5)?, rx),
+        "box" => crate::film::FilterDesc::Box(box_filter::Desc { radius: rx }),
+        _ => crate::film::FilterDesc::Tent(tent::Desc {
+            radius: rx,
+            mitsuba: false,
+        }),
+    };
+    p.check_unused(&format!("pixel filter \"{kind}\""))?;
+    Ok(f)
+}
+
 /// The samples per pixel a `Sampler` asks for (pbrt-v4's defaults: 16, `independent` 4,
 /// `stratified` `xsamples` × `ysamples`, 4 × 4); spectrace samples with its own sequence.
 fn sampler_spp(p: &Params, kind: &str) -> R<i64> {
@@ -137,8 +174,7 @@ pub(super) fn finish(r: Reader) -> Result<SceneDesc, LoadError> {
             width: width as u32,
             height: height as u32,
             spp: spp.clamp(1, 1 << 24) as u32,
-            // pbrt-v4's default pixel filter: a Gaussian of radius 1.5 px, σ 0.5
-            filter: crate::film::filter::gaussian::Desc::pbrt(0.5, 1.5),
+            filter: pixel_filter(&r.filter)?,
             spectral_bins: 0,
             exposure_ev: None,
             loc: film_loc,

@@ -77,6 +77,7 @@ struct Reader {
     in_world: bool,
     camera: Option<(DMat4, Params, String, Loc)>,
     film: Option<(Params, String, Loc)>,
+    filter: Option<(Params, String, Loc)>,
     sampler: Option<(Params, String, Loc)>,
     integrator: Option<(Params, String, Loc)>,
     materials: Vec<MaterialDesc>,
@@ -114,6 +115,7 @@ impl Reader {
             in_world: false,
             camera: None,
             film: None,
+            filter: None,
             sampler: None,
             integrator: None,
             materials: Vec::new(),
@@ -281,11 +283,17 @@ impl Reader {
                 return Ok(());
             }
             "Film" => &mut self.film,
+            "PixelFilter" => &mut self.filter,
+            "ColorSpace" if kind != "srgb" => {
+                return Err(p.err(
+                    loc,
+                    format!("the colour space \"{kind}\" is not read yet (spectrace reads srgb)"),
+                ));
+            }
             "Sampler" => &mut self.sampler,
             "Integrator" => &mut self.integrator,
             _ => {
-                // pixel filters, accelerators and colour spaces change nothing spectrace
-                // computes differently (its filter is its own; sRGB is its colour space)
+                // accelerators and the sRGB colour space change nothing spectrace computes
                 drop(p);
                 self.notes
                     .push(format!("{}:{loc}: {d} \"{kind}\" ignored", file.display()));
