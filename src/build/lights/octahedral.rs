@@ -22,14 +22,7 @@ pub(super) fn octahedral(
             img.width, img.height
         )));
     }
-    let rgb: Vec<[f32; 3]> = if img.encoding == crate::image_io::Encoding::Srgb {
-        img.rgb
-            .iter()
-            .map(|p| p.map(super::super::textures::srgb_to_linear))
-            .collect()
-    } else {
-        img.rgb
-    };
+    let rgb = super::sources::linear_rgb(img.rgb, img.encoding);
     let rot = glam::Mat3::from_mat4(super::super::shapes::steps(transform, 1.0, false)?.matrix());
     let at = |s: Spectrum| OctahedralMapLight::new(img.width, &rgb, s, rot).map_err(err);
     let unit = at(illuminant.clone())?;

@@ -25,18 +25,22 @@ pub(super) fn envmap(
     r: WavelengthRange,
 ) -> Result<EnvMapLight, String> {
     let img = crate::image_io::read_rgb(path).map_err(|e| e.to_string())?;
-    let rgb: Vec<[f32; 3]> = if img.encoding == crate::image_io::Encoding::Srgb {
-        img.rgb
-            .iter()
-            .map(|p| p.map(super::super::textures::srgb_to_linear))
-            .collect()
-    } else {
-        img.rgb
-    };
+    let rgb = linear_rgb(img.rgb, img.encoding);
     let m = super::super::shapes::steps(transform, 1.0, false)?.matrix();
     let rot = glam::Mat3::from_mat4(m);
     envmap_of(img.width, img.height, &rgb, rot, amount, illuminant, r)
         .map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// An image light's pixels as linear RGB: 8- and 16-bit files decoded from sRGB.
+pub(super) fn linear_rgb(rgb: Vec<[f32; 3]>, encoding: crate::image_io::Encoding) -> Vec<[f32; 3]> {
+    if encoding == crate::image_io::Encoding::Srgb {
+        rgb.iter()
+            .map(|p| p.map(super::super::textures::srgb_to_linear))
+            .collect()
+    } else {
+        rgb
+    }
 }
 
 /// An environment map from linear RGB pixels (see [`envmap`]).
