@@ -209,3 +209,30 @@ Shape "trianglemesh" "point3 P" [-50 0 -50  50 0 -50  50 0 50  -50 0 50] "intege
         "{y} against {truth}"
     );
 }
+
+/// `diffusetransmission` (R/π on the lit side, T/π through), as pbrt-v4 defines it with its
+/// `scale`: a sheet of R = 0.3 and T = 0.5 scaled by 0.8, under a distant light of
+/// illuminance 2 at normal incidence, seen by an orthographic camera from the lit side
+/// (Y = 0.24 · 2/π) and from the other (Y = 0.4 · 2/π). The light is sampled exactly.
+#[test]
+fn diffuse_transmission_reflects_r_and_passes_t() {
+    for (from, want) in [("0 5 0", 0.24), ("0 -5 0", 0.4)] {
+        let text = format!(
+            r#"LookAt 0 5 0  0 0 0  0 0 1
+Camera "orthographic"
+Film "rgb" "integer xresolution" 8 "integer yresolution" 8
+Sampler "zsobol" "integer pixelsamples" 16
+Integrator "path" "integer maxdepth" 1
+WorldBegin
+LightSource "distant" "point3 from" [{from}] "point3 to" [0 0 0] "float illuminance" 2
+Material "diffusetransmission" "spectrum reflectance" [300 0.3 900 0.3]
+  "spectrum transmittance" [300 0.5 900 0.5] "float scale" 0.8
+Shape "trianglemesh" "point3 P" [-50 0 -50  50 0 -50  50 0 50  -50 0 50] "integer indices" [0 2 1 0 3 2]
+"#
+        );
+        let [(y, se), _] = mean_y(&text, 16, [None, None]);
+        let truth = want * 2.0 / std::f64::consts::PI;
+        println!("light from {from}: Y {y:.5} ± {se:.5} against {truth:.5}");
+        assert!((y / truth - 1.0).abs() < 1e-3, "{y} against {truth}");
+    }
+}

@@ -5,8 +5,9 @@ use super::textures;
 use crate::loader::desc::{MaterialKind, TextureDesc};
 use crate::material::microfacet::Microfacet;
 use crate::material::{
-    Blend, BumpMap, Conductor, Dielectric, Element, Lambert, Mask, Material, MeasuredPolarized,
-    NormalMap, PPlastic, Phong, Plastic, RoughConductor, RoughDielectric, TexturedLobes,
+    Blend, BumpMap, Conductor, Dielectric, DiffuseTransmission, Element, Lambert, Mask, Material,
+    MeasuredPolarized, NormalMap, PPlastic, Phong, Plastic, RoughConductor, RoughDielectric,
+    TexturedLobes,
 };
 
 /// The render-side material for `k`; an error (for the user, without a location) if a
@@ -118,6 +119,13 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
         MaterialKind::Principled(p) => super::materials_mitsuba::principled(p)?,
         MaterialKind::Hair(h) => super::materials_mitsuba::hair(h),
         MaterialKind::Layered(d) => super::materials_pbrt::layered(d)?,
+        MaterialKind::DiffuseTransmission {
+            reflectance,
+            transmittance,
+        } => Material::DiffuseTransmission(Box::new(DiffuseTransmission {
+            reflectance: textures::texture(reflectance)?,
+            transmittance: textures::texture(transmittance)?,
+        })),
     })
 }
 
@@ -183,10 +191,11 @@ fn blend(weight: &TextureDesc, a: &MaterialKind, b: &MaterialKind) -> Result<Mat
                 | Material::Principled(_)
                 | Material::Hair(_)
                 | Material::Layered(_)
+                | Material::DiffuseTransmission(_)
         )
     }) {
         return Err(
-            "a blend cannot hold a mask, another blend, a normal or bump map, textured roughness or specular factors, a principled material, hair or a coated (layered) material".into(),
+            "a blend cannot hold a mask, another blend, a normal or bump map, textured roughness or specular factors, a principled material, hair, a coated (layered) material or a diffuse transmitter".into(),
         );
     }
     Ok(Material::Blend(Box::new(Blend { weight, a, b })))

@@ -3,7 +3,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{BsdfSample, DisneyAt, Material, TransportMode};
+use super::{BsdfSample, DiffuseTransmission, DisneyAt, Material, TransportMode};
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
 /// A material at one surface point, for one set of wavelengths: its textured values looked up
@@ -86,6 +86,9 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             Material::Principled(m) => m.eval(&self.disney, self.albedo, wo, wi, mode),
             Material::Hair(m) => m.eval(self.albedo, wo, wi, mode),
             Material::Layered(m) => self.slab(m, w).eval(wo, wi, mode),
+            Material::DiffuseTransmission(_) => {
+                DiffuseTransmission::eval(wo, wi, self.albedo, self.albedo_b)
+            }
         }
     }
 
@@ -116,6 +119,9 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             Material::Principled(m) => m.pdf(&self.disney, wo, wi),
             Material::Hair(m) => m.pdf(self.albedo, wo, wi, w),
             Material::Layered(m) => self.slab(m, w).pdf(wo, wi, _mode),
+            Material::DiffuseTransmission(_) => {
+                DiffuseTransmission::pdf(wo, wi, self.albedo, self.albedo_b)
+            }
         }
     }
 
@@ -165,6 +171,10 @@ impl<'a, const N: usize> Bsdf<'a, N> {
                 let slab = self.slab(m, w);
                 (slab.eval(wo, wi, mode), slab.pdf(wo, wi, mode))
             }
+            Material::DiffuseTransmission(_) => (
+                DiffuseTransmission::eval(wo, wi, self.albedo, self.albedo_b),
+                DiffuseTransmission::pdf(wo, wi, self.albedo, self.albedo_b),
+            ),
         }
     }
 
@@ -220,6 +230,9 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             Material::Principled(m) => m.sample(&self.disney, self.albedo, wo, uc, u, mode),
             Material::Hair(m) => m.sample(self.albedo, wo, w, uc, u, mode),
             Material::Layered(m) => self.slab(m, w).sample(wo, uc, u, mode),
+            Material::DiffuseTransmission(_) => {
+                DiffuseTransmission::sample(wo, self.albedo, self.albedo_b, uc, u)
+            }
             // straight through: f·|cos θᵢ|/pdf = 1
             Material::Null => (wo.z != 0.0).then(|| BsdfSample {
                 f: SampledSpectrum::splat(1.0 / wo.z.abs()),

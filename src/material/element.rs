@@ -112,6 +112,7 @@ impl super::Material {
             | M::Principled(_)
             | M::Hair(_)
             | M::Layered(_)
+            | M::DiffuseTransmission(_)
             | M::Phong(_)
             | M::Dielectric(_)
             | M::RoughDielectric(_)

@@ -38,6 +38,7 @@ mod bsdf;
 pub mod coated;
 mod conductor;
 mod dielectric;
+mod diffuse_transmission;
 mod disney;
 mod element;
 mod erf;
@@ -70,6 +71,7 @@ use bsdf::UNPERTURBED;
 pub use coated::ThinFilm;
 pub use conductor::{Conductor, RoughConductor};
 pub use dielectric::Dielectric;
+pub use diffuse_transmission::DiffuseTransmission;
 pub use disney::DisneyAt;
 pub use element::Element;
 pub use hair::Hair;
@@ -186,6 +188,9 @@ pub enum Material {
     /// pbrt-v4's `coateddiffuse` and `coatedconductor`: a dielectric coating over a base,
     /// evaluated by random walks as pbrt-v4 does (see [`Layered`]).
     Layered(Box<Layered>),
+    /// pbrt-v4's `diffusetransmission`: a Lambertian lobe on each side (see
+    /// [`DiffuseTransmission`]).
+    DiffuseTransmission(Box<DiffuseTransmission>),
 }
 
 impl Material {
@@ -257,6 +262,14 @@ impl Material {
                     albedo_b: b,
                     spec_r: at(&m.albedo),
                     ..Bsdf::plain(self, a)
+                };
+            }
+            // R and T in the two albedos' places, clamped as pbrt-v4 clamps them
+            Material::DiffuseTransmission(m) => {
+                let unit = |x: SampledSpectrum<N>| x.map(|v| v.clamp(0.0, 1.0));
+                return Bsdf {
+                    albedo_b: unit(at(&m.transmittance)),
+                    ..Bsdf::plain(self, unit(at(&m.reflectance)))
                 };
             }
             // the absorption σₐ per radius in the albedo's place
@@ -353,6 +366,7 @@ impl Material {
             Material::Principled(_)
             | Material::Hair(_)
             | Material::Diffuse(_)
+            | Material::DiffuseTransmission(_)
             | Material::Phong(_)
             | Material::RoughDielectric(_)
             | Material::RoughConductor(_)
@@ -385,6 +399,7 @@ impl Material {
             | Material::Principled(_)
             | Material::Hair(_)
             | Material::Diffuse(_)
+            | Material::DiffuseTransmission(_)
             | Material::Phong(_)
             | Material::Conductor(_)
             | Material::RoughConductor(_)

@@ -103,7 +103,8 @@ fn of<const N: usize>(
         | Material::Blend(_)
         | Material::Principled(_)
         | Material::Hair(_)
-        | Material::Layered(_) => Polarising::Depolarise,
+        | Material::Layered(_)
+        | Material::DiffuseTransmission(_) => Polarising::Depolarise,
         Material::Null => Polarising::Keep,
         Material::Mask(_) | Material::ThinDielectric { .. } if straight => Polarising::Keep,
         Material::Mask(k) => of(&k.inner, frame, perturb, (wo, wi), rho, w),

@@ -26,6 +26,7 @@ impl Material {
             Material::Layered(m) => m.is_anisotropic(),
             Material::Blend(m) => m.a.needs_tangent() || m.b.needs_tangent(),
             Material::Diffuse(_)
+            | Material::DiffuseTransmission(_)
             | Material::Phong(_)
             | Material::Dielectric(_)
             | Material::Conductor(_)
@@ -45,6 +46,7 @@ impl Material {
             Material::NormalMap(_) | Material::BumpMap(_) => true,
             Material::Mask(m) => m.inner.is_perturbed(),
             Material::Diffuse(_)
+            | Material::DiffuseTransmission(_)
             | Material::Phong(_)
             | Material::Dielectric(_)
             | Material::RoughDielectric(_)
@@ -83,8 +85,10 @@ impl Material {
             | Material::Element(_)
             | Material::ThinFilm(_)
             | Material::ThinDielectric { .. } => true,
-            // a mask's pass-through does not distinguish the sides, nor does a fibre
+            // a mask's pass-through does not distinguish the sides, nor does a fibre or a
+            // diffuse transmitter
             Material::Mask(_)
+            | Material::DiffuseTransmission(_)
             | Material::Hair(_)
             | Material::Layered(_)
             | Material::Diffuse(_)

@@ -135,6 +135,12 @@ pub enum MaterialKind {
     Hair(Box<HairDesc>),
     /// pbrt-v4's `coateddiffuse` and `coatedconductor` (see `crate::material::Layered`).
     Layered(Box<LayeredDesc>),
+    /// pbrt-v4's `diffusetransmission`: Lambertian reflection and transmission (see
+    /// `crate::material::DiffuseTransmission`), dimensionless, each clamped to [0, 1].
+    DiffuseTransmission {
+        reflectance: TextureDesc,
+        transmittance: TextureDesc,
+    },
 }
 
 /// A dielectric coating over a base, with a slab between them (pbrt-v4's layered materials).

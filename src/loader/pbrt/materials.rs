@@ -122,6 +122,23 @@ pub(super) fn material(
                 smith: Smith::HeightCorrelated,
             }
         }
+        "diffusetransmission" => {
+            let scale = p.float("scale", 1.0)?;
+            let scaled = |name: &str| -> R<TextureDesc> {
+                match named.reflectance(p, name, 0.25)? {
+                    TextureDesc::Uniform(s) => Ok(TextureDesc::Uniform(s.scaled(scale as f32))),
+                    t if scale == 1.0 => Ok(t),
+                    _ => Err(p.err(
+                        p.loc_of("scale"),
+                        "a \"scale\" with a texture is not read yet (spectrace scales uniform values)",
+                    )),
+                }
+            };
+            MaterialKind::DiffuseTransmission {
+                reflectance: scaled("reflectance")?,
+                transmittance: scaled("transmittance")?,
+            }
+        }
         "coateddiffuse" => MaterialKind::Layered(Box::new(LayeredDesc {
             conductor: None,
             reflectance: named.reflectance(p, "reflectance", 0.5)?,
@@ -142,7 +159,7 @@ pub(super) fn material(
         other => {
             return Err(p.err(
                 loc,
-                format!("the material \"{other}\" is not read yet (spectrace reads diffuse, dielectric, thindielectric, conductor, coateddiffuse, coatedconductor, mix and interface)"),
+                format!("the material \"{other}\" is not read yet (spectrace reads diffuse, diffusetransmission, dielectric, thindielectric, conductor, coateddiffuse, coatedconductor, mix and interface)"),
             ));
         }
     };

@@ -211,6 +211,10 @@ fn image_textured(k: &MaterialKind) -> bool {
     match k {
         MaterialKind::Diffuse { reflectance } => image(reflectance),
         MaterialKind::Layered(l) => image(&l.reflectance) || image(&l.albedo),
+        MaterialKind::DiffuseTransmission {
+            reflectance,
+            transmittance,
+        } => image(reflectance) || image(transmittance),
         MaterialKind::Blend { a, b, .. } => image_textured(a) || image_textured(b),
         _ => false,
     }
