@@ -171,6 +171,26 @@ Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indice
        'Material "conductor" "spectrum eta" "metal-Ag-eta" "spectrum k" "metal-Ag-k" "float roughness" 0.01\n'
        'Shape "loopsubdiv" "integer levels" 2 "point3 P" [-1 -1 0  1 -1 0  1 1 0  -1 1 0  0 0 1.2]\n'
        '  "integer indices" [0 1 4  1 2 4  2 3 4  3 0 4]\nAttributeEnd\n'),
+    # bilinear patches: a rectangular light with `power` (pbrt-v4 spreads it over each patch),
+    # a twisted (non-planar) patch and a floor of two patches
+    ("bilinear", HEAD + 'Integrator "path" "integer maxdepth" 5\nWorldBegin\n' + SKY
+     + 'AttributeBegin\nAreaLightSource "diffuse" "blackbody L" 5000 "float power" 6\n'
+       'Shape "bilinearmesh" "point3 P" [-0.6 1.6 -0.4  0.6 1.6 -0.4  -0.6 1.6 0.6  0.6 1.6 0.6]\nAttributeEnd\n'
+     + 'Material "diffuse" "rgb reflectance" [0.6 0.5 0.4]\n'
+       'Shape "bilinearmesh" "point3 P" [-3 -1 -3  0 -1 -3  3 -1 -3  -3 -1 3  0 -1 3  3 -1 3]\n'
+       '  "integer indices" [0 1 3 4  1 2 4 5]\n'
+     + 'Material "coateddiffuse" "rgb reflectance" [0.2 0.6 0.3] "float roughness" 0.1\n'
+       'Shape "bilinearmesh" "point3 P" [-1 -0.5 -0.5  1 -0.5 0.5  -1 0.8 0.5  1 0.8 -0.5]\n'),
+    # pbrt-v4's diffuse transmitter: a lampshade (an open cylinder) around a spherical light,
+    # over a floor
+    ("diffuse_transmission", HEAD + 'Integrator "path" "integer maxdepth" 6\nWorldBegin\n'
+     + 'AttributeBegin\nAreaLightSource "diffuse" "blackbody L" 3000 "float scale" 8\n'
+       'Shape "sphere" "float radius" 0.2\nAttributeEnd\n'
+     + 'AttributeBegin\nMaterial "diffusetransmission" "rgb reflectance" [0.5 0.4 0.3] '
+       '"rgb transmittance" [0.3 0.35 0.4] "float scale" 1.2\nRotate 80 1 0 0\n'
+       'Shape "cylinder" "float radius" 0.7 "float zmin" -0.5 "float zmax" 0.5\nAttributeEnd\n'
+     + 'Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]\n'
+       'Shape "trianglemesh" "point3 P" [-4 -1 -4  4 -1 -4  4 -1 4  -4 -1 4] "integer indices" [0 1 2 0 2 3]\n'),
 ]
 
 

@@ -143,7 +143,8 @@ fn mean_y(text: &str, spp: u32, subsets: [Option<&[usize]>; 2]) -> [(f64, f64); 
 /// Small scenes against pbrt-v4's own renders (`tests/data/pbrt_refs.toml`, written by
 /// `scripts/gen_pbrt_refs.py` with a pbrt-v4 build): named metals smooth and rough, a BK7
 /// sphere before a lit wall, a box lit by a disk and a point light, photometric amounts,
-/// layered materials and Loop subdivision surfaces. The mean Y of the whole image and of the
+/// layered materials, Loop subdivision surfaces, bilinear patches (a light with `power`, a
+/// twisted patch) and a diffuse transmitter. The mean Y of the whole image and of the
 /// object's pixels each within 5 standard errors of the two renderers' difference.
 #[test]
 fn scenes_match_pbrt_v4() {

@@ -1,7 +1,7 @@
 //! pbrt-v4's meshes written in the scene file (`src/pbrt/shapes.cpp`): `trianglemesh` and
 //! `loopsubdiv` (`crate::geometry::shape::loop_subdivide`).
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
 use super::params::{Params, R};
 use crate::loader::Loc;
@@ -88,14 +88,7 @@ pub(super) fn triangle_mesh(p: &Params, loc: Loc, reverse: bool) -> R<ShapeKind>
     });
     let mut faces: Vec<[u32; 3]> = idx.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
     if let Some(ns) = &normals {
-        let v = |i: u32| DVec3::from(vertices[i as usize]);
-        for f in &mut faces {
-            let g = (v(f[1]) - v(f[0])).cross(v(f[2]) - v(f[0]));
-            let s: DVec3 = f.iter().map(|&i| DVec3::from(ns[i as usize])).sum();
-            if g.dot(s) < 0.0 {
-                f.swap(1, 2);
-            }
-        }
+        wind_to_normals(&vertices, &mut faces, ns);
     }
     Ok(ShapeKind::Inline {
         vertices,
@@ -103,6 +96,19 @@ pub(super) fn triangle_mesh(p: &Params, loc: Loc, reverse: bool) -> R<ShapeKind>
         normals,
         uvs,
     })
+}
+
+/// Winds each triangle so that its geometric normal lies on its vertex normals' side, as
+/// pbrt-v4 turns a mesh's normal to N.
+fn wind_to_normals(vertices: &[[f64; 3]], faces: &mut [[u32; 3]], normals: &[[f64; 3]]) {
+    let v = |i: u32| DVec3::from(vertices[i as usize]);
+    for f in faces {
+        let g = (v(f[1]) - v(f[0])).cross(v(f[2]) - v(f[0]));
+        let s: DVec3 = f.iter().map(|&i| DVec3::from(normals[i as usize])).sum();
+        if g.dot(s) < 0.0 {
+            f.swap(1, 2);
+        }
+    }
 }
 
 /// `loopsubdiv`: `levels` (3) rounds of Loop subdivision of `P` and `indices`, with the limit
@@ -123,4 +129,162 @@ pub(super) fn loop_subdiv(p: &Params, loc: Loc) -> R<ShapeKind> {
         normals: Some(s.normals.iter().map(|v| v.to_array()).collect()),
         uvs: None,
     })
+}
+
+/// A `bilinearmesh`: patches of four vertices p₀₀, p₁₀, p₀₁, p₁₁ (in `indices` order), each
+/// p(u, v) = lerp(v, lerp(u, p₀₀, p₁₀), lerp(u, p₀₁, p₁₁)), with `uv` (per vertex; by default
+/// (u, v) itself) and `N` (per vertex) interpolated the same way.
+pub(super) struct Bilinear {
+    vertices: Vec<[f64; 3]>,
+    patches: Vec<[u32; 4]>,
+    uvs: Option<Vec<[f64; 2]>>,
+    normals: Option<Vec<[f64; 3]>>,
+}
+
+/// Grid cells per side into which a patch that is not a parallelogram (or whose uv is not) is
+/// cut: its surface and uv are then off by at most 1/(8·16²) of its twist |p₀₀ + p₁₁ − p₁₀ − p₀₁|.
+const GRID: usize = 16;
+
+/// `bilinearmesh`: `point3 P`, `integer indices` (optional for a single patch), optional
+/// `point2 uv` and `normal N`; `ReverseOrientation` negates N as for a `trianglemesh`.
+pub(super) fn bilinear_mesh(p: &Params, loc: Loc, reverse: bool) -> R<Bilinear> {
+    let (vertices, idx) = positions_and_indices(p, loc, "bilinearmesh", 4)?;
+    let n = vertices.len();
+    for unread in ["faceIndices", "emissionfilename"] {
+        if p.get(unread).is_some() {
+            return Err(p.err(
+                p.loc_of(unread),
+                format!("a bilinearmesh's \"{unread}\" is not read yet"),
+            ));
+        }
+    }
+    let per_vertex = |name: &str, ty: &[&str], k: usize| -> R<Option<Vec<f64>>> {
+        let Some(v) = p.nums(name, ty)? else {
+            return Ok(None);
+        };
+        if v.len() != k * n {
+            return Err(p.err(
+                p.loc_of(name),
+                format!("\"{name}\" must hold {k} numbers for each of the {n} vertices"),
+            ));
+        }
+        Ok(Some(v.to_vec()))
+    };
+    let uvs =
+        per_vertex("uv", &["point2"], 2)?.map(|v| v.chunks(2).map(|c| [c[0], c[1]]).collect());
+    let sign = if reverse { -1.0 } else { 1.0 };
+    let normals = per_vertex("N", &["normal"], 3)?.map(|v| {
+        v.chunks(3)
+            .map(|c| [sign * c[0], sign * c[1], sign * c[2]])
+            .collect()
+    });
+    Ok(Bilinear {
+        vertices,
+        patches: idx.chunks(4).map(|c| [c[0], c[1], c[2], c[3]]).collect(),
+        uvs,
+        normals,
+    })
+}
+
+impl Bilinear {
+    pub(super) fn len(&self) -> usize {
+        self.patches.len()
+    }
+
+    /// pbrt-v4's area of patch `i` under `m` (what an area light's `power` is spread over):
+    /// the patch cut into 3 × 3 quads, each measured by half its diagonals' cross product
+    /// (exact for a planar patch).
+    pub(super) fn area(&self, i: usize, m: &glam::DMat4) -> f64 {
+        let c = self.patches[i].map(|k| m.transform_point3(DVec3::from(self.vertices[k as usize])));
+        let at = |u: f64, v: f64| (c[0].lerp(c[1], u)).lerp(c[2].lerp(c[3], u), v);
+        let mut area = 0.0;
+        for i in 0..3 {
+            for j in 0..3 {
+                let (u0, u1, v0, v1) = (
+                    i as f64 / 3.0,
+                    (i + 1) as f64 / 3.0,
+                    j as f64 / 3.0,
+                    (j + 1) as f64 / 3.0,
+                );
+                area += 0.5
+                    * (at(u1, v1) - at(u0, v0))
+                        .cross(at(u1, v0) - at(u0, v1))
+                        .length();
+            }
+        }
+        area
+    }
+
+    /// The triangles of the patches `which`: two for a parallelogram with parallelogram uv
+    /// (exact: the map is then affine), else a `GRID` × `GRID` grid. Every vertex carries its
+    /// uv; each triangle is wound so that its normal lies on ∂p/∂u × ∂p/∂v's side (pbrt-v4's
+    /// patch normal), or on N's when N is given.
+    pub(super) fn triangles(&self, which: impl Iterator<Item = usize>) -> ShapeKind {
+        let (mut vertices, mut uvs, mut faces) = (Vec::new(), Vec::new(), Vec::new());
+        let mut normals = Vec::new();
+        for i in which {
+            let k = self.patches[i].map(|k| k as usize);
+            let pos = k.map(|k| DVec3::from(self.vertices[k]));
+            let uv = match &self.uvs {
+                Some(t) => k.map(|k| DVec2::from(t[k])),
+                None => [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 1.0]].map(DVec2::from),
+            };
+            let twist = (pos[0] + pos[3] - pos[1] - pos[2]).length();
+            let size = (pos[1] - pos[0]).length() + (pos[2] - pos[0]).length();
+            let uv_twist = (uv[0] + uv[3] - uv[1] - uv[2]).length();
+            let g = if twist <= 1e-9 * size && uv_twist <= 1e-9 {
+                1
+            } else {
+                GRID
+            };
+            let base = vertices.len() as u32;
+            for j in 0..=g {
+                for i in 0..=g {
+                    let (u, v) = (i as f64 / g as f64, j as f64 / g as f64);
+                    let lerp4 =
+                        |a: DVec3, b: DVec3, c: DVec3, d: DVec3| a.lerp(b, u).lerp(c.lerp(d, u), v);
+                    vertices.push(lerp4(pos[0], pos[1], pos[2], pos[3]).to_array());
+                    uvs.push(
+                        uv[0]
+                            .lerp(uv[1], u)
+                            .lerp(uv[2].lerp(uv[3], u), v)
+                            .to_array(),
+                    );
+                    let n = match &self.normals {
+                        Some(ns) => {
+                            let n = k.map(|k| DVec3::from(ns[k]));
+                            lerp4(n[0], n[1], n[2], n[3])
+                        }
+                        // the patch's own normal ∂p/∂u × ∂p/∂v (its diagonals' at a corner
+                        // where it vanishes)
+                        None => {
+                            let dpdu = (pos[1] - pos[0]).lerp(pos[3] - pos[2], v);
+                            let dpdv = (pos[2] - pos[0]).lerp(pos[3] - pos[1], u);
+                            let n = dpdu.cross(dpdv);
+                            if n.length_squared() > 0.0 {
+                                n
+                            } else {
+                                (pos[3] - pos[0]).cross(pos[2] - pos[1])
+                            }
+                        }
+                    };
+                    normals.push(n.normalize_or(DVec3::Z).to_array());
+                }
+            }
+            let at = |i: usize, j: usize| base + (j * (g + 1) + i) as u32;
+            for j in 0..g {
+                for i in 0..g {
+                    faces.push([at(i, j), at(i + 1, j), at(i + 1, j + 1)]);
+                    faces.push([at(i, j), at(i + 1, j + 1), at(i, j + 1)]);
+                }
+            }
+        }
+        wind_to_normals(&vertices, &mut faces, &normals);
+        ShapeKind::Inline {
+            vertices,
+            faces,
+            normals: Some(normals),
+            uvs: Some(uvs),
+        }
+    }
 }

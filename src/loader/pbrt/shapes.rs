@@ -123,6 +123,25 @@ pub(super) fn shape(
         }
         "trianglemesh" => meshes::triangle_mesh(p, loc, r.state.reverse_orientation)?,
         "loopsubdiv" => meshes::loop_subdiv(p, loc)?,
+        // pbrt-v4 makes a light of each patch, `power` spread over its own area
+        "bilinearmesh" => {
+            let mesh = meshes::bilinear_mesh(p, loc, r.state.reverse_orientation)?;
+            let m = r.state.ctm;
+            if r.state
+                .area_light
+                .as_ref()
+                .is_some_and(|a| a.power.is_some())
+            {
+                return (0..mesh.len())
+                    .map(|i| {
+                        let area = mesh.area(i, &m);
+                        finish_shape(mesh.triangles(std::iter::once(i)), m, Some(area), p, loc, r)
+                    })
+                    .collect();
+            }
+            return finish_shape(mesh.triangles(0..mesh.len()), m, None, p, loc, r)
+                .map(|s| vec![s]);
+        }
         "plymesh" => {
             let name = p
                 .string("filename")?
@@ -153,7 +172,7 @@ pub(super) fn shape(
         other => {
             return Err(p.err(
                 loc,
-                format!("the shape \"{other}\" is not read yet (spectrace reads sphere, cylinder, disk, trianglemesh, plymesh and loopsubdiv)"),
+                format!("the shape \"{other}\" is not read yet (spectrace reads sphere, cylinder, disk, trianglemesh, bilinearmesh, plymesh and loopsubdiv)"),
             ));
         }
     };
