@@ -237,3 +237,33 @@ Shape "trianglemesh" "point3 P" [-50 0 -50  50 0 -50  50 0 50  -50 0 50] "intege
         assert!((y / truth - 1.0).abs() < 1e-3, "{y} against {truth}");
     }
 }
+
+/// `Attribute "shape"` sets a default a `Shape` may override, the latest `Attribute` first,
+/// and `AttributeEnd` forgets it (pbrt-v4's `shapeAttributes`); an attribute a shape does not
+/// read is not an error.
+#[test]
+fn attributes_are_defaults_within_their_block() {
+    use spectrace::loader::desc::ShapeKind;
+    let text = r#"LookAt 0 0 5  0 0 0  0 1 0
+Camera "perspective" "float fov" [30]
+WorldBegin
+AttributeBegin
+Attribute "shape" "float radius" 0.25 "float unknownthing" 3
+Attribute "shape" "float radius" 0.5
+Shape "sphere"
+Shape "sphere" "float radius" 2
+AttributeEnd
+Shape "sphere"
+"#;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/pbrt/inline.pbrt");
+    let desc = spectrace::loader::pbrt::load_str(text, &path).unwrap_or_else(|e| panic!("{e}"));
+    let radii: Vec<f64> = desc
+        .shapes
+        .iter()
+        .map(|s| match &s.kind {
+            ShapeKind::Sphere { radius, .. } => radius.get::<spectrace::units::length::meter>(),
+            k => panic!("{k:?}"),
+        })
+        .collect();
+    assert_eq!(radii, [0.5, 2.0, 1.0]);
+}

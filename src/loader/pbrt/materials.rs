@@ -231,7 +231,7 @@ impl Reader {
                 None => Err(err(format!("no material named \"{name}\""))),
             };
         }
-        let p = Params::parse(toks, i, file)?;
+        let p = Params::parse(toks, i, file)?.with_defaults(&self.state.attributes.material);
         let kind = if d == "Material" {
             name.clone()
         } else {

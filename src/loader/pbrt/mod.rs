@@ -65,6 +65,17 @@ struct State {
     material: Option<usize>,
     /// The current `AreaLightSource "diffuse"`, if any.
     area_light: Option<lights::AreaLight>,
+    /// `Attribute` parameters for shapes, lights, materials and textures, in the order given.
+    attributes: Attributes,
+}
+
+/// The default parameters `Attribute "shape" | "light" | "material" | "texture"` set.
+#[derive(Clone, Default)]
+struct Attributes {
+    shape: Vec<params::Param>,
+    light: Vec<params::Param>,
+    material: Vec<params::Param>,
+    texture: Vec<params::Param>,
 }
 
 /// The reader's whole state, and the scene it builds.
@@ -103,6 +114,7 @@ impl Reader {
                 reverse_orientation: false,
                 material: None,
                 area_light: None,
+                attributes: Attributes::default(),
             },
             stack: Vec::new(),
             textures: HashMap::new(),
@@ -209,20 +221,20 @@ impl Reader {
             }
             "AreaLightSource" => {
                 let kind = Self::string_arg(toks, i, file, d, loc)?;
-                let p = Params::parse(toks, i, file)?;
+                let p = Params::parse(toks, i, file)?.with_defaults(&self.state.attributes.light);
                 self.state.area_light = Some(lights::area_light(&kind, &p, loc)?);
                 p.check_unused(&format!("area light \"{kind}\""))?;
             }
             "LightSource" => {
                 let kind = Self::string_arg(toks, i, file, d, loc)?;
-                let p = Params::parse(toks, i, file)?;
+                let p = Params::parse(toks, i, file)?.with_defaults(&self.state.attributes.light);
                 let l = lights::light(&kind, &p, &self.state.ctm, loc, self)?;
                 p.check_unused(&format!("light \"{kind}\""))?;
                 self.lights.push(l);
             }
             "Shape" => {
                 let kind = Self::string_arg(toks, i, file, d, loc)?;
-                let p = Params::parse(toks, i, file)?;
+                let p = Params::parse(toks, i, file)?.with_defaults(&self.state.attributes.shape);
                 let shapes = shapes::shape(&kind, &p, loc, self, file)?;
                 p.check_unused(&format!("shape \"{kind}\""))?;
                 self.add_shapes(shapes).map_err(err)?;
@@ -233,8 +245,29 @@ impl Reader {
             }
             "ObjectEnd" => self.instancing(d, None, loc).map_err(err)?,
             "Texture" => self.texture_directive(d, toks, i, file, loc)?,
-            "MakeNamedMedium" | "MediumInterface" | "Attribute" | "TransformTimes"
-            | "ActiveTransform" => {
+            "Attribute" => {
+                let target = Self::string_arg(toks, i, file, d, loc)?;
+                let p = Params::parse(toks, i, file)?;
+                let a = &mut self.state.attributes;
+                let list = match target.as_str() {
+                    "shape" => &mut a.shape,
+                    "light" => &mut a.light,
+                    "material" => &mut a.material,
+                    "texture" => &mut a.texture,
+                    "medium" => {
+                        return Err(err(
+                            "Attribute \"medium\" is not read yet (spectrace's pbrt-v4 reader reads no media)".into(),
+                        ));
+                    }
+                    other => {
+                        return Err(err(format!(
+                            "unknown Attribute target \"{other}\" (pbrt-v4's are shape, light, material, medium and texture)"
+                        )));
+                    }
+                };
+                list.extend(p.list);
+            }
+            "MakeNamedMedium" | "MediumInterface" | "TransformTimes" | "ActiveTransform" => {
                 return Err(err(format!(
                     "the directive {d} is not read yet (spectrace's pbrt-v4 reader: see the README's pbrt-v4 table)"
                 )));

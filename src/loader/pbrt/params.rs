@@ -33,7 +33,7 @@ const TYPES: &[&str] = &[
 ];
 
 /// One parameter: its type, name, values and location.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub(super) struct Param {
     pub ty: String,
     pub name: String,
@@ -153,6 +153,18 @@ impl Params {
     }
 
     /// The parameter `name` (marked read), if given.
+    /// These parameters followed by `defaults` (an `Attribute` directive's, the latest first),
+    /// which a lookup finds only when the directive does not give the name, and which are
+    /// never reported unused (pbrt-v4's `mayBeUnused`).
+    pub fn with_defaults(mut self, defaults: &[Param]) -> Params {
+        for d in defaults.iter().rev() {
+            let d = d.clone();
+            d.used.set(true);
+            self.list.push(d);
+        }
+        self
+    }
+
     pub fn get(&self, name: &str) -> Option<&Param> {
         let p = self.list.iter().find(|p| p.name == name)?;
         p.used.set(true);

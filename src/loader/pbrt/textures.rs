@@ -142,7 +142,7 @@ impl Reader {
         let name = Self::string_arg(toks, i, file, d, loc)?;
         let ty = Self::string_arg(toks, i, file, d, loc)?;
         let class = Self::string_arg(toks, i, file, d, loc)?;
-        let p = Params::parse(toks, i, file)?;
+        let p = Params::parse(toks, i, file)?.with_defaults(&self.state.attributes.texture);
         let t = texture(&ty, &class, &p, loc, self)?;
         p.check_unused(&format!("texture \"{class}\""))?;
         self.textures.insert(name, t);
