@@ -1,6 +1,7 @@
 //! Reading input files defensively: regular files only (never a device such as /dev/zero, a
 //! FIFO that blocks, or a folder), and never more bytes than a cap, checked before reading.
-//! Every loader reads scene, include, mesh, spectrum and image files through here.
+//! Every loader reads scene, include, mesh, spectrum and image files through here, and
+//! compressed data is inflated here (the one module that names `flate2`).
 
 use std::fs::File;
 use std::io::{self, Read};
@@ -63,9 +64,37 @@ pub fn read_bytes(path: &Path, cap: u64) -> io::Result<Vec<u8>> {
     Ok(out)
 }
 
-/// The UTF-8 text of a regular file of at most `cap` bytes ([`read_bytes`]).
+/// [`read_bytes`], inflated when the file is gzip-compressed (it begins with gzip's magic
+/// number 1f 8b, which no PLY or text file does: pbrt-v4 reads `.ply.gz` and `.pbrt.gz`). The
+/// inflated data is held to `cap` bytes too.
+pub fn read_bytes_gz(path: &Path, cap: u64) -> io::Result<Vec<u8>> {
+    let bytes = read_bytes(path, cap)?;
+    if !bytes.starts_with(&[0x1f, 0x8b]) {
+        return Ok(bytes);
+    }
+    let mut out = Vec::new();
+    flate2::read::MultiGzDecoder::new(&bytes[..])
+        .take(cap + 1)
+        .read_to_end(&mut out)
+        .map_err(|e| io::Error::new(io::ErrorKind::InvalidData, format!("gzip data: {e}")))?;
+    if out.len() as u64 > cap {
+        return Err(io::Error::new(
+            io::ErrorKind::InvalidInput,
+            format!("the file inflates past {} MiB", cap >> 20),
+        ));
+    }
+    Ok(out)
+}
+
+/// A reader of the zlib stream (RFC 1950) in `bytes` (Mitsuba's `.serialized` meshes).
+pub fn zlib_reader(bytes: &[u8]) -> impl Read + '_ {
+    flate2::read::ZlibDecoder::new(bytes)
+}
+
+/// The UTF-8 text of a regular file of at most `cap` bytes ([`read_bytes_gz`]: inflated when
+/// gzip-compressed).
 pub fn read_text(path: &Path, cap: u64) -> io::Result<String> {
-    String::from_utf8(read_bytes(path, cap)?).map_err(|e| {
+    String::from_utf8(read_bytes_gz(path, cap)?).map_err(|e| {
         io::Error::new(
             io::ErrorKind::InvalidData,
             format!("not UTF-8 text (byte {})", e.utf8_error().valid_up_to()),

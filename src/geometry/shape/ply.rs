@@ -115,7 +115,7 @@ impl Mesh {
         transform: &Transform,
     ) -> Result<(Mesh, Vec<MeshAttribute>), GeometryError> {
         let bytes =
-            crate::files::read_bytes(path, crate::files::MAX_MESH_BYTES).map_err(|source| {
+            crate::files::read_bytes_gz(path, crate::files::MAX_MESH_BYTES).map_err(|source| {
                 GeometryError::MeshOpen {
                     path: path.to_path_buf(),
                     source,

@@ -65,7 +65,7 @@ impl Mesh {
                 "mesh {index} does not start with the 0x041C header"
             )));
         }
-        let mut z = flate2::read::ZlibDecoder::new(
+        let mut z = crate::files::zlib_reader(
             start
                 .checked_add(4)
                 .and_then(|s| bytes.get(s..))
