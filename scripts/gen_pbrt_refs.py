@@ -191,7 +191,49 @@ Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indice
        'Shape "cylinder" "float radius" 0.7 "float zmin" -0.5 "float zmax" 0.5\nAttributeEnd\n'
      + 'Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]\n'
        'Shape "trianglemesh" "point3 P" [-4 -1 -4  4 -1 -4  4 -1 4  -4 -1 4] "integer indices" [0 1 2 0 2 3]\n'),
+    # float and spectrum textures: a height image (bump.exr, written here) scaled into a
+    # displacement, a colour PNG (amount.png: sRGB-decoded, channels averaged) mixing two
+    # reflectances, on a quad with uv under a sky and a sun
+    ("textures_bump_mix", HEAD + 'Integrator "path" "integer maxdepth" 5\nWorldBegin\n' + SKY + SUN
+     + 'Texture "bump" "float" "imagemap" "string filename" "bump.exr"\n'
+       'Texture "bumps" "float" "scale" "texture tex" "bump" "float scale" 0.08\n'
+       'Texture "amt" "float" "imagemap" "string filename" "amount.png"\n'
+       'Texture "colours" "spectrum" "mix" "rgb tex1" [0.8 0.2 0.1] "rgb tex2" [0.1 0.3 0.8] "texture amount" "amt"\n'
+       'Material "diffuse" "texture reflectance" "colours" "texture displacement" "bumps"\n'
+       'Shape "trianglemesh" "point3 P" [-1.5 -1.5 0  1.5 -1.5 0  1.5 1.5 0  -1.5 1.5 0] '
+       '"point2 uv" [0 0 1 0 1 1 0 1] "integer indices" [0 1 2 0 2 3]\n'),
+    # a mix material by an inverted float image, and a scaled spectrum image
+    ("textures_mix_material", HEAD + 'Integrator "path" "integer maxdepth" 5\nWorldBegin\n' + SKY + SUN
+     + 'Texture "inv" "float" "imagemap" "string filename" "amount.png" "bool invert" true\n'
+       'Texture "img" "spectrum" "imagemap" "string filename" "amount.png" "float scale" 0.7\n'
+       'MakeNamedMaterial "a" "string type" "diffuse" "texture reflectance" "img"\n'
+       'MakeNamedMaterial "b" "string type" "conductor" "spectrum eta" "metal-Cu-eta" "spectrum k" "metal-Cu-k" "float roughness" 0.05\n'
+       'Material "mix" "string materials" ["a" "b"] "texture amount" "inv"\n'
+       'Shape "trianglemesh" "point3 P" [-1.5 -1.5 0  1.5 -1.5 0  1.5 1.5 0  -1.5 1.5 0] '
+       '"point2 uv" [0 0 1 0 1 1 0 1] "integer indices" [0 1 2 0 2 3]\n'),
 ]
+
+
+def write_texture_images(folder):
+    """bump.exr: a smooth grey height field, one bump period across u and v (so that pbrt-v4's
+    finite differences and spectrace's gradient agree); amount.png: an 8-bit colour image whose
+    channels differ."""
+    n = 128
+    x = (np.arange(n) + 0.5) / n
+    u, v = np.meshgrid(x, x)
+    h = (0.5 + 0.25 * np.sin(2 * np.pi * u) * np.cos(2 * np.pi * v)).astype(np.float32)
+    out = oiio.ImageOutput.create(os.path.join(folder, "bump.exr"))
+    out.open(os.path.join(folder, "bump.exr"), oiio.ImageSpec(n, n, 1, "float"))
+    out.write_image(h[..., None])
+    out.close()
+    m = 64
+    y = (np.arange(m) + 0.5) / m
+    a, b = np.meshgrid(y, y)
+    rgb = np.stack([a, b, 0.5 + 0.4 * np.sin(6 * a)], -1)
+    out = oiio.ImageOutput.create(os.path.join(folder, "amount.png"))
+    out.open(os.path.join(folder, "amount.png"), oiio.ImageSpec(m, m, 3, "uint8"))
+    out.write_image((rgb * 255 + 0.5).astype(np.uint8))
+    out.close()
 
 
 def square_to_sphere(u, v):
@@ -242,8 +284,11 @@ def main():
     out_img.open(white, oiio.ImageSpec(16, 16, 3, "float"))
     out_img.write_image(np.ones((16, 16, 3), np.float32))
     out_img.close()
+    write_texture_images(os.path.join(ROOT, "tests", "data", "pbrt"))
     with tempfile.TemporaryDirectory() as tmp:
         shutil.copy(eqarea, tmp)
+        for f in ("bump.exr", "amount.png"):
+            shutil.copy(os.path.join(ROOT, "tests", "data", "pbrt", f), tmp)
         for name, text in CASES:
             scene = os.path.join(tmp, name + ".pbrt")
             with open(scene, "w") as f:

@@ -73,7 +73,8 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
             height,
             scale,
             inner,
-        } => bump_map(height, *scale, inner)?,
+            pbrt,
+        } => bump_map(height, *scale, inner, *pbrt)?,
         MaterialKind::ThinDielectric {
             int_ior,
             exterior_ior,
@@ -283,7 +284,12 @@ fn normal_map(map: &TextureDesc, inner: &MaterialKind) -> Result<Material, Strin
 }
 
 /// A bump map (grey height times `scale`) around a material that is no normal or bump map.
-fn bump_map(height: &TextureDesc, scale: f64, inner: &MaterialKind) -> Result<Material, String> {
+fn bump_map(
+    height: &TextureDesc,
+    scale: f64,
+    inner: &MaterialKind,
+    pbrt: bool,
+) -> Result<Material, String> {
     let inner = material(inner)?;
     if matches!(inner, Material::NormalMap(_) | Material::BumpMap(_)) {
         return Err("a bump map cannot hold another normal or bump map".into());
@@ -296,6 +302,7 @@ fn bump_map(height: &TextureDesc, scale: f64, inner: &MaterialKind) -> Result<Ma
         height,
         scale: scale as f32,
         inner,
+        pbrt,
     })))
 }
 

@@ -6,9 +6,9 @@ use std::sync::Arc;
 use glam::Vec3;
 
 use crate::image_io::{Encoding, read_rgb};
-use crate::loader::desc::{TextureDesc, TransformStep};
+use crate::loader::desc::{PbrtImageDesc, TextureDesc, TransformStep};
 use crate::texture::{
-    AttributeTexture, Bitmap, Checkerboard, TexFilter, Texture, UvTransform, Wrap,
+    AttributeTexture, Bitmap, Checkerboard, Mix, Scaled, TexFilter, Texture, UvTransform, Wrap,
 };
 
 /// The 2D affine part of `to_uv` (Mitsuba keeps the x, y rows and the translation column).
@@ -80,7 +80,51 @@ pub(super) fn texture(t: &TextureDesc) -> Result<Texture, String> {
             };
             Texture::Bitmap(Arc::new(b.map_err(|e| format!("{}: {e}", path.display()))?))
         }
+        TextureDesc::PbrtImage(d) => pbrt_image(d)?,
+        TextureDesc::Scaled(t) => Texture::Scaled(Arc::new(Scaled {
+            tex: texture(&t[0])?,
+            scale: texture(&t[1])?,
+        })),
+        TextureDesc::Mix(t) => Texture::Mix(Arc::new(Mix {
+            a: texture(&t[0])?,
+            b: texture(&t[1])?,
+            amount: texture(&t[2])?,
+        })),
     })
+}
+
+/// pbrt-v4's `imagemap` ([`PbrtImageDesc`]): decoded, scaled, inverted and, for a float
+/// texture, averaged over the channels, texel by texel.
+fn pbrt_image(d: &PbrtImageDesc) -> Result<Texture, String> {
+    let img = read_rgb(&d.path).map_err(|e| e.to_string())?;
+    let decode = d.srgb && img.encoding == Encoding::Srgb;
+    let (scale, invert) = (d.scale as f32, d.invert);
+    let value = |v: f32| {
+        let v = scale * if decode { srgb_to_linear(v) } else { v };
+        if invert { (1.0 - v).max(0.0) } else { v }
+    };
+    let to_uv = uv_transform(&d.to_uv)?;
+    let b = if img.grey || d.grey {
+        // pbrt-v4's float lookup of a colour image: the channels' average
+        let v = img
+            .rgb
+            .iter()
+            .map(|p| {
+                if img.grey {
+                    value(p[0])
+                } else {
+                    p.map(value).iter().sum::<f32>() / 3.0
+                }
+            })
+            .collect();
+        Bitmap::from_grey(img.width, img.height, v, d.filter, d.wrap, to_uv)
+    } else {
+        let rgb: Vec<[f32; 3]> = img.rgb.iter().map(|p| p.map(value)).collect();
+        Bitmap::from_rgb(img.width, img.height, &rgb, d.filter, d.wrap, to_uv)
+    };
+    Ok(Texture::Bitmap(Arc::new(
+        b.map_err(|e| format!("{}: {e}", d.path.display()))?,
+    )))
 }
 
 /// A normal map: an image of triples used as numbers (decoded from sRGB only when the file is
@@ -170,6 +214,8 @@ pub(super) fn is_grey(t: &Texture) -> bool {
         Texture::Checkerboard(c) => constant(&c.a) && constant(&c.b),
         Texture::Bitmap(b) => b.is_grey(),
         Texture::Attribute(a) => !a.is_colour(),
+        Texture::Scaled(s) => is_grey(&s.tex) && is_grey(&s.scale),
+        Texture::Mix(m) => is_grey(&m.a) && is_grey(&m.b),
     }
 }
 

@@ -49,6 +49,11 @@ pub struct BumpMap {
     pub height: crate::texture::Texture,
     pub scale: f32,
     pub inner: Material,
+    /// Evaluate as pbrt-v4 evaluates its `displacement` (`BumpMap` and `BSDF::f` in
+    /// `src/pbrt/materials.h`, `bsdf.h`): the nested material in P with the cosine taken in P,
+    /// and nothing else: no bump-terminator shadowing, no mirrored normal, and a direction
+    /// counts wherever P's material takes it, even below the unperturbed surface.
+    pub pbrt: bool,
 }
 
 /// A hit's surface derivatives in its own local shading frame (normal +z), for the perturbed
@@ -138,12 +143,18 @@ impl<const N: usize> Bsdf<'_, N> {
         }
     }
 
+    /// Whether this is a pbrt-v4 bump map ([`BumpMap::pbrt`]).
+    #[inline]
+    fn pbrt_bump(&self) -> bool {
+        matches!(self.material, Material::BumpMap(m) if m.pbrt)
+    }
+
     /// P as seen from `wo`: [`Bsdf::perturb`], or its normal mirrored about the unperturbed one
-    /// where `wo` lies below it (see the module docs).
+    /// where `wo` lies below it (see the module docs; pbrt-v4 never mirrors it).
     #[inline]
     fn frame_for(&self, wo: Vec3) -> Frame {
         let p = self.perturb;
-        if p.n.dot(wo) >= 0.0 {
+        if p.n.dot(wo) >= 0.0 || self.pbrt_bump() {
             p
         } else {
             Frame::from_normal_tangent(Vec3::new(-p.n.x, -p.n.y, p.n.z), p.s)
@@ -151,9 +162,13 @@ impl<const N: usize> Bsdf<'_, N> {
     }
 
     /// |cos θ in P| / |cos θ| · G₁(wi) for `wi` (local) and its image `pi` in P (normal `n`),
-    /// or None where they lie on opposite sides (or at the unperturbed horizon).
+    /// or None where they lie on opposite sides (or at the unperturbed horizon). pbrt-v4's bump
+    /// map: the ratio alone, on either side.
     #[inline]
-    fn cos_ratio(n: Vec3, wi: Vec3, pi: Vec3) -> Option<f32> {
+    fn cos_ratio(&self, n: Vec3, wi: Vec3, pi: Vec3) -> Option<f32> {
+        if self.pbrt_bump() {
+            return (wi.z.abs() > 1e-7).then(|| pi.z.abs() / wi.z.abs());
+        }
         (wi.z * pi.z > 0.0 && wi.z.abs() > 1e-7)
             .then(|| pi.z.abs() / wi.z.abs() * shadowing(n.z, wi.z))
     }
@@ -176,7 +191,7 @@ impl<const N: usize> Bsdf<'_, N> {
                 inner.pdf(po, pi, w, mode),
             );
         }
-        let Some(c) = Self::cos_ratio(p.n, wi, pi) else {
+        let Some(c) = self.cos_ratio(p.n, wi, pi) else {
             return (SampledSpectrum::zero(), 0.0);
         };
         let (f, pdf) = inner.eval_pdf(po, pi, w, mode);
@@ -195,7 +210,7 @@ impl<const N: usize> Bsdf<'_, N> {
     ) -> SampledSpectrum<N> {
         let p = self.frame_for(wi);
         let (po, pi) = (p.to_local(wo), p.to_local(wi));
-        match Self::cos_ratio(p.n, wo, po) {
+        match self.cos_ratio(p.n, wo, po) {
             Some(c) => {
                 self.perturbed_inner()
                     .eval(po, pi, w, TransportMode::Importance)
@@ -223,12 +238,12 @@ impl<const N: usize> Bsdf<'_, N> {
             // the adjoint value (see `perturbed_eval_pdf`); a delta lobe cannot be evaluated
             // again, so it takes the cosine ratio of `wo` in the frame it was sampled in
             bs.f = if bs.specular {
-                bs.f * Self::cos_ratio(p.n, wo, p.to_local(wo))?
+                bs.f * self.cos_ratio(p.n, wo, p.to_local(wo))?
             } else {
                 self.perturbed_adjoint(wo, wi, w)
             };
         } else {
-            bs.f *= Self::cos_ratio(p.n, wi, bs.wi)?;
+            bs.f *= self.cos_ratio(p.n, wi, bs.wi)?;
         }
         if bs.f.is_zero() {
             return None;

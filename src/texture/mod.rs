@@ -17,10 +17,12 @@
 //! | `checkerboard.rs` | [`Checkerboard`], Mitsuba's two-colour checks |
 //! | `bitmap.rs` | [`Bitmap`]: images with nearest or bilinear filtering and wrap modes |
 //! | `attribute.rs` | [`AttributeTexture`]: a mesh's vertex or face values (Mitsuba's `mesh_attribute`) |
+//! | `combine.rs` | [`Scaled`] and [`Mix`]: textures of textures (pbrt-v4's `scale` and `mix`) |
 
 mod attribute;
 mod bitmap;
 mod checkerboard;
+mod combine;
 
 use std::sync::Arc;
 
@@ -29,6 +31,7 @@ use glam::Vec2;
 pub use attribute::AttributeTexture;
 pub use bitmap::{Bitmap, BitmapError, TexFilter, Wrap};
 pub use checkerboard::Checkerboard;
+pub use combine::{Mix, Scaled};
 
 use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
 
@@ -64,6 +67,10 @@ pub enum Texture {
     /// A mesh's attribute, looked up by triangle and barycentric weights
     /// ([`Texture::sample_at`]); a lookup by uv alone gives its mean.
     Attribute(Arc<AttributeTexture>),
+    /// A product of two textures.
+    Scaled(Arc<Scaled>),
+    /// A blend of two textures by a third.
+    Mix(Arc<Mix>),
 }
 
 impl From<Spectrum> for Texture {
@@ -85,6 +92,8 @@ impl Texture {
             Texture::Checkerboard(c) => c.sample(uv, w),
             Texture::Bitmap(b) => b.sample(uv, w),
             Texture::Attribute(a) => SampledSpectrum::splat(a.mean()),
+            Texture::Scaled(s) => s.sample(uv, w),
+            Texture::Mix(m) => m.sample(uv, w),
         }
     }
 
@@ -120,6 +129,8 @@ impl Texture {
     pub fn gradient(&self, uv: Vec2) -> Vec2 {
         match self {
             Texture::Bitmap(b) => b.gradient(uv),
+            Texture::Scaled(s) => s.gradient(uv),
+            Texture::Mix(m) => m.gradient(uv),
             _ => Vec2::ZERO,
         }
     }
@@ -140,6 +151,8 @@ impl Texture {
             }
             Texture::Bitmap(b) => b.mean(spectral),
             Texture::Attribute(a) => a.mean(),
+            Texture::Scaled(s) => s.mean(),
+            Texture::Mix(m) => m.mean(),
         }
     }
 }

@@ -66,11 +66,13 @@ pub enum MaterialKind {
         inner: Box<MaterialKind>,
     },
     /// Mitsuba's `bumpmap`: a grey `height` image times `scale` displacing the shading normal
-    /// of the nested material.
+    /// of the nested material; pbrt-v4's `displacement` when `pbrt` (evaluated as pbrt-v4 does:
+    /// see `crate::material::BumpMap::pbrt`).
     BumpMap {
         height: TextureDesc,
         scale: f64,
         inner: Box<MaterialKind>,
+        pbrt: bool,
     },
     /// A conductor or dielectric (`inner`) with textured parameters: roughness [α_u, α_v] as
     /// grey textures (rough materials), and factors on the reflected and transmitted lobes
@@ -265,6 +267,29 @@ pub enum TextureDesc {
         to_uv: Vec<TransformStep>,
         loc: Loc,
     },
+    /// pbrt-v4's `imagemap` (see [`PbrtImageDesc`]).
+    PbrtImage(Box<PbrtImageDesc>),
+    /// pbrt-v4's `scale`: `[tex, scale]`, their product.
+    Scaled(Box<[TextureDesc; 2]>),
+    /// pbrt-v4's `mix`: `[a, b, amount]`, (1 − amount)·a + amount·b.
+    Mix(Box<[TextureDesc; 3]>),
+}
+
+/// An image as pbrt-v4's `imagemap` reads it (`src/pbrt/textures.cpp`), read when the scene is
+/// built: 8-bit values decoded from sRGB when `srgb` (pbrt-v4's `encoding`, by default sRGB for
+/// PNG files and linear for others), then `scale` × value, then 1 − that when `invert`
+/// (clamped at 0). A float texture (`grey`) reads the average of a colour texel's channels.
+#[derive(Clone, Debug)]
+pub struct PbrtImageDesc {
+    pub path: PathBuf,
+    pub filter: TexFilter,
+    pub wrap: Wrap,
+    pub to_uv: Vec<TransformStep>,
+    pub srgb: bool,
+    pub grey: bool,
+    pub scale: f64,
+    pub invert: bool,
+    pub loc: Loc,
 }
 
 impl TextureDesc {

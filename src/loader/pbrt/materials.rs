@@ -15,13 +15,14 @@ use crate::spectrum::Spectrum;
 pub(super) struct Named<'a> {
     pub index: &'a std::collections::HashMap<String, usize>,
     pub materials: &'a [MaterialDesc],
-    /// The named spectrum textures defined so far.
+    /// The named spectrum and float textures defined so far.
     pub textures: &'a std::collections::HashMap<String, TextureDesc>,
+    pub float_textures: &'a std::collections::HashMap<String, TextureDesc>,
 }
 
 impl Named<'_> {
     /// A reflectance that may be a named texture (`"texture <name>" "<texture>"`).
-    fn reflectance(&self, p: &Params, name: &str, default: f64) -> R<TextureDesc> {
+    pub(super) fn reflectance(&self, p: &Params, name: &str, default: f64) -> R<TextureDesc> {
         match p.get(name) {
             Some(q) if q.ty == "texture" => {
                 let t = q.strs.first().cloned().unwrap_or_default();
@@ -33,6 +34,24 @@ impl Named<'_> {
                 })
             }
             _ => Ok(spectra::reflectance(p, name, default)?.into()),
+        }
+    }
+
+    /// A float that may be a named float texture; None when absent.
+    pub(super) fn float(&self, p: &Params, name: &str) -> R<Option<TextureDesc>> {
+        match p.get(name) {
+            None => Ok(None),
+            Some(q) if q.ty == "texture" => {
+                let t = q.strs.first().cloned().unwrap_or_default();
+                self.float_textures
+                    .get(&t)
+                    .cloned()
+                    .map(Some)
+                    .ok_or_else(|| {
+                        p.err(q.loc, format!("\"{name}\": no float texture named \"{t}\""))
+                    })
+            }
+            Some(_) => Ok(Some(Spectrum::Constant(p.float(name, 0.0)? as f32).into())),
         }
     }
 }
@@ -86,9 +105,16 @@ pub(super) fn material(
                 };
                 kinds.push(named.materials[i].kind.clone());
             }
-            let amount = p.float("amount", 0.5)?;
+            // a number, or a float texture (grey, as the blend's weight must be)
+            let weight = match named.float(p, "amount")? {
+                None => Spectrum::Constant(0.5).into(),
+                Some(TextureDesc::Uniform(Spectrum::Constant(a))) => {
+                    Spectrum::Constant(a.clamp(0.0, 1.0)).into()
+                }
+                Some(t) => t,
+            };
             MaterialKind::Blend {
-                weight: Spectrum::Constant(amount.clamp(0.0, 1.0) as f32).into(),
+                weight,
                 a: Box::new(kinds[0].clone()),
                 b: Box::new(kinds[1].clone()),
             }
@@ -162,6 +188,17 @@ pub(super) fn material(
                 format!("the material \"{other}\" is not read yet (spectrace reads diffuse, diffusetransmission, dielectric, thindielectric, conductor, coateddiffuse, coatedconductor, mix and interface)"),
             ));
         }
+    };
+    // pbrt-v4's `displacement`: a float texture of heights along the shading normal, bump
+    // mapped as pbrt-v4 does (by the texture's gradient, not pbrt-v4's finite differences)
+    let kind = match named.float(p, "displacement")? {
+        Some(height) if !matches!(kind, MaterialKind::Null) => MaterialKind::BumpMap {
+            height,
+            scale: 1.0,
+            inner: Box::new(kind),
+            pbrt: true,
+        },
+        _ => kind,
     };
     Ok(MaterialDesc {
         name: name.to_string(),

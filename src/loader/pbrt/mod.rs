@@ -96,8 +96,10 @@ struct Reader {
     shapes: Vec<ShapeDesc>,
     lights: Vec<LightDesc>,
     notes: Vec<String>,
-    /// Named spectrum textures (`Texture "name" "spectrum" …`).
+    /// Named spectrum textures (`Texture "name" "spectrum" …`) and float ones (pbrt-v4 keeps
+    /// the two apart: one name may be both).
     textures: HashMap<String, TextureDesc>,
+    float_textures: HashMap<String, TextureDesc>,
     /// Object definitions (`ObjectBegin`) by name, and the one being defined.
     groups: Vec<GroupDesc>,
     group_names: HashMap<String, usize>,
@@ -118,6 +120,7 @@ impl Reader {
             },
             stack: Vec::new(),
             textures: HashMap::new(),
+            float_textures: HashMap::new(),
             groups: Vec::new(),
             group_names: HashMap::new(),
             defining: None,
@@ -288,6 +291,7 @@ impl Reader {
             index: &self.named_materials,
             materials: &self.materials,
             textures: &self.textures,
+            float_textures: &self.float_textures,
         }
     }
 

@@ -224,9 +224,18 @@ fn place(
     }
 }
 
+/// Whether a texture looks an image up by uv.
+fn image(t: &TextureDesc) -> bool {
+    match t {
+        TextureDesc::Bitmap { .. } | TextureDesc::PbrtImage(_) => true,
+        TextureDesc::Scaled(t) => t.iter().any(image),
+        TextureDesc::Mix(t) => t.iter().any(image),
+        _ => false,
+    }
+}
+
 /// Whether a material looks an image up by uv.
 fn image_textured(k: &MaterialKind) -> bool {
-    let image = |t: &TextureDesc| matches!(t, TextureDesc::Bitmap { .. });
     match k {
         MaterialKind::Diffuse { reflectance } => image(reflectance),
         MaterialKind::Layered(l) => image(&l.reflectance) || image(&l.albedo),
@@ -234,7 +243,10 @@ fn image_textured(k: &MaterialKind) -> bool {
             reflectance,
             transmittance,
         } => image(reflectance) || image(transmittance),
-        MaterialKind::Blend { a, b, .. } => image_textured(a) || image_textured(b),
+        MaterialKind::Blend { a, b, weight } => {
+            image_textured(a) || image_textured(b) || image(weight)
+        }
+        MaterialKind::BumpMap { height, inner, .. } => image(height) || image_textured(inner),
         _ => false,
     }
 }

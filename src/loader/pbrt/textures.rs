@@ -1,43 +1,80 @@
-//! pbrt-v4's textures (`src/pbrt/textures.cpp`): a `Texture` directive's spectrum texture, kept
-//! by name for the materials that name it (`"texture reflectance" "name"`).
+//! pbrt-v4's textures (`src/pbrt/textures.cpp`): a `Texture` directive's spectrum or float
+//! texture, kept by name for the materials and shapes that name it (`"texture reflectance"
+//! "name"`, `"texture displacement"`, `"texture alpha"`, a mix's `amount`).
 //!
 //! `imagemap` is read as pbrt-v4 defines it: (s, t) = (uscale·u + udelta, vscale·v + vdelta),
 //! looked up at (s, 1 − t) with t = 0 at the image's last row, bilinear (pbrt-v4's default
-//! `filter`) or nearest (`point`), `repeat` or `clamp` wrapping, 8-bit files decoded from sRGB.
-//! One difference: a lookup blends the four texels' spectra (spectrace's image textures),
-//! pbrt-v4 their RGB before turning it into a spectrum.
+//! `filter`) or nearest (`point`), `repeat` or `clamp` wrapping, 8-bit values decoded from sRGB
+//! for PNG files and read linearly from others (pbrt-v4's default `encoding`), then `scale`d
+//! and `invert`ed; a float texture reads a colour texel's channel average. `scale` and `mix`
+//! combine textures (`crate::texture::{Scaled, Mix}`). One difference: a lookup blends the four
+//! texels' spectra (spectrace's image textures), pbrt-v4 their RGB before turning it into a
+//! spectrum.
 
 use std::path::Path;
 
 use super::Reader;
 use super::lexer::Token;
 use super::params::{Params, R};
-use super::spectra;
 use crate::loader::Loc;
-use crate::loader::desc::{TextureDesc, TransformStep};
+use crate::loader::desc::{PbrtImageDesc, TextureDesc, TransformStep};
+use crate::spectrum::Spectrum;
 use crate::texture::{TexFilter, Wrap};
 
-/// A `Texture "name" "<ty>" "<class>"` of spectra.
+/// A `Texture "name" "<ty>" "<class>"`: `ty` is `spectrum` (reflectances, as pbrt-v4's
+/// albedo textures) or `float` (grey numbers: masks, heights, amounts).
 pub(super) fn texture(ty: &str, class: &str, p: &Params, loc: Loc, r: &Reader) -> R<TextureDesc> {
-    if ty != "spectrum" {
-        return Err(p.err(
-            loc,
-            format!("a \"{ty}\" texture is not read yet (spectrace reads spectrum textures)"),
-        ));
-    }
+    let float = match ty {
+        "float" => true,
+        "spectrum" => false,
+        other => {
+            return Err(p.err(
+                loc,
+                format!("a texture's type is \"float\" or \"spectrum\", not \"{other}\""),
+            ));
+        }
+    };
+    let named = r.named();
+    // a float or spectrum parameter of this texture's type, or a texture of it
+    let value = |name: &str, default: f64| -> R<TextureDesc> {
+        if float {
+            Ok(named
+                .float(p, name)?
+                .unwrap_or_else(|| Spectrum::Constant(default as f32).into()))
+        } else {
+            named.reflectance(p, name, default)
+        }
+    };
+    let amount = |name: &str, default: f64| -> R<TextureDesc> {
+        Ok(named
+            .float(p, name)?
+            .unwrap_or_else(|| Spectrum::Constant(default as f32).into()))
+    };
     match class {
-        "constant" => Ok(spectra::reflectance(p, "value", 1.0)?.into()),
-        "imagemap" => imagemap(p, loc, r),
+        "constant" => value("value", 1.0),
+        "imagemap" => imagemap(p, loc, r, float),
+        // pbrt-v4's ScaledTexture: tex × scale, folded when both are numbers
+        "scale" => Ok(match (value("tex", 1.0)?, amount("scale", 1.0)?) {
+            (TextureDesc::Uniform(t), TextureDesc::Uniform(Spectrum::Constant(k))) => {
+                TextureDesc::Uniform(t.scaled(k))
+            }
+            (t, k) => TextureDesc::Scaled(Box::new([t, k])),
+        }),
+        "mix" => Ok(TextureDesc::Mix(Box::new([
+            value("tex1", 0.0)?,
+            value("tex2", 1.0)?,
+            amount("amount", 0.5)?,
+        ]))),
         other => Err(p.err(
             loc,
             format!(
-                "the texture \"{other}\" is not read yet (spectrace reads imagemap and constant)"
+                "the texture \"{other}\" is not read yet (spectrace reads imagemap, constant, scale and mix)"
             ),
         )),
     }
 }
 
-fn imagemap(p: &Params, loc: Loc, r: &Reader) -> R<TextureDesc> {
+fn imagemap(p: &Params, loc: Loc, r: &Reader, grey: bool) -> R<TextureDesc> {
     let name = p
         .string("filename")?
         .ok_or_else(|| p.err(loc, "an imagemap needs a \"string filename\""))?;
@@ -72,22 +109,21 @@ fn imagemap(p: &Params, loc: Loc, r: &Reader) -> R<TextureDesc> {
             ));
         }
     };
-    if let Some(e) = p.string("encoding")?
-        && e != "sRGB"
-    {
-        return Err(p.err(
-            p.loc_of("encoding"),
-            format!(
-                "the encoding \"{e}\" is not read yet (spectrace decodes 8-bit files from sRGB)"
-            ),
-        ));
-    }
-    if p.float("scale", 1.0)? != 1.0 || p.bool("invert", false)? {
-        return Err(p.err(
-            loc,
-            "an imagemap's \"scale\" and \"invert\" are not read yet",
-        ));
-    }
+    // pbrt-v4: sRGB for PNG files, linear for others, unless `encoding` says
+    let png = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    let srgb = match p.string("encoding")?.as_deref() {
+        None => png,
+        Some("sRGB") => true,
+        Some("linear") => false,
+        Some(e) => {
+            return Err(p.err(
+                p.loc_of("encoding"),
+                format!("the encoding \"{e}\" is not read yet (spectrace reads sRGB and linear)"),
+            ));
+        }
+    };
     if let Some(m) = p.string("mapping")?
         && m != "uv"
     {
@@ -119,14 +155,17 @@ fn imagemap(p: &Params, loc: Loc, r: &Reader) -> R<TextureDesc> {
         0.0,
         1.0,
     ])];
-    Ok(TextureDesc::Bitmap {
+    Ok(TextureDesc::PbrtImage(Box::new(PbrtImageDesc {
         path,
         filter,
         wrap,
-        raw: false,
         to_uv,
+        srgb,
+        grey,
+        scale: p.float("scale", 1.0)?,
+        invert: p.bool("invert", false)?,
         loc,
-    })
+    })))
 }
 
 impl Reader {
@@ -145,7 +184,11 @@ impl Reader {
         let p = Params::parse(toks, i, file)?.with_defaults(&self.state.attributes.texture);
         let t = texture(&ty, &class, &p, loc, self)?;
         p.check_unused(&format!("texture \"{class}\""))?;
-        self.textures.insert(name, t);
+        if ty == "float" {
+            self.float_textures.insert(name, t);
+        } else {
+            self.textures.insert(name, t);
+        }
         Ok(())
     }
 }

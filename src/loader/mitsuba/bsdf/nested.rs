@@ -122,6 +122,7 @@ pub(super) fn perturbed(cx: &Cx<'_>, b: &Element, name: &str, t: &str) -> R<(Mat
             height: texture,
             scale: cx.opt_float(b, "scale")?.unwrap_or(1.0),
             inner,
+            pbrt: false,
         }
     };
     Ok((

@@ -66,5 +66,6 @@ fn read(m: &Mat<'_>, normal: bool) -> R<MaterialKind> {
         height: tex,
         scale,
         inner,
+        pbrt: false,
     })
 }
