@@ -6,7 +6,7 @@ For every 8 × 8 block of pixels: the mean Y = 0.2126 R + 0.7152 G + 0.0722 B (p
 Y = ∫ȳ·L dλ) of two renders with seeds 1 and 2, and its standard error from the pixels'
 differences between the seeds (√Σ(a − b)² / 2n, the pixels taken as independent).
 
-It also writes imagemap/tex.png, gold_equal_area/eqarea.exr and glass_machines/sky.exr (the map of
+It also writes imagemap/tex.png, bump/normal.png, gold_equal_area/eqarea.exr and glass_machines/sky.exr (the map of
 scripts/gen_pbrt_refs.py, the latter without its glow) and
 killeroo_style/geometry/blob.pbrt: a `loopsubdiv` control mesh (an icosahedron,
 its vertices moved by a fixed pseudo-random amount), the stand-in for the killeroo model of
@@ -85,11 +85,29 @@ def blocks(a, b):
     return mean, se
 
 
+def write_normal_map(path):
+    """normal.png: an 8-bit tangent-space normal map, stored linearly as (n + 1)/2 (pbrt-v4 reads
+    normal maps with a linear encoding), of tilted facets in rows: the normal leans along +u in
+    one half of each period and along +v in the other."""
+    n = 64
+    img = np.zeros((n, n, 3), np.float64)
+    for y in range(n):
+        for x in range(n):
+            t = 0.35 * math.sin(2 * math.pi * (x + 0.5) / n)
+            nv = np.array([t, 0.2 if y < n // 2 else -0.1, 1.0])
+            img[y, x] = (nv / np.linalg.norm(nv) + 1) / 2
+    out = oiio.ImageOutput.create(path)
+    out.open(path, oiio.ImageSpec(n, n, 3, "uint8"))
+    out.write_image((img * 255 + 0.5).astype(np.uint8))
+    out.close()
+
+
 def main():
     blob()
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     from gen_pbrt_refs import write_equal_area_map
     write_tiles(os.path.join(BASE, "imagemap", "tex.png"))
+    write_normal_map(os.path.join(BASE, "bump", "normal.png"))
     write_equal_area_map(os.path.join(BASE, "gold_equal_area", "eqarea.exr"))
     # without the glow: a small bright source seen through glass on a diffuse floor makes
     # caustics whose rare, bright samples no two-seed estimate of the noise can bound

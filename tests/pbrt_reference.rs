@@ -51,10 +51,17 @@ fn blocks(a: &[f64], b: &[f64], w: usize, h: usize, k: usize) -> (Vec<f64>, Vec<
 /// The scene's Y images (pbrt-v4's scale) for seeds 1 and 2.
 fn render(path: &Path, pbrt_exit_weight: bool) -> (Vec<f64>, Vec<f64>, u32) {
     let mut desc = spectrace::loader::pbrt::load(path).unwrap_or_else(|e| panic!("{e}"));
-    for m in &mut desc.materials {
-        if let MaterialKind::Layered(l) = &mut m.kind {
-            l.pbrt_exit_weight = pbrt_exit_weight;
+    fn set(k: &mut MaterialKind, on: bool) {
+        match k {
+            MaterialKind::Layered(l) => l.pbrt_exit_weight = on,
+            MaterialKind::NormalMap { inner, .. } | MaterialKind::BumpMap { inner, .. } => {
+                set(inner, on)
+            }
+            _ => {}
         }
+    }
+    for m in &mut desc.materials {
+        set(&mut m.kind, pbrt_exit_weight);
     }
     let spp = desc.film.spp;
     let scene = spectrace::build::build(&desc).unwrap_or_else(|e| panic!("{e}"));

@@ -68,7 +68,7 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
             transmittance,
             inner,
         } => textured(alpha.as_deref(), reflectance, transmittance, inner)?,
-        MaterialKind::NormalMap { map, inner } => normal_map(map, inner)?,
+        MaterialKind::NormalMap { map, inner, pbrt } => normal_map(map, inner, *pbrt)?,
         MaterialKind::BumpMap {
             height,
             scale,
@@ -272,7 +272,7 @@ fn rough(k: &MaterialKind) -> Material {
 }
 
 /// A normal map around a material that is no normal or bump map.
-fn normal_map(map: &TextureDesc, inner: &MaterialKind) -> Result<Material, String> {
+fn normal_map(map: &TextureDesc, inner: &MaterialKind, pbrt: bool) -> Result<Material, String> {
     let inner = material(inner)?;
     if matches!(inner, Material::NormalMap(_) | Material::BumpMap(_)) {
         return Err("a normal map cannot hold another normal or bump map".into());
@@ -280,6 +280,7 @@ fn normal_map(map: &TextureDesc, inner: &MaterialKind) -> Result<Material, Strin
     Ok(Material::NormalMap(Box::new(NormalMap {
         map: textures::vector_texture(map)?,
         inner,
+        pbrt,
     })))
 }
 

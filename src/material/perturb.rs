@@ -40,6 +40,8 @@ use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 pub struct NormalMap {
     pub map: crate::texture::Texture,
     pub inner: Material,
+    /// Evaluate as pbrt-v4 evaluates its `normalmap` (see [`BumpMap::pbrt`]).
+    pub pbrt: bool,
 }
 
 /// Mitsuba's `bumpmap`: a grey `height` texture (in m per unit of the height's value times
@@ -143,10 +145,14 @@ impl<const N: usize> Bsdf<'_, N> {
         }
     }
 
-    /// Whether this is a pbrt-v4 bump map ([`BumpMap::pbrt`]).
+    /// Whether this is a pbrt-v4 bump or normal map ([`BumpMap::pbrt`]).
     #[inline]
     fn pbrt_bump(&self) -> bool {
-        matches!(self.material, Material::BumpMap(m) if m.pbrt)
+        match self.material {
+            Material::BumpMap(m) => m.pbrt,
+            Material::NormalMap(m) => m.pbrt,
+            _ => false,
+        }
     }
 
     /// P as seen from `wo`: [`Bsdf::perturb`], or its normal mirrored about the unperturbed one

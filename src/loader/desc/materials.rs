@@ -60,10 +60,12 @@ pub enum MaterialKind {
         b: Box<MaterialKind>,
     },
     /// Mitsuba's `normalmap`: `map` an image of raw triples, each a local normal encoded as
-    /// (n + 1)/2, around the nested material.
+    /// (n + 1)/2, around the nested material; pbrt-v4's `normalmap` when `pbrt` (evaluated as
+    /// pbrt-v4 does, as `BumpMap`'s `pbrt`).
     NormalMap {
         map: TextureDesc,
         inner: Box<MaterialKind>,
+        pbrt: bool,
     },
     /// Mitsuba's `bumpmap`: a grey `height` image times `scale` displacing the shading normal
     /// of the nested material; pbrt-v4's `displacement` when `pbrt` (evaluated as pbrt-v4 does:

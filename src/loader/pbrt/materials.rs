@@ -18,6 +18,15 @@ pub(super) struct Named<'a> {
     /// The named spectrum and float textures defined so far.
     pub textures: &'a std::collections::HashMap<String, TextureDesc>,
     pub float_textures: &'a std::collections::HashMap<String, TextureDesc>,
+    /// The folder file names are relative to (pbrt-v4: the first file's).
+    pub base: &'a Path,
+}
+
+impl Named<'_> {
+    /// `name` relative to the scene's folder, unless absolute.
+    fn resolve(&self, name: &str) -> std::path::PathBuf {
+        self.base.join(name)
+    }
 }
 
 impl Named<'_> {
@@ -190,15 +199,46 @@ pub(super) fn material(
         }
     };
     // pbrt-v4's `displacement`: a float texture of heights along the shading normal, bump
-    // mapped as pbrt-v4 does (by the texture's gradient, not pbrt-v4's finite differences)
-    let kind = match named.float(p, "displacement")? {
-        Some(height) if !matches!(kind, MaterialKind::Null) => MaterialKind::BumpMap {
+    // mapped as pbrt-v4 does (by the texture's gradient, not pbrt-v4's finite differences);
+    // else its `normalmap`, an image read linearly at (u, 1 − v), repeated, bilinear
+    let displacement = named.float(p, "displacement")?;
+    let normal_map = p.string("normalmap")?;
+    let kind = match (displacement, normal_map) {
+        _ if matches!(kind, MaterialKind::Null) => kind,
+        (Some(height), _) => MaterialKind::BumpMap {
             height,
             scale: 1.0,
             inner: Box::new(kind),
             pbrt: true,
         },
-        _ => kind,
+        (None, Some(file)) => {
+            let path = named.resolve(&file);
+            if !path.is_file() {
+                return Err(p.err(
+                    p.loc_of("normalmap"),
+                    format!("no image \"{}\"", path.display()),
+                ));
+            }
+            let flip_v = vec![TransformStep::Matrix([
+                1.0, 0.0, 0.0, 0.0, //
+                0.0, -1.0, 0.0, 1.0, //
+                0.0, 0.0, 1.0, 0.0, //
+                0.0, 0.0, 0.0, 1.0,
+            ])];
+            MaterialKind::NormalMap {
+                map: TextureDesc::Bitmap {
+                    path,
+                    filter: crate::texture::TexFilter::Bilinear,
+                    wrap: crate::texture::Wrap::Repeat,
+                    raw: true,
+                    to_uv: flip_v,
+                    loc: p.loc_of("normalmap"),
+                },
+                inner: Box::new(kind),
+                pbrt: true,
+            }
+        }
+        (None, None) => kind,
     };
     Ok(MaterialDesc {
         name: name.to_string(),

@@ -292,6 +292,7 @@ impl Reader {
             materials: &self.materials,
             textures: &self.textures,
             float_textures: &self.float_textures,
+            base: self.root.parent().unwrap_or(Path::new(".")),
         }
     }
 

@@ -116,6 +116,7 @@ pub(super) fn perturbed(cx: &Cx<'_>, b: &Element, name: &str, t: &str) -> R<(Mat
         MaterialKind::NormalMap {
             map: texture,
             inner,
+            pbrt: false,
         }
     } else {
         MaterialKind::BumpMap {

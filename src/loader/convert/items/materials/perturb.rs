@@ -56,7 +56,11 @@ fn read(m: &Mat<'_>, normal: bool) -> R<MaterialKind> {
     }
     let inner = Box::new(inner);
     if normal {
-        return Ok(MaterialKind::NormalMap { map: tex, inner });
+        return Ok(MaterialKind::NormalMap {
+            map: tex,
+            inner,
+            pbrt: false,
+        });
     }
     let scale = match m.get("scale") {
         Some(v) => m.number(v, "scale")?,
