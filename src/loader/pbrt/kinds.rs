@@ -204,12 +204,7 @@ pub(super) fn finish(r: Reader) -> Result<SceneDesc, LoadError> {
 /// A `perspective` camera: pbrt-v4's `fov` spans the image's shorter axis; its camera space
 /// has +x to the image's right, so the image is spectrace's mirrored left to right.
 fn camera(ctm: &DMat4, p: &Params, kind: &str, loc: Loc, w: i64, h: i64) -> R<CameraDesc> {
-    for unread in [
-        "lensradius",
-        "focaldistance",
-        "screenwindow",
-        "frameaspectratio",
-    ] {
+    for unread in ["screenwindow", "frameaspectratio"] {
         if p.get(unread).is_some() {
             return Err(p.err(
                 p.loc_of(unread),
@@ -227,11 +222,37 @@ fn camera(ctm: &DMat4, p: &Params, kind: &str, loc: Loc, w: i64, h: i64) -> R<Ca
                     format!("fov must lie in (0, 180) degrees, not {fov}"),
                 ));
             }
-            CameraKind::Perspective {
-                projection: Projection::Fov {
-                    fov: Angle::new::<degree>(fov),
-                    axis: FovAxis::Smaller,
-                },
+            let projection = Projection::Fov {
+                fov: Angle::new::<degree>(fov),
+                axis: FovAxis::Smaller,
+            };
+            // pbrt-v4's thin lens: `lensradius` and `focaldistance` (10⁶) in camera space
+            let unit = world_from_camera.transform_vector3(DVec3::X).length();
+            let radius = p.float("lensradius", 0.0)? * unit;
+            let focus = p.float("focaldistance", 1e6)? * unit;
+            if radius > 0.0 {
+                if !(focus > 0.0) {
+                    return Err(p.err(
+                        p.loc_of("focaldistance"),
+                        "\"focaldistance\" must be positive",
+                    ));
+                }
+                // spectrace's thin lens takes an f-number of the focal length that gives the
+                // horizontal field of view on a 36 mm wide film (`build`): N = f / 2r
+                let half = (fov.to_radians() / 2.0).tan();
+                let half_x = if w < h {
+                    half
+                } else {
+                    half * w as f64 / h as f64
+                };
+                let focal = 0.036 / (2.0 * half_x);
+                CameraKind::ThinLens {
+                    projection,
+                    f_number: focal / (2.0 * radius),
+                    focus_distance: len(focus),
+                }
+            } else {
+                CameraKind::Perspective { projection }
             }
         }
         // pbrt-v4's default screen window spans [−1, 1] of camera space across the shorter
@@ -258,7 +279,10 @@ fn camera(ctm: &DMat4, p: &Params, kind: &str, loc: Loc, w: i64, h: i64) -> R<Ca
         eye: [len(eye.x), len(eye.y), len(eye.z)],
         target: [len(target.x), len(target.y), len(target.z)],
         up: up.to_array(),
-        mirror: true,
+        // pbrt-v4's camera space is left-handed (x right, y up, z ahead): the image is the
+        // mirror image of spectrace's, unless the camera transform mirrors it back (the
+        // `Scale -1 1 1` exporters write)
+        mirror: world_from_camera.determinant() > 0.0,
         sensor: None,
         loc,
     })
