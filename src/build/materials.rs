@@ -64,10 +64,11 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
         MaterialKind::Blend { weight, a, b } => blend(weight, a, b)?,
         MaterialKind::Textured {
             alpha,
+            remap,
             reflectance,
             transmittance,
             inner,
-        } => textured(alpha.as_deref(), reflectance, transmittance, inner)?,
+        } => textured(alpha.as_deref(), *remap, reflectance, transmittance, inner)?,
         MaterialKind::NormalMap { map, inner, pbrt } => normal_map(map, inner, *pbrt)?,
         MaterialKind::BumpMap {
             height,
@@ -205,6 +206,7 @@ fn blend(weight: &TextureDesc, a: &MaterialKind, b: &MaterialKind) -> Result<Mat
 /// Textured roughness (grey α_u, α_v) and lobe factors around a conductor or dielectric.
 fn textured(
     alpha: Option<&[TextureDesc; 2]>,
+    remap: bool,
     reflectance: &TextureDesc,
     transmittance: &TextureDesc,
     inner: &MaterialKind,
@@ -234,6 +236,7 @@ fn textured(
     };
     Ok(Material::Textured(Box::new(TexturedLobes {
         alpha,
+        remap,
         reflectance: textures::texture(reflectance)?,
         transmittance: textures::texture(transmittance)?,
         inner,

@@ -21,6 +21,16 @@ pub(super) fn layered(d: &LayeredDesc) -> Result<Material, String> {
         reflectance: textures::texture(&d.reflectance)?,
         eta: d.eta.clone(),
         alpha: alpha(d.roughness),
+        alpha_texture: match &d.roughness_texture {
+            Some((t, remap)) => {
+                let (u, v) = (textures::texture(&t[0])?, textures::texture(&t[1])?);
+                if !(textures::is_grey(&u) && textures::is_grey(&v)) {
+                    return Err("a textured roughness must be a grey image or a number".into());
+                }
+                Some(([u, v], *remap))
+            }
+            None => None,
+        },
         thickness: d.thickness as f32,
         albedo: textures::texture(&d.albedo)?,
         g: d.g.clamp(-0.999, 0.999) as f32,

@@ -259,7 +259,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
     /// A layered material's slab at this point (its base and albedo looked up).
     #[inline]
     fn slab(&self, m: &super::Layered, w: &SampledWavelengths<N>) -> super::layered::Slab<N> {
-        m.slab((self.albedo, self.albedo_b), self.spec_r, w)
+        m.slab((self.albedo, self.albedo_b), self.spec_r, self.alpha, w)
     }
 
     /// Whether the material has only delta lobes (smooth dielectric, smooth conductor), so that

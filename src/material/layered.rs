@@ -60,6 +60,10 @@ pub struct Layered {
     pub eta: Ior,
     /// The coating's microfacet α [α_u, α_v] (Trowbridge–Reitz); None when smooth.
     pub alpha: Option<[f32; 2]>,
+    /// The coating's roughness as grey textures (pbrt-v4's `texture roughness`), in place of
+    /// `alpha`, with whether they hold pbrt-v4's r (α = √r) rather than α; looked up per hit,
+    /// where α below 10⁻³ is smooth (pbrt-v4's `EffectivelySmooth`).
+    pub alpha_texture: Option<([Texture; 2], bool)>,
     /// The slab's optical thickness (σₜ = 1), dimensionless.
     pub thickness: f32,
     /// The slab's single-scattering albedo (0: absorbing only).
@@ -111,12 +115,19 @@ impl Layered {
     }
 
     /// The slab at a hit: `base` from [`Layered::base_at`], the medium's `albedo` looked up.
+    /// `alpha` is the coating's α looked up at the hit when it is textured.
     pub fn slab<const N: usize>(
         &self,
         base: (SampledSpectrum<N>, SampledSpectrum<N>),
         albedo: SampledSpectrum<N>,
+        alpha: [f32; 2],
         w: &SampledWavelengths<N>,
     ) -> Slab<N> {
+        let coat = if self.alpha_texture.is_some() {
+            Some(alpha)
+        } else {
+            self.alpha
+        };
         let bottom = match &self.base {
             LayeredBase::Diffuse => BaseIf::Diffuse(base.0),
             LayeredBase::Conductor { alpha, .. } => BaseIf::Conductor {
@@ -128,7 +139,7 @@ impl Layered {
         Slab {
             top: DielectricIf {
                 eta: self.coat_eta(w),
-                mf: self.alpha.and_then(trowbridge_reitz),
+                mf: coat.and_then(trowbridge_reitz),
             },
             bottom,
             thickness: self.thickness.max(f32::MIN_POSITIVE),
@@ -147,7 +158,11 @@ impl Layered {
             LayeredBase::Conductor { alpha: Some(a), .. } => a[0] != a[1],
             _ => false,
         };
-        base || self.alpha.is_some_and(|a| a[0] != a[1])
+        let textured = self
+            .alpha_texture
+            .as_ref()
+            .is_some_and(|([u, v], _)| u != v);
+        base || textured || self.alpha.is_some_and(|a| a[0] != a[1])
     }
 
     /// Whether every lobe is a delta: a smooth coating over a smooth conductor and a clear slab
@@ -155,6 +170,7 @@ impl Layered {
     pub fn is_specular(&self) -> bool {
         let clear = matches!(&self.albedo, Texture::Uniform(crate::spectrum::Spectrum::Constant(a)) if *a == 0.0);
         self.alpha.is_none()
+            && self.alpha_texture.is_none()
             && clear
             && matches!(self.base, LayeredBase::Conductor { alpha: None, .. })
     }

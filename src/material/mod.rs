@@ -257,9 +257,14 @@ impl Material {
             // the base's reflectance or relative (η, k), and the slab's albedo
             Material::Layered(m) => {
                 let (a, b) = m.base_at(at(&m.reflectance), w);
+                let alpha = match &m.alpha_texture {
+                    Some(([u, v], remap)) => textured::roughness_at([u, v], *remap, uv, w),
+                    None => [0.0; 2],
+                };
                 return Bsdf {
                     albedo: a,
                     albedo_b: b,
+                    alpha,
                     spec_r: at(&m.albedo),
                     ..Bsdf::plain(self, a)
                 };

@@ -16,6 +16,9 @@ pub struct TexturedLobes {
     /// α_u and α_v as grey textures, in place of the inner material's constants (rough
     /// materials only); None keeps them.
     pub alpha: Option<[Texture; 2]>,
+    /// Whether the textures hold pbrt-v4's roughness r rather than α: α = √r
+    /// (`remaproughness`), kept at 10⁻³ or more (below it pbrt-v4 turns the lobe specular).
+    pub remap: bool,
     /// Factor on the reflected lobe, dimensionless.
     pub reflectance: Texture,
     /// Factor on the transmitted lobe (dielectrics), dimensionless.
@@ -29,11 +32,32 @@ impl TexturedLobes {
     #[inline]
     pub(super) fn alpha_at<const N: usize>(&self, uv: Vec2, w: &SampledWavelengths<N>) -> [f32; 2] {
         match (&self.alpha, &self.inner) {
-            (Some([u, v]), _) => [u.sample(uv, w)[0], v.sample(uv, w)[0]],
+            // kept off 0, where a microfacet lobe degenerates (pbrt-v4 turns it specular)
+            (Some([u, v]), _) if self.remap => {
+                roughness_at([u, v], true, uv, w).map(|a| a.max(1e-3))
+            }
+            (Some([u, v]), _) => roughness_at([u, v], false, uv, w),
             (None, Material::RoughConductor(m)) => [m.alpha_u, m.alpha_v],
             (None, Material::RoughDielectric(m)) => [m.alpha_u, m.alpha_v],
             _ => [0.0; 2],
         }
+    }
+}
+
+/// α [α_u, α_v] from grey textures at `uv`: their values, or with `remap` (pbrt-v4's
+/// `remaproughness`) their square roots.
+#[inline]
+pub fn roughness_at<const N: usize>(
+    [u, v]: [&Texture; 2],
+    remap: bool,
+    uv: Vec2,
+    w: &SampledWavelengths<N>,
+) -> [f32; 2] {
+    let a = [u.sample(uv, w)[0], v.sample(uv, w)[0]];
+    if remap {
+        a.map(|r| r.max(0.0).sqrt())
+    } else {
+        a
     }
 }
 

@@ -81,6 +81,8 @@ pub enum MaterialKind {
     /// (Mitsuba's `specular_reflectance`, `specular_transmittance`).
     Textured {
         alpha: Option<Box<[TextureDesc; 2]>>,
+        /// The alpha textures hold pbrt-v4's roughness r, α = √r (its `remaproughness`).
+        remap: bool,
         reflectance: TextureDesc,
         transmittance: TextureDesc,
         inner: Box<MaterialKind>,
@@ -158,6 +160,9 @@ pub struct LayeredDesc {
     /// The coating's index and roughness α (None: smooth).
     pub eta: Ior,
     pub roughness: Option<[f64; 2]>,
+    /// The coating's roughness as grey textures [u, v] in place of `roughness`, and whether
+    /// they hold pbrt-v4's r (α = √r) rather than α.
+    pub roughness_texture: Option<(Box<[TextureDesc; 2]>, bool)>,
     /// The slab's optical thickness (σₜ = 1), albedo and Henyey–Greenstein g.
     pub thickness: f64,
     pub albedo: TextureDesc,

@@ -132,30 +132,37 @@ pub(super) fn material(
             reflectance: named.reflectance(p, "reflectance", 0.5)?,
         },
         "dielectric" => {
-            let roughness = roughness(p, "")?;
-            MaterialKind::Dielectric {
-                ior: spectra::ior(p, "eta", 1.5)?,
-                exterior_ior: 1.0,
-                roughness,
-                distribution: crate::material::microfacet::Distribution::Ggx,
-                smith: Smith::HeightCorrelated,
-            }
+            let rough = rough(&named, p, "")?;
+            textured(
+                MaterialKind::Dielectric {
+                    ior: spectra::ior(p, "eta", 1.5)?,
+                    exterior_ior: 1.0,
+                    roughness: rough.fixed(),
+                    distribution: crate::material::microfacet::Distribution::Ggx,
+                    smith: Smith::HeightCorrelated,
+                },
+                rough,
+            )
         }
         "conductor" => {
-            let roughness = roughness(p, "")?;
+            let rough = rough(&named, p, "")?;
+            let roughness = rough.fixed();
             let ior = match spectra::conductor(p, "")? {
                 Some(ior) => ior,
                 None => {
                     spectra::conductor_of_reflectance(&spectra::reflectance(p, "reflectance", 0.0)?)
                 }
             };
-            MaterialKind::Conductor {
-                ior,
-                exterior_ior: 1.0,
-                roughness,
-                distribution: crate::material::microfacet::Distribution::Ggx,
-                smith: Smith::HeightCorrelated,
-            }
+            textured(
+                MaterialKind::Conductor {
+                    ior,
+                    exterior_ior: 1.0,
+                    roughness,
+                    distribution: crate::material::microfacet::Distribution::Ggx,
+                    smith: Smith::HeightCorrelated,
+                },
+                rough,
+            )
         }
         "diffusetransmission" => {
             let scale = p.float("scale", 1.0)?;
@@ -177,7 +184,8 @@ pub(super) fn material(
         "coateddiffuse" => MaterialKind::Layered(Box::new(LayeredDesc {
             conductor: None,
             reflectance: named.reflectance(p, "reflectance", 0.5)?,
-            roughness: roughness(p, "")?,
+            roughness: rough(&named, p, "")?.fixed(),
+            roughness_texture: rough(&named, p, "")?.texture(),
             eta: spectra::ior(p, "eta", 1.5)?,
             ..slab(p)?
         })),
@@ -187,7 +195,8 @@ pub(super) fn material(
                 roughness(p, "conductor.")?,
             )),
             reflectance: spectra::reflectance(p, "reflectance", 0.0)?.into(),
-            roughness: roughness(p, "interface.")?,
+            roughness: rough(&named, p, "interface.")?.fixed(),
+            roughness_texture: rough(&named, p, "interface.")?.texture(),
             eta: spectra::ior(p, "interface.eta", 1.5)?,
             ..slab(p)?
         })),
@@ -261,6 +270,65 @@ fn roughness(p: &Params, prefix: &str) -> R<Option<[f64; 2]>> {
     Ok((au.max(av) >= 1e-3).then_some([au, av]))
 }
 
+/// A microfacet roughness as pbrt-v4 reads it: numbers ([`roughness`]), or, when any of
+/// `roughness`, `uroughness`, `vroughness` names a float texture, grey textures [u, v] (the
+/// others numbers as uniform textures) with `remaproughness`.
+enum Rough {
+    Fixed(Option<[f64; 2]>),
+    Textured(Box<[TextureDesc; 2]>, bool),
+}
+
+impl Rough {
+    /// The numbers, or for textures a placeholder α that makes the material rough (the
+    /// textures replace it at each hit).
+    fn fixed(&self) -> Option<[f64; 2]> {
+        match self {
+            Rough::Fixed(a) => *a,
+            Rough::Textured(..) => Some([0.5; 2]),
+        }
+    }
+
+    fn texture(self) -> Option<(Box<[TextureDesc; 2]>, bool)> {
+        match self {
+            Rough::Fixed(_) => None,
+            Rough::Textured(t, remap) => Some((t, remap)),
+        }
+    }
+}
+
+fn rough(named: &Named<'_>, p: &Params, prefix: &str) -> R<Rough> {
+    let names = ["roughness", "uroughness", "vroughness"].map(|n| format!("{prefix}{n}"));
+    let textured = names
+        .iter()
+        .any(|n| p.get(n).is_some_and(|q| q.ty == "texture"));
+    if !textured {
+        return roughness(p, prefix).map(Rough::Fixed);
+    }
+    let r = named
+        .float(p, &names[0])?
+        .unwrap_or_else(|| Spectrum::Constant(0.0).into());
+    let u = named.float(p, &names[1])?.unwrap_or_else(|| r.clone());
+    let v = named.float(p, &names[2])?.unwrap_or_else(|| r.clone());
+    Ok(Rough::Textured(
+        Box::new([u, v]),
+        p.bool("remaproughness", true)?,
+    ))
+}
+
+/// A conductor or dielectric with its roughness textured, when it is.
+fn textured(kind: MaterialKind, rough: Rough) -> MaterialKind {
+    match rough {
+        Rough::Fixed(_) => kind,
+        Rough::Textured(alpha, remap) => MaterialKind::Textured {
+            alpha: Some(alpha),
+            remap,
+            reflectance: Spectrum::Constant(1.0).into(),
+            transmittance: Spectrum::Constant(1.0).into(),
+            inner: Box::new(kind),
+        },
+    }
+}
+
 /// The slab of a layered material (pbrt-v4's `thickness` 0.01, `albedo` 0, `g` 0, `maxdepth`
 /// 10, `nsamples` 1); the base and coating are the caller's.
 fn slab(p: &Params) -> R<LayeredDesc> {
@@ -277,6 +345,7 @@ fn slab(p: &Params) -> R<LayeredDesc> {
         reflectance: Spectrum::Constant(0.0).into(),
         eta: crate::spectrum::ior::Ior::Constant(1.5),
         roughness: None,
+        roughness_texture: None,
         thickness: p.float("thickness", 0.01)?,
         albedo: spectra::reflectance(p, "albedo", 0.0)?.into(),
         g: p.float("g", 0.0)?,

@@ -360,6 +360,7 @@ fn textured(cx: &Cx<'_>, b: &Element, t: &str, kind: MaterialKind) -> R<Material
     }
     Ok(MaterialKind::Textured {
         alpha: alpha.map(Box::new),
+        remap: false,
         reflectance: cx.texture_prop(b, "specular_reflectance", 1.0)?,
         transmittance: cx.texture_prop(b, "specular_transmittance", 1.0)?,
         inner: Box::new(kind),

@@ -283,6 +283,7 @@ fn lobes(m: &Mat<'_>, kind: MaterialKind) -> R<MaterialKind> {
     }
     Ok(MaterialKind::Textured {
         alpha,
+        remap: false,
         reflectance: m.texture_or(sr, 1.0)?,
         transmittance: m.texture_or(st, 1.0)?,
         inner: Box::new(kind),
