@@ -305,3 +305,36 @@ Shape "plymesh" "string filename" "square.ply.gz"
     println!("Y {y:.5} against 1");
     assert!((y - 1.0).abs() < 2e-3, "{y}");
 }
+
+/// pbrt-v4's `spectral` film becomes spectrace's spectral EXR bins (its `nbuckets` over
+/// 360–830 nm); a `gbuffer` film's image is the rgb film's, with a note that its extra
+/// channels are not written.
+#[test]
+fn spectral_and_gbuffer_films_are_read() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/pbrt/inline.pbrt");
+    let scene = |film: &str| {
+        format!(
+            "LookAt 0 0 5  0 0 0  0 1 0\nCamera \"perspective\"\n{film}\nWorldBegin\nShape \"sphere\"\n"
+        )
+    };
+    let desc = spectrace::loader::pbrt::load_str(
+        &scene(r#"Film "spectral" "integer nbuckets" 8 "integer xresolution" 4 "integer yresolution" 4"#),
+        &path,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(desc.film.spectral_bins, 8);
+    let desc = spectrace::loader::pbrt::load_str(&scene(r#"Film "gbuffer""#), &path)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(desc.film.spectral_bins, 0);
+    assert!(
+        desc.notes.iter().any(|n| n.contains("gbuffer")),
+        "{:?}",
+        desc.notes
+    );
+    let e = spectrace::loader::pbrt::load_str(
+        &scene(r#"Film "spectral" "float lambdamin" 400"#),
+        &path,
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("360–830"), "{e}");
+}

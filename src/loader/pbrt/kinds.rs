@@ -118,9 +118,76 @@ fn integrator(p: &Params, kind: &str, loc: Loc) -> R<(IntegratorKind, i64, Light
     Ok((k, depth, selection))
 }
 
+/// A `Film`'s kind and the settings of its pixel sensor: `rgb`; `gbuffer` (its image; the
+/// extra channels are not written, a note says so); `spectral` (its `nbuckets` over 360–830
+/// nm as spectrace's spectral EXR bins). pbrt-v4's sensor must be its pass-through default
+/// (`cie1931`, `iso` 100, no `whitebalance`, no `maxcomponentvalue` clamp); `savefp16` is a
+/// precision choice, ignored. Returns the spectral bins (0: none).
+fn film(
+    p: &Params,
+    kind: &str,
+    loc: Loc,
+    file: &std::path::Path,
+    notes: &mut Vec<String>,
+) -> R<u32> {
+    let bins = match kind {
+        "rgb" => 0,
+        "gbuffer" => {
+            let _ = p.string("coordinatesystem")?;
+            notes.push(format!(
+                "{}:{loc}: the gbuffer film's extra channels (albedo, position, normals, variance) are not written; the image is the rgb film's",
+                file.display()
+            ));
+            0
+        }
+        "spectral" => {
+            let n = p.int("nbuckets", 16)?;
+            let (lo, hi) = (p.float("lambdamin", 360.0)?, p.float("lambdamax", 830.0)?);
+            if lo != 360.0 || hi != 830.0 {
+                return Err(p.err(
+                    loc,
+                    "a spectral film's range must be 360–830 nm (spectrace's spectral EXR bins span it)",
+                ));
+            }
+            if !(1..=1024).contains(&n) {
+                return Err(p.err(p.loc_of("nbuckets"), "\"nbuckets\" must be from 1 to 1024"));
+            }
+            n as u32
+        }
+        other => {
+            return Err(p.err(
+                loc,
+                format!("the film \"{other}\" is not read yet (spectrace reads rgb, gbuffer and spectral)"),
+            ));
+        }
+    };
+    let _ = p.bool("savefp16", true)?;
+    let sensor = p.string("sensor")?;
+    let unread = [
+        ("sensor", sensor.as_deref().is_some_and(|s| s != "cie1931")),
+        ("iso", p.float("iso", 100.0)? != 100.0),
+        ("whitebalance", p.float("whitebalance", 0.0)? != 0.0),
+        (
+            "maxcomponentvalue",
+            p.float("maxcomponentvalue", f64::INFINITY)?.is_finite(),
+        ),
+    ];
+    for (name, set) in unread {
+        if set {
+            return Err(p.err(
+                p.loc_of(name),
+                format!(
+                    "a film's \"{name}\" other than pbrt-v4's pass-through default is not read yet"
+                ),
+            ));
+        }
+    }
+    Ok(bins)
+}
+
 /// The scene: camera, film, sampler and integrator from their directives, and what the world
 /// block made.
-pub(super) fn finish(r: Reader) -> Result<SceneDesc, LoadError> {
+pub(super) fn finish(mut r: Reader) -> Result<SceneDesc, LoadError> {
     let file = r.root.clone();
     let Some((ctm, cam, kind, cam_loc)) = &r.camera else {
         return Err(LoadError::new(
@@ -130,21 +197,16 @@ pub(super) fn finish(r: Reader) -> Result<SceneDesc, LoadError> {
             "the scene has no Camera",
         ));
     };
-    let (width, height, film_loc) = match &r.film {
+    let (width, height, film_loc, spectral_bins) = match &r.film {
         Some((p, kind, loc)) => {
-            if kind != "rgb" {
-                return Err(p.err(
-                    *loc,
-                    format!("the film \"{kind}\" is not read yet (spectrace reads \"rgb\")"),
-                ));
-            }
+            let bins = film(p, kind, *loc, &file, &mut r.notes)?;
             let w = p.int("xresolution", 1280)?;
             let h = p.int("yresolution", 720)?;
             let _ = p.string("filename")?;
-            p.check_unused("film \"rgb\"")?;
-            (w, h, *loc)
+            p.check_unused(&format!("film \"{kind}\""))?;
+            (w, h, *loc, bins)
         }
-        None => (1280, 720, Loc { line: 0, col: 0 }),
+        None => (1280, 720, Loc { line: 0, col: 0 }, 0),
     };
     if !(1..=32768).contains(&width) || !(1..=32768).contains(&height) {
         return Err(LoadError::new(
@@ -175,7 +237,7 @@ pub(super) fn finish(r: Reader) -> Result<SceneDesc, LoadError> {
             height: height as u32,
             spp: spp.clamp(1, 1 << 24) as u32,
             filter: pixel_filter(&r.filter)?,
-            spectral_bins: 0,
+            spectral_bins,
             exposure_ev: None,
             loc: film_loc,
         },

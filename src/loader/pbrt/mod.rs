@@ -14,6 +14,7 @@ mod materials;
 mod meshes;
 mod objects;
 mod params;
+mod roughness;
 mod shapes;
 mod spectra;
 mod textures;
