@@ -6,7 +6,7 @@ For every 8 × 8 block of pixels: the mean Y = 0.2126 R + 0.7152 G + 0.0722 B (p
 Y = ∫ȳ·L dλ) of two renders with seeds 1 and 2, and its standard error from the pixels'
 differences between the seeds (√Σ(a − b)² / 2n, the pixels taken as independent).
 
-It also writes imagemap/tex.png, bump/normal.png, gold_equal_area/eqarea.exr and glass_machines/sky.exr (the map of
+It also writes imagemap/tex.png and quad_st.ply, bump/normal.png, gold_equal_area/eqarea.exr and glass_machines/sky.exr (the map of
 scripts/gen_pbrt_refs.py, the latter without its glow) and
 killeroo_style/geometry/blob.pbrt: a `loopsubdiv` control mesh (an icosahedron,
 its vertices moved by a fixed pseudo-random amount), the stand-in for the killeroo model of
@@ -102,8 +102,21 @@ def write_normal_map(path):
     out.close()
 
 
+def write_st_quad(path):
+    """quad_st.ply: an ASCII PLY square whose texture coordinates are named texture_s and
+    texture_t (names pbrt-v4's PLY reader takes), rotated in uv so that a lookup that ignored
+    them would show."""
+    with open(path, "w") as f:
+        f.write("ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                "property float z\nproperty float texture_s\nproperty float texture_t\n"
+                "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                "-3.5 0.01 0.5 1 0\n-1.5 0.01 0.5 1 1\n-1.5 0.01 2.5 0 1\n-3.5 0.01 2.5 0 0\n"
+                "4 0 1 2 3\n")
+
+
 def main():
     blob()
+    write_st_quad(os.path.join(BASE, "imagemap", "quad_st.ply"))
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     from gen_pbrt_refs import write_equal_area_map
     write_tiles(os.path.join(BASE, "imagemap", "tex.png"))

@@ -86,6 +86,24 @@ pub fn read_bytes_gz(path: &Path, cap: u64) -> io::Result<Vec<u8>> {
     Ok(out)
 }
 
+/// The first `n` bytes of a regular file (fewer if it is shorter), inflated first when it is
+/// gzip-compressed (as [`read_bytes_gz`]): for reading a header without the whole file.
+pub fn read_head_gz(path: &Path, n: usize) -> io::Result<Vec<u8>> {
+    let (file, _) = open_regular(path, u64::MAX)?;
+    let mut magic = Vec::new();
+    (&file).take(2).read_to_end(&mut magic)?;
+    let file = File::open(path)?;
+    let mut out = Vec::new();
+    if magic == [0x1f, 0x8b] {
+        flate2::read::MultiGzDecoder::new(file)
+            .take(n as u64)
+            .read_to_end(&mut out)?;
+    } else {
+        file.take(n as u64).read_to_end(&mut out)?;
+    }
+    Ok(out)
+}
+
 /// A reader of the zlib stream (RFC 1950) in `bytes` (Mitsuba's `.serialized` meshes).
 pub fn zlib_reader(bytes: &[u8]) -> impl Read + '_ {
     flate2::read::ZlibDecoder::new(bytes)

@@ -237,7 +237,7 @@ impl Mesh {
                 .any(|e| e.name == "vertex" && e.props.iter().any(|p| p.name == name))
         };
         let normals = has("nx").then_some(normals);
-        let uvs = (has("u") || has("s") || has("texture_u")).then_some(uvs);
+        let uvs = UV_NAMES.iter().any(|n| has(n)).then_some(uvs);
         let mut attributes = vertex_extra.attributes(false);
         attributes.extend(face_extra.attributes(true));
         let mesh = Mesh::new(positions, normals, uvs, indices, transform)
@@ -245,6 +245,10 @@ impl Mesh {
         Ok((mesh, attributes))
     }
 }
+
+/// The names a vertex's first texture coordinate goes by (pbrt-v4's and Mitsuba's readers
+/// take each).
+pub const UV_NAMES: [&str; 4] = ["u", "s", "texture_u", "texture_s"];
 
 /// The slot of a vertex property in `x y z nx ny nz u v`; None for other properties.
 fn slot(name: &str) -> Option<usize> {
@@ -255,8 +259,8 @@ fn slot(name: &str) -> Option<usize> {
         "nx" => 3,
         "ny" => 4,
         "nz" => 5,
-        "u" | "s" | "texture_u" => 6,
-        "v" | "t" | "texture_v" => 7,
+        "u" | "s" | "texture_u" | "texture_s" => 6,
+        "v" | "t" | "texture_v" | "texture_t" => 7,
         _ => return None,
     })
 }

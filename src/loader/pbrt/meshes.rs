@@ -288,3 +288,40 @@ impl Bilinear {
         }
     }
 }
+
+/// A triangle mesh without uv given pbrt-v4's default ones: (0, 0), (1, 0), (1, 1) at each
+/// triangle's corners (its `Triangle::GetUVs`), the vertices unshared so that each triangle
+/// has its own; other shapes unchanged.
+pub(super) fn per_triangle_uv(kind: ShapeKind) -> ShapeKind {
+    let ShapeKind::Inline {
+        vertices,
+        faces,
+        normals,
+        uvs: None,
+    } = kind
+    else {
+        return kind;
+    };
+    let corners = |f: &[u32; 3]| f.map(|i| i as usize);
+    ShapeKind::Inline {
+        vertices: faces
+            .iter()
+            .flat_map(|f| corners(f).map(|i| vertices[i]))
+            .collect(),
+        normals: normals.map(|n| {
+            faces
+                .iter()
+                .flat_map(|f| corners(f).map(|i| n[i]))
+                .collect()
+        }),
+        uvs: Some(
+            faces
+                .iter()
+                .flat_map(|_| [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]])
+                .collect(),
+        ),
+        faces: (0..faces.len() as u32)
+            .map(|k| [3 * k, 3 * k + 1, 3 * k + 2])
+            .collect(),
+    }
+}
