@@ -6,7 +6,7 @@ For every 8 × 8 block of pixels: the mean Y = 0.2126 R + 0.7152 G + 0.0722 B (p
 Y = ∫ȳ·L dλ) of two renders with seeds 1 and 2, and its standard error from the pixels'
 differences between the seeds (√Σ(a − b)² / 2n, the pixels taken as independent).
 
-It also writes imagemap/tex.png and quad_st.ply, bump/normal.png, gold_equal_area/eqarea.exr and glass_machines/sky.exr (the map of
+It also writes alpha/cutout.png, imagemap/tex.png and quad_st.ply, bump/normal.png, gold_equal_area/eqarea.exr and glass_machines/sky.exr (the map of
 scripts/gen_pbrt_refs.py, the latter without its glow) and
 killeroo_style/geometry/blob.pbrt: a `loopsubdiv` control mesh (an icosahedron,
 its vertices moved by a fixed pseudo-random amount), the stand-in for the killeroo model of
@@ -114,8 +114,27 @@ def write_st_quad(path):
                 "4 0 1 2 3\n")
 
 
+def write_cutout(path):
+    """cutout.png: an 8-bit grey alpha mask: white (opaque) with black round holes and a grey
+    band (partly transparent)."""
+    n = 64
+    img = np.ones((n, n), np.float64)
+    for y in range(n):
+        for x in range(n):
+            fx, fy = (x % 16) - 7.5, (y % 16) - 7.5
+            if fx * fx + fy * fy < 25:
+                img[y, x] = 0.0
+            if 40 <= y < 48:
+                img[y, x] = 0.6
+    out = oiio.ImageOutput.create(path)
+    out.open(path, oiio.ImageSpec(n, n, 1, "uint8"))
+    out.write_image((img * 255 + 0.5).astype(np.uint8)[..., None])
+    out.close()
+
+
 def main():
     blob()
+    write_cutout(os.path.join(BASE, "alpha", "cutout.png"))
     write_st_quad(os.path.join(BASE, "imagemap", "quad_st.ply"))
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     from gen_pbrt_refs import write_equal_area_map

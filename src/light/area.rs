@@ -21,6 +21,11 @@ pub struct AreaLight {
     /// emitters, looked up without the texture's dispatch).
     pub radiance: Texture,
     pub two_sided: bool,
+    /// Never met by rays (its shape's alpha test is 0: pbrt-v4's invisible area light), so
+    /// only light sampling reaches it: its samples are flagged `delta`, which gives next-event
+    /// estimation the whole weight (pbrt-v4 makes such a light `DeltaPosition` for the same
+    /// reason), and [`crate::light::Light::is_delta`] says so to the bidirectional weights.
+    pub invisible: bool,
 }
 
 impl AreaLight {
@@ -136,7 +141,7 @@ impl AreaLight {
             wi: x.wi,
             li: self.radiance_at(x.s.uv, w),
             pdf: x.pdf,
-            delta: false,
+            delta: self.invisible,
             p: x.s.p,
             p_error: x.s.p_error,
             n: x.s.n,

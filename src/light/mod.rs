@@ -257,9 +257,8 @@ impl Light {
             | Light::Projector(_)
             | Light::Goniometric(_) => true,
             Light::Directional(l) => l.is_delta(),
-            Light::Area(_) | Light::Environment(_) | Light::EnvMap(_) | Light::Octahedral(_) => {
-                false
-            }
+            Light::Area(l) => l.invisible,
+            Light::Environment(_) | Light::EnvMap(_) | Light::Octahedral(_) => false,
         }
     }
 

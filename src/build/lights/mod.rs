@@ -109,6 +109,10 @@ pub(super) fn lights(
                 shape: i as u32,
                 radiance,
                 two_sided: em.two_sided,
+                invisible: matches!(
+                    &s.alpha,
+                    Some(TextureDesc::Uniform(crate::spectrum::Spectrum::Constant(a))) if *a <= 0.0
+                ),
             }));
             weights.push(em.sampling_weight);
         }

@@ -58,6 +58,7 @@ impl Accel {
                 blocks: Vec::new(),
                 count: 0,
                 instances,
+                alpha: Vec::new(),
             };
         }
         let (mut binary, order) = build_binary(&boxes, part.max(1));
@@ -89,6 +90,7 @@ impl Accel {
             blocks,
             count,
             instances,
+            alpha: Vec::new(),
         }
     }
 }

@@ -96,6 +96,7 @@ pub(super) fn shape(
         interior,
         exterior,
         unit_m: 1.0,
+        alpha: None,
         loc: cx.loc(s),
     })
 }

@@ -333,6 +333,9 @@ fn finish_shape(
             r.materials.len() - 1
         }),
     });
+    // an area light of alpha 0 is pbrt-v4's invisible light: never met, lighting by light
+    // sampling alone
+    let alpha = alpha(p, r)?;
     let emission = r.state.area_light.as_ref().map(|a| EmissionDesc {
         spectrum: a.spectrum.clone(),
         texture: None,
@@ -357,6 +360,44 @@ fn finish_shape(
         interior: None,
         exterior: None,
         unit_m: 1.0,
+        alpha,
         loc,
     })
+}
+
+/// A shape's `alpha` (pbrt-v4's alpha test): a float texture or a number in [0, 1]; None
+/// when 1 (opaque) or absent. Refused on an area light unless 0 (pbrt-v4 masks its emission
+/// point by point; at 0 it makes the light invisible, `crate::light::AreaLight::invisible`)
+/// and inside an object (instanced shapes are opaque here).
+fn alpha(p: &Params, r: &Reader) -> R<Option<TextureDesc>> {
+    let alpha = match p.get("alpha") {
+        None => return Ok(None),
+        Some(q) if q.ty == "texture" => {
+            let name = q.strs.first().cloned().unwrap_or_default();
+            r.float_textures.get(&name).cloned().ok_or_else(|| {
+                p.err(
+                    q.loc,
+                    format!("\"alpha\": no float texture named \"{name}\""),
+                )
+            })?
+        }
+        Some(_) => match p.float("alpha", 1.0)? {
+            a if a >= 1.0 => return Ok(None),
+            a => Spectrum::Constant(a.max(0.0) as f32).into(),
+        },
+    };
+    if r.defining.is_some() {
+        return Err(p.err(
+            p.loc_of("alpha"),
+            "an alpha test inside ObjectBegin is not read yet",
+        ));
+    }
+    let zero = matches!(alpha, TextureDesc::Uniform(Spectrum::Constant(a)) if a <= 0.0);
+    if r.state.area_light.is_some() && !zero {
+        return Err(p.err(
+            p.loc_of("alpha"),
+            "an area light's alpha other than 0 is not read yet (pbrt-v4 masks its emission point by point)",
+        ));
+    }
+    Ok(Some(alpha))
 }

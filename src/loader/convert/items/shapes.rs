@@ -142,6 +142,7 @@ pub(super) fn shape(
         interior: None,
         exterior: None,
         unit_m: cx.unit_m,
+        alpha: None,
         loc: cx.src.span(&sp),
     })
 }
