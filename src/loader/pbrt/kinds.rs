@@ -221,7 +221,15 @@ pub(super) fn finish(mut r: Reader) -> Result<SceneDesc, LoadError> {
         None => 16,
     };
     let (integrator, max_depth, light_selection) = match &r.integrator {
-        Some((p, kind, loc)) => integrator(p, kind, *loc)?,
+        Some((p, kind, loc)) => {
+            if !r.media.is_empty() && kind != "volpath" {
+                return Err(p.err(
+                    *loc,
+                    format!("the scene has media, which pbrt-v4's \"{kind}\" does not render (use volpath)"),
+                ));
+            }
+            integrator(p, kind, *loc)?
+        }
         // pbrt-v4's default, `volpath`: `path` where there are no media
         None => (IntegratorKind::Path, 5, LightSelection::Tree),
     };
@@ -256,8 +264,8 @@ pub(super) fn finish(mut r: Reader) -> Result<SceneDesc, LoadError> {
         groups: r.groups,
         instances: r.instances,
         lights: r.lights,
-        media: Vec::new(),
-        camera_medium: None,
+        media: r.media,
+        camera_medium: r.camera_medium,
         sensors: Vec::new(),
         notes: r.notes,
     })

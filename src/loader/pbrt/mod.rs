@@ -11,6 +11,7 @@ mod kinds;
 mod lexer;
 mod lights;
 mod materials;
+mod media;
 mod meshes;
 mod objects;
 mod params;
@@ -68,6 +69,9 @@ struct State {
     area_light: Option<lights::AreaLight>,
     /// `Attribute` parameters for shapes, lights, materials and textures, in the order given.
     attributes: Attributes,
+    /// The current `MediumInterface`: the (inside, outside) media, indices into the scene's
+    /// media (None: vacuum).
+    media: (Option<usize>, Option<usize>),
 }
 
 /// The default parameters `Attribute "shape" | "light" | "material" | "texture"` set.
@@ -101,6 +105,10 @@ struct Reader {
     /// the two apart: one name may be both).
     textures: HashMap<String, TextureDesc>,
     float_textures: HashMap<String, TextureDesc>,
+    /// Media by name (`MakeNamedMedium`), and the camera's (the outside medium at `Camera`).
+    media: Vec<MediumDesc>,
+    named_media: HashMap<String, usize>,
+    camera_medium: Option<usize>,
     /// Object definitions (`ObjectBegin`) by name, and the one being defined.
     groups: Vec<GroupDesc>,
     group_names: HashMap<String, usize>,
@@ -118,10 +126,14 @@ impl Reader {
                 material: None,
                 area_light: None,
                 attributes: Attributes::default(),
+                media: (None, None),
             },
             stack: Vec::new(),
             textures: HashMap::new(),
             float_textures: HashMap::new(),
+            media: Vec::new(),
+            named_media: HashMap::new(),
+            camera_medium: None,
             groups: Vec::new(),
             group_names: HashMap::new(),
             defining: None,
@@ -271,7 +283,10 @@ impl Reader {
                 };
                 list.extend(p.list);
             }
-            "MakeNamedMedium" | "MediumInterface" | "TransformTimes" | "ActiveTransform" => {
+            "MakeNamedMedium" | "MediumInterface" => {
+                self.medium_directive(d, toks, i, file, loc)?;
+            }
+            "TransformTimes" | "ActiveTransform" => {
                 return Err(err(format!(
                     "the directive {d} is not read yet (spectrace's pbrt-v4 reader: see the README's pbrt-v4 table)"
                 )));
@@ -319,6 +334,7 @@ impl Reader {
                 self.coordinate_systems
                     .insert("camera".into(), self.state.ctm.inverse());
                 self.camera = Some((self.state.ctm, p, kind, loc));
+                self.camera_medium = self.state.media.1;
                 return Ok(());
             }
             "Film" => &mut self.film,

@@ -357,8 +357,14 @@ fn finish_shape(
         // pbrt-v4's materials reflect on both sides
         two_sided: true,
         emission,
-        interior: None,
-        exterior: None,
+        // a shape between two different media changes a ray's medium; one inside the same
+        // medium on both sides does not
+        interior: (r.state.media.0 != r.state.media.1)
+            .then_some(r.state.media.0)
+            .flatten(),
+        exterior: (r.state.media.0 != r.state.media.1)
+            .then_some(r.state.media.1)
+            .flatten(),
         unit_m: 1.0,
         alpha,
         loc,
