@@ -206,10 +206,14 @@ impl Accel {
                 None => f32::INFINITY,
             }
         };
-        self.wide
-            .traverse(ray.o, inv_d, ray.t_max, false, |first, count, t_max| {
-                self.visit_leaf(first, count, ray, &wt, t_max, false, &mut test)
-            });
+        self.wide.traverse(
+            ray.o,
+            inv_d,
+            ray.t_max,
+            false,
+            #[inline(always)]
+            |first, count, t_max| self.visit_leaf(first, count, ray, &wt, t_max, false, &mut test),
+        );
         if in_instance {
             let Closest {
                 i,
@@ -273,10 +277,14 @@ impl Accel {
             }
             None => f32::INFINITY,
         };
-        self.wide
-            .traverse(ray.o, inv_d, ray.t_max, false, |first, count, t_max| {
-                self.visit_leaf(first, count, ray, &wt, t_max, false, &mut test)
-            });
+        self.wide.traverse(
+            ray.o,
+            inv_d,
+            ray.t_max,
+            false,
+            #[inline(always)]
+            |first, count, t_max| self.visit_leaf(first, count, ray, &wt, t_max, false, &mut test),
+        );
         best
     }
 
@@ -287,9 +295,13 @@ impl Accel {
             return false;
         };
         let wt = WatertightRay::new(ray);
-        let t = self
-            .wide
-            .traverse(ray.o, inv_d, ray.t_max, true, |first, count, t_max| {
+        let t = self.wide.traverse(
+            ray.o,
+            inv_d,
+            ray.t_max,
+            true,
+            #[inline(always)]
+            |first, count, t_max| {
                 // any hit will do: a distance inside the interval for a hit, else ∞
                 // (instances through their group's tree)
                 let mut test = |id: usize, tri: Option<[Vec3; 3]>, t_max: f32| {
@@ -304,7 +316,8 @@ impl Accel {
                     }
                 };
                 self.visit_leaf(first, count, ray, &wt, t_max, true, &mut test)
-            });
+            },
+        );
         t < ray.t_max
     }
 
@@ -375,25 +388,41 @@ impl Accel {
         wt: &WatertightRay,
         t_max: f32,
     ) -> Option<(f32, PrimHit)> {
-        let hit = if let Some(tri) = tri {
-            intersect_triangle_with(tri, ray, wt, t_max).map(|(t, b)| (t, PrimHit::Triangle { b }))
-        } else {
-            let pr = self.prims[id];
-            let ray = Ray { t_max, ..*ray };
-            shapes
-                .get(pr.shape as usize)?
-                .intersect_primitive(pr.prim as usize, &ray)
-        };
-        // alpha tests, in scenes that have them
-        match hit {
-            Some((t, h))
-                if !self.alpha.is_empty()
-                    && !self.alpha_passes(shapes, self.prims[id], ray, t, &h) =>
-            {
-                None
-            }
-            hit => hit,
+        if !self.alpha.is_empty() {
+            return self.intersect_prim_alpha(shapes, id, tri, ray, wt, t_max);
         }
+        if let Some(tri) = tri {
+            return intersect_triangle_with(tri, ray, wt, t_max)
+                .map(|(t, b)| (t, PrimHit::Triangle { b }));
+        }
+        let pr = self.prims[id];
+        let ray = Ray { t_max, ..*ray };
+        shapes
+            .get(pr.shape as usize)?
+            .intersect_primitive(pr.prim as usize, &ray)
+    }
+
+    /// [`Accel::intersect_prim`] in a scene with alpha tests: the hit, if it passes its
+    /// shape's. Out of line, so that the leaf test of scenes without them stays as small.
+    #[inline(never)]
+    fn intersect_prim_alpha(
+        &self,
+        shapes: &[Shape],
+        id: usize,
+        tri: Option<[Vec3; 3]>,
+        ray: &Ray,
+        wt: &WatertightRay,
+        t_max: f32,
+    ) -> Option<(f32, PrimHit)> {
+        let pr = self.prims[id];
+        let (t, h) = match tri {
+            Some(tri) => intersect_triangle_with(tri, ray, wt, t_max)
+                .map(|(t, b)| (t, PrimHit::Triangle { b }))?,
+            None => shapes
+                .get(pr.shape as usize)?
+                .intersect_primitive(pr.prim as usize, &Ray { t_max, ..*ray })?,
+        };
+        self.alpha_passes(shapes, pr, ray, t, &h).then_some((t, h))
     }
 }
 
