@@ -51,18 +51,21 @@ fn positions_and_indices(
     ))
 }
 
-/// `trianglemesh`: `point3 P`, `integer indices` (optional for a single triangle), and
-/// optional `point2 uv` and `normal N` (one per vertex). With N, each triangle is wound so
-/// that its geometric normal lies on N's side, as pbrt-v4 turns it (its normals are
-/// authoritative; `ReverseOrientation` negates them).
-pub(super) fn triangle_mesh(p: &Params, loc: Loc, reverse: bool) -> R<ShapeKind> {
-    let (vertices, idx) = positions_and_indices(p, loc, "trianglemesh", 3)?;
-    let n = vertices.len();
-    for unread in ["S", "faceIndices"] {
-        if p.get(unread).is_some() {
+/// A mesh's per-vertex `point2 uv` and `normal N` (N negated under `ReverseOrientation`), each
+/// one per each of the `n` vertices; the parameters `unread` of a `kind` refused.
+#[allow(clippy::type_complexity)]
+fn vertex_data(
+    p: &Params,
+    kind: &str,
+    n: usize,
+    reverse: bool,
+    unread: &[&str],
+) -> R<(Option<Vec<[f64; 2]>>, Option<Vec<[f64; 3]>>)> {
+    for &name in unread {
+        if p.get(name).is_some() {
             return Err(p.err(
-                p.loc_of(unread),
-                format!("a trianglemesh's \"{unread}\" is not read yet"),
+                p.loc_of(name),
+                format!("a {kind}'s \"{name}\" is not read yet"),
             ));
         }
     }
@@ -80,12 +83,28 @@ pub(super) fn triangle_mesh(p: &Params, loc: Loc, reverse: bool) -> R<ShapeKind>
     };
     let uvs =
         per_vertex("uv", &["point2"], 2)?.map(|v| v.chunks(2).map(|c| [c[0], c[1]]).collect());
-    let normals: Option<Vec<[f64; 3]>> = per_vertex("N", &["normal"], 3)?.map(|v| {
-        let sign = if reverse { -1.0 } else { 1.0 };
+    let sign = if reverse { -1.0 } else { 1.0 };
+    let normals = per_vertex("N", &["normal"], 3)?.map(|v| {
         v.chunks(3)
             .map(|c| [sign * c[0], sign * c[1], sign * c[2]])
             .collect()
     });
+    Ok((uvs, normals))
+}
+
+/// `trianglemesh`: `point3 P`, `integer indices` (optional for a single triangle), and
+/// optional `point2 uv` and `normal N` (one per vertex). With N, each triangle is wound so
+/// that its geometric normal lies on N's side, as pbrt-v4 turns it (its normals are
+/// authoritative; `ReverseOrientation` negates them).
+pub(super) fn triangle_mesh(p: &Params, loc: Loc, reverse: bool) -> R<ShapeKind> {
+    let (vertices, idx) = positions_and_indices(p, loc, "trianglemesh", 3)?;
+    let (uvs, normals) = vertex_data(
+        p,
+        "trianglemesh",
+        vertices.len(),
+        reverse,
+        &["S", "faceIndices"],
+    )?;
     let mut faces: Vec<[u32; 3]> = idx.chunks(3).map(|c| [c[0], c[1], c[2]]).collect();
     if let Some(ns) = &normals {
         wind_to_normals(&vertices, &mut faces, ns);
@@ -149,35 +168,13 @@ const GRID: usize = 16;
 /// `point2 uv` and `normal N`; `ReverseOrientation` negates N as for a `trianglemesh`.
 pub(super) fn bilinear_mesh(p: &Params, loc: Loc, reverse: bool) -> R<Bilinear> {
     let (vertices, idx) = positions_and_indices(p, loc, "bilinearmesh", 4)?;
-    let n = vertices.len();
-    for unread in ["faceIndices", "emissionfilename"] {
-        if p.get(unread).is_some() {
-            return Err(p.err(
-                p.loc_of(unread),
-                format!("a bilinearmesh's \"{unread}\" is not read yet"),
-            ));
-        }
-    }
-    let per_vertex = |name: &str, ty: &[&str], k: usize| -> R<Option<Vec<f64>>> {
-        let Some(v) = p.nums(name, ty)? else {
-            return Ok(None);
-        };
-        if v.len() != k * n {
-            return Err(p.err(
-                p.loc_of(name),
-                format!("\"{name}\" must hold {k} numbers for each of the {n} vertices"),
-            ));
-        }
-        Ok(Some(v.to_vec()))
-    };
-    let uvs =
-        per_vertex("uv", &["point2"], 2)?.map(|v| v.chunks(2).map(|c| [c[0], c[1]]).collect());
-    let sign = if reverse { -1.0 } else { 1.0 };
-    let normals = per_vertex("N", &["normal"], 3)?.map(|v| {
-        v.chunks(3)
-            .map(|c| [sign * c[0], sign * c[1], sign * c[2]])
-            .collect()
-    });
+    let (uvs, normals) = vertex_data(
+        p,
+        "bilinearmesh",
+        vertices.len(),
+        reverse,
+        &["faceIndices", "emissionfilename"],
+    )?;
     Ok(Bilinear {
         vertices,
         patches: idx.chunks(4).map(|c| [c[0], c[1], c[2], c[3]]).collect(),
