@@ -13,9 +13,8 @@ use materials::material;
 mod shapes;
 mod textures;
 
-use glam::Vec3;
-
 use crate::scene::{FilmSettings, IntegratorSettings, Scene, Surface};
+use glam::Vec3;
 use std::sync::Arc;
 
 use crate::geometry::accel::Accel;
@@ -75,8 +74,8 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
     for (lo, hi) in instances.iter().filter_map(|i| i.bounds()) {
         bounds = (bounds.0.min(lo), bounds.1.max(hi));
     }
-    let mut accel = Accel::build_with_instances(&shape_list, instances);
-    accel.set_alpha(alpha_tests(desc)?);
+    let accel =
+        Accel::build_with_instances(&shape_list, instances).with_alpha(shapes::alpha_tests(desc)?);
     let radius = if bounds.0.x <= bounds.1.x {
         ((bounds.1 - bounds.0) * 0.5).length().max(1e-3)
     } else {
@@ -398,29 +397,4 @@ fn camera(desc: &SceneDesc) -> Result<Camera, String> {
         CameraKind::Realistic { .. } => return Err("a realistic camera needs its lens file".into()),
     };
     r.map_err(|e| e.to_string())
-}
-
-/// The shapes' alpha tests (pbrt-v4's `alpha`), by shape index: grey textures.
-fn alpha_tests(desc: &SceneDesc) -> Result<Vec<Option<crate::texture::Texture>>, LoadError> {
-    let err = |loc: Loc, field: String, msg: String| LoadError::new(&desc.path, loc, field, msg);
-    let mut alpha = Vec::with_capacity(desc.shapes.len());
-    for (i, s) in desc.shapes.iter().enumerate() {
-        let t = match &s.alpha {
-            Some(t) => {
-                let t = textures::texture(t)
-                    .map_err(|e| err(s.loc, format!("shapes[{i}].alpha"), e))?;
-                if !textures::is_grey(&t) {
-                    return Err(err(
-                        s.loc,
-                        format!("shapes[{i}].alpha"),
-                        "an alpha must be a grey texture".into(),
-                    ));
-                }
-                Some(t)
-            }
-            None => None,
-        };
-        alpha.push(t);
-    }
-    Ok(alpha)
 }

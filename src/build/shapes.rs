@@ -1,6 +1,7 @@
 //! Shapes: transforms in metres, then world-space geometry.
 
 use glam::{Mat4, Vec3};
+use std::sync::Arc;
 
 use super::v3;
 use crate::geometry::shape::{Cylinder, Disk, Mesh, Shape, Sphere};
@@ -208,4 +209,38 @@ fn inline_mesh(
             .collect()
     });
     Mesh::new(positions, normals, uvs, faces.to_vec(), t).map_err(|e| e.to_string())
+}
+
+/// The shapes' alpha tests (pbrt-v4's `alpha`), by shape index: grey textures.
+pub(super) fn alpha_tests(
+    desc: &crate::loader::desc::SceneDesc,
+) -> Result<Vec<Option<crate::geometry::accel::AlphaFn>>, crate::loader::LoadError> {
+    let err = |loc: crate::loader::Loc, field: String, msg: String| {
+        crate::loader::LoadError::new(&desc.path, loc, field, msg)
+    };
+    let mut alpha = Vec::with_capacity(desc.shapes.len());
+    for (i, s) in desc.shapes.iter().enumerate() {
+        let t = match &s.alpha {
+            Some(t) => {
+                let t = super::textures::texture(t)
+                    .map_err(|e| err(s.loc, format!("shapes[{i}].alpha"), e))?;
+                if !super::textures::is_grey(&t) {
+                    return Err(err(
+                        s.loc,
+                        format!("shapes[{i}].alpha"),
+                        "an alpha must be a grey texture".into(),
+                    ));
+                }
+                let w = crate::spectrum::SampledWavelengths::<1> {
+                    lambda: [550.0],
+                    pdf: [1.0],
+                };
+                let f: crate::geometry::accel::AlphaFn = Arc::new(move |uv| t.sample(uv, &w).0[0]);
+                Some(f)
+            }
+            None => None,
+        };
+        alpha.push(t);
+    }
+    Ok(alpha)
 }

@@ -380,37 +380,4 @@ impl Material {
             | Material::MeasuredPolarized(_) => false,
         }
     }
-
-    /// Whether transmission through this material depends on wavelength in direction, so that
-    /// a transmission event (sampled, or evaluated for light sampling) must terminate the
-    /// secondary wavelengths.
-    #[inline]
-    pub fn is_dispersive(&self) -> bool {
-        match self {
-            Material::Dielectric(m) => m.int_ior.is_dispersive(),
-            Material::ThinFilm(_) => false,
-            Material::RoughDielectric(m) => m.int_ior.is_dispersive(),
-            Material::Mask(m) => m.inner.is_dispersive(),
-            Material::NormalMap(m) => m.inner.is_dispersive(),
-            Material::BumpMap(m) => m.inner.is_dispersive(),
-            Material::Textured(m) => m.inner.is_dispersive(),
-            Material::Blend(m) => m.a.is_dispersive() || m.b.is_dispersive(),
-            // the coating's index at the hero wavelength sets the walk (pbrt-v4 terminates)
-            Material::Layered(m) => m.eta.is_dispersive(),
-            // a thin sheet sends light on undeviated, and the rest do not transmit
-            Material::ThinDielectric { .. }
-            | Material::Null
-            | Material::Element(_)
-            | Material::Principled(_)
-            | Material::Hair(_)
-            | Material::Diffuse(_)
-            | Material::DiffuseTransmission(_)
-            | Material::Phong(_)
-            | Material::Conductor(_)
-            | Material::RoughConductor(_)
-            | Material::Plastic(_)
-            | Material::PPlastic(_)
-            | Material::MeasuredPolarized(_) => false,
-        }
-    }
 }

@@ -16,15 +16,16 @@
 //! padded by 2⁻²⁰ of its largest coordinate so that rounding in the slab test cannot cull a
 //! primitive whose own (watertight, conservative) test would report a hit.
 
+mod alpha;
 mod build;
 
+pub use alpha::AlphaFn;
 use build::PART;
 
 use super::instance::Instance;
 use super::ray::Ray;
 use super::shape::{Intersection, PrimHit, Shape, Tri4, WatertightRay, intersect_triangle_with};
 use super::wide::WideBvh;
-use crate::texture::Texture;
 use glam::Vec3;
 
 /// Relative padding of primitive boxes.
@@ -91,8 +92,8 @@ pub struct Accel {
     count: usize,
     /// The instances whose boxes are primitives here.
     instances: Vec<Instance>,
-    /// Alpha tests by shape index (see [`Accel::set_alpha`]); empty when no shape has one.
-    alpha: Vec<Option<Texture>>,
+    /// Alpha tests by shape index (see [`Accel::with_alpha`]); empty when no shape has one.
+    alpha: Vec<Option<AlphaFn>>,
 }
 
 impl std::fmt::Debug for Accel {
@@ -123,50 +124,6 @@ impl Accel {
     #[doc(hidden)]
     pub fn build_with(shapes: &[Shape], part: usize, max_width: usize) -> Accel {
         Self::build_all(shapes, Vec::new(), part, max_width)
-    }
-
-    /// Gives the shapes alpha tests, by shape index (pbrt-v4's `alpha`): a hit on a shape
-    /// with a grey texture `a` at its uv counts only where a ≥ 1, never where a ≤ 0, and in
-    /// between where a hash of the ray's origin and direction, uniform in [0, 1), is at most a
-    /// (pbrt-v4's `GeometricPrimitive` test): a ray, and a shadow ray along the same line,
-    /// pass through the same fraction 1 − a, the same for every thread and run.
-    pub fn set_alpha(&mut self, alpha: Vec<Option<Texture>>) {
-        self.alpha = if alpha.iter().any(Option::is_some) {
-            alpha
-        } else {
-            Vec::new()
-        };
-    }
-
-    /// Whether the hit `h` at `t` on primitive `pr` survives its shape's alpha test (always
-    /// without one). Out of line: only scenes with alpha tests call it.
-    #[inline(never)]
-    fn alpha_passes(&self, shapes: &[Shape], pr: PrimRef, ray: &Ray, t: f32, h: &PrimHit) -> bool {
-        let Some(Some(tex)) = self.alpha.get(pr.shape as usize) else {
-            return true;
-        };
-        let Some(shape) = shapes.get(pr.shape as usize) else {
-            return true;
-        };
-        let uv = shape.interaction(pr.shape, pr.prim as usize, ray, t, h).uv;
-        let w = crate::spectrum::SampledWavelengths::<1> {
-            lambda: [550.0],
-            pdf: [1.0],
-        };
-        let a = tex.sample(uv, &w).0[0];
-        if a >= 1.0 {
-            return true;
-        }
-        if !(a > 0.0) {
-            return false;
-        }
-        let bits = [ray.o.x, ray.o.y, ray.o.z, ray.d.x, ray.d.y, ray.d.z].map(f32::to_bits);
-        let mut hash = 0x9e37_79b9_7f4a_7c15u64;
-        for b in bits {
-            hash = (hash ^ b as u64).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            hash ^= hash >> 31;
-        }
-        ((hash >> 40) as f32 / (1u64 << 24) as f32) <= a
     }
 
     /// Number of primitives indexed.
@@ -400,29 +357,6 @@ impl Accel {
         shapes
             .get(pr.shape as usize)?
             .intersect_primitive(pr.prim as usize, &ray)
-    }
-
-    /// [`Accel::intersect_prim`] in a scene with alpha tests: the hit, if it passes its
-    /// shape's. Out of line, so that the leaf test of scenes without them stays as small.
-    #[inline(never)]
-    fn intersect_prim_alpha(
-        &self,
-        shapes: &[Shape],
-        id: usize,
-        tri: Option<[Vec3; 3]>,
-        ray: &Ray,
-        wt: &WatertightRay,
-        t_max: f32,
-    ) -> Option<(f32, PrimHit)> {
-        let pr = self.prims[id];
-        let (t, h) = match tri {
-            Some(tri) => intersect_triangle_with(tri, ray, wt, t_max)
-                .map(|(t, b)| (t, PrimHit::Triangle { b }))?,
-            None => shapes
-                .get(pr.shape as usize)?
-                .intersect_primitive(pr.prim as usize, &Ray { t_max, ..*ray })?,
-        };
-        self.alpha_passes(shapes, pr, ray, t, &h).then_some((t, h))
     }
 }
 

@@ -137,7 +137,7 @@ pub struct ShapeDesc {
     /// Metres per scene length unit (for OBJ coordinates and unit shapes).
     pub unit_m: f64,
     /// An alpha test (pbrt-v4's `alpha`): a grey texture in [0, 1], the fraction of rays that
-    /// meet the surface where it is looked up (`crate::geometry::Accel::set_alpha`); None:
+    /// meet the surface where it is looked up (`crate::geometry::Accel::with_alpha`); None:
     /// opaque. Not in a group.
     pub alpha: Option<TextureDesc>,
     pub loc: Loc,

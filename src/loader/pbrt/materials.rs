@@ -95,40 +95,7 @@ pub(super) fn material(
         }
         // pbrt-v4 picks the second material with probability `amount` per hit, whose
         // expectation is the blend (1 − amount)·f₀ + amount·f₁
-        "mix" => {
-            let names = match p.get("materials") {
-                Some(q) if q.ty == "string" && q.strs.len() == 2 => q.strs.clone(),
-                _ => {
-                    return Err(p.err(
-                        p.loc_of("materials"),
-                        "a mix needs \"string materials\" with two names",
-                    ));
-                }
-            };
-            let mut kinds = Vec::new();
-            for n in &names {
-                let Some(&i) = named.index.get(n) else {
-                    return Err(p.err(
-                        p.loc_of("materials"),
-                        format!("no material named \"{n}\" defined before the mix"),
-                    ));
-                };
-                kinds.push(named.materials[i].kind.clone());
-            }
-            // a number, or a float texture (grey, as the blend's weight must be)
-            let weight = match named.float(p, "amount")? {
-                None => Spectrum::Constant(0.5).into(),
-                Some(TextureDesc::Uniform(Spectrum::Constant(a))) => {
-                    Spectrum::Constant(a.clamp(0.0, 1.0)).into()
-                }
-                Some(t) => t,
-            };
-            MaterialKind::Blend {
-                weight,
-                a: Box::new(kinds[0].clone()),
-                b: Box::new(kinds[1].clone()),
-            }
-        }
+        "mix" => mix(p, &named)?,
         "diffuse" => MaterialKind::Diffuse {
             reflectance: named.reflectance(p, "reflectance", 0.5)?,
         },
@@ -208,48 +175,7 @@ pub(super) fn material(
             ));
         }
     };
-    // pbrt-v4's `displacement`: a float texture of heights along the shading normal, bump
-    // mapped as pbrt-v4 does (by the texture's gradient, not pbrt-v4's finite differences);
-    // else its `normalmap`, an image read linearly at (u, 1 − v), repeated, bilinear
-    let displacement = named.float(p, "displacement")?;
-    let normal_map = p.string("normalmap")?;
-    let kind = match (displacement, normal_map) {
-        _ if matches!(kind, MaterialKind::Null) => kind,
-        (Some(height), _) => MaterialKind::BumpMap {
-            height,
-            scale: 1.0,
-            inner: Box::new(kind),
-            pbrt: true,
-        },
-        (None, Some(file)) => {
-            let path = named.resolve(&file);
-            if !path.is_file() {
-                return Err(p.err(
-                    p.loc_of("normalmap"),
-                    format!("no image \"{}\"", path.display()),
-                ));
-            }
-            let flip_v = vec![TransformStep::Matrix([
-                1.0, 0.0, 0.0, 0.0, //
-                0.0, -1.0, 0.0, 1.0, //
-                0.0, 0.0, 1.0, 0.0, //
-                0.0, 0.0, 0.0, 1.0,
-            ])];
-            MaterialKind::NormalMap {
-                map: TextureDesc::Bitmap {
-                    path,
-                    filter: crate::texture::TexFilter::Bilinear,
-                    wrap: crate::texture::Wrap::Repeat,
-                    raw: true,
-                    to_uv: flip_v,
-                    loc: p.loc_of("normalmap"),
-                },
-                inner: Box::new(kind),
-                pbrt: true,
-            }
-        }
-        (None, None) => kind,
-    };
+    let kind = perturbed(kind, p, &named)?;
     Ok(MaterialDesc {
         name: name.to_string(),
         kind,
@@ -325,4 +251,87 @@ impl Reader {
         }
         Ok(())
     }
+}
+
+/// pbrt-v4's `mix`: two named materials defined before it, blended by `amount` (0.5), a
+/// number or a float texture (grey, as the blend's weight must be).
+fn mix(p: &Params, named: &Named<'_>) -> R<MaterialKind> {
+    let names = match p.get("materials") {
+        Some(q) if q.ty == "string" && q.strs.len() == 2 => q.strs.clone(),
+        _ => {
+            return Err(p.err(
+                p.loc_of("materials"),
+                "a mix needs \"string materials\" with two names",
+            ));
+        }
+    };
+    let mut kinds = Vec::new();
+    for n in &names {
+        let Some(&i) = named.index.get(n) else {
+            return Err(p.err(
+                p.loc_of("materials"),
+                format!("no material named \"{n}\" defined before the mix"),
+            ));
+        };
+        kinds.push(named.materials[i].kind.clone());
+    }
+    // a number, or a float texture (grey, as the blend's weight must be)
+    let weight = match named.float(p, "amount")? {
+        None => Spectrum::Constant(0.5).into(),
+        Some(TextureDesc::Uniform(Spectrum::Constant(a))) => {
+            Spectrum::Constant(a.clamp(0.0, 1.0)).into()
+        }
+        Some(t) => t,
+    };
+    Ok(MaterialKind::Blend {
+        weight,
+        a: Box::new(kinds[0].clone()),
+        b: Box::new(kinds[1].clone()),
+    })
+}
+
+/// `kind` under its `displacement` or `normalmap`, if it has one.
+fn perturbed(kind: MaterialKind, p: &Params, named: &Named<'_>) -> R<MaterialKind> {
+    // pbrt-v4's `displacement`: a float texture of heights along the shading normal, bump
+    // mapped as pbrt-v4 does (by the texture's gradient, not pbrt-v4's finite differences);
+    // else its `normalmap`, an image read linearly at (u, 1 − v), repeated, bilinear
+    let displacement = named.float(p, "displacement")?;
+    let normal_map = p.string("normalmap")?;
+    Ok(match (displacement, normal_map) {
+        _ if matches!(kind, MaterialKind::Null) => kind,
+        (Some(height), _) => MaterialKind::BumpMap {
+            height,
+            scale: 1.0,
+            inner: Box::new(kind),
+            pbrt: true,
+        },
+        (None, Some(file)) => {
+            let path = named.resolve(&file);
+            if !path.is_file() {
+                return Err(p.err(
+                    p.loc_of("normalmap"),
+                    format!("no image \"{}\"", path.display()),
+                ));
+            }
+            let flip_v = vec![TransformStep::Matrix([
+                1.0, 0.0, 0.0, 0.0, //
+                0.0, -1.0, 0.0, 1.0, //
+                0.0, 0.0, 1.0, 0.0, //
+                0.0, 0.0, 0.0, 1.0,
+            ])];
+            MaterialKind::NormalMap {
+                map: TextureDesc::Bitmap {
+                    path,
+                    filter: crate::texture::TexFilter::Bilinear,
+                    wrap: crate::texture::Wrap::Repeat,
+                    raw: true,
+                    to_uv: flip_v,
+                    loc: p.loc_of("normalmap"),
+                },
+                inner: Box::new(kind),
+                pbrt: true,
+            }
+        }
+        (None, None) => kind,
+    })
 }

@@ -322,3 +322,27 @@ pub(super) fn per_triangle_uv(kind: ShapeKind) -> ShapeKind {
             .collect(),
     }
 }
+
+/// Whether a PLY file's vertices carry texture coordinates (its header names one of
+/// `UV_NAMES`); a file that cannot be read answers false (its own error comes when the scene
+/// is built).
+pub(super) fn ply_has_uv(path: &std::path::Path) -> bool {
+    let Ok(head) = crate::files::read_head_gz(path, 1 << 16) else {
+        return false;
+    };
+    let text = String::from_utf8_lossy(&head);
+    let header = text.split("end_header").next().unwrap_or("");
+    let mut in_vertex = false;
+    for line in header.lines() {
+        match line.split_whitespace().collect::<Vec<_>>().as_slice() {
+            ["element", name, ..] => in_vertex = *name == "vertex",
+            ["property", .., name]
+                if in_vertex && crate::geometry::shape::UV_NAMES.contains(name) =>
+            {
+                return true;
+            }
+            _ => {}
+        }
+    }
+    false
+}

@@ -224,30 +224,6 @@ fn place(
     }
 }
 
-/// Whether a PLY file's vertices carry texture coordinates (its header names one of
-/// `UV_NAMES`); a file that cannot be read answers false (its own error comes when the scene
-/// is built).
-fn ply_has_uv(path: &std::path::Path) -> bool {
-    let Ok(head) = crate::files::read_head_gz(path, 1 << 16) else {
-        return false;
-    };
-    let text = String::from_utf8_lossy(&head);
-    let header = text.split("end_header").next().unwrap_or("");
-    let mut in_vertex = false;
-    for line in header.lines() {
-        match line.split_whitespace().collect::<Vec<_>>().as_slice() {
-            ["element", name, ..] => in_vertex = *name == "vertex",
-            ["property", .., name]
-                if in_vertex && crate::geometry::shape::UV_NAMES.contains(name) =>
-            {
-                return true;
-            }
-            _ => {}
-        }
-    }
-    false
-}
-
 /// Whether a texture looks an image up by uv.
 fn image(t: &TextureDesc) -> bool {
     match t {
@@ -292,7 +268,7 @@ fn finish_shape(
     let kind = match kind {
         // pbrt-v4's triangles without uv: (0, 0), (1, 0), (1, 1) at each one's corners
         ShapeKind::Inline { uvs: None, .. } if textured => meshes::per_triangle_uv(kind),
-        ShapeKind::Ply { ref path, .. } if textured && !ply_has_uv(path) => {
+        ShapeKind::Ply { ref path, .. } if textured && !meshes::ply_has_uv(path) => {
             return Err(p.err(
                 loc,
                 format!("an image texture on a PLY mesh without uv ({}) is not read yet (pbrt-v4 gives each triangle its own default uv)", path.display()),
