@@ -149,25 +149,31 @@ pub(super) fn material(
                 transmittance: scaled("transmittance")?,
             }
         }
-        "coateddiffuse" => MaterialKind::Layered(Box::new(LayeredDesc {
-            conductor: None,
-            reflectance: named.reflectance(p, "reflectance", 0.5)?,
-            roughness: rough(&named, p, "")?.fixed(),
-            roughness_texture: rough(&named, p, "")?.texture(),
-            eta: spectra::ior(p, "eta", 1.5)?,
-            ..slab(p)?
-        })),
-        "coatedconductor" => MaterialKind::Layered(Box::new(LayeredDesc {
-            conductor: Some((
-                spectra::conductor(p, "conductor.")?,
-                roughness(p, "conductor.")?,
-            )),
-            reflectance: spectra::reflectance(p, "reflectance", 0.0)?.into(),
-            roughness: rough(&named, p, "interface.")?.fixed(),
-            roughness_texture: rough(&named, p, "interface.")?.texture(),
-            eta: spectra::ior(p, "interface.eta", 1.5)?,
-            ..slab(p)?
-        })),
+        "coateddiffuse" => {
+            let r = rough(&named, p, "")?;
+            MaterialKind::Layered(Box::new(LayeredDesc {
+                conductor: None,
+                reflectance: named.reflectance(p, "reflectance", 0.5)?,
+                roughness: r.fixed(),
+                roughness_texture: r.texture(),
+                eta: spectra::ior(p, "eta", 1.5)?,
+                ..slab(p)?
+            }))
+        }
+        "coatedconductor" => {
+            let r = rough(&named, p, "interface.")?;
+            MaterialKind::Layered(Box::new(LayeredDesc {
+                conductor: Some((
+                    spectra::conductor(p, "conductor.")?,
+                    roughness(p, "conductor.")?,
+                )),
+                reflectance: spectra::reflectance(p, "reflectance", 0.0)?.into(),
+                roughness: r.fixed(),
+                roughness_texture: r.texture(),
+                eta: spectra::ior(p, "interface.eta", 1.5)?,
+                ..slab(p)?
+            }))
+        }
         other => {
             return Err(p.err(
                 loc,
