@@ -8,7 +8,7 @@ use glam::{Vec2, Vec3};
 
 use super::{Accel, PrimRef};
 use crate::geometry::ray::Ray;
-use crate::geometry::shape::{PrimHit, Shape, WatertightRay, intersect_triangle_with};
+use crate::geometry::shape::{PrimHit, Shape, WatertightRay};
 
 /// A shape's alpha at surface coordinates uv, in [0, 1] (the build step wraps a grey texture;
 /// a function here so that the accelerator names no texture type). Called only for hits on
@@ -76,13 +76,7 @@ impl Accel {
         t_max: f32,
     ) -> Option<(f32, PrimHit)> {
         let pr = self.prims[id];
-        let (t, h) = match tri {
-            Some(tri) => intersect_triangle_with(tri, ray, wt, t_max)
-                .map(|(t, b)| (t, PrimHit::Triangle { b }))?,
-            None => shapes
-                .get(pr.shape as usize)?
-                .intersect_primitive(pr.prim as usize, &Ray { t_max, ..*ray })?,
-        };
+        let (t, h) = self.hit_prim(shapes, id, tri, ray, wt, t_max)?;
         self.alpha_passes(shapes, pr, ray, t, &h).then_some((t, h))
     }
 }

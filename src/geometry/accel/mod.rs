@@ -348,6 +348,20 @@ impl Accel {
         if !self.alpha.is_empty() {
             return self.intersect_prim_alpha(shapes, id, tri, ray, wt, t_max);
         }
+        self.hit_prim(shapes, id, tri, ray, wt, t_max)
+    }
+
+    /// The primitive test itself, without alpha tests (shared by both paths).
+    #[inline(always)]
+    fn hit_prim(
+        &self,
+        shapes: &[Shape],
+        id: usize,
+        tri: Option<[Vec3; 3]>,
+        ray: &Ray,
+        wt: &WatertightRay,
+        t_max: f32,
+    ) -> Option<(f32, PrimHit)> {
         if let Some(tri) = tri {
             return intersect_triangle_with(tri, ray, wt, t_max)
                 .map(|(t, b)| (t, PrimHit::Triangle { b }));
