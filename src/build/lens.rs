@@ -111,6 +111,7 @@ pub(super) fn realistic_camera(
         film_diagonal,
         aperture_diameter,
         focus,
+        irradiance_pixels,
     } = &c.kind
     else {
         return Err(err("camera.type", "not a realistic camera".into()));
@@ -118,13 +119,21 @@ pub(super) fn realistic_camera(
     let sys = focused_lens(lens, *aperture_diameter, focus)?
         .map_err(|e| err("camera.focus_distance", e))?;
     let up = glam::Vec3::new(c.up[0] as f32, c.up[1] as f32, c.up[2] as f32);
-    let to_world = Transform::look_at(super::v3(&c.eye), super::v3(&c.target), up)
+    let look = Transform::look_at(super::v3(&c.eye), super::v3(&c.target), up)
         .map_err(|e| err("camera", e.to_string()))?;
+    // a mirrored camera reverses camera-space x before its placement (as `build::camera`)
+    let flip = Transform::scale(glam::Vec3::new(if c.mirror { -1.0 } else { 1.0 }, 1.0, 1.0))
+        .map_err(|e| err("camera", e.to_string()))?;
+    let to_world = flip.then(&look);
     let diagonal = crate::units::plain::metres(*film_diagonal);
-    Camera::realistic(to_world, sys, diagonal, desc.film.width, desc.film.height).map_err(|e| {
-        match e {
+    let cam = Camera::realistic(to_world, sys, diagonal, desc.film.width, desc.film.height)
+        .map_err(|e| match e {
             RealisticError::Lens(e) => located(lens, &e),
             RealisticError::Geometry(e) => err("camera", e.to_string()),
-        }
+        })?;
+    Ok(if *irradiance_pixels {
+        cam.with_irradiance_pixels()
+    } else {
+        cam
     })
 }

@@ -120,7 +120,11 @@ fn pbrt_image(d: &PbrtImageDesc) -> Result<Texture, String> {
         Bitmap::from_grey(img.width, img.height, v, d.filter, d.wrap, to_uv)
     } else {
         let rgb: Vec<[f32; 3]> = img.rgb.iter().map(|p| p.map(value)).collect();
-        Bitmap::from_rgb(img.width, img.height, &rgb, d.filter, d.wrap, to_uv)
+        if d.unbounded {
+            Bitmap::from_rgb_unbounded(img.width, img.height, &rgb, d.filter, d.wrap, to_uv)
+        } else {
+            Bitmap::from_rgb(img.width, img.height, &rgb, d.filter, d.wrap, to_uv)
+        }
     };
     Ok(Texture::Bitmap(Arc::new(
         b.map_err(|e| format!("{}: {e}", d.path.display()))?,

@@ -38,7 +38,7 @@ pub use envmap::EnvMapLight;
 pub use goniometric::{Fold, GoniometricLight, IntensityTable};
 pub use octahedral::{OctahedralMapLight, sphere_to_square, square_to_sphere};
 pub use point::PointLight;
-pub use projector::ProjectorLight;
+pub use projector::{ProjectorLaw, ProjectorLight};
 use sample::point_like_sample;
 pub use sample::{EmissionPdf, EmissionSample, LightSample};
 pub use spot::{SpotFalloff, SpotLight, SpotTexture};
@@ -306,10 +306,7 @@ impl Light {
                 pi * (scene_radius as f64).powi(2) * l.band_radiant_exitance(range)
             }
             Light::Beam(l) => band(&l.power),
-            // through the image on the plane z = 1: π·band(spectrum)·mean(image)·area
-            Light::Projector(l) => {
-                pi * band(&l.spectrum) * l.image.mean() as f64 * l.image_area() as f64
-            }
+            Light::Projector(l) => l.power(band(&l.spectrum)),
             Light::Goniometric(l) => l.power(band(&l.spectrum)),
         }
     }

@@ -1,5 +1,7 @@
-//! Mitsuba 3's `projector`: a pinhole that projects an image, the reciprocal of a perspective
-//! camera (src/emitters/projector.cpp, whose definition this follows).
+//! A pinhole that projects an image, the reciprocal of a perspective camera: Mitsuba 3's
+//! `projector` (src/emitters/projector.cpp) and pbrt-v4's `projection` light
+//! (`ProjectionLight`, src/pbrt/lights.cpp), which differ in how the image sets the intensity
+//! ([`ProjectorLaw`]).
 
 use super::bounds::LightBounds;
 use glam::{Mat3, Vec2, Vec3};
@@ -8,6 +10,28 @@ use super::{EmissionPdf, EmissionSample, LightSample};
 use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
 use crate::texture::Texture;
 
+/// How a projector's image sets its intensity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ProjectorLaw {
+    /// Mitsuba 3: I = π · spectrum · image / cos³θ, so that a uniform image lights the plane
+    /// z = 1 with uniform irradiance π · spectrum · image.
+    PlaneIrradiance,
+    /// pbrt-v4 (`ProjectionLight::I`): I = spectrum · image, so that a uniform image is a
+    /// uniform intensity over the frustum.
+    Intensity,
+}
+
+impl ProjectorLaw {
+    /// The intensity per unit spectrum · image at cos θ from the axis, sr⁻¹·(unit of I).
+    #[inline]
+    fn factor(self, cos: f32) -> f32 {
+        match self {
+            ProjectorLaw::PlaneIrradiance => std::f32::consts::PI / (cos * cos * cos),
+            ProjectorLaw::Intensity => 1.0,
+        }
+    }
+}
+
 /// A projector at `position` looking along its local +z (`frame`'s third column), its image
 /// spanning 2·`tan_x` by 2·`tan_y` on the plane z = 1. A point at local (x, y, z), z > 0,
 /// takes the image at uv = (½(1 − x/(z·tan_x)), ½(1 − y/(z·tan_y))) (Mitsuba's perspective
@@ -15,7 +39,8 @@ use crate::texture::Texture;
 ///
 /// I(ω) = π · spectrum(λ) · image(uv, λ) / cos³θ   (W·sr⁻¹·nm⁻¹),
 ///
-/// θ from the axis, so that the plane z = 1 is lit with irradiance π · spectrum · image. For a
+/// θ from the axis, so that the plane z = 1 is lit with irradiance π · spectrum · image
+/// ([`ProjectorLaw::PlaneIrradiance`]; pbrt-v4's law is I = spectrum · image). For a
 /// Mitsuba scene the spectrum is the constant `scale` (measured: Mitsuba 3.9.1 projects a grey
 /// image with X = Y = Z, not D65-shaped), the image a texture.
 #[derive(Clone, Debug)]
@@ -26,8 +51,9 @@ pub struct ProjectorLight {
     pub tan_x: f32,
     pub tan_y: f32,
     pub image: Texture,
-    /// W·sr⁻¹·nm⁻¹ per unit image value before the factor π.
+    /// W·sr⁻¹·nm⁻¹ per unit image value before the law's factor.
     pub spectrum: Spectrum,
+    pub law: ProjectorLaw,
 }
 
 impl ProjectorLight {
@@ -64,8 +90,7 @@ impl ProjectorLight {
     ) -> Option<SampledSpectrum<N>> {
         let d = self.frame.transpose() * dir;
         let uv = self.uv(d)?;
-        let cos3 = d.z * d.z * d.z;
-        Some(self.image.sample(uv, w) * self.spectrum.sample(w) * (std::f32::consts::PI / cos3))
+        Some(self.image.sample(uv, w) * self.spectrum.sample(w) * self.law.factor(d.z))
     }
 
     /// li = I(ω)/r² toward `p`; None outside the image.
@@ -77,6 +102,23 @@ impl ProjectorLight {
         super::point_like_sample(self.position, p, |wi| self.intensity(-wi, w))
     }
 
+    /// The power, W, for `band` the spectrum's integral over the band: Mitsuba's law through
+    /// the image on the plane z = 1, π·band·mean(image)·area; pbrt-v4's over the frustum's
+    /// solid angle, band·mean(image)·4·asin(sin α·sin β) (the image's mean over its texels
+    /// standing for its mean over solid angle).
+    pub fn power(&self, band: f64) -> f64 {
+        let mean = self.image.mean() as f64;
+        match self.law {
+            ProjectorLaw::PlaneIrradiance => {
+                std::f64::consts::PI * band * mean * self.image_area() as f64
+            }
+            ProjectorLaw::Intensity => {
+                let (a, b) = (self.tan_x.atan() as f64, self.tan_y.atan() as f64);
+                band * mean * 4.0 * (a.sin() * b.sin()).asin()
+            }
+        }
+    }
+
     /// Area of the image on the plane z = 1, m² per m² of distance.
     pub fn image_area(&self) -> f32 {
         4.0 * self.tan_x * self.tan_y
@@ -84,7 +126,7 @@ impl ProjectorLight {
 
     /// A particle (light tracing, `bdpt`): a point uniform on the image plane z = 1 (u in
     /// [0, 1)², which is also its image coordinate) gives the direction, with
-    /// pdf_dir = 1/(area·cos³θ) sr⁻¹; `le` is the intensity there, π·spectrum·image/cos³θ.
+    /// pdf_dir = 1/(area·cos³θ) sr⁻¹; `le` is the intensity there (its [`ProjectorLaw`]).
     pub fn sample_le<const N: usize>(
         &self,
         w: &SampledWavelengths<N>,
@@ -97,7 +139,7 @@ impl ProjectorLight {
         )
         .normalize();
         let cos3 = d.z * d.z * d.z;
-        let le = self.image.sample(u, w) * self.spectrum.sample(w) * (std::f32::consts::PI / cos3);
+        let le = self.image.sample(u, w) * self.spectrum.sample(w) * self.law.factor(d.z);
         EmissionSample::from_point(
             self.position,
             self.frame * d,
@@ -133,6 +175,7 @@ mod tests {
             tan_y: 0.25,
             image: Spectrum::Constant(2.0).into(),
             spectrum: Spectrum::Constant(1.0),
+            law: ProjectorLaw::PlaneIrradiance,
         };
         let w = SampledWavelengths::<4> {
             lambda: [550.0; 4],
@@ -154,6 +197,53 @@ mod tests {
         assert!(
             l.sample_li(Vec3::new(0.0, 0.0, -1.0), &w).is_none(),
             "behind"
+        );
+    }
+
+    /// pbrt-v4's law: a uniform image is a uniform intensity, so the plane z = 1 gets
+    /// E = I cos³θ; and a particle's weight le/pdf_dir integrates to the power I·Ω.
+    #[test]
+    fn pbrt_law_is_uniform_intensity() {
+        let l = ProjectorLight {
+            position: Vec3::ZERO,
+            frame: Mat3::IDENTITY,
+            tan_x: 0.5,
+            tan_y: 0.25,
+            image: Spectrum::Constant(2.0).into(),
+            spectrum: Spectrum::Constant(1.5),
+            law: ProjectorLaw::Intensity,
+        };
+        let w = SampledWavelengths::<4> {
+            lambda: [550.0; 4],
+            pdf: [1.0; 4],
+        };
+        for (x, y) in [(0.0, 0.0), (0.4, 0.2), (-0.49, -0.24)] {
+            let p = Vec3::new(x, y, 1.0);
+            let s = l.sample_li(p, &w).expect("inside the image");
+            let cos = 1.0 / p.length();
+            let e = s.li.0[0] * (-s.wi).z;
+            assert!(
+                (e - 3.0 * cos * cos * cos).abs() < 1e-4,
+                "({x}, {y}): E = {e}"
+            );
+        }
+        // Σ le/pdf over stratified samples → I·Ω with Ω = 4·asin(sin α·sin β)
+        let n = 256;
+        let mut sum = 0.0f64;
+        for i in 0..n {
+            for j in 0..n {
+                let u = Vec2::new((i as f32 + 0.5) / n as f32, (j as f32 + 0.5) / n as f32);
+                let e = l.sample_le(&w, u);
+                let pdf = l.pdf_le(e.d).dir;
+                sum += (e.le.0[0] / pdf) as f64;
+            }
+        }
+        let omega = 4.0 * ((0.5f64.atan().sin()) * (0.25f64.atan().sin())).asin();
+        let got = sum / (n * n) as f64;
+        assert!(
+            (got / (3.0 * omega) - 1.0).abs() < 1e-3,
+            "{got} vs {}",
+            3.0 * omega
         );
     }
 }

@@ -62,6 +62,8 @@ enum Texels {
     Grey(Vec<f32>),
     /// Sigmoid coefficients per texel (bounded reflectance spectra).
     Colour(Vec<SigmoidPolynomial>),
+    /// Sigmoid coefficients and a scale per texel (unbounded spectra: an emitter's image).
+    Unbounded(Vec<(SigmoidPolynomial, f32)>),
     /// Three raw values per texel (a normal map's encoded directions), never spectra.
     Vector(Vec<[f32; 3]>),
 }
@@ -96,6 +98,44 @@ impl Bitmap {
             width,
             height,
             texels: Texels::Colour(texels),
+            filter,
+            wrap,
+            to_uv,
+        })
+    }
+
+    /// A colour texture from linear sRGB pixels (row-major, top row first) of any magnitude
+    /// ≥ 0, each the spectrum `2m · s(rgb / 2m)` with m its largest component (pbrt-v4's
+    /// `RGBUnboundedSpectrum`, and its `RGBIlluminantSpectrum` before the illuminant);
+    /// negative components are clamped to 0.
+    pub fn from_rgb_unbounded(
+        width: usize,
+        height: usize,
+        rgb: &[[f32; 3]],
+        filter: TexFilter,
+        wrap: Wrap,
+        to_uv: UvTransform,
+    ) -> Result<Self, BitmapError> {
+        Self::check(width, height, rgb.len())?;
+        let table = srgb_table();
+        let texels = rgb
+            .iter()
+            .map(|p| {
+                let p = p.map(|v| if v.is_finite() { v.max(0.0) } else { 0.0 });
+                let m = p[0].max(p[1]).max(p[2]);
+                let scale = 2.0 * m;
+                let c = if m > 0.0 {
+                    p.map(|v| v / scale)
+                } else {
+                    [0.0; 3]
+                };
+                (table.lookup(c), scale)
+            })
+            .collect();
+        Ok(Self {
+            width,
+            height,
+            texels: Texels::Unbounded(texels),
             filter,
             wrap,
             to_uv,
@@ -163,6 +203,7 @@ impl Bitmap {
         match &self.texels {
             Texels::Grey(v) => [v[k]; N],
             Texels::Colour(c) => w.lambda.map(|l| c[k].eval(l)),
+            Texels::Unbounded(c) => w.lambda.map(|l| c[k].1 * c[k].0.eval(l)),
             // a normal map read as a spectrum (a caller bug): its mean component
             Texels::Vector(v) => [(v[k][0] + v[k][1] + v[k][2]) / 3.0; N],
         }
@@ -227,7 +268,7 @@ impl Bitmap {
         let at = |k: usize| match &self.texels {
             Texels::Vector(v) => Vec3::from(v[k]),
             Texels::Grey(v) => Vec3::splat(v[k]),
-            Texels::Colour(_) => Vec3::Z,
+            Texels::Colour(_) | Texels::Unbounded(_) => Vec3::Z,
         };
         (1.0 - f.y) * ((1.0 - f.x) * at(ka) + f.x * at(kb))
             + f.y * ((1.0 - f.x) * at(kc) + f.x * at(kd))
@@ -271,6 +312,10 @@ impl Bitmap {
         let sum: f64 = match &self.texels {
             Texels::Grey(v) => v.iter().map(|&x| x as f64).sum(),
             Texels::Colour(c) => c.iter().map(|p| spectral(&|l| p.eval(l)) as f64).sum(),
+            Texels::Unbounded(c) => c
+                .iter()
+                .map(|(p, s)| spectral(&|l| s * p.eval(l)) as f64)
+                .sum(),
             Texels::Vector(v) => v.iter().map(|p| (p[0] + p[1] + p[2]) as f64 / 3.0).sum(),
         };
         (sum / n) as f32

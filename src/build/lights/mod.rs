@@ -183,9 +183,10 @@ fn light(l: &LightDesc, r: WavelengthRange) -> Result<Light, String> {
         LightKind::Projector {
             transform,
             fov,
-            fov_axis_y,
+            fov_axis,
             image,
-        } => projector(l, transform, fov, *fov_axis_y, image)?,
+            constant_intensity,
+        } => projector(l, transform, (fov, *fov_axis), image, *constant_intensity)?,
         LightKind::Luminaire {
             position,
             target,
@@ -272,15 +273,16 @@ fn spot(
     Ok(Light::Spot(spot))
 }
 
-/// A projector: an image thrown through a pinhole of field of view `fov` (along y when
-/// `fov_axis_y`, else x), placed by a rigid `transform`.
+/// A projector: an image thrown through a pinhole of field of view `fov` (across `fov_axis`),
+/// placed by a rigid `transform`, with Mitsuba's law or, `constant_intensity`, pbrt-v4's.
 fn projector(
     l: &LightDesc,
     transform: &[TransformStep],
-    fov: &Angle,
-    fov_axis_y: bool,
+    (fov, fov_axis): (&Angle, crate::loader::desc::FovAxis),
     image: &TextureDesc,
+    constant_intensity: bool,
 ) -> Result<Light, String> {
+    use crate::loader::desc::FovAxis;
     let t = super::shapes::steps(transform, 1.0, false)?;
     let m = glam::Mat3::from_mat4(t.matrix());
     let rigid = (m.transpose() * m - glam::Mat3::IDENTITY)
@@ -299,7 +301,13 @@ fn projector(
     };
     let aspect = w as f32 / h as f32;
     let tan = (plain::radians(*fov) / 2.0).tan();
-    let (tan_x, tan_y) = if fov_axis_y {
+    let along_y = match fov_axis {
+        FovAxis::X => false,
+        FovAxis::Y => true,
+        FovAxis::Larger => aspect < 1.0,
+        FovAxis::Smaller => aspect > 1.0,
+    };
+    let (tan_x, tan_y) = if along_y {
         (tan * aspect, tan)
     } else {
         (tan, tan / aspect)
@@ -311,6 +319,11 @@ fn projector(
         tan_y,
         image,
         spectrum: l.spectrum.clone(),
+        law: if constant_intensity {
+            crate::light::ProjectorLaw::Intensity
+        } else {
+            crate::light::ProjectorLaw::PlaneIrradiance
+        },
     })))
 }
 

@@ -11,6 +11,10 @@
 //! corners L times the lens's relative illumination. Fresnel losses at the lens surfaces are not
 //! modelled (as in pbrt-v4): the lens is an ideally coated one.
 //!
+//! **pbrt-v4's pixel** ([`Camera::with_irradiance_pixels`]): the film irradiance itself per
+//! unit radiance, the same weight times that solid angle, so a uniform radiance L reads L·G₀
+//! at the image centre (pbrt-v4's `RealisticCamera::GenerateRay`: cos⁴θ / (pdf · z_rear²)).
+//!
 //! A ray through dispersive glass serves its own wavelength only, so [`Camera::disperses`]
 //! tells the renderer to keep the hero wavelength alone.
 
@@ -31,6 +35,8 @@ pub struct Realistic {
     lens: LensSystem,
     pupil: ExitPupil,
     dispersive: bool,
+    /// Factor on every ray's weight: 1 (spectrace's pixel) or G₀, sr (pbrt-v4's irradiance).
+    weight_scale: f64,
 }
 
 /// Why a realistic camera cannot be built.
@@ -66,7 +72,19 @@ impl Camera {
             dispersive: lens.is_dispersive(),
             lens,
             pupil,
+            weight_scale: 1.0,
         })))
+    }
+
+    /// This camera with pbrt-v4's pixel for a realistic camera: the film irradiance per unit
+    /// radiance (W·m⁻²·nm⁻¹ where the scene has W·m⁻²·sr⁻¹·nm⁻¹), which is spectrace's pixel
+    /// times the on-axis exit pupil's projected solid angle G₀ (module docs). Other cameras are
+    /// returned unchanged.
+    pub fn with_irradiance_pixels(mut self) -> Camera {
+        if let Camera::Realistic(c) = &mut self {
+            c.weight_scale = c.pupil.normalisation_sr();
+        }
+        self
     }
 }
 
@@ -108,6 +126,7 @@ impl Realistic {
             DVec2::new(u.x as f64, u.y as f64),
             lambda_nm as f64,
         )?;
+        let w = w * self.weight_scale;
         let o = Vec3::new(r.o.x as f32, r.o.y as f32, r.o.z as f32) * 1e-3;
         let d = Vec3::new(r.d.x as f32, r.d.y as f32, r.d.z as f32);
         let ray = Ray::new(self.to_world.point(o), self.to_world.vector(d));

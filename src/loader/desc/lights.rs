@@ -84,14 +84,17 @@ pub enum LightKind {
         transform: Vec<TransformStep>,
         amount: EnvMapAmount,
     },
-    /// Mitsuba's `projector`: `image` projected from the origin of `transform` (rigid) along
-    /// its +z, with the field of view `fov` across the image's x (`fov_axis_y`: across y), the
-    /// light's `spectrum` multiplying the image (see `crate::light::ProjectorLight`).
+    /// Mitsuba's `projector` or pbrt-v4's `projection`: `image` projected from the origin of
+    /// `transform` (rigid) along its +z, with the field of view `fov` across the image's
+    /// `fov_axis`, the light's `spectrum` multiplying the image (see
+    /// `crate::light::ProjectorLight`): Mitsuba's plane irradiance π·spectrum·image, or, with
+    /// `constant_intensity`, pbrt-v4's intensity spectrum·image.
     Projector {
         transform: Vec<TransformStep>,
         fov: Angle,
-        fov_axis_y: bool,
+        fov_axis: crate::loader::desc::FovAxis,
         image: TextureDesc,
+        constant_intensity: bool,
     },
     /// A measured luminaire (an IES LM-63 or EULUMDAT file, `crate::light::GoniometricLight`):
     /// its photometric nadir (γ = 0°) points from `position` at `target`, its C = 0° plane

@@ -296,6 +296,9 @@ pub struct PbrtImageDesc {
     pub grey: bool,
     pub scale: f64,
     pub invert: bool,
+    /// Colours of any magnitude (an emitter's image, pbrt-v4's `RGBIlluminantSpectrum`
+    /// without its illuminant), not reflectances clamped to [0, 1].
+    pub unbounded: bool,
     pub loc: Loc,
 }
 

@@ -101,6 +101,9 @@ pub enum CameraKind {
         /// Where the film sits: as the lens file says, a distance behind the last vertex, or
         /// focused on a distance from the film.
         focus: LensFocus,
+        /// The pixel is the film irradiance per unit radiance (pbrt-v4's realistic camera)
+        /// rather than spectrace's radiance-like pixel (`geometry/camera/realistic.rs`).
+        irradiance_pixels: bool,
     },
 }
 

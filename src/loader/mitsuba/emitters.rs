@@ -150,9 +150,9 @@ fn projector(cx: &Cx<'_>, e: &Element) -> R<(LightKind, Spectrum)> {
         // Mitsuba's default 50 mm lens on 36 mm: 2·atan(18/50) across x
         (None, None) => 2.0 * (18.0f64 / 50.0).atan().to_degrees(),
     };
-    let fov_axis_y = match cx.string(e, "fov_axis").as_deref() {
-        None | Some("x") => false,
-        Some("y") => true,
+    let fov_axis = match cx.string(e, "fov_axis").as_deref() {
+        None | Some("x") => FovAxis::X,
+        Some("y") => FovAxis::Y,
         Some(o) => {
             return Err(cx.err(
                 e,
@@ -180,8 +180,9 @@ fn projector(cx: &Cx<'_>, e: &Element) -> R<(LightKind, Spectrum)> {
         LightKind::Projector {
             transform: steps,
             fov: Angle::new::<angle::degree>(fov),
-            fov_axis_y,
+            fov_axis,
             image,
+            constant_intensity: false,
         },
         spectrum,
     ))

@@ -1,17 +1,16 @@
-//! The pbrt-v4 scene-wide kinds spectrace reads: camera, film, sampler and integrator, each
+//! The pbrt-v4 scene-wide kinds spectrace reads: film, sampler and integrator (the camera in
+//! `camera.rs`), each
 //! reading its own parameters (pbrt-v4's names and defaults, `src/pbrt/cameras.cpp`,
 //! `film.cpp`, `samplers.cpp`, `integrators.cpp`), and the scene they finish. Materials are in
 //! `materials.rs`, lights in `lights.rs`. Lengths are read as metres (pbrt's files have no
 //! unit).
 
-use glam::{DMat4, DVec3};
-
 use super::Reader;
+use super::camera::{FilmSize, camera};
 use super::params::{Params, R};
-use super::shapes::len;
 use crate::loader::desc::*;
 use crate::loader::{LoadError, Loc};
-use crate::units::{Angle, Length, angle::degree};
+use crate::units::Length;
 
 /// A `PixelFilter` (pbrt-v4's default: `gaussian`, σ 0.5, radius 1.5 px): `gaussian`
 /// (`sigma`, `xradius` = `yradius`), `box` (radius 0.5 px), `triangle` (radius 2 px).
@@ -197,16 +196,18 @@ pub(super) fn finish(mut r: Reader) -> Result<SceneDesc, LoadError> {
             "the scene has no Camera",
         ));
     };
-    let (width, height, film_loc, spectral_bins) = match &r.film {
+    let (width, height, film_loc, spectral_bins, diagonal_mm) = match &r.film {
         Some((p, kind, loc)) => {
             let bins = film(p, kind, *loc, &file, &mut r.notes)?;
             let w = p.int("xresolution", 1280)?;
             let h = p.int("yresolution", 720)?;
             let _ = p.string("filename")?;
+            // the film's size in mm, which the realistic camera reads
+            let diagonal = p.float("diagonal", 35.0)?;
             p.check_unused(&format!("film \"{kind}\""))?;
-            (w, h, *loc, bins)
+            (w, h, *loc, bins, diagonal)
         }
-        None => (1280, 720, Loc { line: 0, col: 0 }, 0),
+        None => (1280, 720, Loc { line: 0, col: 0 }, 0, 35.0),
     };
     if !(1..=32768).contains(&width) || !(1..=32768).contains(&height) {
         return Err(LoadError::new(
@@ -233,7 +234,14 @@ pub(super) fn finish(mut r: Reader) -> Result<SceneDesc, LoadError> {
         // pbrt-v4's default, `volpath`: `path` where there are no media
         None => (IntegratorKind::Path, 5, LightSelection::Tree),
     };
-    let camera = camera(ctm, cam, kind, *cam_loc, width, height)?;
+    let size = FilmSize {
+        width,
+        height,
+        diagonal_mm,
+    };
+    let camera = camera(ctm, cam, kind, *cam_loc, size, &|name| {
+        r.resolve(&r.root, name)
+    })?;
     cam.check_unused(&format!("camera \"{kind}\""))?;
     let nm = |x: f64| Length::new::<crate::units::length::nanometer>(x);
     Ok(SceneDesc {
@@ -268,92 +276,5 @@ pub(super) fn finish(mut r: Reader) -> Result<SceneDesc, LoadError> {
         camera_medium: r.camera_medium,
         sensors: Vec::new(),
         notes: r.notes,
-    })
-}
-
-/// A `perspective` camera: pbrt-v4's `fov` spans the image's shorter axis; its camera space
-/// has +x to the image's right, so the image is spectrace's mirrored left to right.
-fn camera(ctm: &DMat4, p: &Params, kind: &str, loc: Loc, w: i64, h: i64) -> R<CameraDesc> {
-    for unread in ["screenwindow", "frameaspectratio"] {
-        if p.get(unread).is_some() {
-            return Err(p.err(
-                p.loc_of(unread),
-                format!("a camera's \"{unread}\" is not read yet"),
-            ));
-        }
-    }
-    let world_from_camera = ctm.inverse();
-    let kind = match kind {
-        "perspective" => {
-            let fov = p.float("fov", 90.0)?;
-            if !(fov > 0.0 && fov < 180.0) {
-                return Err(p.err(
-                    p.loc_of("fov"),
-                    format!("fov must lie in (0, 180) degrees, not {fov}"),
-                ));
-            }
-            let projection = Projection::Fov {
-                fov: Angle::new::<degree>(fov),
-                axis: FovAxis::Smaller,
-            };
-            // pbrt-v4's thin lens: `lensradius` and `focaldistance` (10⁶) in camera space
-            let unit = world_from_camera.transform_vector3(DVec3::X).length();
-            let radius = p.float("lensradius", 0.0)? * unit;
-            let focus = p.float("focaldistance", 1e6)? * unit;
-            if radius > 0.0 {
-                if !(focus > 0.0) {
-                    return Err(p.err(
-                        p.loc_of("focaldistance"),
-                        "\"focaldistance\" must be positive",
-                    ));
-                }
-                // spectrace's thin lens takes an f-number of the focal length that gives the
-                // horizontal field of view on a 36 mm wide film (`build`): N = f / 2r
-                let half = (fov.to_radians() / 2.0).tan();
-                let half_x = if w < h {
-                    half
-                } else {
-                    half * w as f64 / h as f64
-                };
-                let focal = 0.036 / (2.0 * half_x);
-                CameraKind::ThinLens {
-                    projection,
-                    f_number: focal / (2.0 * radius),
-                    focus_distance: len(focus),
-                }
-            } else {
-                CameraKind::Perspective { projection }
-            }
-        }
-        // pbrt-v4's default screen window spans [−1, 1] of camera space across the shorter
-        // image axis
-        "orthographic" => {
-            let aspect = w as f64 / h as f64;
-            let unit = world_from_camera.transform_vector3(DVec3::X).length();
-            CameraKind::Orthographic {
-                view_width: len(2.0 * aspect.max(1.0) * unit),
-            }
-        }
-        other => {
-            return Err(p.err(
-                loc,
-                format!("the camera \"{other}\" is not read yet (spectrace reads \"perspective\" and \"orthographic\")"),
-            ));
-        }
-    };
-    let eye = world_from_camera.transform_point3(DVec3::ZERO);
-    let target = world_from_camera.transform_point3(DVec3::Z);
-    let up = world_from_camera.transform_vector3(DVec3::Y);
-    Ok(CameraDesc {
-        kind,
-        eye: [len(eye.x), len(eye.y), len(eye.z)],
-        target: [len(target.x), len(target.y), len(target.z)],
-        up: up.to_array(),
-        // pbrt-v4's camera space is left-handed (x right, y up, z ahead): the image is the
-        // mirror image of spectrace's, unless the camera transform mirrors it back (the
-        // `Scale -1 1 1` exporters write)
-        mirror: world_from_camera.determinant() > 0.0,
-        sensor: None,
-        loc,
     })
 }

@@ -11,6 +11,7 @@ use super::{Reader, spectra};
 use crate::loader::Loc;
 use crate::loader::desc::*;
 use crate::spectrum::Spectrum;
+use crate::texture::{TexFilter, Wrap};
 use crate::units::{Angle, angle::degree};
 
 /// An `AreaLightSource "diffuse"`: its emitted radiance (W·m⁻²·sr⁻¹·nm⁻¹ per unit of pbrt's
@@ -105,6 +106,7 @@ pub(super) fn light(kind: &str, p: &Params, ctm: &DMat4, loc: Loc, r: &Reader) -
                 s,
             )
         }
+        "projection" => return projection(p, ctm, loc, r, scale),
         "infinite" if p.get("filename").is_some() => {
             return image_infinite(p, ctm, loc, r, scale);
         }
@@ -123,7 +125,7 @@ pub(super) fn light(kind: &str, p: &Params, ctm: &DMat4, loc: Loc, r: &Reader) -
         other => {
             return Err(p.err(
                 loc,
-                format!("the light \"{other}\" is not read yet (spectrace reads point, spot, distant and infinite)"),
+                format!("the light \"{other}\" is not read yet (spectrace reads point, spot, projection, distant and infinite)"),
             ));
         }
     };
@@ -175,6 +177,108 @@ fn image_infinite(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> 
             amount,
         },
         spectrum: Spectrum::Piecewise(crate::spectrum::rgb2spec::d65_unit_luminance()),
+        sampling_weight: 1.0,
+        loc,
+    })
+}
+
+/// A `projection` light (pbrt-v4's `ProjectionLight`): the image `filename` thrown from the
+/// CTM's origin along its +z, `fov` (degrees, 90 by default) across the image's shorter axis;
+/// each pixel's RGB an `RGBIlluminantSpectrum` of the sRGB space (its D65 of luminance 1) times
+/// `scale`, looked up at the nearest pixel, as an intensity constant over the pixel's
+/// directions (no cos³ law: [`crate::light::ProjectorLaw::Intensity`]). `power` (∫ȳ·Φ dλ
+/// over the frustum) sets the scale as pbrt-v4 does: power / (A · the mean over pixels of
+/// lum(rgb)·cos³θ at their centres), A the image's area on the plane z = 1.
+fn projection(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> R<LightDesc> {
+    use crate::image_io::Encoding;
+    let name = p
+        .string("filename")?
+        .ok_or_else(|| p.err(loc, "a projection light needs a \"string filename\""))?;
+    let path = r.resolve(&r.root, &name);
+    if !path.is_file() {
+        return Err(p.err(
+            p.loc_of("filename"),
+            format!("no image \"{}\"", path.display()),
+        ));
+    }
+    let fov = p.float("fov", 90.0)?;
+    if !(fov > 0.0 && fov < 180.0) {
+        return Err(p.err(
+            p.loc_of("fov"),
+            format!("fov must lie in (0, 180) degrees, not {fov}"),
+        ));
+    }
+    // pbrt-v4 reads PNG files as sRGB-encoded and others as stored
+    let srgb = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    let power = p.float("power", -1.0)?;
+    let k = if power > 0.0 {
+        let img = crate::image_io::read_rgb(&path)
+            .map_err(|e| p.err(p.loc_of("filename"), e.to_string()))?;
+        let decode = srgb && img.encoding == Encoding::Srgb;
+        let lin = |v: f32| {
+            if decode {
+                crate::colour::spaces::srgb_decode(v as f64)
+            } else {
+                v as f64
+            }
+        };
+        let (w, h) = (img.width, img.height);
+        let aspect = w as f64 / h as f64;
+        let (ax, ay) = if aspect > 1.0 {
+            (aspect, 1.0)
+        } else {
+            (1.0, 1.0 / aspect)
+        };
+        let t = (fov.to_radians() / 2.0).tan();
+        let mut sum = 0.0;
+        for (i, px) in img.rgb.iter().enumerate() {
+            let sx = ax * (2.0 * ((i % w) as f64 + 0.5) / w as f64 - 1.0);
+            let sy = ay * (2.0 * ((i / w) as f64 + 0.5) / h as f64 - 1.0);
+            let cos3 = (1.0 + t * t * (sx * sx + sy * sy)).powf(-1.5);
+            let lum = 0.212_639 * lin(px[0]) + 0.715_169 * lin(px[1]) + 0.072_192 * lin(px[2]);
+            sum += lum * cos3;
+        }
+        let area = 4.0 * t * t * ax * ay;
+        let mean = sum / (w * h) as f64;
+        if !(mean > 0.0) {
+            return Err(p.err(
+                p.loc_of("power"),
+                "a projection light with \"power\" needs an image that is not black",
+            ));
+        }
+        power / (area * mean)
+    } else {
+        1.0
+    };
+    // spectrace's projector has u growing toward its local −x (pbrt-v4's toward +x, after its
+    // y flip has v growing toward −y as here): its frame is the light's (−x, y, z), the
+    // columns made unit (a uniform scale does not change pbrt-v4's directions)
+    let c = |i: usize| ctm.col(i).truncate().normalize_or_zero().extend(0.0);
+    let frame = DMat4::from_cols(-c(0), c(1), c(2), ctm.col(3));
+    let image = TextureDesc::PbrtImage(Box::new(PbrtImageDesc {
+        path,
+        filter: TexFilter::Nearest,
+        wrap: Wrap::Clamp,
+        to_uv: Vec::new(),
+        srgb,
+        grey: false,
+        scale: 1.0,
+        invert: false,
+        unbounded: true,
+        loc,
+    }));
+    let d65 = Spectrum::Piecewise(crate::spectrum::rgb2spec::d65_unit_luminance());
+    Ok(LightDesc {
+        kind: LightKind::Projector {
+            transform: vec![super::shapes::matrix_step(&frame)],
+            fov: Angle::new::<degree>(fov),
+            fov_axis: FovAxis::Smaller,
+            image,
+            constant_intensity: true,
+        },
+        spectrum: d65.scaled((scale * k) as f32),
         sampling_weight: 1.0,
         loc,
     })

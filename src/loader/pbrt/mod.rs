@@ -7,6 +7,7 @@
 //! What is read so far is the subset in the README's pbrt-v4 table; any other directive or kind
 //! is an error naming it.
 
+mod camera;
 mod kinds;
 mod lexer;
 mod lights;

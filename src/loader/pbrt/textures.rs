@@ -164,6 +164,7 @@ fn imagemap(p: &Params, loc: Loc, r: &Reader, grey: bool) -> R<TextureDesc> {
         grey,
         scale: p.float("scale", 1.0)?,
         invert: p.bool("invert", false)?,
+        unbounded: false,
         loc,
     })))
 }

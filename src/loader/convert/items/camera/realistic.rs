@@ -55,5 +55,6 @@ pub(super) fn realistic(cx: &Cx<'_>, c: &RawCamera, sp: &Range<usize>) -> R<Came
         film_diagonal,
         aperture_diameter,
         focus,
+        irradiance_pixels: false,
     })
 }
