@@ -6,7 +6,7 @@ For every 8 × 8 block of pixels: the mean Y = 0.2126 R + 0.7152 G + 0.0722 B (p
 Y = ∫ȳ·L dλ) of two renders with seeds 1 and 2, and its standard error from the pixels'
 differences between the seeds (√Σ(a − b)² / 2n, the pixels taken as independent).
 
-It also writes alpha/cutout.png, imagemap/tex.png and quad_st.ply, bump/normal.png, gold_equal_area/eqarea.exr and glass_machines/sky.exr (the map of
+It also writes goniometric/gonio.png, alpha/cutout.png, imagemap/tex.png and quad_st.ply, bump/normal.png, gold_equal_area/eqarea.exr and glass_machines/sky.exr (the map of
 scripts/gen_pbrt_refs.py, the latter without its glow) and
 killeroo_style/geometry/blob.pbrt: a `loopsubdiv` control mesh (an icosahedron,
 its vertices moved by a fixed pseudo-random amount), the stand-in for the killeroo model of
@@ -132,8 +132,27 @@ def write_cutout(path):
     out.close()
 
 
+def write_goniometric(path):
+    """gonio.png: a 64 × 64 8-bit sRGB image in the equal-area octahedral layout for the
+    goniometric light: a bright lobe off the centre, a dim floor, a brighter band at small u,
+    and channels that differ (pbrt-v4 lights with their mean)."""
+    n = 64
+    img = np.zeros((n, n, 3), np.float64)
+    for y in range(n):
+        for x in range(n):
+            u, v = (x + 0.5) / n, (y + 0.5) / n
+            g = 0.1 + 0.8 * math.exp(-((u - 0.5) ** 2 + (v - 0.6) ** 2) / 0.02) + (0.3 if u < 0.3 else 0.0)
+            img[y, x] = [min(1.0, 1.2 * g), g, 0.6 * g]
+    enc = np.where(img <= 0.0031308, 12.92 * img, 1.055 * img ** (1 / 2.4) - 0.055)
+    out = oiio.ImageOutput.create(path)
+    out.open(path, oiio.ImageSpec(n, n, 3, "uint8"))
+    out.write_image((enc * 255 + 0.5).astype(np.uint8))
+    out.close()
+
+
 def main():
     blob()
+    write_goniometric(os.path.join(BASE, "goniometric", "gonio.png"))
     write_cutout(os.path.join(BASE, "alpha", "cutout.png"))
     write_st_quad(os.path.join(BASE, "imagemap", "quad_st.ply"))
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))

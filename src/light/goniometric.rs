@@ -351,5 +351,7 @@ fn angles(l: Vec3) -> (f32, f32) {
     (gamma, c)
 }
 
+pub mod equal_area;
+
 #[cfg(test)]
 mod tests;

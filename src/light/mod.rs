@@ -35,6 +35,7 @@ pub use bounds::{DirectionCone, Importance, LightBounds};
 pub use directional::DirectionalLight;
 pub use environment::EnvironmentLight;
 pub use envmap::EnvMapLight;
+pub use goniometric::equal_area::GoniometricMapLight;
 pub use goniometric::{Fold, GoniometricLight, IntensityTable};
 pub use octahedral::{OctahedralMapLight, sphere_to_square, square_to_sphere};
 pub use point::PointLight;
@@ -65,6 +66,8 @@ pub enum Light {
     Projector(Box<ProjectorLight>),
     /// A measured luminaire (IES LM-63 or EULUMDAT): a point with a tabulated distribution.
     Goniometric(Box<GoniometricLight>),
+    /// pbrt-v4's `goniometric`: a point with an equal-area intensity image.
+    GoniometricMap(Box<GoniometricMapLight>),
 }
 
 impl Light {
@@ -89,6 +92,7 @@ impl Light {
             Light::Beam(l) => l.sample_li(p, w),
             Light::Projector(l) => l.sample_li(p, w),
             Light::Goniometric(l) => l.sample_li(p, w),
+            Light::GoniometricMap(l) => l.sample_li(p, w),
         }
     }
 
@@ -106,7 +110,8 @@ impl Light {
             | Light::Spot(_)
             | Light::Beam(_)
             | Light::Projector(_)
-            | Light::Goniometric(_) => 0.0,
+            | Light::Goniometric(_)
+            | Light::GoniometricMap(_) => 0.0,
         }
     }
 
@@ -162,6 +167,7 @@ impl Light {
             Light::Beam(l) => Some(l.sample_le(w, u_pos)),
             Light::Projector(l) => Some(l.sample_le(w, u_dir)),
             Light::Goniometric(l) => Some(l.sample_le(w, u_dir)),
+            Light::GoniometricMap(l) => Some(l.sample_le(w, u_dir)),
             Light::Directional(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
             Light::Environment(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
             Light::EnvMap(l) => Some(l.sample_le(center, radius, w, u_pos, u_dir)),
@@ -192,6 +198,7 @@ impl Light {
             Light::Spot(l) => l.pdf_le(d),
             Light::Projector(l) => l.pdf_le(d),
             Light::Goniometric(l) => l.pdf_le(d),
+            Light::GoniometricMap(l) => l.pdf_le(d),
             Light::Beam(l) => l.pdf_le(p),
             Light::Directional(l) => EmissionPdf {
                 pos: disk,
@@ -228,7 +235,8 @@ impl Light {
             | Light::Spot(_)
             | Light::Area(_)
             | Light::Projector(_)
-            | Light::Goniometric(_) => false,
+            | Light::Goniometric(_)
+            | Light::GoniometricMap(_) => false,
         }
     }
 
@@ -244,7 +252,8 @@ impl Light {
             | Light::Area(_)
             | Light::Beam(_)
             | Light::Projector(_)
-            | Light::Goniometric(_) => false,
+            | Light::Goniometric(_)
+            | Light::GoniometricMap(_) => false,
         }
     }
 
@@ -255,7 +264,8 @@ impl Light {
             | Light::Spot(_)
             | Light::Beam(_)
             | Light::Projector(_)
-            | Light::Goniometric(_) => true,
+            | Light::Goniometric(_)
+            | Light::GoniometricMap(_) => true,
             Light::Directional(l) => l.is_delta(),
             Light::Area(l) => l.invisible,
             Light::Environment(_) | Light::EnvMap(_) | Light::Octahedral(_) => false,
@@ -272,6 +282,7 @@ impl Light {
             Light::Area(l) => Some(l.bounds(&shapes[l.shape as usize], phi)),
             Light::Projector(l) => Some(l.bounds(phi)),
             Light::Goniometric(l) => Some(l.bounds(phi)),
+            Light::GoniometricMap(l) => Some(l.bounds(phi)),
             Light::Directional(_)
             | Light::Environment(_)
             | Light::EnvMap(_)
@@ -308,6 +319,7 @@ impl Light {
             Light::Beam(l) => band(&l.power),
             Light::Projector(l) => l.power(band(&l.spectrum)),
             Light::Goniometric(l) => l.power(band(&l.spectrum)),
+            Light::GoniometricMap(l) => l.power(band(&l.spectrum)),
         }
     }
 }

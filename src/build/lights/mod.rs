@@ -219,6 +219,9 @@ fn light(l: &LightDesc, r: WavelengthRange) -> Result<Light, String> {
             transform,
             amount,
         } => Light::EnvMap(Box::new(envmap(path, transform, amount, &l.spectrum, r)?)),
+        LightKind::GoniometricMap { path, transform } => Light::GoniometricMap(Box::new(
+            octahedral::goniometric_map(path, transform, &l.spectrum)?,
+        )),
         LightKind::OctahedralMap {
             path,
             transform,

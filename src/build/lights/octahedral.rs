@@ -1,6 +1,7 @@
-//! pbrt-v4's image `infinite` light, an equal-area octahedral map, made render-ready.
+//! pbrt-v4's lights in the equal-area octahedral layout made render-ready: the image
+//! `infinite` light and the `goniometric` light.
 
-use crate::light::OctahedralMapLight;
+use crate::light::{GoniometricMapLight, OctahedralMapLight};
 use crate::loader::desc::{EnvMapAmount, TransformStep};
 use crate::spectrum::{Spectrum, WavelengthRange};
 
@@ -35,4 +36,42 @@ pub(super) fn octahedral(
         ))
     })?;
     at(illuminant.scaled(k as f32))
+}
+
+/// A goniometric light's image read (square; 8- and 16-bit files decoded from sRGB), made grey
+/// as the mean of its linear R, G, B, and placed by a rigid `transform`.
+pub(super) fn goniometric_map(
+    path: &std::path::Path,
+    transform: &[TransformStep],
+    spectrum: &Spectrum,
+) -> Result<GoniometricMapLight, String> {
+    let img = crate::image_io::read_rgb(path).map_err(|e| e.to_string())?;
+    let err = |e: String| format!("{}: {e}", path.display());
+    if img.width != img.height {
+        return Err(err(format!(
+            "a goniometric light's image must be square (equal-area, pbrt-v4), not {} × {}",
+            img.width, img.height
+        )));
+    }
+    let grey = super::sources::linear_rgb(img.rgb, img.encoding)
+        .iter()
+        .map(|p| (p[0] + p[1] + p[2]) / 3.0)
+        .collect();
+    let t = super::super::shapes::steps(transform, 1.0, false)?;
+    let m = glam::Mat3::from_mat4(t.matrix());
+    let rigid = (m.transpose() * m - glam::Mat3::IDENTITY)
+        .to_cols_array()
+        .iter()
+        .all(|x| x.abs() < 1e-4);
+    if !rigid {
+        return Err("a goniometric light's frame must be a rotation (no scale or shear)".into());
+    }
+    GoniometricMapLight::new(
+        t.point(glam::Vec3::ZERO),
+        m,
+        spectrum.clone(),
+        img.width,
+        grey,
+    )
+    .map_err(err)
 }

@@ -96,6 +96,15 @@ pub enum LightKind {
         image: TextureDesc,
         constant_intensity: bool,
     },
+    /// pbrt-v4's `goniometric` light (`crate::light::GoniometricMapLight`): a point at the
+    /// origin of `transform` (rigid) whose intensity is the light's `spectrum` times the grey
+    /// of the square image at `path` (the mean of its linear R, G, B; 8- and 16-bit files
+    /// decoded from sRGB), laid over the directions of the transform's frame in the
+    /// equal-area octahedral layout.
+    GoniometricMap {
+        path: PathBuf,
+        transform: Vec<TransformStep>,
+    },
     /// A measured luminaire (an IES LM-63 or EULUMDAT file, `crate::light::GoniometricLight`):
     /// its photometric nadir (γ = 0°) points from `position` at `target`, its C = 0° plane
     /// toward `c0` (a direction, made perpendicular to the nadir; None: world +x, or +z when

@@ -107,6 +107,7 @@ pub(super) fn light(kind: &str, p: &Params, ctm: &DMat4, loc: Loc, r: &Reader) -
             )
         }
         "projection" => return projection(p, ctm, loc, r, scale),
+        "goniometric" => return goniometric(p, ctm, loc, r, scale),
         "infinite" if p.get("filename").is_some() => {
             return image_infinite(p, ctm, loc, r, scale);
         }
@@ -125,7 +126,7 @@ pub(super) fn light(kind: &str, p: &Params, ctm: &DMat4, loc: Loc, r: &Reader) -
         other => {
             return Err(p.err(
                 loc,
-                format!("the light \"{other}\" is not read yet (spectrace reads point, spot, projection, distant and infinite)"),
+                format!("the light \"{other}\" is not read yet (spectrace reads point, spot, goniometric, projection, distant and infinite)"),
             ));
         }
     };
@@ -184,8 +185,8 @@ fn image_infinite(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> 
 
 /// A `projection` light (pbrt-v4's `ProjectionLight`): the image `filename` thrown from the
 /// CTM's origin along its +z, `fov` (degrees, 90 by default) across the image's shorter axis;
-/// each pixel's RGB an `RGBIlluminantSpectrum` of the sRGB space (its D65 of luminance 1) times
-/// `scale`, looked up at the nearest pixel, as an intensity constant over the pixel's
+/// each pixel's RGB (8- and 16-bit files decoded from sRGB, as pbrt-v4's `Image::Read`) an
+/// `RGBIlluminantSpectrum` of the sRGB space (its D65 of luminance 1) times `scale`, looked up at the nearest pixel, as an intensity constant over the pixel's
 /// directions (no cos³ law: [`crate::light::ProjectorLaw::Intensity`]). `power` (∫ȳ·Φ dλ
 /// over the frustum) sets the scale as pbrt-v4 does: power / (A · the mean over pixels of
 /// lum(rgb)·cos³θ at their centres), A the image's area on the plane z = 1.
@@ -208,15 +209,12 @@ fn projection(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> R<Li
             format!("fov must lie in (0, 180) degrees, not {fov}"),
         ));
     }
-    // pbrt-v4 reads PNG files as sRGB-encoded and others as stored
-    let srgb = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("png"));
     let power = p.float("power", -1.0)?;
     let k = if power > 0.0 {
         let img = crate::image_io::read_rgb(&path)
             .map_err(|e| p.err(p.loc_of("filename"), e.to_string()))?;
-        let decode = srgb && img.encoding == Encoding::Srgb;
+        // pbrt-v4's lights read 8- and 16-bit files as sRGB-encoded (`Image::Read`)
+        let decode = img.encoding == Encoding::Srgb;
         let lin = |v: f32| {
             if decode {
                 crate::colour::spaces::srgb_decode(v as f64)
@@ -262,7 +260,7 @@ fn projection(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> R<Li
         filter: TexFilter::Nearest,
         wrap: Wrap::Clamp,
         to_uv: Vec::new(),
-        srgb,
+        srgb: true,
         grey: false,
         scale: 1.0,
         invert: false,
@@ -279,6 +277,70 @@ fn projection(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> R<Li
             constant_intensity: true,
         },
         spectrum: d65.scaled((scale * k) as f32),
+        sampling_weight: 1.0,
+        loc,
+    })
+}
+
+/// A `goniometric` light (pbrt-v4's `GoniometricLight`): at the CTM's origin, its intensity
+/// `I` (a spectrum of luminance 1, times `scale`) times the grey of the square image
+/// `filename` (the mean of its linear R, G, B), laid over the sphere in the equal-area
+/// octahedral layout after pbrt-v4's swap of the light's y and z axes (the image's centre
+/// along the light's +y). `power` (∫ȳ·Φ dλ) sets the scale to power / (4π · mean pixel), as
+/// pbrt-v4 does. Without `filename` pbrt-v4 warns and emits nothing; here it is an error.
+fn goniometric(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> R<LightDesc> {
+    let name = p.string("filename")?.ok_or_else(|| {
+        p.err(
+            loc,
+            "a goniometric light needs a \"string filename\" (pbrt-v4 warns and emits nothing)",
+        )
+    })?;
+    let path = r.resolve(&r.root, &name);
+    if !path.is_file() {
+        return Err(p.err(
+            p.loc_of("filename"),
+            format!("no image \"{}\"", path.display()),
+        ));
+    }
+    let (s, k) = spectra::illuminant(p, "I")?;
+    let power = p.float("power", -1.0)?;
+    let k = if power > 0.0 {
+        let img = crate::image_io::read_rgb(&path)
+            .map_err(|e| p.err(p.loc_of("filename"), e.to_string()))?;
+        let decode = img.encoding == crate::image_io::Encoding::Srgb;
+        let lin = |v: f32| {
+            if decode {
+                crate::colour::spaces::srgb_decode(v as f64)
+            } else {
+                v as f64
+            }
+        };
+        let sum: f64 = img
+            .rgb
+            .iter()
+            .map(|px| (lin(px[0]) + lin(px[1]) + lin(px[2])) / 3.0)
+            .sum();
+        let mean = sum / img.rgb.len().max(1) as f64;
+        if !(mean > 0.0) {
+            return Err(p.err(
+                p.loc_of("power"),
+                "a goniometric light with \"power\" needs an image that is not black",
+            ));
+        }
+        k * power / (4.0 * PI * mean)
+    } else {
+        k
+    };
+    // pbrt-v4 swaps the light's y and z (its images have "up" along +z, its scenes along +y);
+    // the columns made unit (a uniform scale does not change the directions)
+    let c = |i: usize| ctm.col(i).truncate().normalize_or_zero().extend(0.0);
+    let frame = DMat4::from_cols(c(0), c(2), c(1), ctm.col(3));
+    Ok(LightDesc {
+        kind: LightKind::GoniometricMap {
+            path,
+            transform: vec![super::shapes::matrix_step(&frame)],
+        },
+        spectrum: s.scaled((scale * k) as f32),
         sampling_weight: 1.0,
         loc,
     })
