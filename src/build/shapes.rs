@@ -149,6 +149,30 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
                     .map_err(|e| e.to_string())?,
             )
         }
+        ShapeKind::BSplinePoints {
+            curves,
+            pbrt_shading,
+        } => {
+            if s.emission.is_some() {
+                return Err("a curve cannot be an area emitter".into());
+            }
+            let t = transform(s, true)?;
+            let curves: Vec<Vec<(Vec3, f32)>> = curves
+                .iter()
+                .map(|c| {
+                    c.iter()
+                        .map(|(p, r)| (t.point(Vec3::from(p.map(|x| x as f32))), *r as f32))
+                        .collect()
+                })
+                .collect();
+            let c =
+                crate::geometry::shape::BSplineCurve::new(&curves).map_err(|e| e.to_string())?;
+            Shape::BSpline(if *pbrt_shading {
+                c.with_pbrt_shading()
+            } else {
+                c
+            })
+        }
         ShapeKind::SdfGrid {
             res,
             values,

@@ -23,6 +23,9 @@
 //!
 //! uv as Mitsuba 3.9.1 defines it (`bsplinecurve.cpp`): v = (segment + s)/segments over all
 //! curves, u the angle of the hit around the tangent c'(s) (as `linearcurve`'s, over 2π).
+//!
+//! Curves read from pbrt-v4 are hit and shaded as pbrt-v4's ribbons instead
+//! ([`BSplineCurve::with_pbrt_shading`]).
 
 use super::Intersection;
 use super::curve::{angle_around, capsule_hit, read_polylines};
@@ -44,6 +47,8 @@ pub struct BSplineCurve {
     radii: Vec<f32>,
     /// Index of each segment's first control point (three more follow it).
     segments: Vec<u32>,
+    /// pbrt-v4's `cylinder` curve shading ([`BSplineCurve::with_pbrt_shading`]).
+    pbrt_shading: bool,
 }
 
 /// A segment's centre line and radius at s, with their first and second derivatives in s.
@@ -58,13 +63,15 @@ struct Eval {
 
 impl BSplineCurve {
     /// Curves from polylines of (point, radius); each needs four control points or more,
-    /// finite coordinates and radii > 0.
+    /// finite coordinates and radii, and a radius > 0 at each segment's ends and middle (a
+    /// control radius may be ≤ 0, as a linear taper's outer control values are).
     pub fn new(curves: &[Vec<(Vec3, f32)>]) -> Result<Self, GeometryError> {
         let bad = |m: String| GeometryError::Curve(m);
         let mut c = Self {
             points: vec![],
             radii: vec![],
             segments: vec![],
+            pbrt_shading: false,
         };
         for (k, line) in curves.iter().enumerate() {
             if line.len() < 4 {
@@ -75,13 +82,30 @@ impl BSplineCurve {
             }
             let first = c.points.len() as u32;
             for (i, &(p, r)) in line.iter().enumerate() {
-                if !(p.is_finite() && r > 0.0 && r.is_finite()) {
+                if !(p.is_finite() && r.is_finite()) {
                     return Err(bad(format!("curve {k}, control point {i}: {p} radius {r}")));
                 }
                 c.points.push(p);
                 c.radii.push(r);
             }
             let n = line.len() as u32 - 3;
+            for j in 0..n as usize {
+                let r = &c.radii[first as usize + j..first as usize + j + 4];
+                let at = |s: f32| {
+                    let b = [
+                        (1.0 - s).powi(3),
+                        3.0 * s * s * s - 6.0 * s * s + 4.0,
+                        -3.0 * s * s * s + 3.0 * s * s + 3.0 * s + 1.0,
+                        s * s * s,
+                    ];
+                    (0..4).map(|k| b[k] * r[k]).sum::<f32>() / 6.0
+                };
+                if !(at(0.0) > 0.0 && at(0.5) > 0.0 && at(1.0) > 0.0) {
+                    return Err(bad(format!(
+                        "curve {k}, segment {j}: its radius is not positive along it"
+                    )));
+                }
+            }
             c.segments.extend((0..n).map(|j| first + j));
         }
         if c.segments.is_empty() {
@@ -94,6 +118,18 @@ impl BSplineCurve {
     /// between curves; positions transformed, radii not).
     pub fn load(path: &Path, transform: &Transform) -> Result<Self, GeometryError> {
         let lines = read_polylines(path, transform)?;
+        // a file's radii are Mitsuba's: each control point's own, > 0
+        if let Some((k, i, r)) = lines.iter().enumerate().find_map(|(k, l)| {
+            l.iter()
+                .enumerate()
+                .find(|(_, (_, r))| !(*r > 0.0))
+                .map(|(i, (_, r))| (k, i, *r))
+        }) {
+            return Err(GeometryError::MeshParse {
+                path: path.to_path_buf(),
+                message: format!("curve {k}, control point {i}: radius {r} (must be > 0)"),
+            });
+        }
         Self::new(&lines).map_err(|e| GeometryError::MeshParse {
             path: path.to_path_buf(),
             message: e.to_string(),
@@ -153,6 +189,9 @@ impl BSplineCurve {
     /// The entering hit of `ray` with segment `i`, t in (0, t_max), and its s ∈ [0, 1] (module
     /// docs, steps 1–3).
     pub(crate) fn intersect(&self, i: usize, ray: &Ray) -> Option<(f32, f32)> {
+        if self.pbrt_shading {
+            return self.intersect_ribbon(i, ray);
+        }
         let (_, radii) = self.control(i);
         let scale = radii.into_iter().fold(0.0, f32::max);
         let t_min = 1e-4 * scale;
@@ -251,10 +290,28 @@ impl BSplineCurve {
             .then_some(s.clamp(0.0, 1.0))
     }
 
+    /// These curves hit as pbrt-v4 hits its `cylinder` curves (`Curve::RecursiveIntersect`,
+    /// src/pbrt/shapes.cpp): a ribbon through the centre line facing the ray, whose outline is
+    /// the tube's but whose ends are where the centre line ends as seen along the ray; the hit
+    /// point is where the ray crosses the centre line's depth (pbrt-v4's tHit), with pbrt-v4's
+    /// error bound, the width, and its normal is pbrt-v4's: the ribbon's, turned about the
+    /// tangent by θ = π·(v − ½), v ∈ [0, 1] the hit's place across the width, linear in the
+    /// offset from the centre line (a true tube's angle is its arcsine), and turned the way
+    /// pbrt-v4 turns it, away from the hit's side (`Rotate(-theta, dpdu)` applied to ∂p/∂v):
+    /// pbrt-v4's cylinders are lit on the side away from a light, as a trough would be.
+    pub fn with_pbrt_shading(mut self) -> Self {
+        self.pbrt_shading = true;
+        self
+    }
+
     /// The surface point at `p_approx` on segment `i`, its closest centre-line point at `s`
-    /// (Mitsuba's normal: (|c'|² − q·c'')·q − r·r'·c', q = p − c).
-    pub(crate) fn interaction(&self, i: usize, p_approx: Vec3, s: f32) -> Intersection {
+    /// (Mitsuba's normal: (|c'|² − q·c'')·q − r·r'·c', q = p − c), hit by `ray` (which only
+    /// pbrt-v4's curves read).
+    pub(crate) fn interaction(&self, i: usize, p_approx: Vec3, s: f32, ray: &Ray) -> Intersection {
         let e = self.eval(i, s);
+        if self.pbrt_shading {
+            return self.pbrt_interaction(i, &e, s, ray);
+        }
         let axis = e.dc.try_normalize().unwrap_or(Vec3::X);
         let q = (p_approx - e.c)
             .try_normalize()
@@ -274,6 +331,88 @@ impl BSplineCurve {
             uv: Vec2::new(angle_around(axis, q) / (2.0 * PI), (s + i as f32) / count),
             dpdu: axis.cross(qr) * (2.0 * PI),
             dpdv: e.dc * count,
+            shape: 0,
+            prim: i as u32,
+        }
+    }
+}
+
+impl BSplineCurve {
+    /// pbrt-v4's ribbon test on segment `i` (`Curve::RecursiveIntersect`): seen along the
+    /// ray, the centre line's point nearest the ray, c(s) with s ∈ [0, 1] a stationary point of
+    /// |P(c(s) − o)|² (P = I − d̂d̂ᵀ: g(s) = P(c − o)·Pc' = 0, by Newton's method from each
+    /// piece whose bounding capsule the ray meets), must lie within r(s) of it; the hit is at
+    /// c(s)'s depth along the ray, t in (0, t_max). So the curve ends where the projected
+    /// centre line does, as pbrt-v4's ribbon ends, rather than at the tube's end planes.
+    fn intersect_ribbon(&self, i: usize, ray: &Ray) -> Option<(f32, f32)> {
+        let dd = ray.d.length_squared();
+        let d = ray.d / dd.sqrt();
+        let proj = |v: Vec3| v - d * v.dot(d);
+        let mut best: Option<(f32, f32)> = None;
+        let mut prev = self.eval(i, 0.0);
+        for k in 0..PIECES {
+            let (s0, s1) = (k as f32 / PIECES as f32, (k + 1) as f32 / PIECES as f32);
+            let next = self.eval(i, s1);
+            let ds = s1 - s0;
+            let sag = prev.ddc.length().max(next.ddc.length()) * ds * ds / 8.0;
+            let bound = prev.r.max(next.r) + sag;
+            let start = capsule_hit(prev.c, next.c, bound * 1.001, ray, f32::NEG_INFINITY);
+            prev = next;
+            let Some((_, f)) = start else { continue };
+            let mut s = s0 + f * ds;
+            for _ in 0..12 {
+                let e = self.eval(i, s);
+                let (w, dc) = (proj(e.c - ray.o), proj(e.dc));
+                let dg = dc.dot(dc) + w.dot(proj(e.ddc));
+                if !(dg > 0.0) {
+                    break;
+                }
+                let step = w.dot(dc) / dg;
+                s = (s - step).clamp(-0.25, 1.25);
+                if step.abs() <= 1e-7 {
+                    break;
+                }
+            }
+            if !(0.0..=1.0).contains(&s) {
+                continue;
+            }
+            let e = self.eval(i, s);
+            let t = (e.c - ray.o).dot(ray.d) / dd;
+            let near = proj(e.c - ray.o).length_squared() <= e.r * e.r;
+            if near && t > 0.0 && t < ray.t_max && best.is_none_or(|b| t < b.0) {
+                best = Some((t, s));
+            }
+        }
+        best
+    }
+
+    /// pbrt-v4's hit on segment `i` at `s` ([`BSplineCurve::with_pbrt_shading`]): the point
+    /// of `ray` at the depth of the centre line's point c(s), and the ribbon's normal (facing
+    /// the ray, perpendicular to the tangent) turned by θ = (π/2)·x away from the hit's side,
+    /// x ∈ [−1, 1] the hit's offset from c(s) across the ribbon in radii. The normal serves as
+    /// both the geometric and the shading one, as pbrt-v4's single normal does.
+    fn pbrt_interaction(&self, i: usize, e: &Eval, s: f32, ray: &Ray) -> Intersection {
+        let axis = e.dc.try_normalize().unwrap_or(Vec3::X);
+        let d = ray.d.normalize();
+        let p = ray.o + d * (e.c - ray.o).dot(d);
+        let facing = (-d - axis * (-d).dot(axis))
+            .try_normalize()
+            .unwrap_or(axis.any_orthonormal_vector());
+        let across = axis.cross(facing);
+        let x = ((p - e.c).dot(across) / e.r).clamp(-1.0, 1.0);
+        let theta = std::f32::consts::FRAC_PI_2 * x;
+        let n = facing * theta.cos() - across * theta.sin();
+        let count = self.segments.len() as f32;
+        Intersection {
+            t: 0.0,
+            p,
+            // pbrt-v4's error bound, the width: rays leave the hit that far off the ribbon
+            p_error: Vec3::splat(2.0 * e.r),
+            n_geom: n,
+            n_shading: n,
+            uv: Vec2::new((s + i as f32) / count, 0.5 * (1.0 + x)),
+            dpdu: e.dc * count,
+            dpdv: across * (2.0 * e.r),
             shape: 0,
             prim: i as u32,
         }
@@ -311,7 +450,8 @@ mod tests {
         assert!(first(Vec3::new(2.0, r * 1.001, 5.0), -Vec3::Z).is_none());
         assert!(first(Vec3::new(2.0, 0.0, 0.0), Vec3::Z).is_none());
         // uv: v over the three segments, the normal outward
-        let it = c.interaction(1, Vec3::new(2.5, 0.0, r), 0.5);
+        let probe = Ray::new(Vec3::new(2.5, 0.0, 5.0), Vec3::NEG_Z);
+        let it = c.interaction(1, Vec3::new(2.5, 0.0, r), 0.5, &probe);
         assert!((it.uv.y - 0.5).abs() < 1e-6 && (it.n_geom - Vec3::Z).length() < 1e-5);
     }
 
@@ -382,7 +522,7 @@ mod tests {
                     field(i, p + Vec3::Z * h, s).unwrap() - field(i, p - Vec3::Z * h, s).unwrap(),
                 )
                 .normalize();
-                let n = c.interaction(i, p, s).n_geom;
+                let n = c.interaction(i, p, s, &ray).n_geom;
                 assert!(n.dot(g) > 0.9999, "normal {n} vs gradient {g}");
                 checked += 1;
             }

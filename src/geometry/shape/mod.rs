@@ -326,8 +326,8 @@ impl Shape {
             (Shape::Mesh(m), _) => m.interaction(prim, [1.0 / 3.0; 3]),
             (Shape::Curve(c), PrimHit::Curve { s }) => c.interaction(prim, ray.at(t), *s),
             (Shape::Curve(c), _) => c.interaction(prim, ray.at(t), 0.5),
-            (Shape::BSpline(c), PrimHit::Curve { s }) => c.interaction(prim, ray.at(t), *s),
-            (Shape::BSpline(c), _) => c.interaction(prim, ray.at(t), 0.5),
+            (Shape::BSpline(c), PrimHit::Curve { s }) => c.interaction(prim, ray.at(t), *s, ray),
+            (Shape::BSpline(c), _) => c.interaction(prim, ray.at(t), 0.5, ray),
             (Shape::SdfGrid(g), _) => g.interaction(prim, ray.at(t)),
         };
         it.t = t;

@@ -66,6 +66,15 @@ pub enum ShapeKind {
     BSplineCurve {
         path: PathBuf,
     },
+    /// Uniform cubic B-spline curves written in the scene (as `BSplineCurve`'s): per curve,
+    /// four control points or more, each a point in the scene's length unit (placed by the
+    /// shape's transform) and a radius in m (not transformed; a control radius may be ≤ 0
+    /// where the spline's radius stays positive, as a taper's outer control values are).
+    BSplinePoints {
+        curves: Vec<Vec<([f64; 3], f64)>>,
+        /// Shaded as pbrt-v4 shades its `cylinder` curves (`BSplineCurve::with_pbrt_shading`).
+        pbrt_shading: bool,
+    },
     /// Mitsuba's `sdfgrid`: distances at `res` points (x fastest) over the object's unit cube;
     /// `smooth` shading normals or the gradient's.
     SdfGrid {

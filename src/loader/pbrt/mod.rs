@@ -8,6 +8,7 @@
 //! is an error naming it.
 
 mod camera;
+mod curves;
 mod kinds;
 mod lexer;
 mod lights;

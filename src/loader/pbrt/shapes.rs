@@ -122,6 +122,7 @@ pub(super) fn shape(
             }
         }
         "trianglemesh" => meshes::triangle_mesh(p, loc, r.state.reverse_orientation)?,
+        "curve" => super::curves::curve(p, loc, &r.state.ctm)?,
         "loopsubdiv" => meshes::loop_subdiv(p, loc)?,
         // pbrt-v4 makes a light of each patch, `power` spread over its own area
         "bilinearmesh" => {
@@ -172,7 +173,7 @@ pub(super) fn shape(
         other => {
             return Err(p.err(
                 loc,
-                format!("the shape \"{other}\" is not read yet (spectrace reads sphere, cylinder, disk, trianglemesh, bilinearmesh, plymesh and loopsubdiv)"),
+                format!("the shape \"{other}\" is not read yet (spectrace reads sphere, cylinder, disk, trianglemesh, bilinearmesh, plymesh, loopsubdiv and curve)"),
             ));
         }
     };
@@ -274,10 +275,15 @@ fn finish_shape(
                 format!("an image texture on a PLY mesh without uv ({}) is not read yet (pbrt-v4 gives each triangle its own default uv)", path.display()),
             ));
         }
-        ShapeKind::Sphere { .. } | ShapeKind::Disk | ShapeKind::Cylinder { .. } if textured => {
+        ShapeKind::Sphere { .. }
+        | ShapeKind::Disk
+        | ShapeKind::Cylinder { .. }
+        | ShapeKind::BSplinePoints { .. }
+            if textured =>
+        {
             return Err(p.err(
                 loc,
-                "an image texture on a sphere, disk or cylinder is not read yet (pbrt-v4's uv of quadrics differ from spectrace's)",
+                "an image texture on a sphere, disk, cylinder or curve is not read yet (pbrt-v4's uv of these differ from spectrace's)",
             ));
         }
         k => k,
