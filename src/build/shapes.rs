@@ -149,10 +149,7 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
                     .map_err(|e| e.to_string())?,
             )
         }
-        ShapeKind::BSplinePoints {
-            curves,
-            pbrt_shading,
-        } => {
+        ShapeKind::BSplinePoints { curves, pbrt } => {
             if s.emission.is_some() {
                 return Err("a curve cannot be an area emitter".into());
             }
@@ -167,10 +164,9 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
                 .collect();
             let c =
                 crate::geometry::shape::BSplineCurve::new(&curves).map_err(|e| e.to_string())?;
-            Shape::BSpline(if *pbrt_shading {
-                c.with_pbrt_shading()
-            } else {
-                c
+            Shape::BSpline(match pbrt {
+                Some(kind) => c.with_pbrt_shading(*kind),
+                None => c,
             })
         }
         ShapeKind::SdfGrid {

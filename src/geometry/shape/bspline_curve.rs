@@ -47,8 +47,17 @@ pub struct BSplineCurve {
     radii: Vec<f32>,
     /// Index of each segment's first control point (three more follow it).
     segments: Vec<u32>,
-    /// pbrt-v4's `cylinder` curve shading ([`BSplineCurve::with_pbrt_shading`]).
-    pbrt_shading: bool,
+    /// Hit and shaded as pbrt-v4's curves of this type ([`BSplineCurve::with_pbrt_shading`]).
+    pbrt: Option<PbrtCurve>,
+}
+
+/// The pbrt-v4 curve types spectrace reads (`CurveType`, src/pbrt/shapes.h).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PbrtCurve {
+    /// The ribbon shaded with its own normal, facing the ray.
+    Flat,
+    /// The ribbon's normal turned across the width to look round.
+    Cylinder,
 }
 
 /// A segment's centre line and radius at s, with their first and second derivatives in s.
@@ -71,7 +80,7 @@ impl BSplineCurve {
             points: vec![],
             radii: vec![],
             segments: vec![],
-            pbrt_shading: false,
+            pbrt: None,
         };
         for (k, line) in curves.iter().enumerate() {
             if line.len() < 4 {
@@ -189,7 +198,7 @@ impl BSplineCurve {
     /// The entering hit of `ray` with segment `i`, t in (0, t_max), and its s ∈ [0, 1] (module
     /// docs, steps 1–3).
     pub(crate) fn intersect(&self, i: usize, ray: &Ray) -> Option<(f32, f32)> {
-        if self.pbrt_shading {
+        if self.pbrt.is_some() {
             return self.intersect_ribbon(i, ray);
         }
         let (_, radii) = self.control(i);
@@ -299,8 +308,9 @@ impl BSplineCurve {
     /// offset from the centre line (a true tube's angle is its arcsine), and turned the way
     /// pbrt-v4 turns it, away from the hit's side (`Rotate(-theta, dpdu)` applied to ∂p/∂v):
     /// pbrt-v4's cylinders are lit on the side away from a light, as a trough would be.
-    pub fn with_pbrt_shading(mut self) -> Self {
-        self.pbrt_shading = true;
+    /// A [`PbrtCurve::Flat`] curve keeps the ribbon's own normal.
+    pub fn with_pbrt_shading(mut self, kind: PbrtCurve) -> Self {
+        self.pbrt = Some(kind);
         self
     }
 
@@ -309,8 +319,8 @@ impl BSplineCurve {
     /// pbrt-v4's curves read).
     pub(crate) fn interaction(&self, i: usize, p_approx: Vec3, s: f32, ray: &Ray) -> Intersection {
         let e = self.eval(i, s);
-        if self.pbrt_shading {
-            return self.pbrt_interaction(i, &e, s, ray);
+        if let Some(kind) = self.pbrt {
+            return self.pbrt_interaction(i, &e, s, ray, kind);
         }
         let axis = e.dc.try_normalize().unwrap_or(Vec3::X);
         let q = (p_approx - e.c)
@@ -391,7 +401,14 @@ impl BSplineCurve {
     /// the ray, perpendicular to the tangent) turned by θ = (π/2)·x away from the hit's side,
     /// x ∈ [−1, 1] the hit's offset from c(s) across the ribbon in radii. The normal serves as
     /// both the geometric and the shading one, as pbrt-v4's single normal does.
-    fn pbrt_interaction(&self, i: usize, e: &Eval, s: f32, ray: &Ray) -> Intersection {
+    fn pbrt_interaction(
+        &self,
+        i: usize,
+        e: &Eval,
+        s: f32,
+        ray: &Ray,
+        kind: PbrtCurve,
+    ) -> Intersection {
         let axis = e.dc.try_normalize().unwrap_or(Vec3::X);
         let d = ray.d.normalize();
         let p = ray.o + d * (e.c - ray.o).dot(d);
@@ -400,7 +417,10 @@ impl BSplineCurve {
             .unwrap_or(axis.any_orthonormal_vector());
         let across = axis.cross(facing);
         let x = ((p - e.c).dot(across) / e.r).clamp(-1.0, 1.0);
-        let theta = std::f32::consts::FRAC_PI_2 * x;
+        let theta = match kind {
+            PbrtCurve::Cylinder => std::f32::consts::FRAC_PI_2 * x,
+            PbrtCurve::Flat => 0.0,
+        };
         let n = facing * theta.cos() - across * theta.sin();
         let count = self.segments.len() as f32;
         Intersection {

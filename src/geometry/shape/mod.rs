@@ -28,7 +28,7 @@ mod sphere;
 mod triangle;
 mod triangle4;
 
-pub use bspline_curve::BSplineCurve;
+pub use bspline_curve::{BSplineCurve, PbrtCurve};
 pub use curve::LinearCurve;
 pub use cylinder::Cylinder;
 pub use disk::Disk;

@@ -72,8 +72,9 @@ pub enum ShapeKind {
     /// where the spline's radius stays positive, as a taper's outer control values are).
     BSplinePoints {
         curves: Vec<Vec<([f64; 3], f64)>>,
-        /// Shaded as pbrt-v4 shades its `cylinder` curves (`BSplineCurve::with_pbrt_shading`).
-        pbrt_shading: bool,
+        /// Hit and shaded as pbrt-v4's curves of this type (`BSplineCurve::with_pbrt_shading`);
+        /// None: round tubes, as Mitsuba's.
+        pbrt: Option<crate::geometry::shape::PbrtCurve>,
     },
     /// Mitsuba's `sdfgrid`: distances at `res` points (x fastest) over the object's unit cube;
     /// `smooth` shading normals or the gradient's.

@@ -8,8 +8,8 @@
 //! pbrt-v4's normal and error bound), so a `cylinder` curve renders as pbrt-v4's; a true tube's
 //! normal would reflect π/4 ÷ 2/π = 1.23 times as much light back toward a light behind the
 //! eye, and pbrt-v4 turns the normal away from the hit's side, so its cylinders are lit on the
-//! side away from a light. `flat` curves (pbrt-v4's default, shaded facing the ray) and
-//! `ribbon` curves (turned by normals `N`) are refused.
+//! side away from a light. `flat` curves (pbrt-v4's default) keep the ribbon's own normal,
+//! facing the ray; `ribbon` curves (turned by normals `N`) are refused.
 //!
 //! The curve's control points: `bezier` segments (degree 3, or degree 2 raised to 3) each
 //! become one uniform cubic B-spline of four points with the same centre line
@@ -21,10 +21,12 @@
 use glam::{DMat4, DVec3};
 
 use super::params::{Params, R};
+use crate::geometry::shape::PbrtCurve;
 use crate::loader::Loc;
 use crate::loader::desc::ShapeKind;
 
-/// A `curve`'s B-spline curves, in object space, radii scaled by the CTM's (uniform) scale.
+/// A `curve`'s B-spline curves, in object space, radii scaled by the CTM's (uniform) scale,
+/// of pbrt-v4's `flat` (its default) or `cylinder` type.
 pub(super) fn curve(p: &Params, loc: Loc, ctm: &DMat4) -> R<ShapeKind> {
     let width = p.float("width", 1.0)?;
     let (w0, w1) = (p.float("width0", width)?, p.float("width1", width)?);
@@ -33,18 +35,19 @@ pub(super) fn curve(p: &Params, loc: Loc, ctm: &DMat4) -> R<ShapeKind> {
     let kind = p.string("type")?.unwrap_or_else(|| "flat".into());
     // pbrt-v4's recursion depth for its ribbon test: the tube needs none
     let _ = p.int("splitdepth", 3)?;
-    match kind.as_str() {
-        "cylinder" => {}
-        "flat" | "ribbon" => {
+    let kind = match kind.as_str() {
+        "cylinder" => PbrtCurve::Cylinder,
+        "flat" => PbrtCurve::Flat,
+        "ribbon" => {
             return Err(p.err(
-                if p.get("type").is_some() { p.loc_of("type") } else { loc },
-                format!("a \"{kind}\" curve is not read yet (spectrace reads \"cylinder\" curves, as tubes; pbrt-v4's default type is \"flat\")"),
+                p.loc_of("type"),
+                "a \"ribbon\" curve is not read yet (spectrace reads \"flat\" and \"cylinder\" curves)",
             ));
         }
         other => {
             return Err(p.err(p.loc_of("type"), format!("unknown curve type \"{other}\"")));
         }
-    }
+    };
     // pbrt-v4 ignores normals on a cylinder curve, with a warning
     let _ = p.nums("N", &["normal", "normal3"])?;
     if !(w0 > 0.0 && w1 > 0.0 && w0.is_finite() && w1.is_finite()) {
@@ -93,7 +96,7 @@ pub(super) fn curve(p: &Params, loc: Loc, ctm: &DMat4) -> R<ShapeKind> {
             .collect();
         return Ok(ShapeKind::BSplinePoints {
             curves: vec![curve],
-            pbrt_shading: true,
+            pbrt: Some(kind),
         });
     }
     let curves = (0..segments)
@@ -113,7 +116,7 @@ pub(super) fn curve(p: &Params, loc: Loc, ctm: &DMat4) -> R<ShapeKind> {
         .collect();
     Ok(ShapeKind::BSplinePoints {
         curves,
-        pbrt_shading: true,
+        pbrt: Some(kind),
     })
 }
 
