@@ -1,5 +1,5 @@
-//! pbrt-v4's lights (`src/pbrt/lights.cpp`): `LightSource` kinds and the `AreaLightSource`
-//! state, with pbrt-v4's photometric normalisations.
+//! pbrt-v4's lights (`src/pbrt/lights.cpp`): `LightSource` kinds, with pbrt-v4's photometric
+//! normalisations (the `AreaLightSource` state is in `area_light.rs`).
 
 use std::f64::consts::PI;
 
@@ -14,16 +14,26 @@ use crate::spectrum::Spectrum;
 use crate::texture::{TexFilter, Wrap};
 use crate::units::{Angle, angle::degree};
 
-/// An `AreaLightSource "diffuse"`: its emitted radiance (W·m⁻²·sr⁻¹·nm⁻¹ per unit of pbrt's
-/// spectrum, see [`spectra::illuminant`]) and whether both sides emit.
-#[derive(Clone, Debug)]
-pub(super) struct AreaLight {
-    pub spectrum: Spectrum,
-    pub scale: f64,
-    pub two_sided: bool,
-    /// pbrt-v4's `power` (∫ȳ·Φ dλ of each shape, each triangle of a mesh), if given.
-    pub power: Option<f64>,
-    pub loc: Loc,
+/// The linear RGB pixels of a light's image and its width (8- and 16-bit files decoded from
+/// sRGB, as pbrt-v4's `Image::Read` reads them), or an error at `filename`.
+pub(super) fn light_image(p: &Params, path: &std::path::Path) -> R<(Vec<[f64; 3]>, usize)> {
+    let img =
+        crate::image_io::read_rgb(path).map_err(|e| p.err(p.loc_of("filename"), e.to_string()))?;
+    let decode = img.encoding == crate::image_io::Encoding::Srgb;
+    let lin = |v: f32| {
+        if decode {
+            crate::colour::spaces::srgb_decode(v as f64)
+        } else {
+            v as f64
+        }
+    };
+    Ok((img.rgb.iter().map(|px| px.map(lin)).collect(), img.width))
+}
+
+/// Luminance of a linear sRGB colour (the colour space's Y row, as pbrt-v4's
+/// `LuminanceVector`).
+pub(super) fn luminance(c: [f64; 3]) -> f64 {
+    0.212_639 * c[0] + 0.715_169 * c[1] + 0.072_192 * c[2]
 }
 
 /// A `LightSource`.
@@ -191,7 +201,6 @@ fn image_infinite(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> 
 /// over the frustum) sets the scale as pbrt-v4 does: power / (A · the mean over pixels of
 /// lum(rgb)·cos³θ at their centres), A the image's area on the plane z = 1.
 fn projection(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> R<LightDesc> {
-    use crate::image_io::Encoding;
     let name = p
         .string("filename")?
         .ok_or_else(|| p.err(loc, "a projection light needs a \"string filename\""))?;
@@ -211,18 +220,8 @@ fn projection(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> R<Li
     }
     let power = p.float("power", -1.0)?;
     let k = if power > 0.0 {
-        let img = crate::image_io::read_rgb(&path)
-            .map_err(|e| p.err(p.loc_of("filename"), e.to_string()))?;
-        // pbrt-v4's lights read 8- and 16-bit files as sRGB-encoded (`Image::Read`)
-        let decode = img.encoding == Encoding::Srgb;
-        let lin = |v: f32| {
-            if decode {
-                crate::colour::spaces::srgb_decode(v as f64)
-            } else {
-                v as f64
-            }
-        };
-        let (w, h) = (img.width, img.height);
+        let (rgb, w) = light_image(p, &path)?;
+        let h = rgb.len() / w;
         let aspect = w as f64 / h as f64;
         let (ax, ay) = if aspect > 1.0 {
             (aspect, 1.0)
@@ -231,12 +230,11 @@ fn projection(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> R<Li
         };
         let t = (fov.to_radians() / 2.0).tan();
         let mut sum = 0.0;
-        for (i, px) in img.rgb.iter().enumerate() {
+        for (i, px) in rgb.iter().enumerate() {
             let sx = ax * (2.0 * ((i % w) as f64 + 0.5) / w as f64 - 1.0);
             let sy = ay * (2.0 * ((i / w) as f64 + 0.5) / h as f64 - 1.0);
             let cos3 = (1.0 + t * t * (sx * sx + sy * sy)).powf(-1.5);
-            let lum = 0.212_639 * lin(px[0]) + 0.715_169 * lin(px[1]) + 0.072_192 * lin(px[2]);
-            sum += lum * cos3;
+            sum += luminance(*px) * cos3;
         }
         let area = 4.0 * t * t * ax * ay;
         let mean = sum / (w * h) as f64;
@@ -305,22 +303,9 @@ fn goniometric(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> R<L
     let (s, k) = spectra::illuminant(p, "I")?;
     let power = p.float("power", -1.0)?;
     let k = if power > 0.0 {
-        let img = crate::image_io::read_rgb(&path)
-            .map_err(|e| p.err(p.loc_of("filename"), e.to_string()))?;
-        let decode = img.encoding == crate::image_io::Encoding::Srgb;
-        let lin = |v: f32| {
-            if decode {
-                crate::colour::spaces::srgb_decode(v as f64)
-            } else {
-                v as f64
-            }
-        };
-        let sum: f64 = img
-            .rgb
-            .iter()
-            .map(|px| (lin(px[0]) + lin(px[1]) + lin(px[2])) / 3.0)
-            .sum();
-        let mean = sum / img.rgb.len().max(1) as f64;
+        let (rgb, _) = light_image(p, &path)?;
+        let sum: f64 = rgb.iter().map(|px| (px[0] + px[1] + px[2]) / 3.0).sum();
+        let mean = sum / rgb.len().max(1) as f64;
         if !(mean > 0.0) {
             return Err(p.err(
                 p.loc_of("power"),
@@ -342,31 +327,6 @@ fn goniometric(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> R<L
         },
         spectrum: s.scaled((scale * k) as f32),
         sampling_weight: 1.0,
-        loc,
-    })
-}
-
-/// An `AreaLightSource`.
-pub(super) fn area_light(kind: &str, p: &Params, loc: Loc) -> R<AreaLight> {
-    if kind != "diffuse" {
-        return Err(p.err(
-            loc,
-            format!("the area light \"{kind}\" is not read (pbrt-v4 has only \"diffuse\")"),
-        ));
-    }
-    if p.get("filename").is_some() {
-        return Err(p.err(
-            p.loc_of("filename"),
-            "an area light's image is not read yet",
-        ));
-    }
-    let (spectrum, k) = spectra::illuminant(p, "L")?;
-    let power = p.float("power", -1.0)?;
-    Ok(AreaLight {
-        spectrum,
-        scale: p.float("scale", 1.0)? * k,
-        two_sided: p.bool("twosided", false)?,
-        power: (power > 0.0).then_some(power),
         loc,
     })
 }

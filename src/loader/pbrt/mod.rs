@@ -7,6 +7,7 @@
 //! What is read so far is the subset in the README's pbrt-v4 table; any other directive or kind
 //! is an error naming it.
 
+mod area_light;
 mod camera;
 mod curves;
 mod kinds;
@@ -68,7 +69,7 @@ struct State {
     /// Index into the scene's materials (`None`: pbrt-v4's default diffuse, made on first use).
     material: Option<usize>,
     /// The current `AreaLightSource "diffuse"`, if any.
-    area_light: Option<lights::AreaLight>,
+    area_light: Option<area_light::AreaLight>,
     /// `Attribute` parameters for shapes, lights, materials and textures, in the order given.
     attributes: Attributes,
     /// The current `MediumInterface`: the (inside, outside) media, indices into the scene's
@@ -240,7 +241,7 @@ impl Reader {
             "AreaLightSource" => {
                 let kind = Self::string_arg(toks, i, file, d, loc)?;
                 let p = Params::parse(toks, i, file)?.with_defaults(&self.state.attributes.light);
-                self.state.area_light = Some(lights::area_light(&kind, &p, loc)?);
+                self.state.area_light = Some(area_light::area_light(&kind, &p, loc, self)?);
                 p.check_unused(&format!("area light \"{kind}\""))?;
             }
             "LightSource" => {

@@ -265,7 +265,11 @@ fn finish_shape(
     let textured = r
         .state
         .material
-        .is_some_and(|i| image_textured(&r.materials[i].kind));
+        .is_some_and(|i| image_textured(&r.materials[i].kind))
+        || r.state
+            .area_light
+            .as_ref()
+            .is_some_and(|a| a.image.is_some());
     let kind = match kind {
         // pbrt-v4's triangles without uv: (0, 0), (1, 0), (1, 1) at each one's corners
         ShapeKind::Inline { uvs: None, .. } if textured => meshes::per_triangle_uv(kind),
@@ -318,19 +322,16 @@ fn finish_shape(
     // an area light of alpha 0 is pbrt-v4's invisible light: never met, lighting by light
     // sampling alone
     let alpha = alpha(p, r)?;
-    let emission = r.state.area_light.as_ref().map(|a| EmissionDesc {
-        spectrum: a.spectrum.clone(),
-        texture: None,
-        amount: EmitAmount::Scale(match (a.power, area) {
+    let emission = r.state.area_light.as_ref().map(|a| {
+        let k = match (a.power, area) {
             (Some(power), Some(area)) if area > 0.0 => {
                 let sides = if a.two_sided { 2.0 } else { 1.0 };
-                a.scale * power / (sides * area * PI)
+                let lum = a.image.as_ref().map_or(1.0, |i| i.1);
+                a.scale * power / (sides * area * PI * lum)
             }
             _ => a.scale,
-        }),
-        two_sided: a.two_sided,
-        sampling_weight: 1.0,
-        loc: a.loc,
+        };
+        super::area_light::emission(a, k)
     });
     Ok(ShapeDesc {
         kind,
