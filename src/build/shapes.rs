@@ -14,6 +14,41 @@ fn transform(s: &ShapeDesc, unit_scale: bool) -> Result<Transform, String> {
     steps(&s.transform, s.unit_m, unit_scale)
 }
 
+/// A curve shape: Mitsuba's linear or B-spline curve files, or B-spline curves written in the
+/// scene (pbrt-v4's, hit and shaded as its ribbons); never an emitter.
+fn curve(s: &ShapeDesc) -> Result<Shape, String> {
+    use crate::geometry::shape::{BSplineCurve, LinearCurve};
+    if s.emission.is_some() {
+        return Err("a curve cannot be an area emitter".into());
+    }
+    let e = |e: crate::geometry::GeometryError| e.to_string();
+    Ok(match &s.kind {
+        ShapeKind::LinearCurve { path } => {
+            Shape::Curve(LinearCurve::load(path, &transform(s, true)?).map_err(e)?)
+        }
+        ShapeKind::BSplineCurve { path } => {
+            Shape::BSpline(BSplineCurve::load(path, &transform(s, true)?).map_err(e)?)
+        }
+        ShapeKind::BSplinePoints { curves, pbrt } => {
+            let t = transform(s, true)?;
+            let curves: Vec<Vec<(Vec3, f32)>> = curves
+                .iter()
+                .map(|c| {
+                    c.iter()
+                        .map(|(p, r)| (t.point(Vec3::from(p.map(|x| x as f32))), *r as f32))
+                        .collect()
+                })
+                .collect();
+            let c = BSplineCurve::new(&curves).map_err(e)?;
+            Shape::BSpline(match pbrt {
+                Some(kind) => c.with_pbrt_shading(*kind),
+                None => c,
+            })
+        }
+        _ => return Err("not a curve".into()),
+    })
+}
+
 /// Transform steps composed in order, after the scale `unit_m` when `unit_scale`; a matrix's
 /// translation column is in units of `unit_m` metres.
 pub(super) fn steps(
@@ -131,44 +166,9 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
             let mesh = Mesh::load_ply(path, &transform(s, true)?).map_err(|e| e.to_string())?;
             Shape::Mesh(with_normals(mesh, *normals))
         }
-        ShapeKind::LinearCurve { path } => {
-            if s.emission.is_some() {
-                return Err("a curve cannot be an area emitter".into());
-            }
-            Shape::Curve(
-                crate::geometry::shape::LinearCurve::load(path, &transform(s, true)?)
-                    .map_err(|e| e.to_string())?,
-            )
-        }
-        ShapeKind::BSplineCurve { path } => {
-            if s.emission.is_some() {
-                return Err("a curve cannot be an area emitter".into());
-            }
-            Shape::BSpline(
-                crate::geometry::shape::BSplineCurve::load(path, &transform(s, true)?)
-                    .map_err(|e| e.to_string())?,
-            )
-        }
-        ShapeKind::BSplinePoints { curves, pbrt } => {
-            if s.emission.is_some() {
-                return Err("a curve cannot be an area emitter".into());
-            }
-            let t = transform(s, true)?;
-            let curves: Vec<Vec<(Vec3, f32)>> = curves
-                .iter()
-                .map(|c| {
-                    c.iter()
-                        .map(|(p, r)| (t.point(Vec3::from(p.map(|x| x as f32))), *r as f32))
-                        .collect()
-                })
-                .collect();
-            let c =
-                crate::geometry::shape::BSplineCurve::new(&curves).map_err(|e| e.to_string())?;
-            Shape::BSpline(match pbrt {
-                Some(kind) => c.with_pbrt_shading(*kind),
-                None => c,
-            })
-        }
+        ShapeKind::LinearCurve { .. }
+        | ShapeKind::BSplineCurve { .. }
+        | ShapeKind::BSplinePoints { .. } => curve(s)?,
         ShapeKind::SdfGrid {
             res,
             values,

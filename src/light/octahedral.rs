@@ -22,6 +22,15 @@ use super::{EmissionSample, LightSample};
 use crate::spectrum::rgb2spec::{SigmoidPolynomial, srgb_table};
 use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum, WavelengthRange};
 
+/// The row-major index of the pixel of an n × n image nearest to (u, v) (pbrt-v4's
+/// `LookupNearest`: ⌊u·n⌋, ⌊v·n⌋, clamped to the image).
+#[inline]
+pub(crate) fn nearest_pixel(n: usize, uv: Vec2) -> usize {
+    let x = ((uv.x * n as f32) as usize).min(n - 1);
+    let y = ((uv.y * n as f32) as usize).min(n - 1);
+    y * n + x
+}
+
 /// The point of the unit square a unit direction maps to (Clarberg's equal-area octahedral
 /// mapping, as pbrt-v4's `EqualAreaSphereToSquare`).
 pub fn sphere_to_square(d: Vec3) -> Vec2 {
@@ -116,13 +125,10 @@ impl OctahedralMapLight {
         })
     }
 
-    /// The pixel index nearest to (u, v) (pbrt-v4: ⌊u·N⌋, ⌊v·N⌋, clamped to the image).
+    /// The pixel index nearest to (u, v) ([`nearest_pixel`]).
     #[inline]
     fn pixel(&self, uv: Vec2) -> usize {
-        let n = self.res;
-        let x = ((uv.x * n as f32) as usize).min(n - 1);
-        let y = ((uv.y * n as f32) as usize).min(n - 1);
-        y * n + x
+        nearest_pixel(self.res, uv)
     }
 
     #[inline]

@@ -164,23 +164,33 @@ impl ProjectorLight {
 mod tests {
     use super::*;
 
-    /// A uniform image lights the plane z = 1 with irradiance π·spectrum everywhere inside the
-    /// image: E = I cos θ / r² with r = 1/cos θ, I = π/cos³θ.
-    #[test]
-    fn uniform_image_lights_its_plane_uniformly() {
-        let l = ProjectorLight {
+    /// A projector at the origin along +z, of half-angle tangents 0.5 × 0.25, a uniform image
+    /// of 2 and a constant `spectrum`.
+    fn projector(spectrum: f32, law: ProjectorLaw) -> ProjectorLight {
+        ProjectorLight {
             position: Vec3::ZERO,
             frame: Mat3::IDENTITY,
             tan_x: 0.5,
             tan_y: 0.25,
             image: Spectrum::Constant(2.0).into(),
-            spectrum: Spectrum::Constant(1.0),
-            law: ProjectorLaw::PlaneIrradiance,
-        };
-        let w = SampledWavelengths::<4> {
+            spectrum: Spectrum::Constant(spectrum),
+            law,
+        }
+    }
+
+    fn waves() -> SampledWavelengths<4> {
+        SampledWavelengths {
             lambda: [550.0; 4],
             pdf: [1.0; 4],
-        };
+        }
+    }
+
+    /// A uniform image lights the plane z = 1 with irradiance π·spectrum everywhere inside the
+    /// image: E = I cos θ / r² with r = 1/cos θ, I = π/cos³θ.
+    #[test]
+    fn uniform_image_lights_its_plane_uniformly() {
+        let l = projector(1.0, ProjectorLaw::PlaneIrradiance);
+        let w = waves();
         for (x, y) in [(0.0, 0.0), (0.4, 0.2), (-0.49, -0.24)] {
             let p = Vec3::new(x, y, 1.0);
             let s = l.sample_li(p + Vec3::ZERO, &w).expect("inside the image");
@@ -204,19 +214,8 @@ mod tests {
     /// E = I cos³θ; and a particle's weight le/pdf_dir integrates to the power I·Ω.
     #[test]
     fn pbrt_law_is_uniform_intensity() {
-        let l = ProjectorLight {
-            position: Vec3::ZERO,
-            frame: Mat3::IDENTITY,
-            tan_x: 0.5,
-            tan_y: 0.25,
-            image: Spectrum::Constant(2.0).into(),
-            spectrum: Spectrum::Constant(1.5),
-            law: ProjectorLaw::Intensity,
-        };
-        let w = SampledWavelengths::<4> {
-            lambda: [550.0; 4],
-            pdf: [1.0; 4],
-        };
+        let l = projector(1.5, ProjectorLaw::Intensity);
+        let w = waves();
         for (x, y) in [(0.0, 0.0), (0.4, 0.2), (-0.49, -0.24)] {
             let p = Vec3::new(x, y, 1.0);
             let s = l.sample_li(p, &w).expect("inside the image");

@@ -276,6 +276,18 @@ fn spot(
     Ok(Light::Spot(spot))
 }
 
+/// The position and orthonormal frame (columns) of a rigid `transform`; None if it scales or
+/// shears, or is not a transform.
+pub(super) fn rigid(transform: &[TransformStep]) -> Option<(Vec3, glam::Mat3)> {
+    let t = super::shapes::steps(transform, 1.0, false).ok()?;
+    let m = glam::Mat3::from_mat4(t.matrix());
+    (m.transpose() * m - glam::Mat3::IDENTITY)
+        .to_cols_array()
+        .iter()
+        .all(|x| x.abs() < 1e-4)
+        .then(|| (t.point(Vec3::ZERO), m))
+}
+
 /// A projector: an image thrown through a pinhole of field of view `fov` (across `fov_axis`),
 /// placed by a rigid `transform`, with Mitsuba's law or, `constant_intensity`, pbrt-v4's.
 fn projector(
@@ -286,17 +298,9 @@ fn projector(
     constant_intensity: bool,
 ) -> Result<Light, String> {
     use crate::loader::desc::FovAxis;
-    let t = super::shapes::steps(transform, 1.0, false)?;
-    let m = glam::Mat3::from_mat4(t.matrix());
-    let rigid = (m.transpose() * m - glam::Mat3::IDENTITY)
-        .to_cols_array()
-        .iter()
-        .all(|x| x.abs() < 1e-4);
-    if !rigid {
-        return Err(
-            "a projector's to_world must be a rotation and a translation (no scale)".into(),
-        );
-    }
+    let (position, m) = rigid(transform).ok_or_else(|| {
+        "a projector's to_world must be a rotation and a translation (no scale)".to_string()
+    })?;
     let image = super::textures::texture(image)?;
     let (w, h) = match &image {
         crate::texture::Texture::Bitmap(b) => b.resolution(),
@@ -316,7 +320,7 @@ fn projector(
         (tan, tan / aspect)
     };
     Ok(Light::Projector(Box::new(ProjectorLight {
-        position: t.point(Vec3::ZERO),
+        position,
         frame: m,
         tan_x,
         tan_y,

@@ -57,21 +57,8 @@ pub(super) fn goniometric_map(
         .iter()
         .map(|p| (p[0] + p[1] + p[2]) / 3.0)
         .collect();
-    let t = super::super::shapes::steps(transform, 1.0, false)?;
-    let m = glam::Mat3::from_mat4(t.matrix());
-    let rigid = (m.transpose() * m - glam::Mat3::IDENTITY)
-        .to_cols_array()
-        .iter()
-        .all(|x| x.abs() < 1e-4);
-    if !rigid {
-        return Err("a goniometric light's frame must be a rotation (no scale or shear)".into());
-    }
-    GoniometricMapLight::new(
-        t.point(glam::Vec3::ZERO),
-        m,
-        spectrum.clone(),
-        img.width,
-        grey,
-    )
-    .map_err(err)
+    let (position, m) = super::rigid(transform).ok_or_else(|| {
+        "a goniometric light's frame must be a rotation (no scale or shear)".to_string()
+    })?;
+    GoniometricMapLight::new(position, m, spectrum.clone(), img.width, grey).map_err(err)
 }

@@ -70,13 +70,10 @@ impl GoniometricMapLight {
         })
     }
 
-    /// The pixel nearest to (u, v) (pbrt-v4: ⌊u·N⌋, ⌊v·N⌋, clamped to the image).
+    /// The pixel nearest to (u, v) (pbrt-v4's `LookupNearest`).
     #[inline]
     fn pixel(&self, uv: Vec2) -> usize {
-        let n = self.res;
-        let x = ((uv.x * n as f32) as usize).min(n - 1);
-        let y = ((uv.y * n as f32) as usize).min(n - 1);
-        y * n + x
+        super::super::octahedral::nearest_pixel(self.res, uv)
     }
 
     /// The image's value toward the world direction `dir` (unit).

@@ -67,7 +67,7 @@ pub(super) fn curve(p: &Params, loc: Loc, ctm: &DMat4) -> R<ShapeKind> {
         .collect();
     let d = degree as usize;
     let segments = match basis.as_str() {
-        "bezier" if pts.len() > d && (pts.len() - 1) % d == 0 => (pts.len() - 1) / d,
+        "bezier" if pts.len() > d && (pts.len() - 1).is_multiple_of(d) => (pts.len() - 1) / d,
         "bspline" if pts.len() > d => pts.len() - d,
         "bezier" | "bspline" => {
             return Err(p.err(

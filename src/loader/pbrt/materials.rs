@@ -135,14 +135,13 @@ pub(super) fn material(
         "diffusetransmission" => {
             let scale = p.float("scale", 1.0)?;
             let scaled = |name: &str| -> R<TextureDesc> {
-                match named.reflectance(p, name, 0.25)? {
-                    TextureDesc::Uniform(s) => Ok(TextureDesc::Uniform(s.scaled(scale as f32))),
-                    t if scale == 1.0 => Ok(t),
-                    _ => Err(p.err(
-                        p.loc_of("scale"),
-                        "a \"scale\" with a texture is not read yet (spectrace scales uniform values)",
-                    )),
-                }
+                Ok(match named.reflectance(p, name, 0.25)? {
+                    TextureDesc::Uniform(s) => TextureDesc::Uniform(s.scaled(scale as f32)),
+                    t if scale == 1.0 => t,
+                    t => {
+                        TextureDesc::Scaled(Box::new([t, Spectrum::Constant(scale as f32).into()]))
+                    }
+                })
             };
             MaterialKind::DiffuseTransmission {
                 reflectance: scaled("reflectance")?,

@@ -1,0 +1,100 @@
+//! pbrt-v4's curves on [`BSplineCurve`] ([`BSplineCurve::with_pbrt_shading`]): the ray-facing
+//! ribbon's test and its hit.
+
+use super::{BSplineCurve, Eval, PIECES, PbrtCurve};
+use crate::geometry::ray::Ray;
+use crate::geometry::shape::Intersection;
+use crate::geometry::shape::curve::capsule_hit;
+use glam::{Vec2, Vec3};
+
+impl BSplineCurve {
+    /// pbrt-v4's ribbon test on segment `i` (`Curve::RecursiveIntersect`): seen along the
+    /// ray, the centre line's point nearest the ray, c(s) with s ∈ [0, 1] a stationary point of
+    /// |P(c(s) − o)|² (P = I − d̂d̂ᵀ: g(s) = P(c − o)·Pc' = 0, by Newton's method from each
+    /// piece whose bounding capsule the ray meets), must lie within r(s) of it; the hit is at
+    /// c(s)'s depth along the ray, t in (0, t_max). So the curve ends where the projected
+    /// centre line does, as pbrt-v4's ribbon ends, rather than at the tube's end planes.
+    pub(super) fn intersect_ribbon(&self, i: usize, ray: &Ray) -> Option<(f32, f32)> {
+        let dd = ray.d.length_squared();
+        let d = ray.d / dd.sqrt();
+        let proj = |v: Vec3| v - d * v.dot(d);
+        let mut best: Option<(f32, f32)> = None;
+        let mut prev = self.eval(i, 0.0);
+        for k in 0..PIECES {
+            let (s0, s1) = (k as f32 / PIECES as f32, (k + 1) as f32 / PIECES as f32);
+            let next = self.eval(i, s1);
+            let ds = s1 - s0;
+            let sag = prev.ddc.length().max(next.ddc.length()) * ds * ds / 8.0;
+            let bound = prev.r.max(next.r) + sag;
+            let start = capsule_hit(prev.c, next.c, bound * 1.001, ray, f32::NEG_INFINITY);
+            prev = next;
+            let Some((_, f)) = start else { continue };
+            let mut s = s0 + f * ds;
+            for _ in 0..12 {
+                let e = self.eval(i, s);
+                let (w, dc) = (proj(e.c - ray.o), proj(e.dc));
+                let dg = dc.dot(dc) + w.dot(proj(e.ddc));
+                if !(dg > 0.0) {
+                    break;
+                }
+                let step = w.dot(dc) / dg;
+                s = (s - step).clamp(-0.25, 1.25);
+                if step.abs() <= 1e-7 {
+                    break;
+                }
+            }
+            if !(0.0..=1.0).contains(&s) {
+                continue;
+            }
+            let e = self.eval(i, s);
+            let t = (e.c - ray.o).dot(ray.d) / dd;
+            let near = proj(e.c - ray.o).length_squared() <= e.r * e.r;
+            if near && t > 0.0 && t < ray.t_max && best.is_none_or(|b| t < b.0) {
+                best = Some((t, s));
+            }
+        }
+        best
+    }
+
+    /// pbrt-v4's hit on segment `i` at `s` ([`BSplineCurve::with_pbrt_shading`]): the point
+    /// of `ray` at the depth of the centre line's point c(s), and the ribbon's normal (facing
+    /// the ray, perpendicular to the tangent) turned by θ = (π/2)·x away from the hit's side,
+    /// x ∈ [−1, 1] the hit's offset from c(s) across the ribbon in radii. The normal serves as
+    /// both the geometric and the shading one, as pbrt-v4's single normal does.
+    pub(super) fn pbrt_interaction(
+        &self,
+        i: usize,
+        e: &Eval,
+        s: f32,
+        ray: &Ray,
+        kind: PbrtCurve,
+    ) -> Intersection {
+        let axis = e.dc.try_normalize().unwrap_or(Vec3::X);
+        let d = ray.d.normalize();
+        let p = ray.o + d * (e.c - ray.o).dot(d);
+        let facing = (-d - axis * (-d).dot(axis))
+            .try_normalize()
+            .unwrap_or(axis.any_orthonormal_vector());
+        let across = axis.cross(facing);
+        let x = ((p - e.c).dot(across) / e.r).clamp(-1.0, 1.0);
+        let theta = match kind {
+            PbrtCurve::Cylinder => std::f32::consts::FRAC_PI_2 * x,
+            PbrtCurve::Flat => 0.0,
+        };
+        let n = facing * theta.cos() - across * theta.sin();
+        let count = self.segments.len() as f32;
+        Intersection {
+            t: 0.0,
+            p,
+            // pbrt-v4's error bound, the width: rays leave the hit that far off the ribbon
+            p_error: Vec3::splat(2.0 * e.r),
+            n_geom: n,
+            n_shading: n,
+            uv: Vec2::new((s + i as f32) / count, 0.5 * (1.0 + x)),
+            dpdu: e.dc * count,
+            dpdv: across * (2.0 * e.r),
+            shape: 0,
+            prim: i as u32,
+        }
+    }
+}
