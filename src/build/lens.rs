@@ -103,7 +103,7 @@ pub fn focused_lens(
 pub(super) fn realistic_camera(
     desc: &crate::loader::SceneDesc,
 ) -> Result<crate::geometry::Camera, LoadError> {
-    use crate::geometry::{Camera, RealisticError, Transform};
+    use crate::geometry::{Camera, RealisticError};
     let c = &desc.camera;
     let err = |field: &str, msg: String| LoadError::new(&desc.path, c.loc, field, msg);
     let crate::loader::desc::CameraKind::Realistic {
@@ -118,13 +118,7 @@ pub(super) fn realistic_camera(
     };
     let sys = focused_lens(lens, *aperture_diameter, focus)?
         .map_err(|e| err("camera.focus_distance", e))?;
-    let up = glam::Vec3::new(c.up[0] as f32, c.up[1] as f32, c.up[2] as f32);
-    let look = Transform::look_at(super::v3(&c.eye), super::v3(&c.target), up)
-        .map_err(|e| err("camera", e.to_string()))?;
-    // a mirrored camera reverses camera-space x before its placement (as `build::camera`)
-    let flip = Transform::scale(glam::Vec3::new(if c.mirror { -1.0 } else { 1.0 }, 1.0, 1.0))
-        .map_err(|e| err("camera", e.to_string()))?;
-    let to_world = flip.then(&look);
+    let to_world = super::camera_to_world(c).map_err(|e| err("camera", e))?;
     let diagonal = crate::units::plain::metres(*film_diagonal);
     let cam = Camera::realistic(to_world, sys, diagonal, desc.film.width, desc.film.height)
         .map_err(|e| match e {

@@ -315,13 +315,18 @@ pub(super) fn v3(p: &crate::loader::desc::Point) -> Vec3 {
     )
 }
 
-fn camera(desc: &SceneDesc) -> Result<Camera, String> {
-    let c = &desc.camera;
+/// The camera's placement: from its eye toward its target with its up, camera-space x
+/// reversed first when the camera is mirrored.
+pub(super) fn camera_to_world(c: &crate::loader::desc::CameraDesc) -> Result<Transform, String> {
     let up = Vec3::new(c.up[0] as f32, c.up[1] as f32, c.up[2] as f32);
     let look = Transform::look_at(v3(&c.eye), v3(&c.target), up).map_err(|e| e.to_string())?;
-    // a mirrored camera reverses camera-space x before its placement
     let flip = Transform::scale(Vec3::new(if c.mirror { -1.0 } else { 1.0 }, 1.0, 1.0));
-    let to_world = flip.map_err(|e| e.to_string())?.then(&look);
+    Ok(flip.map_err(|e| e.to_string())?.then(&look))
+}
+
+fn camera(desc: &SceneDesc) -> Result<Camera, String> {
+    let c = &desc.camera;
+    let to_world = camera_to_world(c)?;
     let (w, h) = (desc.film.width, desc.film.height);
     let axis = |a: FovAxis| match a {
         FovAxis::X => CamAxis::X,

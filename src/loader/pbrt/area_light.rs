@@ -4,9 +4,9 @@
 use super::params::{Params, R};
 use super::{Reader, spectra};
 use crate::loader::Loc;
-use crate::loader::desc::{EmissionDesc, EmitAmount, PbrtImageDesc, TextureDesc, TransformStep};
+use crate::loader::desc::{EmissionDesc, EmitAmount, TextureDesc, TransformStep};
 use crate::spectrum::Spectrum;
-use crate::texture::{TexFilter, Wrap};
+use crate::texture::TexFilter;
 
 /// An `AreaLightSource "diffuse"`: its emitted radiance (W·m⁻²·sr⁻¹·nm⁻¹ per unit of pbrt's
 /// spectrum, see [`spectra::illuminant`]) and whether both sides emit.
@@ -15,12 +15,12 @@ pub(super) struct AreaLight {
     pub spectrum: Spectrum,
     pub scale: f64,
     pub two_sided: bool,
-    /// pbrt-v4's `power` (∫ȳ·Φ dλ of each shape, each triangle of a mesh), if given.
+    /// pbrt-v4's `power` (∫ȳ·Φ dλ of each shape, each triangle of a mesh), if given; with an
+    /// image, already divided by the image's mean luminance (linear sRGB), as pbrt-v4 does.
     pub power: Option<f64>,
-    /// An image over the surface's uv (`filename`): its path and its pixels' mean luminance
-    /// (linear sRGB), which `power` divides by; `spectrum` × `scale` then multiplies each
-    /// texel's `RGBIlluminantSpectrum` uplift.
-    pub image: Option<(std::path::PathBuf, f64)>,
+    /// An image over the surface's uv (`filename`), whose texels' `RGBIlluminantSpectrum`
+    /// uplift `spectrum` × `scale` multiplies.
+    pub image: Option<std::path::PathBuf>,
     pub loc: Loc,
 }
 
@@ -50,18 +50,32 @@ pub(super) fn area_light(kind: &str, p: &Params, loc: Loc, r: &Reader) -> R<Area
                     format!("no image \"{}\"", path.display()),
                 ));
             }
-            let (rgb, _) = super::lights::light_image(p, &path)?;
-            let mean = rgb
-                .iter()
-                .map(|c| super::lights::luminance(*c))
-                .sum::<f64>()
-                / rgb.len().max(1) as f64;
-            Some((path, mean))
+            Some(path)
         }
     };
     // without `L`, the colour space's illuminant of luminance 1 (k = 1)
     let (spectrum, k) = spectra::illuminant(p, "L")?;
     let power = p.float("power", -1.0)?;
+    // with an image, `power` is over its mean luminance (read only when asked for)
+    let power = match &image {
+        Some(path) if power > 0.0 => {
+            let (rgb, _) = super::lights::light_image(p, path)?;
+            let n = rgb.len().max(1) as f64;
+            let mean = rgb
+                .iter()
+                .map(|c| super::lights::luminance(*c))
+                .sum::<f64>()
+                / n;
+            if !(mean > 0.0) {
+                return Err(p.err(
+                    p.loc_of("power"),
+                    "an area light with \"power\" needs an image that is not black",
+                ));
+            }
+            power / mean
+        }
+        _ => power,
+    };
     Ok(AreaLight {
         spectrum,
         scale: p.float("scale", 1.0)? * k,
@@ -77,24 +91,16 @@ pub(super) fn area_light(kind: &str, p: &Params, loc: Loc, r: &Reader) -> R<Area
 pub(super) fn emission(a: &AreaLight, k: f64) -> EmissionDesc {
     let (texture, amount) = match &a.image {
         None => (None, EmitAmount::Scale(k)),
-        Some((path, _)) => {
-            let image = TextureDesc::PbrtImage(Box::new(PbrtImageDesc {
-                path: path.clone(),
-                filter: TexFilter::Bilinear,
-                wrap: Wrap::Clamp,
-                to_uv: vec![TransformStep::Matrix([
-                    1.0, 0.0, 0.0, 0.0, //
-                    0.0, -1.0, 0.0, 1.0, //
-                    0.0, 0.0, 1.0, 0.0, //
-                    0.0, 0.0, 0.0, 1.0,
-                ])],
-                srgb: true,
-                grey: false,
-                scale: 1.0,
-                invert: false,
-                unbounded: true,
-                loc: a.loc,
-            }));
+        Some(path) => {
+            // pbrt-v4 looks the image up at (u, 1 − v), bilinear
+            let flip_v = vec![TransformStep::Matrix([
+                1.0, 0.0, 0.0, 0.0, //
+                0.0, -1.0, 0.0, 1.0, //
+                0.0, 0.0, 1.0, 0.0, //
+                0.0, 0.0, 0.0, 1.0,
+            ])];
+            let image =
+                super::lights::light_texture(path.clone(), TexFilter::Bilinear, flip_v, a.loc);
             let spectrum = TextureDesc::Uniform(a.spectrum.scaled(k as f32));
             let texture = TextureDesc::Scaled(Box::new([image, spectrum]));
             (Some(texture), EmitAmount::Scale(1.0))

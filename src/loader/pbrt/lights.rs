@@ -14,6 +14,35 @@ use crate::spectrum::Spectrum;
 use crate::texture::{TexFilter, Wrap};
 use crate::units::{Angle, angle::degree};
 
+/// The CTM's x, y and z axes made unit, as directions: a light's frame, on which a uniform
+/// scale has no effect in pbrt-v4 (it looks directions up normalised).
+fn unit_axes(ctm: &DMat4) -> [glam::DVec4; 3] {
+    [0, 1, 2].map(|i| ctm.col(i).truncate().normalize_or_zero().extend(0.0))
+}
+
+/// A light's image as a texture: clamped at its edges, 8- and 16-bit files decoded from sRGB
+/// (pbrt-v4's `Image::Read`), colours unbounded (each texel's `RGBIlluminantSpectrum` before its
+/// illuminant), looked up with `filter` after `to_uv`.
+pub(super) fn light_texture(
+    path: std::path::PathBuf,
+    filter: TexFilter,
+    to_uv: Vec<crate::loader::desc::TransformStep>,
+    loc: Loc,
+) -> TextureDesc {
+    TextureDesc::PbrtImage(Box::new(PbrtImageDesc {
+        path,
+        filter,
+        wrap: Wrap::Clamp,
+        to_uv,
+        srgb: true,
+        grey: false,
+        scale: 1.0,
+        invert: false,
+        unbounded: true,
+        loc,
+    }))
+}
+
 /// The linear RGB pixels of a light's image and its width (8- and 16-bit files decoded from
 /// sRGB, as pbrt-v4's `Image::Read` reads them), or an error at `filename`.
 pub(super) fn light_image(p: &Params, path: &std::path::Path) -> R<(Vec<[f64; 3]>, usize)> {
@@ -249,22 +278,10 @@ fn projection(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> R<Li
         1.0
     };
     // spectrace's projector has u growing toward its local −x (pbrt-v4's toward +x, after its
-    // y flip has v growing toward −y as here): its frame is the light's (−x, y, z), the
-    // columns made unit (a uniform scale does not change pbrt-v4's directions)
-    let c = |i: usize| ctm.col(i).truncate().normalize_or_zero().extend(0.0);
-    let frame = DMat4::from_cols(-c(0), c(1), c(2), ctm.col(3));
-    let image = TextureDesc::PbrtImage(Box::new(PbrtImageDesc {
-        path,
-        filter: TexFilter::Nearest,
-        wrap: Wrap::Clamp,
-        to_uv: Vec::new(),
-        srgb: true,
-        grey: false,
-        scale: 1.0,
-        invert: false,
-        unbounded: true,
-        loc,
-    }));
+    // y flip has v growing toward −y as here): its frame is the light's (−x, y, z)
+    let [x, y, z] = unit_axes(ctm);
+    let frame = DMat4::from_cols(-x, y, z, ctm.col(3));
+    let image = light_texture(path, TexFilter::Nearest, Vec::new(), loc);
     let d65 = Spectrum::Piecewise(crate::spectrum::rgb2spec::d65_unit_luminance());
     Ok(LightDesc {
         kind: LightKind::Projector {
@@ -316,10 +333,9 @@ fn goniometric(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> R<L
     } else {
         k
     };
-    // pbrt-v4 swaps the light's y and z (its images have "up" along +z, its scenes along +y);
-    // the columns made unit (a uniform scale does not change the directions)
-    let c = |i: usize| ctm.col(i).truncate().normalize_or_zero().extend(0.0);
-    let frame = DMat4::from_cols(c(0), c(2), c(1), ctm.col(3));
+    // pbrt-v4 swaps the light's y and z (its images have "up" along +z, its scenes along +y)
+    let [x, y, z] = unit_axes(ctm);
+    let frame = DMat4::from_cols(x, z, y, ctm.col(3));
     Ok(LightDesc {
         kind: LightKind::GoniometricMap {
             path,

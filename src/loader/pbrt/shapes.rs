@@ -326,8 +326,7 @@ fn finish_shape(
         let k = match (a.power, area) {
             (Some(power), Some(area)) if area > 0.0 => {
                 let sides = if a.two_sided { 2.0 } else { 1.0 };
-                let lum = a.image.as_ref().map_or(1.0, |i| i.1);
-                a.scale * power / (sides * area * PI * lum)
+                a.scale * power / (sides * area * PI)
             }
             _ => a.scale,
         };
