@@ -118,7 +118,7 @@ pub(super) fn realistic_camera(
     };
     let sys = focused_lens(lens, *aperture_diameter, focus)?
         .map_err(|e| err("camera.focus_distance", e))?;
-    let to_world = super::camera_to_world(c).map_err(|e| err("camera", e))?;
+    let to_world = super::camera::camera_to_world(c).map_err(|e| err("camera", e))?;
     let diagonal = crate::units::plain::metres(*film_diagonal);
     let cam = Camera::realistic(to_world, sys, diagonal, desc.film.width, desc.film.height)
         .map_err(|e| match e {

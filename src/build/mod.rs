@@ -1,6 +1,7 @@
 //! `build`: the one place where a scene description becomes a render-ready [`Scene`]. Typed
 //! quantities leave the uom world here, through `units::plain`.
 
+mod camera;
 mod lens;
 pub use lens::{focused_lens, lens_system, located as lens_error};
 mod lights;
@@ -18,10 +19,8 @@ use glam::Vec3;
 use std::sync::Arc;
 
 use crate::geometry::accel::Accel;
-use crate::geometry::camera::{Camera, FovAxis as CamAxis};
 use crate::geometry::instance::{Group, Instance};
-use crate::geometry::transform::Transform;
-use crate::loader::desc::{CameraKind, FovAxis, Projection, SceneDesc, ShapeKind};
+use crate::loader::desc::{CameraKind, SceneDesc, ShapeKind};
 use crate::loader::{LoadError, Loc};
 use crate::spectrum::WavelengthRange;
 use crate::units::plain;
@@ -94,7 +93,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
     let camera = match &desc.camera.kind {
         // a lens's errors are located in its own file
         CameraKind::Realistic { .. } => lens::realistic_camera(desc)?,
-        _ => camera(desc).map_err(|e| err(desc.camera.loc, "camera".into(), e))?,
+        _ => camera::camera(desc).map_err(|e| err(desc.camera.loc, "camera".into(), e))?,
     };
     let (media, medium_interfaces) = media::scene_media(desc, range, surfaces.len())?;
     let polarised =
@@ -313,93 +312,4 @@ pub(super) fn v3(p: &crate::loader::desc::Point) -> Vec3 {
         plain::metres(p[1]),
         plain::metres(p[2]),
     )
-}
-
-/// The camera's placement: from its eye toward its target with its up, camera-space x
-/// reversed first when the camera is mirrored.
-pub(super) fn camera_to_world(c: &crate::loader::desc::CameraDesc) -> Result<Transform, String> {
-    let up = Vec3::new(c.up[0] as f32, c.up[1] as f32, c.up[2] as f32);
-    let look = Transform::look_at(v3(&c.eye), v3(&c.target), up).map_err(|e| e.to_string())?;
-    let flip = Transform::scale(Vec3::new(if c.mirror { -1.0 } else { 1.0 }, 1.0, 1.0));
-    Ok(flip.map_err(|e| e.to_string())?.then(&look))
-}
-
-fn camera(desc: &SceneDesc) -> Result<Camera, String> {
-    let c = &desc.camera;
-    let to_world = camera_to_world(c)?;
-    let (w, h) = (desc.film.width, desc.film.height);
-    let axis = |a: FovAxis| match a {
-        FovAxis::X => CamAxis::X,
-        FovAxis::Y => CamAxis::Y,
-        FovAxis::Larger => CamAxis::Larger,
-        FovAxis::Smaller => CamAxis::Smaller,
-    };
-    // Horizontal field of view of a projection, radians.
-    let horizontal = |fov: f32, a: FovAxis| -> f32 {
-        let aspect = w as f32 / h as f32;
-        let along_x = match a {
-            FovAxis::X => true,
-            FovAxis::Y => false,
-            FovAxis::Larger => w >= h,
-            FovAxis::Smaller => w < h,
-        };
-        if along_x {
-            fov
-        } else {
-            2.0 * ((fov / 2.0).tan() * aspect).atan()
-        }
-    };
-    let r = match &c.kind {
-        CameraKind::Perspective {
-            projection: Projection::Fov { fov, axis: a },
-        } => Camera::perspective(to_world, plain::radians(*fov), axis(*a), w, h),
-        CameraKind::Perspective {
-            projection:
-                Projection::Focal {
-                    focal_length,
-                    sensor_width,
-                },
-        } => Camera::perspective_focal(
-            to_world,
-            plain::metres(*focal_length),
-            plain::metres(*sensor_width),
-            w,
-            h,
-        ),
-        CameraKind::ThinLens {
-            projection,
-            f_number,
-            focus_distance,
-        } => {
-            let (hfov, focal) = match projection {
-                Projection::Fov { fov, axis: a } => {
-                    let hf = horizontal(plain::radians(*fov), *a);
-                    (hf, 0.036 / (2.0 * (hf / 2.0).tan()))
-                }
-                Projection::Focal {
-                    focal_length,
-                    sensor_width,
-                } => {
-                    let f = plain::metres(*focal_length);
-                    (2.0 * (plain::metres(*sensor_width) / (2.0 * f)).atan(), f)
-                }
-            };
-            Camera::thin_lens(
-                to_world,
-                hfov,
-                CamAxis::X,
-                *f_number as f32,
-                focal,
-                plain::metres(*focus_distance),
-                w,
-                h,
-            )
-        }
-        CameraKind::Orthographic { view_width } => {
-            Camera::orthographic(to_world, plain::metres(*view_width), w, h)
-        }
-        // built in `build`, where its lens file's errors are located
-        CameraKind::Realistic { .. } => return Err("a realistic camera needs its lens file".into()),
-    };
-    r.map_err(|e| e.to_string())
 }
