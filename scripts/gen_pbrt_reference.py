@@ -12,6 +12,8 @@ killeroo_style/geometry/blob.pbrt: a `loopsubdiv` control mesh (an icosahedron,
 its vertices moved by a fixed pseudo-random amount), the stand-in for the killeroo model of
 pbrt-v4-scenes' killeroo-simple.pbrt, whose layout the scene copies.
 
+A folder whose compare.toml says `sensor = true` gets R, G and B blocks instead of Y.
+
 Usage: build pbrt-v4 (../shared/tools/pbrt/build_pbrt.sh), pip install numpy OpenImageIO;
 python3 scripts/gen_pbrt_reference.py [name ...]
 """
@@ -66,10 +68,13 @@ def write_tiles(path):
     out.close()
 
 
-def read_y(path):
+def read_y(path, rgb=False):
+    """Y of pbrt-v4's image or, with `rgb`, its R, G and B stacked one above the other."""
     i = oiio.ImageInput.open(path)
     a = np.array(i.read_image(format="float")).astype(np.float64)
     i.close()
+    if rgb:
+        return np.concatenate([a[..., 0], a[..., 1], a[..., 2]], axis=0)
     return 0.2126 * a[..., 0] + 0.7152 * a[..., 1] + 0.0722 * a[..., 2]
 
 
@@ -166,20 +171,25 @@ def main():
     names = sys.argv[1:] or sorted(d for d in os.listdir(BASE) if os.path.isfile(os.path.join(BASE, d, "scene.pbrt")))
     for name in names:
         folder = os.path.join(BASE, name)
+        compare = os.path.join(folder, "compare.toml")
+        # a film with a pixel sensor: R, G and B compared channel by channel
+        rgb = os.path.isfile(compare) and "sensor = true" in open(compare).read()
         with tempfile.TemporaryDirectory() as tmp:
             imgs = []
             for seed in (1, 2):
                 exr = os.path.join(tmp, f"{seed}.exr")
                 subprocess.run([PBRT, "--quiet", "--seed", str(seed), "--outfile", exr,
                                 os.path.join(folder, "scene.pbrt")], check=True, cwd=folder)
-                imgs.append(read_y(exr))
+                imgs.append(read_y(exr, rgb))
         mean, se = blocks(*imgs)
         h, w = imgs[0].shape
+        h = h // 3 if rgb else h
         print(name, w, h, float((imgs[0] + imgs[1]).mean() / 2))
         with open(os.path.join(folder, "refs.toml"), "w") as out:
             out.write("\n".join([
                 "# Written by scripts/gen_pbrt_reference.py with pbrt-v4 (mmp/pbrt-v4 5f7a6068): per",
-                f"# {BLOCK} × {BLOCK} block (row-major), the mean Y of seeds 1 and 2 and its standard error.",
+                f"# {BLOCK} × {BLOCK} block (row-major), the mean Y of seeds 1 and 2 and its standard error"
+                + (" (R, G, B:\n# every block of R, then of G, then of B)." if rgb else "."),
                 f"width = {w}", f"height = {h}", f"block = {BLOCK}",
                 "mean = [" + ", ".join(f"{m:.7g}" for m in mean) + "]",
                 "stderr = [" + ", ".join(f"{s:.4g}" for s in se) + "]", ""]))

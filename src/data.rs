@@ -144,6 +144,7 @@ pub mod embedded {
         CIE_LED = "spectra/illuminants/cie_led.csv";
         CIE_DAYLIGHT_BASIS = "spectra/illuminants/cie_daylight_basis.csv";
         CAMERA_NIKON_D5100 = "spectra/cameras/nikon_d5100.csv";
+        PBRT_SWATCHES = "spectra/pbrt/swatches_babelcolor.csv";
         CAMERA_SIGMA_SD_MERRILL = "spectra/cameras/sigma_sd_merrill.csv";
     }
 
@@ -232,6 +233,26 @@ pub mod embedded {
                 ),
             )),+];
         };
+    }
+    macro_rules! pbrt_cameras {
+        ($($name:literal)+) => {
+            /// pbrt-v4's named camera sensors (`canon_eos_5d_mkiv`, …): (name, (path, contents))
+            /// of `spectra/pbrt/cameras/<name>.csv` (wavelength_nm, r, g, b), written by
+            /// `scripts/gen_pbrt_sensor_data.py` from pbrt-v4's `src/pbrt/util/spectrum.cpp`.
+            pub const PBRT_CAMERAS: &[(&str, (&str, &str))] = &[$((
+                $name,
+                (
+                    concat!("spectra/pbrt/cameras/", $name, ".csv"),
+                    include_str!(concat!("../spectra/pbrt/cameras/", $name, ".csv")),
+                ),
+            )),+];
+        };
+    }
+    pbrt_cameras! {
+        "canon_eos_100d" "canon_eos_1dx_mkii" "canon_eos_200d" "canon_eos_200d_mkii" "canon_eos_5d"
+        "canon_eos_5d_mkii" "canon_eos_5d_mkiii" "canon_eos_5d_mkiv" "canon_eos_5ds" "canon_eos_m"
+        "hasselblad_l1d_20c" "nikon_d810" "nikon_d850" "sony_ilce_6400" "sony_ilce_7m3"
+        "sony_ilce_7rm3" "sony_ilce_9"
     }
     pbrt_spectra! {
         "glass-BK7" "glass-BAF10" "glass-FK51A" "glass-LASF9" "glass-F5" "glass-F10" "glass-F11"

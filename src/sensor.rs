@@ -20,6 +20,8 @@
 
 use glam::{DMat3, DVec3};
 
+pub mod pbrt;
+
 use crate::colour::cie::{K_M, cmf};
 use crate::spectrum::Spectrum;
 
@@ -28,6 +30,19 @@ use crate::spectrum::Spectrum;
 pub enum Adaptation {
     VonKries,
     Bradford,
+    /// pbrt-v4's RGB film matrix ([`pbrt::output_matrix`]): linear sRGB as pbrt-v4 writes it.
+    PbrtV4,
+}
+
+/// What a raw value means.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Calibration {
+    /// The module doc's: exposure of the sensor plane (f-number, cos⁴θ) and ISO 12232's scale.
+    Iso12232,
+    /// pbrt-v4's `PixelSensor`: raw_k = (t·ISO/100)·∫ s_k L dλ with the raw curves (x̄, ȳ, z̄
+    /// for the CIE sensor), L in W·m⁻²·sr⁻¹·nm⁻¹; no f-number, no cos⁴θ (pbrt-v4's pixel is
+    /// its camera's radiance estimate). 1 reads as 1/K_m cd/m² for the CIE sensor's Y.
+    PbrtV4,
 }
 
 /// A sensor with its exposure settings and, optionally, white balance.
@@ -45,6 +60,7 @@ pub struct CameraSensor {
     pub f_number: f64,
     /// (illuminant name, adaptation, raw → balanced matrix).
     pub white_balance: Option<(String, Adaptation, DMat3)>,
+    pub calibration: Calibration,
 }
 
 /// ∫ f dλ over 360–830 nm at 1 nm (the CIE table's grid), trapezoids.
@@ -55,20 +71,21 @@ fn integrate(f: impl Fn(f32) -> f64) -> f64 {
 }
 
 impl CameraSensor {
-    /// A sensor; `white_balance` is the illuminant's name and spectrum, and the adaptation.
+    /// A sensor; `white_balance` is the illuminant's name and spectrum, and the adaptation
+    /// ([`Adaptation::PbrtV4`] goes with [`Calibration::PbrtV4`] and no other).
     pub fn new(
         name: String,
         curves: Option<[Spectrum; 3]>,
-        iso: f64,
-        shutter_s: f64,
-        f_number: f64,
+        exposure: (f64, f64, f64, Calibration),
         white_balance: Option<(String, Spectrum, Adaptation)>,
     ) -> Result<Self, String> {
+        let (iso, shutter_s, f_number, calibration) = exposure;
         let d65 = match crate::spectrum::named::lookup("cie-d65") {
             Ok(crate::spectrum::named::Named::Curve { spectrum, .. }) => spectrum,
             _ => return Err("the D65 table is missing".into()),
         };
         let norm = match &curves {
+            _ if calibration == Calibration::PbrtV4 => 1.0 / K_M,
             None => 1.0,
             Some(c) => {
                 let g = integrate(|l| d65.eval(l) as f64 * c[1].eval(l) as f64);
@@ -87,7 +104,12 @@ impl CameraSensor {
             shutter_s,
             f_number,
             white_balance: None,
+            calibration,
         };
+        let pbrt = matches!(&white_balance, Some((_, _, Adaptation::PbrtV4)));
+        if pbrt != (calibration == Calibration::PbrtV4) {
+            return Err("pbrt-v4's film matrix goes with pbrt-v4's calibration only".into());
+        }
         if let Some((wb_name, illum, adaptation)) = white_balance {
             let m = s.balance(&illum, adaptation)?;
             s.white_balance = Some((wb_name, adaptation, m));
@@ -122,6 +144,7 @@ impl CameraSensor {
         }
         Ok(match a {
             Adaptation::VonKries => DMat3::from_diagonal(DVec3::new(w[1] / w[0], 1.0, w[1] / w[2])),
+            Adaptation::PbrtV4 => pbrt::output_matrix(self.curves.as_ref(), Some(illum))?,
             Adaptation::Bradford => {
                 let to_xyz = self.to_xyz(illum)?;
                 let white = to_xyz * DVec3::from(w);
@@ -164,6 +187,17 @@ impl CameraSensor {
             return Err("the ColorChecker fit of the camera's matrix is singular".into());
         }
         Ok(b * a.inverse())
+    }
+
+    /// Raw value per unit of [`response`](Self::response) at a pixel whose chief ray makes
+    /// cos θ with the axis: ISO 12232's exposure times its scale, or pbrt-v4's t·ISO/100.
+    pub fn raw_scale(&self, cos_theta: f64) -> f64 {
+        match self.calibration {
+            Calibration::Iso12232 => {
+                self.exposure_per_radiance(cos_theta) * self.raw_per_exposure()
+            }
+            Calibration::PbrtV4 => self.shutter_s * self.iso / 100.0,
+        }
     }
 
     /// (π/4)·t·cos⁴θ/N²: exposure (lx·s or J·m⁻²) per unit of luminance or radiance.

@@ -3,7 +3,10 @@
 //! unchanged, renders it with two seeds at the scene's sample count, and every 8 × 8 block's
 //! mean Y must lie within 5 standard errors of pbrt-v4's (both renderers' noise, measured from
 //! their seeds' differences). `compare.toml` in a folder may ask for pbrt-v4's layered exit
-//! weight (`pbrt_exit_weight`), for scenes where pbrt-v4's layered f is biased.
+//! weight (`pbrt_exit_weight`), for scenes where pbrt-v4's layered f is biased, or say that
+//! the film has a pixel sensor (`sensor`): then pbrt-v4's R, G and B blocks are compared with
+//! spectrace's `sensor.wb.R/G/B` channels (5 nm spectral bins for a camera's curves, as the
+//! command line renders them).
 
 mod support;
 
@@ -25,6 +28,8 @@ struct Refs {
 struct Compare {
     #[serde(default)]
     pbrt_exit_weight: bool,
+    #[serde(default)]
+    sensor: bool,
 }
 
 /// Per block: the mean Y (pbrt-v4's scale) of two seeds and its standard error.
@@ -48,8 +53,31 @@ fn blocks(a: &[f64], b: &[f64], w: usize, h: usize, k: usize) -> (Vec<f64>, Vec<
     (mean, se)
 }
 
-/// The scene's Y images (pbrt-v4's scale) for seeds 1 and 2.
-fn render(path: &Path, pbrt_exit_weight: bool) -> (Vec<f64>, Vec<f64>, u32) {
+/// The scene's pixel sensor's pbrt-v4 image: its R, G and B (`sensor.wb.*`) one above the
+/// other.
+fn sensor_rgb(scene: &spectrace::scene::Scene, seed: u32) -> Vec<f64> {
+    let sensor = scene.camera_sensor.as_ref().expect("the film has a sensor");
+    let bins = if sensor.curves.is_some() { 94 } else { 0 };
+    let (img, _) = support::render::render_with(scene, |o| {
+        o.seed = seed;
+        o.spectral_bins = bins;
+    });
+    let cos = vec![1.0f32; img.width * img.height];
+    let (ch, _) = spectrace::output::sensor_channels(&img, sensor, &cos);
+    ["R", "G", "B"]
+        .iter()
+        .flat_map(|c| {
+            let name = format!("sensor.wb.{c}");
+            let (_, v) = ch.iter().find(|(n, _)| *n == name).expect("wb channel");
+            v.iter().map(|&x| x as f64).collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+/// The scene's Y images (pbrt-v4's scale) for seeds 1 and 2, or with `cmp.sensor` its sensor's
+/// R, G, B images.
+fn render(path: &Path, cmp: &Compare) -> (Vec<f64>, Vec<f64>, u32) {
+    let pbrt_exit_weight = cmp.pbrt_exit_weight;
     let mut desc = spectrace::loader::pbrt::load(path).unwrap_or_else(|e| panic!("{e}"));
     fn set(k: &mut MaterialKind, on: bool) {
         match k {
@@ -65,6 +93,9 @@ fn render(path: &Path, pbrt_exit_weight: bool) -> (Vec<f64>, Vec<f64>, u32) {
     }
     let spp = desc.film.spp;
     let scene = spectrace::build::build(&desc).unwrap_or_else(|e| panic!("{e}"));
+    if cmp.sensor {
+        return (sensor_rgb(&scene, 1), sensor_rgb(&scene, 2), spp);
+    }
     let y = |seed: u32| -> Vec<f64> {
         let (img, _) = support::render::render_with(&scene, |o| o.seed = seed);
         img.xyz.iter().map(|p| p[1] as f64 / K_M).collect()
@@ -91,8 +122,9 @@ fn reference_scenes_match_pbrt_v4() {
         let cmp: Compare = std::fs::read_to_string(dir.join("compare.toml"))
             .map(|t| toml::from_str(&t).unwrap())
             .unwrap_or_default();
-        let (a, b, spp) = render(&dir.join("scene.pbrt"), cmp.pbrt_exit_weight);
-        let (mean, se) = blocks(&a, &b, refs.width, refs.height, refs.block);
+        let (a, b, spp) = render(&dir.join("scene.pbrt"), &cmp);
+        let rows = if cmp.sensor { 3 } else { 1 } * refs.height;
+        let (mean, se) = blocks(&a, &b, refs.width, rows, refs.block);
         assert_eq!(mean.len(), refs.mean.len(), "{name}: block count");
         let (mut worst, mut at) = (0.0f64, 0);
         for i in 0..mean.len() {
@@ -113,7 +145,8 @@ fn reference_scenes_match_pbrt_v4() {
         }
         let total = |v: &[f64]| v.iter().sum::<f64>();
         println!(
-            "{name} ({spp} spp): Y sum ratio {:.4}; worst block {at}: spectrace {:.5} ± {:.5}, pbrt-v4 {:.5} ± {:.5} (z {worst:+.2})",
+            "{name} ({spp} spp): {} sum ratio {:.4}; worst block {at}: spectrace {:.5} ± {:.5}, pbrt-v4 {:.5} ± {:.5} (z {worst:+.2})",
+            if cmp.sensor { "sensor R+G+B" } else { "Y" },
             total(&mean) / total(&refs.mean),
             mean[at],
             se[at],
@@ -124,7 +157,11 @@ fn reference_scenes_match_pbrt_v4() {
             failures.push(format!("{name}: block {at} z {worst:.2}"));
         }
         if cmp.pbrt_exit_weight {
-            let (a2, b2, _) = render(&dir.join("scene.pbrt"), false);
+            let own = Compare {
+                pbrt_exit_weight: false,
+                sensor: false,
+            };
+            let (a2, b2, _) = render(&dir.join("scene.pbrt"), &own);
             let (own, _) = blocks(&a2, &b2, refs.width, refs.height, refs.block);
             println!(
                 "{name}: with spectrace's own exit weight, Y sum ratio {:.4} (pbrt-v4's layered bias)",

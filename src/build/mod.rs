@@ -150,9 +150,12 @@ fn camera_sensor(desc: &SceneDesc) -> Result<Option<crate::sensor::CameraSensor>
     crate::sensor::CameraSensor::new(
         s.name.clone(),
         s.curves.clone(),
-        s.iso,
-        s.shutter.get::<crate::units::time::second>(),
-        s.f_number,
+        (
+            s.iso,
+            s.shutter.get::<crate::units::time::second>(),
+            s.f_number,
+            s.calibration,
+        ),
         s.white_balance.clone(),
     )
     .map(Some)

@@ -53,10 +53,10 @@ pub struct RenderInfo<'a> {
     pub aovs: &'a [crate::render::aov::AovChannel],
 }
 
-/// The sensor's channels of `img`: `sensor.H` (photometric exposure, lx·s), raw `sensor.R`,
-/// `sensor.G`, `sensor.B` and, with white balance, `sensor.wb.R/G/B` (see
-/// `crate::sensor`), with the header text that states their units. Camera curves read
-/// the spectral bins (the caller renders with them).
+/// The sensor's channels of `img`: `sensor.H` (photometric exposure, lx·s; not for pbrt-v4's
+/// calibration), raw `sensor.R`, `sensor.G`, `sensor.B` and, with white balance,
+/// `sensor.wb.R/G/B` (see `crate::sensor`), with the header text that states their units.
+/// Camera curves read the spectral bins (the caller renders with them).
 pub fn sensor_channels(
     img: &Image,
     sensor: &crate::sensor::CameraSensor,
@@ -76,6 +76,8 @@ pub fn sensor_channels(
     for i in 0..n {
         let e = sensor.exposure_per_radiance(cos_theta[i] as f64);
         h[i] = (img.xyz[i][1] as f64 * e) as f32;
+        // the CIE sensor's response is the film's XYZ times the sensor's norm
+        let cie = img.xyz[i].map(|v| v as f64 * sensor.norm);
         let r: [f64; 3] = match (&sensor.curves, &weights) {
             (Some(_), Some(w)) => {
                 let mut r = [0.0; 3];
@@ -86,9 +88,10 @@ pub fn sensor_channels(
                 }
                 r
             }
-            _ => img.xyz[i].map(|v| v as f64),
+            _ => cie,
         };
-        let r = r.map(|v| v * e * sensor.raw_per_exposure());
+        let scale = sensor.raw_scale(cos_theta[i] as f64);
+        let r = r.map(|v| v * scale);
         for k in 0..3 {
             raw[k][i] = r[k] as f32;
         }
@@ -99,7 +102,12 @@ pub fn sensor_channels(
             }
         }
     }
-    let mut ch = vec![("sensor.H".to_string(), h)];
+    let pbrt = sensor.calibration == crate::sensor::Calibration::PbrtV4;
+    let mut ch = if pbrt {
+        Vec::new()
+    } else {
+        vec![("sensor.H".to_string(), h)]
+    };
     for (k, c) in ["R", "G", "B"].iter().enumerate() {
         ch.push((format!("sensor.{c}"), std::mem::take(&mut raw[k])));
     }
@@ -116,7 +124,17 @@ pub fn sensor_channels(
         Some((name, crate::sensor::Adaptation::Bradford, _)) => format!(
             "; sensor.wb.R,G,B: linear sRGB (D65) of the raw values through the sensor's XYZ fit, Bradford-adapted from {name}"
         ),
+        Some((name, crate::sensor::Adaptation::PbrtV4, _)) => format!(
+            "; sensor.wb.R,G,B: pbrt-v4's rgb film values, linear sRGB through its sensor matrix (white balance: {name})"
+        ),
     };
+    if pbrt {
+        let text = format!(
+            "sensor {} as pbrt-v4's PixelSensor: ISO {}, exposure time {} s; sensor.R,G,B: raw values, (t ISO/100) x the integral over wavelength of the channel's sensitivity times the spectral radiance, W/(m^2 sr) (for cie1931: XYZ in cd/m^2 / 683){balance}",
+            sensor.name, sensor.iso, sensor.shutter_s
+        );
+        return (ch, text);
+    }
     let text = format!(
         "sensor {}: ISO {}, {} s, f/{}; sensor.H: photometric exposure of the sensor plane in lx.s, H = (pi/4) L t cos^4(theta) / N^2; sensor.R,G,B: raw values, 0.18 x ISO/10 x the channel's exposure response (lx.s, green matched to luminance under D65), so 10/ISO lx.s reads 0.18{balance}",
         sensor.name, sensor.iso, sensor.shutter_s, sensor.f_number

@@ -147,6 +147,8 @@ pub struct CameraSensorDesc {
     pub f_number: f64,
     /// The illuminant to balance to (name, spectrum) and how.
     pub white_balance: Option<(String, Spectrum, crate::sensor::Adaptation)>,
+    /// What a raw value means (ISO 12232's exposure, or pbrt-v4's sensor).
+    pub calibration: crate::sensor::Calibration,
 }
 
 #[derive(Clone, Debug)]

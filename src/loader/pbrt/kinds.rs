@@ -119,16 +119,17 @@ fn integrator(p: &Params, kind: &str, loc: Loc) -> R<(IntegratorKind, i64, Light
 
 /// A `Film`'s kind and the settings of its pixel sensor: `rgb`; `gbuffer` (its image; the
 /// extra channels are not written, a note says so); `spectral` (its `nbuckets` over 360–830
-/// nm as spectrace's spectral EXR bins). pbrt-v4's sensor must be its pass-through default
-/// (`cie1931`, `iso` 100, no `whitebalance`, no `maxcomponentvalue` clamp); `savefp16` is a
-/// precision choice, ignored. Returns the spectral bins (0: none).
+/// nm as spectrace's spectral EXR bins). Its pixel sensor (`sensor`, `iso`, `whitebalance`,
+/// with the camera's exposure time `exposure_s`) is read by `sensor.rs`; a
+/// `maxcomponentvalue` clamp is refused; `savefp16` is a precision choice, ignored. Returns
+/// the spectral bins (0: none) and the sensor (None: pbrt-v4's pass-through).
 fn film(
     p: &Params,
-    kind: &str,
-    loc: Loc,
+    (kind, loc): (&str, Loc),
+    exposure_s: f64,
     file: &std::path::Path,
     notes: &mut Vec<String>,
-) -> R<u32> {
+) -> R<(u32, Option<CameraSensorDesc>)> {
     let bins = match kind {
         "rgb" => 0,
         "gbuffer" => {
@@ -161,27 +162,21 @@ fn film(
         }
     };
     let _ = p.bool("savefp16", true)?;
-    let sensor = p.string("sensor")?;
-    let unread = [
-        ("sensor", sensor.as_deref().is_some_and(|s| s != "cie1931")),
-        ("iso", p.float("iso", 100.0)? != 100.0),
-        ("whitebalance", p.float("whitebalance", 0.0)? != 0.0),
-        (
-            "maxcomponentvalue",
-            p.float("maxcomponentvalue", f64::INFINITY)?.is_finite(),
-        ),
-    ];
-    for (name, set) in unread {
-        if set {
-            return Err(p.err(
-                p.loc_of(name),
-                format!(
-                    "a film's \"{name}\" other than pbrt-v4's pass-through default is not read yet"
-                ),
-            ));
-        }
+    if p.float("maxcomponentvalue", f64::INFINITY)?.is_finite() {
+        return Err(p.err(
+            p.loc_of("maxcomponentvalue"),
+            "a film's \"maxcomponentvalue\" clamp is not read yet (it biases the image)",
+        ));
     }
-    Ok(bins)
+    let sensor = super::sensor::sensor(p, exposure_s)?;
+    if let Some(s) = &sensor {
+        notes.push(format!(
+            "{}:{loc}: the film's sensor ({}): pbrt-v4's image is in the EXR's sensor.wb.R, G, B channels; X, Y, Z and R, G, B stay the physical radiance",
+            file.display(),
+            s.name
+        ));
+    }
+    Ok((bins, sensor))
 }
 
 /// The scene: camera, film, sampler and integrator from their directives, and what the world
@@ -196,18 +191,19 @@ pub(super) fn finish(mut r: Reader) -> Result<SceneDesc, LoadError> {
             "the scene has no Camera",
         ));
     };
-    let (width, height, film_loc, spectral_bins, diagonal_mm) = match &r.film {
+    let exposure_s = super::sensor::exposure_time(cam, *cam_loc)?;
+    let (width, height, film_loc, spectral_bins, diagonal_mm, sensor) = match &r.film {
         Some((p, kind, loc)) => {
-            let bins = film(p, kind, *loc, &file, &mut r.notes)?;
+            let (bins, sensor) = film(p, (kind, *loc), exposure_s, &file, &mut r.notes)?;
             let w = p.int("xresolution", 1280)?;
             let h = p.int("yresolution", 720)?;
             let _ = p.string("filename")?;
             // the film's size in mm, which the realistic camera reads
             let diagonal = p.float("diagonal", 35.0)?;
             p.check_unused(&format!("film \"{kind}\""))?;
-            (w, h, *loc, bins, diagonal)
+            (w, h, *loc, bins, diagonal, sensor)
         }
-        None => (1280, 720, Loc { line: 0, col: 0 }, 0, 35.0),
+        None => (1280, 720, Loc { line: 0, col: 0 }, 0, 35.0, None),
     };
     if !(1..=32768).contains(&width) || !(1..=32768).contains(&height) {
         return Err(LoadError::new(
@@ -239,9 +235,10 @@ pub(super) fn finish(mut r: Reader) -> Result<SceneDesc, LoadError> {
         height,
         diagonal_mm,
     };
-    let camera = camera(ctm, cam, kind, *cam_loc, size, &|name| {
+    let mut camera = camera(ctm, cam, kind, *cam_loc, size, &|name| {
         r.resolve(&r.root, name)
     })?;
+    camera.sensor = sensor;
     cam.check_unused(&format!("camera \"{kind}\""))?;
     let nm = |x: f64| Length::new::<crate::units::length::nanometer>(x);
     Ok(SceneDesc {

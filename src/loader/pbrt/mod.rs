@@ -19,6 +19,7 @@ mod meshes;
 mod objects;
 mod params;
 mod roughness;
+mod sensor;
 mod shapes;
 mod spectra;
 mod textures;

@@ -120,6 +120,7 @@ pub(super) fn camera_sensor(
         shutter: crate::units::Time::new::<crate::units::time::second>(shutter_s),
         f_number,
         white_balance,
+        calibration: crate::sensor::Calibration::Iso12232,
     })
 }
 
