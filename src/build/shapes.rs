@@ -4,7 +4,7 @@ use glam::{Mat4, Vec3};
 use std::sync::Arc;
 
 use super::v3;
-use crate::geometry::shape::{Cylinder, Disk, Mesh, Shape, Sphere};
+use crate::geometry::shape::{Cylinder, Disk, Mesh, PbrtCurve, Shape, Sphere};
 use crate::geometry::transform::Transform;
 use crate::loader::desc::{MeshNormals, ShapeDesc, ShapeKind, TransformStep};
 use crate::units::plain;
@@ -29,7 +29,11 @@ fn curve(s: &ShapeDesc) -> Result<Shape, String> {
         ShapeKind::BSplineCurve { path } => {
             Shape::BSpline(BSplineCurve::load(path, &transform(s, true)?).map_err(e)?)
         }
-        ShapeKind::BSplinePoints { curves, pbrt } => {
+        ShapeKind::BSplinePoints {
+            curves,
+            pbrt,
+            ribbon_normals,
+        } => {
             let t = transform(s, true)?;
             let curves: Vec<Vec<(Vec3, f32)>> = curves
                 .iter()
@@ -41,6 +45,11 @@ fn curve(s: &ShapeDesc) -> Result<Shape, String> {
                 .collect();
             let c = BSplineCurve::new(&curves).map_err(e)?;
             Shape::BSpline(match pbrt {
+                Some(PbrtCurve::Ribbon) => {
+                    let n = |v: &[f64; 3]| t.normal(Vec3::from(v.map(|x| x as f32)));
+                    let normals = ribbon_normals.iter().map(|[a, b]| [n(a), n(b)]).collect();
+                    c.with_ribbon_normals(normals).map_err(e)?
+                }
                 Some(kind) => c.with_pbrt_shading(*kind),
                 None => c,
             })

@@ -51,6 +51,8 @@ pub struct BSplineCurve {
     segments: Vec<u32>,
     /// Hit and shaded as pbrt-v4's curves of this type ([`BSplineCurve::with_pbrt_shading`]).
     pbrt: Option<PbrtCurve>,
+    /// A [`PbrtCurve::Ribbon`]'s unit normals at each segment's start and end (world space).
+    ribbon_normals: Vec<[Vec3; 2]>,
 }
 
 /// The pbrt-v4 curve types spectrace reads (`CurveType`, src/pbrt/shapes.h).
@@ -60,6 +62,9 @@ pub enum PbrtCurve {
     Flat,
     /// The ribbon's normal turned across the width to look round.
     Cylinder,
+    /// A ribbon oriented by normals given at each segment's ends, which it turns between
+    /// ([`BSplineCurve::with_ribbon_normals`]).
+    Ribbon,
 }
 
 /// A segment's centre line and radius at s, with their first and second derivatives in s.
@@ -83,6 +88,7 @@ impl BSplineCurve {
             radii: vec![],
             segments: vec![],
             pbrt: None,
+            ribbon_normals: vec![],
         };
         for (k, line) in curves.iter().enumerate() {
             if line.len() < 4 {
@@ -314,6 +320,25 @@ impl BSplineCurve {
     pub fn with_pbrt_shading(mut self, kind: PbrtCurve) -> Self {
         self.pbrt = Some(kind);
         self
+    }
+
+    /// A [`PbrtCurve::Ribbon`]'s normals, one pair (start, end; world space, any length) per
+    /// segment in order. Fails on a count other than the segments' or a zero normal.
+    pub fn with_ribbon_normals(mut self, normals: Vec<[Vec3; 2]>) -> Result<Self, GeometryError> {
+        if normals.len() != self.segments.len() {
+            return Err(GeometryError::Curve(format!(
+                "{} normal pairs for {} segments",
+                normals.len(),
+                self.segments.len()
+            )));
+        }
+        self.ribbon_normals = normals
+            .iter()
+            .map(|[a, b]| Some([a.try_normalize()?, b.try_normalize()?]))
+            .collect::<Option<_>>()
+            .ok_or_else(|| GeometryError::Curve("a ribbon normal is zero".into()))?;
+        self.pbrt = Some(PbrtCurve::Ribbon);
+        Ok(self)
     }
 
     /// The surface point at `p_approx` on segment `i`, its closest centre-line point at `s`

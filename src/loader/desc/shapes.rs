@@ -75,6 +75,9 @@ pub enum ShapeKind {
         /// Hit and shaded as pbrt-v4's curves of this type (`BSplineCurve::with_pbrt_shading`);
         /// None: round tubes, as Mitsuba's.
         pbrt: Option<crate::geometry::shape::PbrtCurve>,
+        /// A pbrt-v4 `ribbon`'s normals at each segment's start and end (in the shape's
+        /// frame, placed by its transform as normals); empty for other curves.
+        ribbon_normals: Vec<[[f64; 3]; 2]>,
     },
     /// Mitsuba's `sdfgrid`: distances at `res` points (x fastest) over the object's unit cube;
     /// `smooth` shading normals or the gradient's.

@@ -9,7 +9,9 @@
 //! normal would reflect π/4 ÷ 2/π = 1.23 times as much light back toward a light behind the
 //! eye, and pbrt-v4 turns the normal away from the hit's side, so its cylinders are lit on the
 //! side away from a light. `flat` curves (pbrt-v4's default) keep the ribbon's own normal,
-//! facing the ray; `ribbon` curves (turned by normals `N`) are refused.
+//! facing the ray; `ribbon` curves are oriented by the normals `N` given at the segments'
+//! ends (one more than the segments), turned between them as pbrt-v4 turns them
+//! (`BSplineCurve::with_ribbon_normals`), and seen as wide as their width times |n·d̂|.
 //!
 //! The curve's control points: `bezier` segments (degree 3, or degree 2 raised to 3) each
 //! become one uniform cubic B-spline of four points with the same centre line
@@ -26,7 +28,7 @@ use crate::loader::Loc;
 use crate::loader::desc::ShapeKind;
 
 /// A `curve`'s B-spline curves, in object space, radii scaled by the CTM's (uniform) scale,
-/// of pbrt-v4's `flat` (its default) or `cylinder` type.
+/// of pbrt-v4's `flat` (its default), `cylinder` or `ribbon` type.
 pub(super) fn curve(p: &Params, loc: Loc, ctm: &DMat4) -> R<ShapeKind> {
     let width = p.float("width", 1.0)?;
     let (w0, w1) = (p.float("width0", width)?, p.float("width1", width)?);
@@ -38,18 +40,18 @@ pub(super) fn curve(p: &Params, loc: Loc, ctm: &DMat4) -> R<ShapeKind> {
     let kind = match kind.as_str() {
         "cylinder" => PbrtCurve::Cylinder,
         "flat" => PbrtCurve::Flat,
-        "ribbon" => {
-            return Err(p.err(
-                p.loc_of("type"),
-                "a \"ribbon\" curve is not read yet (spectrace reads \"flat\" and \"cylinder\" curves)",
-            ));
-        }
+        "ribbon" => PbrtCurve::Ribbon,
         other => {
             return Err(p.err(p.loc_of("type"), format!("unknown curve type \"{other}\"")));
         }
     };
-    // pbrt-v4 ignores normals on a cylinder curve, with a warning
-    let _ = p.nums("N", &["normal", "normal3"])?;
+    // pbrt-v4 ignores normals on a flat or cylinder curve, with a warning
+    let normals: Vec<[f64; 3]> = p
+        .nums("N", &["normal", "normal3"])?
+        .unwrap_or(&[])
+        .chunks_exact(3)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect();
     if !(w0 > 0.0 && w1 > 0.0 && w0.is_finite() && w1.is_finite()) {
         return Err(p.err(loc, "a curve's widths must be positive"));
     }
@@ -85,6 +87,21 @@ pub(super) fn curve(p: &Params, loc: Loc, ctm: &DMat4) -> R<ShapeKind> {
             ));
         }
     };
+    let ribbon_normals = if kind == PbrtCurve::Ribbon {
+        if normals.len() != segments + 1 {
+            return Err(p.err(
+                if normals.is_empty() { p.loc_of("type") } else { p.loc_of("N") },
+                format!(
+                    "a ribbon curve needs a normal \"N\" at each segment's ends: {} for {segments} segment(s), not {}",
+                    segments + 1,
+                    normals.len()
+                ),
+            ));
+        }
+        normals.windows(2).map(|w| [w[0], w[1]]).collect()
+    } else {
+        Vec::new()
+    };
     // the radius in metres at u ∈ [0, 1] along the curve, scaled as the CTM scales lengths
     let scale = ctm.determinant().abs().cbrt();
     let radius = |u: f64| 0.5 * (w0 + (w1 - w0) * u) * scale;
@@ -97,6 +114,7 @@ pub(super) fn curve(p: &Params, loc: Loc, ctm: &DMat4) -> R<ShapeKind> {
         return Ok(ShapeKind::BSplinePoints {
             curves: vec![curve],
             pbrt: Some(kind),
+            ribbon_normals,
         });
     }
     let curves = (0..segments)
@@ -117,6 +135,7 @@ pub(super) fn curve(p: &Params, loc: Loc, ctm: &DMat4) -> R<ShapeKind> {
     Ok(ShapeKind::BSplinePoints {
         curves,
         pbrt: Some(kind),
+        ribbon_normals,
     })
 }
 

@@ -1,5 +1,5 @@
 //! pbrt-v4's curves on [`BSplineCurve`] ([`BSplineCurve::with_pbrt_shading`]): the ray-facing
-//! ribbon's test and its hit.
+//! ribbon's test and its hit, and the oriented ribbons of its `ribbon` type.
 
 use super::{BSplineCurve, Eval, PIECES, PbrtCurve};
 use crate::geometry::ray::Ray;
@@ -8,10 +8,29 @@ use crate::geometry::shape::curve::capsule_hit;
 use glam::{Vec2, Vec3};
 
 impl BSplineCurve {
+    /// A [`PbrtCurve::Ribbon`]'s normal on segment `i` at s (pbrt-v4's `Curve`): its end
+    /// normals n₀, n₁ slerped, sin((1 − s)θ)·n₀/sin θ + sin(sθ)·n₁/sin θ with θ the angle
+    /// between them (pbrt-v4's `AngleBetween`, the form that stays accurate near 0 and π),
+    /// n₀ where θ = 0. None for other curves.
+    fn ribbon_normal(&self, i: usize, s: f32) -> Option<Vec3> {
+        let [n0, n1] = *self.ribbon_normals.get(i)?;
+        let theta = if n0.dot(n1) < 0.0 {
+            std::f32::consts::PI - 2.0 * ((n0 + n1).length() / 2.0).min(1.0).asin()
+        } else {
+            2.0 * ((n1 - n0).length() / 2.0).min(1.0).asin()
+        };
+        if theta == 0.0 {
+            return Some(n0);
+        }
+        let inv = 1.0 / theta.sin();
+        Some(n0 * (((1.0 - s) * theta).sin() * inv) + n1 * ((s * theta).sin() * inv))
+    }
+
     /// pbrt-v4's ribbon test on segment `i` (`Curve::RecursiveIntersect`): seen along the
     /// ray, the centre line's point nearest the ray, c(s) with s ∈ [0, 1] a stationary point of
     /// |P(c(s) − o)|² (P = I − d̂d̂ᵀ: g(s) = P(c − o)·Pc' = 0, by Newton's method from each
-    /// piece whose bounding capsule the ray meets), must lie within r(s) of it; the hit is at
+    /// piece whose bounding capsule the ray meets), must lie within r(s) of it (a `ribbon`'s
+    /// r(s)·|n(s)·d̂|, its width as seen along the ray, as pbrt-v4 scales it); the hit is at
     /// c(s)'s depth along the ray, t in (0, t_max). So the curve ends where the projected
     /// centre line does, as pbrt-v4's ribbon ends, rather than at the tube's end planes.
     pub(super) fn intersect_ribbon(&self, i: usize, ray: &Ray) -> Option<(f32, f32)> {
@@ -48,7 +67,11 @@ impl BSplineCurve {
             }
             let e = self.eval(i, s);
             let t = (e.c - ray.o).dot(ray.d) / dd;
-            let near = proj(e.c - ray.o).length_squared() <= e.r * e.r;
+            let r = match self.ribbon_normal(i, s) {
+                Some(n) => e.r * n.dot(d).abs(),
+                None => e.r,
+            };
+            let near = proj(e.c - ray.o).length_squared() <= r * r;
             if near && t > 0.0 && t < ray.t_max && best.is_none_or(|b| t < b.0) {
                 best = Some((t, s));
             }
@@ -59,8 +82,10 @@ impl BSplineCurve {
     /// pbrt-v4's hit on segment `i` at `s` ([`BSplineCurve::with_pbrt_shading`]): the point
     /// of `ray` at the depth of the centre line's point c(s), and the ribbon's normal (facing
     /// the ray, perpendicular to the tangent) turned by θ = (π/2)·x away from the hit's side,
-    /// x ∈ [−1, 1] the hit's offset from c(s) across the ribbon in radii. The normal serves as
-    /// both the geometric and the shading one, as pbrt-v4's single normal does.
+    /// x ∈ [−1, 1] the hit's offset from c(s) across the ribbon in radii; a `ribbon`'s normal
+    /// is its n(s) made perpendicular to the tangent (pbrt-v4's ∂p/∂u × (n × ∂p/∂u)). The
+    /// normal serves as both the geometric and the shading one, as pbrt-v4's single normal
+    /// does.
     pub(super) fn pbrt_interaction(
         &self,
         i: usize,
@@ -76,12 +101,17 @@ impl BSplineCurve {
             .try_normalize()
             .unwrap_or(axis.any_orthonormal_vector());
         let across = axis.cross(facing);
-        let x = ((p - e.c).dot(across) / e.r).clamp(-1.0, 1.0);
+        let ribbon = self.ribbon_normal(i, s);
+        let r = ribbon.map_or(e.r, |n| (e.r * n.dot(d).abs()).max(f32::MIN_POSITIVE));
+        let x = ((p - e.c).dot(across) / r).clamp(-1.0, 1.0);
         let theta = match kind {
             PbrtCurve::Cylinder => std::f32::consts::FRAC_PI_2 * x,
-            PbrtCurve::Flat => 0.0,
+            PbrtCurve::Flat | PbrtCurve::Ribbon => 0.0,
         };
-        let n = facing * theta.cos() - across * theta.sin();
+        let n = match ribbon {
+            Some(n) => (n - axis * n.dot(axis)).try_normalize().unwrap_or(facing),
+            None => facing * theta.cos() - across * theta.sin(),
+        };
         let count = self.segments.len() as f32;
         Intersection {
             t: 0.0,

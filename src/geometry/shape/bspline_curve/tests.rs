@@ -113,3 +113,35 @@ fn too_few_points_is_an_error() {
     let e = BSplineCurve::new(&[pts]).unwrap_err().to_string();
     assert!(e.contains("four or more"), "{e}");
 }
+
+/// A pbrt-v4 ribbon along x twisting a quarter turn, normal +z at its start to +y at its end:
+/// seen along −z its width is r·|n·d̂| = r·cos(πs/2), so at s = 1/3 it is hit within
+/// r·cos 30° of the centre line and not beyond; its normal there is the slerp, (0, ½, √3/2).
+#[test]
+fn pbrt_ribbon_turns_with_its_normals() {
+    let r = 0.2;
+    let pts: Vec<(Vec3, f32)> = (0..4).map(|k| (Vec3::new(k as f32, 0.0, 0.0), r)).collect();
+    let c = BSplineCurve::new(&[pts])
+        .unwrap()
+        .with_ribbon_normals(vec![[Vec3::Z, Vec3::Y * 3.0]])
+        .unwrap();
+    // c(s) = 1 + s along x for this segment
+    let x = 1.0 + 1.0 / 3.0;
+    let w = r * (std::f32::consts::FRAC_PI_6).cos();
+    let hit = |y: f32| c.intersect(0, &Ray::new(Vec3::new(x, y, 5.0), Vec3::NEG_Z));
+    assert!(hit(0.98 * w).is_some() && hit(1.02 * w).is_none());
+    let ray = Ray::new(Vec3::new(x, 0.0, 5.0), Vec3::NEG_Z);
+    let (t, s) = hit(0.0).unwrap();
+    assert!(
+        (t - 5.0).abs() < 1e-4 && (s - 1.0 / 3.0).abs() < 1e-4,
+        "{t} {s}"
+    );
+    let e = c.eval(0, s);
+    let it = c.pbrt_interaction(0, &e, s, &ray, PbrtCurve::Ribbon);
+    let want = Vec3::new(0.0, 0.5, 0.75f32.sqrt());
+    assert!((it.n_geom - want).length() < 1e-4, "{}", it.n_geom);
+    // a count other than the segments' is an error
+    let pts: Vec<(Vec3, f32)> = (0..5).map(|k| (Vec3::new(k as f32, 0.0, 0.0), r)).collect();
+    let two = BSplineCurve::new(&[pts]).unwrap();
+    assert!(two.with_ribbon_normals(vec![[Vec3::Z, Vec3::Y]]).is_err());
+}
