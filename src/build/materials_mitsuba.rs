@@ -18,13 +18,14 @@ pub(super) fn hair(h: &crate::loader::desc::HairDesc) -> Material {
             [sigma_a.scaled(*scale as f32), Spectrum::Constant(0.0)]
         }
     };
-    Material::Hair(Box::new(crate::material::Hair::new(
+    let hair = crate::material::Hair::new(
         sigma_a,
         h.eta as f32,
         h.roughness[0] as f32,
         h.roughness[1] as f32,
         super::materials::radians(&h.scale_tilt),
-    )))
+    );
+    Material::Hair(Box::new(if h.pbrt { hair.with_pbrt() } else { hair }))
 }
 
 /// A principled material: its textures, the scalar ones grey.

@@ -36,6 +36,7 @@ impl<const N: usize> Bsdf<'_, N> {
             spec_r: self.spec_r,
             spec_t: self.spec_t,
             disney: self.disney,
+            fibre_h: self.fibre_h,
         };
         let b = Bsdf {
             material: &m.b,

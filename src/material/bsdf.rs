@@ -28,6 +28,9 @@ pub struct Bsdf<'a, const N: usize> {
     pub spec_t: SampledSpectrum<N>,
     /// A principled material's parameters at the point; unused otherwise.
     pub disney: DisneyAt,
+    /// A pbrt-v4 hair's offset across the fibre at the point, h = 2v − 1 ∈ [−1, 1]
+    /// ([`super::Hair::with_pbrt`]); 0 and unused otherwise.
+    pub fibre_h: f32,
 }
 
 /// The identity frame of [`Bsdf::perturb`].
@@ -51,6 +54,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             spec_r: SampledSpectrum::splat(1.0),
             spec_t: SampledSpectrum::splat(1.0),
             disney: DisneyAt::default(),
+            fibre_h: 0.0,
         }
     }
 
@@ -84,7 +88,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             }
             Material::Textured(m) => self.textured_eval_pdf(m, wo, wi, w, mode).0,
             Material::Principled(m) => m.eval(&self.disney, self.albedo, wo, wi, mode),
-            Material::Hair(m) => m.eval(self.albedo, wo, wi, mode),
+            Material::Hair(m) => m.eval(self.albedo, self.fibre_h, wo, wi, mode),
             Material::Layered(m) => self.slab(m, w).eval(wo, wi, mode),
             Material::DiffuseTransmission(_) => {
                 DiffuseTransmission::eval(wo, wi, self.albedo, self.albedo_b)
@@ -117,7 +121,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             }
             Material::Textured(m) => self.textured_eval_pdf(m, wo, wi, w, _mode).1,
             Material::Principled(m) => m.pdf(&self.disney, wo, wi),
-            Material::Hair(m) => m.pdf(self.albedo, wo, wi, w),
+            Material::Hair(m) => m.pdf(self.albedo, self.fibre_h, wo, wi, w),
             Material::Layered(m) => self.slab(m, w).pdf(wo, wi, _mode),
             Material::DiffuseTransmission(_) => {
                 DiffuseTransmission::pdf(wo, wi, self.albedo, self.albedo_b)
@@ -164,8 +168,8 @@ impl<'a, const N: usize> Bsdf<'a, N> {
                 m.pdf(&self.disney, wo, wi),
             ),
             Material::Hair(m) => (
-                m.eval(self.albedo, wo, wi, mode),
-                m.pdf(self.albedo, wo, wi, w),
+                m.eval(self.albedo, self.fibre_h, wo, wi, mode),
+                m.pdf(self.albedo, self.fibre_h, wo, wi, w),
             ),
             Material::Layered(m) => {
                 let slab = self.slab(m, w);
@@ -228,7 +232,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             }
             Material::Textured(m) => self.textured_sample(m, wo, w, uc, u, mode),
             Material::Principled(m) => m.sample(&self.disney, self.albedo, wo, uc, u, mode),
-            Material::Hair(m) => m.sample(self.albedo, wo, w, uc, u, mode),
+            Material::Hair(m) => m.sample(self.albedo, self.fibre_h, wo, w, uc, u, mode),
             Material::Layered(m) => self.slab(m, w).sample(wo, uc, u, mode),
             Material::DiffuseTransmission(_) => {
                 DiffuseTransmission::sample(wo, self.albedo, self.albedo_b, uc, u)
@@ -282,6 +286,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             spec_r: self.spec_r,
             spec_t: self.spec_t,
             disney: self.disney,
+            fibre_h: self.fibre_h,
         }
     }
 

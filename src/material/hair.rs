@@ -31,7 +31,7 @@ use glam::{Vec2, Vec3};
 
 use super::fresnel::fresnel_dielectric;
 use super::hair_terms::{
-    i0_mitsuba, lobe_weights, log_i0_exact, log_i0_mitsuba, logistic, logistic_cdf, poly_from_nm,
+    i0_series, lobe_weights, log_i0_exact, log_i0_series, logistic, logistic_cdf, poly_from_nm,
     trimmed_logistic_sample,
 };
 use super::{BsdfSample, TransportMode};
@@ -71,8 +71,12 @@ pub struct Hair {
     /// sin and cos of 2ᵏα for k = 0, 1, 2 (α the scales' tilt).
     sin_2k_alpha: [f32; 3],
     cos_2k_alpha: [f32; 3],
-    /// Evaluate I₀ as Mitsuba 3.9.1 does (see [`Hair::with_mitsuba_bessel`]).
-    mitsuba_bessel: bool,
+    /// The terms of I₀'s series f is evaluated with, as Mitsuba 3.9.1 (11, both f and the
+    /// density, [`Hair::with_mitsuba_bessel`]) or pbrt-v4 (10, f only, [`Hair::with_pbrt`])
+    /// evaluate it; None: I₀ to f32 precision.
+    bessel_terms: Option<usize>,
+    /// Read as pbrt-v4's `HairBxDF` ([`Hair::with_pbrt`]).
+    pbrt: bool,
 }
 
 /// The viewer-side quantities every term needs.
@@ -108,7 +112,40 @@ impl Hair {
             s,
             sin_2k_alpha,
             cos_2k_alpha,
-            mitsuba_bessel: false,
+            bessel_terms: None,
+            pbrt: false,
+        }
+    }
+
+    /// This fibre as pbrt-v4's `hair` material evaluates it (`HairBxDF`, src/pbrt/bxdfs.h):
+    /// - its local frame has the fibre along +x (∂p/∂u of pbrt-v4's curves), so x and y are
+    ///   swapped on the way in and out: sin θ = w.x and φ = atan2(w.z, w.y) in that frame;
+    /// - the offset across the fibre is the surface's h = 2v − 1 (pbrt-v4's `HairMaterial`,
+    ///   v the hit's second surface coordinate) rather than read from the direction, so a
+    ///   pbrt-v4 curve (a ribbon facing the ray) spans h ∈ [−1, 1] across its width;
+    /// - f's M_p uses pbrt-v4's I₀, its series cut after 10 terms up to 12 (its `I0` and
+    ///   `LogI0`); the density stays the sampler's exact one, so the estimate is unbiased
+    ///   for pbrt-v4's f.
+    pub fn with_pbrt(self) -> Self {
+        Self {
+            bessel_terms: Some(10),
+            pbrt: true,
+            ..self
+        }
+    }
+
+    /// Whether this fibre reads its offset h from the surface (pbrt-v4's reading).
+    pub fn h_from_surface(&self) -> bool {
+        self.pbrt
+    }
+
+    /// A direction between the caller's local frame and this module's (pbrt-v4's has x and y
+    /// swapped; the swap is its own inverse).
+    fn local(&self, w: Vec3) -> Vec3 {
+        if self.pbrt {
+            Vec3::new(w.y, w.x, w.z)
+        } else {
+            w
         }
     }
 
@@ -120,7 +157,7 @@ impl Hair {
     /// terms with Mitsuba's values to rounding (`tests/hair.rs`).
     pub fn with_mitsuba_bessel(self) -> Self {
         Self {
-            mitsuba_bessel: true,
+            bessel_terms: Some(11),
             ..self
         }
     }
@@ -139,14 +176,17 @@ impl Hair {
         ]
     }
 
-    /// f(wo, wi) in sr⁻¹ without the cosine, for the absorption `sigma_a` at the hit.
+    /// f(wo, wi) in sr⁻¹ without the cosine, for the absorption `sigma_a` and (pbrt-v4's
+    /// reading) the offset `h` at the hit.
     pub fn eval<const N: usize>(
         &self,
         sigma_a: SampledSpectrum<N>,
+        h: f32,
         wo: Vec3,
         wi: Vec3,
         mode: TransportMode,
     ) -> SampledSpectrum<N> {
+        let (wo, wi) = (self.local(wo), self.local(wi));
         let (view, light) = match mode {
             TransportMode::Radiance => (wo, wi),
             TransportMode::Importance => (wi, wo),
@@ -154,9 +194,9 @@ impl Hair {
         if light.z == 0.0 {
             return SampledSpectrum::zero();
         }
-        let inc = self.incident(view);
+        let inc = self.incident(view, h);
         let a = self.attenuation(&inc, sigma_a);
-        let lobes = self.lobes(&inc, light, azimuth(light) - inc.phi);
+        let lobes = self.lobes(&inc, light, azimuth(light) - inc.phi, self.bessel_terms);
         let mut f = SampledSpectrum::zero();
         for (a, l) in a.iter().zip(lobes) {
             f += *a * l;
@@ -168,13 +208,15 @@ impl Hair {
     pub fn pdf<const N: usize>(
         &self,
         sigma_a: SampledSpectrum<N>,
+        h: f32,
         wo: Vec3,
         wi: Vec3,
         w: &SampledWavelengths<N>,
     ) -> f32 {
-        let inc = self.incident(wo);
+        let (wo, wi) = (self.local(wo), self.local(wi));
+        let inc = self.incident(wo, h);
         let weights = lobe_weights(&self.attenuation(&inc, sigma_a), w);
-        let lobes = self.lobes(&inc, wi, azimuth(wi) - inc.phi);
+        let lobes = self.lobes(&inc, wi, azimuth(wi) - inc.phi, self.density_terms());
         let pdf: f32 = weights.iter().zip(lobes).map(|(p, l)| p * l).sum();
         if pdf.is_finite() { pdf } else { 0.0 }
     }
@@ -182,16 +224,20 @@ impl Hair {
     /// Draws `wi` from `wo` (Chiang §4.3): a lobe p by its share of the luminance of A_p, θ
     /// from M_p about the tilted incident angle, φ from N_p; `uc` picks the lobe and is reused
     /// for the azimuth, `u` gives θ and the cone's angle. `None` where the density is 0.
+    #[allow(clippy::too_many_arguments)]
     pub fn sample<const N: usize>(
         &self,
         sigma_a: SampledSpectrum<N>,
+        h: f32,
         wo: Vec3,
         w: &SampledWavelengths<N>,
         uc: f32,
         u: Vec2,
         mode: TransportMode,
     ) -> Option<BsdfSample<N>> {
-        let inc = self.incident(wo);
+        let wo_caller = wo;
+        let wo = self.local(wo);
+        let inc = self.incident(wo, h);
         let weights = lobe_weights(&self.attenuation(&inc, sigma_a), w);
         // the lobe, and `uc` rescaled to [0, 1] within it
         let (mut rest, mut p, mut u_phi) = (uc, 0, uc / weights[0]);
@@ -225,20 +271,28 @@ impl Hair {
         };
         let phi_o = inc.phi + delta_phi;
         let wi = Vec3::new(cos_o * phi_o.cos(), sin_o, cos_o * phi_o.sin()).normalize();
-        let lobes = self.lobes(&inc, wi, delta_phi);
+        let lobes = self.lobes(&inc, wi, delta_phi, self.density_terms());
         let pdf: f32 = weights.iter().zip(lobes).map(|(q, l)| q * l).sum();
         if !(pdf > 0.0 && pdf.is_finite()) || wi.z == 0.0 {
             return None;
         }
-        let f = self.eval(sigma_a, wo, wi, mode);
+        let wi = self.local(wi);
+        let f = self.eval(sigma_a, h, wo_caller, wi, mode);
         Some(BsdfSample {
             transmission: wi.z * wo.z < 0.0,
             ..BsdfSample::reflection(f, wi, pdf)
         })
     }
 
-    /// The viewer-side angles: θ, φ, γ and h of `view`, the refracted γ_t and the chord.
-    fn incident(&self, view: Vec3) -> Incident {
+    /// The I₀ terms of the density: the sampler's exact I₀, except that Mitsuba's reading
+    /// evaluates both f and the density with its own (its test data do).
+    fn density_terms(&self) -> Option<usize> {
+        if self.pbrt { None } else { self.bessel_terms }
+    }
+
+    /// The viewer-side angles: θ, φ, γ and h of `view` (pbrt-v4's reading: h given, γ =
+    /// asin h), the refracted γ_t and the chord.
+    fn incident(&self, view: Vec3, h_surface: f32) -> Incident {
         let sin_t = view.y;
         let cos_t = (1.0 - sin_t * sin_t).max(0.0).sqrt();
         let proj = (view.x * view.x + view.z * view.z).max(0.0).sqrt();
@@ -247,7 +301,13 @@ impl Hair {
         } else {
             (view.z / proj).clamp(-1.0, 1.0).acos()
         };
-        let gamma = if view.x < 0.0 { g } else { -g };
+        let gamma = if self.pbrt {
+            h_surface.clamp(-1.0, 1.0).asin()
+        } else if view.x < 0.0 {
+            g
+        } else {
+            -g
+        };
         let h = gamma.sin();
         // Bravais' index in the normal plane (pbrt-v3 §9.9.4), and Snell in θ
         let eta_p = (self.eta * self.eta - sin_t * sin_t).max(0.0).sqrt() / cos_t;
@@ -298,17 +358,24 @@ impl Hair {
 
     /// M_p·N_p per lobe for the light direction `light` at azimuth `delta_phi` from the viewer:
     /// value = Σ A_p·lobe_p and density = Σ P(p)·lobe_p (the tail's azimuth uniform, 1/2π).
-    fn lobes(&self, inc: &Incident, light: Vec3, delta_phi: f32) -> [f32; P_MAX + 1] {
+    /// `terms`: I₀'s series length, None for the exact I₀.
+    fn lobes(
+        &self,
+        inc: &Incident,
+        light: Vec3,
+        delta_phi: f32,
+        terms: Option<usize>,
+    ) -> [f32; P_MAX + 1] {
         let sin_o = light.y;
         let cos_o = (1.0 - sin_o * sin_o).max(0.0).sqrt();
         let mut out = [0.0; P_MAX + 1];
         for (p, o) in out.iter_mut().enumerate().take(P_MAX) {
             let (sin_ip, cos_ip) = self.tilted(inc.sin_t, inc.cos_t, p);
-            *o = self.longitudinal(sin_ip, cos_ip, sin_o, cos_o, self.v[p])
+            *o = longitudinal(sin_ip, cos_ip, sin_o, cos_o, self.v[p], terms)
                 * self.azimuthal(delta_phi, p, inc.gamma, inc.gamma_t);
         }
         out[P_MAX] =
-            self.longitudinal(inc.sin_t, inc.cos_t, sin_o, cos_o, self.v[P_MAX]) * (1.0 / TAU);
+            longitudinal(inc.sin_t, inc.cos_t, sin_o, cos_o, self.v[P_MAX], terms) * (1.0 / TAU);
         out
     }
 
@@ -322,28 +389,34 @@ impl Hair {
     }
 }
 
-impl Hair {
-    /// M_p (d'Eon et al. 2011, eq. 7; rad⁻¹ over θ_o, normalised with the cos θ_o of the
-    /// sphere's measure): e^{−sinθᵢ sinθₒ/v}·I₀(cosθᵢ cosθₒ/v)/(2v·sinh(1/v)), in log form for
-    /// v < 0.1 (Jakob 2013), as Mitsuba arranges it.
-    fn longitudinal(&self, sin_i: f32, cos_i: f32, sin_o: f32, cos_o: f32, v: f32) -> f32 {
-        let kappa = 1.0 / v;
-        let c = cos_i * cos_o * kappa;
-        let s = sin_i * sin_o * kappa;
-        if self.mitsuba_bessel {
-            if kappa > 10.0 {
-                // Mitsuba writes ln 2 as 0.6931
-                #[allow(clippy::approx_constant)]
-                let ln2 = 0.6931;
-                (-s + log_i0_mitsuba(c) - kappa + ln2 + (0.5 * kappa).ln()).exp()
-            } else {
-                (-s).exp() * i0_mitsuba(c) * kappa / (2.0 * kappa.sinh())
-            }
+/// M_p (d'Eon et al. 2011, eq. 7; rad⁻¹ over θ_o, normalised with the cos θ_o of the
+/// sphere's measure): e^{−sinθᵢ sinθₒ/v}·I₀(cosθᵢ cosθₒ/v)/(2v·sinh(1/v)), in log form for
+/// v < 0.1 (Jakob 2013), as Mitsuba and pbrt-v4 arrange it; I₀ by `terms` terms of its series
+/// (None: exact).
+fn longitudinal(
+    sin_i: f32,
+    cos_i: f32,
+    sin_o: f32,
+    cos_o: f32,
+    v: f32,
+    terms: Option<usize>,
+) -> f32 {
+    let kappa = 1.0 / v;
+    let c = cos_i * cos_o * kappa;
+    let s = sin_i * sin_o * kappa;
+    if let Some(n) = terms {
+        if kappa > 10.0 {
+            // Mitsuba and pbrt-v4 write ln 2 as 0.6931
+            #[allow(clippy::approx_constant)]
+            let ln2 = 0.6931;
+            (-s + log_i0_series(c, n) - kappa + ln2 + (0.5 * kappa).ln()).exp()
         } else {
-            // κ/(2 sinh κ) = κ e^{−κ}/(1 − e^{−2κ})
-            let norm = kappa.ln() - kappa - (-(-2.0 * kappa).exp()).ln_1p();
-            (-s + log_i0_exact(c) + norm).exp()
+            (-s).exp() * i0_series(c, n) * kappa / (2.0 * kappa.sinh())
         }
+    } else {
+        // κ/(2 sinh κ) = κ e^{−κ}/(1 − e^{−2κ})
+        let norm = kappa.ln() - kappa - (-(-2.0 * kappa).exp()).ln_1p();
+        (-s + log_i0_exact(c) + norm).exp()
     }
 }
 
@@ -387,7 +460,7 @@ mod tests {
             0.0,
         );
         for view in [Vec3::new(0.3, 0.2, 0.9), Vec3::new(-0.8, -0.5, 0.3)] {
-            let inc = hair.incident(view.normalize());
+            let inc = hair.incident(view.normalize(), 0.0);
             let a = hair.attenuation::<4>(&inc, SampledSpectrum::zero());
             let sum: f32 = a.iter().map(|a| a[0]).sum();
             assert!((sum - 1.0).abs() < 1e-5, "{sum}");

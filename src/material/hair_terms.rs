@@ -32,10 +32,17 @@ pub(super) fn log_i0_exact(x: f32) -> f32 {
 }
 
 /// Mitsuba's I₀: the series Σ (x²/4)ᵏ/(k!)² cut after k = 10 (`warp::detail::i0`).
+#[cfg(test)]
 pub(super) fn i0_mitsuba(x: f32) -> f32 {
+    i0_series(x, 11)
+}
+
+/// I₀ by the first `terms` terms of its series Σ (x²/4)ⁱ/(i!)² (Mitsuba 3.9.1 sums 11,
+/// pbrt-v4's `I0` 10).
+pub(super) fn i0_series(x: f32, terms: usize) -> f32 {
     let (mut result, x2) = (1.0, x * x);
     let (mut xi, mut denom) = (x2, 4.0);
-    for i in 1..=10 {
+    for i in 1..terms {
         result += xi / denom;
         xi *= x2;
         let factor = (i + 1) as f32;
@@ -46,11 +53,18 @@ pub(super) fn i0_mitsuba(x: f32) -> f32 {
 
 /// Mitsuba's ln I₀: its series up to 12, above an asymptotic form with 1/(16x) where Hankel's
 /// expansion has 1/(8x) (`warp::detail::log_i0`).
+#[cfg(test)]
 pub(super) fn log_i0_mitsuba(x: f32) -> f32 {
+    log_i0_series(x, 11)
+}
+
+/// ln I₀ as Mitsuba and pbrt-v4 (`LogI0`) write it: the asymptotic form above 12, else the
+/// logarithm of the series of `terms` terms.
+pub(super) fn log_i0_series(x: f32, terms: usize) -> f32 {
     if x > 12.0 {
         x + 0.5 * ((1.0 / (TAU * x)).ln() + 1.0 / (8.0 * x))
     } else {
-        i0_mitsuba(x).ln()
+        i0_series(x, terms).ln()
     }
 }
 

@@ -233,6 +233,7 @@ impl Material {
                     spec_r: SampledSpectrum::splat(1.0),
                     spec_t: SampledSpectrum::splat(1.0),
                     disney: DisneyAt::default(),
+                    fibre_h: 0.0,
                 };
             }
             Material::NormalMap(m) => {
@@ -277,8 +278,18 @@ impl Material {
                     ..Bsdf::plain(self, unit(at(&m.reflectance)))
                 };
             }
-            // the absorption σₐ per radius in the albedo's place
-            Material::Hair(m) => m.sigma_a[0].sample(w) + m.sigma_a[1].sample(w),
+            // the absorption σₐ per radius in the albedo's place; pbrt-v4's offset h = 2v − 1
+            Material::Hair(m) => {
+                let sigma_a = m.sigma_a[0].sample(w) + m.sigma_a[1].sample(w);
+                return Bsdf {
+                    fibre_h: if m.h_from_surface() {
+                        2.0 * uv.y - 1.0
+                    } else {
+                        0.0
+                    },
+                    ..Bsdf::plain(self, sigma_a)
+                };
+            }
             Material::Textured(m) => {
                 return Bsdf {
                     alpha: m.alpha_at(uv, w),

@@ -185,6 +185,9 @@ pub struct HairDesc {
     pub roughness: [f64; 2],
     /// Tilt of the cuticle's scales.
     pub scale_tilt: Angle,
+    /// Read as pbrt-v4's `hair` (`crate::material::Hair::with_pbrt`): its offset across the
+    /// fibre from the surface's v, its local frame and its I₀.
+    pub pbrt: bool,
 }
 
 /// How a fibre absorbs, per fibre radius (dimensionless).

@@ -173,10 +173,11 @@ pub(super) fn material(
                 ..slab(p)?
             }))
         }
+        "hair" => super::hair::hair(p)?,
         other => {
             return Err(p.err(
                 loc,
-                format!("the material \"{other}\" is not read yet (spectrace reads diffuse, diffusetransmission, dielectric, thindielectric, conductor, coateddiffuse, coatedconductor, mix and interface)"),
+                format!("the material \"{other}\" is not read yet (spectrace reads diffuse, diffusetransmission, dielectric, thindielectric, conductor, coateddiffuse, coatedconductor, hair, mix and interface)"),
             ));
         }
     };

@@ -20,7 +20,7 @@ use crate::spectrum::{Spectrum, rgb2spec};
 
 /// A coefficient (`sigma_a`, `sigma_s`): an `rgb` (pbrt-v4's unbounded uplift), a spectrum or
 /// a blackbody; `default` when absent.
-fn coefficient(p: &Params, name: &str, default: f32) -> R<Spectrum> {
+pub(super) fn coefficient(p: &Params, name: &str, default: f32) -> R<Spectrum> {
     match p.get(name) {
         None => Ok(Spectrum::Constant(default)),
         Some(q) if matches!(q.ty.as_str(), "rgb" | "color") && q.nums.len() == 3 => {

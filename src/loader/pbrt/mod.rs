@@ -10,6 +10,7 @@
 mod area_light;
 mod camera;
 mod curves;
+mod hair;
 mod kinds;
 mod lexer;
 mod lights;

@@ -69,6 +69,7 @@ pub(super) fn hair(cx: &Cx<'_>, b: &Element, name: &str, _: &str) -> R<(Material
             roughness("azimuthal_roughness")?,
         ],
         scale_tilt: Angle::new::<degree>(number("scale_tilt", 2.0)?),
+        pbrt: false,
     };
     plain(cx, b, name, MaterialKind::Hair(Box::new(desc)))
 }
