@@ -120,6 +120,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
             filter: crate::film::Filter::from_desc(&f.filter),
             spectral_bins: f.spectral_bins,
             exposure_ev: f.exposure_ev.map(|e| e as f32),
+            max_component: f.max_component.map(|m| m as f32),
         },
         integrator: IntegratorSettings {
             kind: desc.integrator.kind,

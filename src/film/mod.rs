@@ -22,6 +22,7 @@ pub use splats::{Splat, SplatList};
 pub use state::STATE_PREFIX;
 pub(crate) use tile::SampleSums;
 pub use tile::Tile;
+pub use tile::clamp_max_component;
 
 use crate::colour::cie::{K_M, cmf};
 use crate::colour::spaces::xyz_to_srgb;

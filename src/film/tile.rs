@@ -248,6 +248,35 @@ pub(crate) struct SampleSums<const N: usize> {
     nbins: usize,
 }
 
+/// pbrt-v4's firefly clamp (`RGBFilm::AddSample` with `maxcomponentvalue`): the sample's
+/// estimate `l` scaled down, whole, so that none of its X, Y, Z (cd/m², the film's estimate
+/// K_m·mean of x̄ᵢLᵢ/pᵢ over the live wavelengths) exceeds `max`; unchanged when none does.
+/// Biased, as pbrt-v4's is.
+#[inline]
+pub fn clamp_max_component<const N: usize>(
+    w: &SampledWavelengths<N>,
+    l: SampledSpectrum<N>,
+    max: f32,
+) -> SampledSpectrum<N> {
+    let mut xyz = [0.0f64; 3];
+    for j in 0..N {
+        if w.pdf[j] == 0.0 {
+            continue;
+        }
+        let v = l[j] as f64 / w.pdf[j] as f64 / N as f64;
+        let c = cmf().eval(w.lambda[j]);
+        for k in 0..3 {
+            xyz[k] += K_M * v * c[k] as f64;
+        }
+    }
+    let m = xyz.into_iter().fold(0.0f64, f64::max);
+    if m > max as f64 {
+        l * (max as f64 / m) as f32
+    } else {
+        l
+    }
+}
+
 impl<const N: usize> SampleSums<N> {
     /// None for NaN or infinite values at a live wavelength ([`non_finite`]), and for sums
     /// too large to add exactly (XYZ or band radiance of magnitude [`MAX_TERM`] ≈ 3·10²⁶ or

@@ -222,7 +222,12 @@ pub fn render_with(
     let mut integrator = Integrator::new(scene, opts.integrator, opts.max_depth)
         .with_split_dispersion(opts.split_dispersion);
     integrator.strategy = opts.strategy;
-    let lambda = WavelengthSampler::visible(scene.wavelengths);
+    // a clamped render reproduces pbrt-v4's clamp, which depends on how its samples'
+    // estimates are distributed: its wavelength density
+    let lambda = match scene.film.max_component {
+        Some(_) => WavelengthSampler::pbrt_visible(scene.wavelengths),
+        None => WavelengthSampler::visible(scene.wavelengths),
+    };
     let tiles: Vec<(u32, u32, u32, u32)> = (0..h.div_ceil(TILE))
         .flat_map(|ty| (0..w.div_ceil(TILE)).map(move |tx| (tx * TILE, ty * TILE)))
         .map(|(x0, y0)| (x0, y0, TILE.min(w - x0), TILE.min(h - y0)))

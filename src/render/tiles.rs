@@ -164,11 +164,18 @@ fn trace_tile(
                     y,
                     i,
                 );
+                // pbrt-v4's firefly clamp, when the scene asks for it
+                let max_component = ctx.integrator.scene.film.max_component;
+                let clamp = |wl: &_, l| match max_component {
+                    Some(m) => crate::film::clamp_max_component(wl, l, m),
+                    None => l,
+                };
                 let (l, added) = if polarised {
                     let st = ctx.integrator.stokes(ray, &mut wl, &mut s);
                     (st[0], tile.add_stokes(x, y, &wl, &st, bins))
                 } else if weight == 1.0 {
                     let l = ctx.integrator.radiance_split(ray, &mut wl, &mut s);
+                    let l = clamp(&wl, l);
                     (l, tile.add(x, y, &wl, &l, bins))
                 } else {
                     // a realistic camera's ray: weighted, or blocked by its lens (weight 0)
@@ -177,6 +184,7 @@ fn trace_tile(
                     } else {
                         crate::spectrum::SampledSpectrum::zero()
                     };
+                    let l = clamp(&wl, l);
                     (l, tile.add(x, y, &wl, &l, bins))
                 };
                 if !added {

@@ -43,6 +43,9 @@ pub struct FilmSettings {
     pub spectral_bins: u32,
     /// PNG exposure in EV (None: automatic).
     pub exposure_ev: Option<f32>,
+    /// The largest X, Y or Z (cd/m²) of one camera sample's estimate (pbrt-v4's
+    /// `maxcomponentvalue`, see [`crate::film::clamp_max_component`]); None: no clamp.
+    pub max_component: Option<f32>,
 }
 
 /// Integrator settings.

@@ -101,6 +101,16 @@ impl WavelengthSampler {
         Self::tabulate(range, visible_importance)
     }
 
+    /// pbrt-v4's visible density (`SampleVisibleWavelengths`), sech²(0.0072 nm⁻¹·(λ − 538 nm))
+    /// without [`WavelengthSampler::visible`]'s floor: for estimates that must be distributed
+    /// per sample as pbrt-v4's are (its firefly clamp, [`crate::film::clamp_max_component`]).
+    pub fn pbrt_visible(range: WavelengthRange) -> Self {
+        Self::tabulate(range, |l| {
+            let c = (0.0072 * (l - 538.0)).cosh();
+            1.0 / (c * c)
+        })
+    }
+
     /// Uniform density 1/(max − min).
     pub fn uniform(range: WavelengthRange) -> Self {
         Self::tabulate(range, |_| 1.0)

@@ -162,6 +162,10 @@ pub struct FilmDesc {
     pub spectral_bins: u32,
     /// Exposure for the PNG preview in EV (None: automatic).
     pub exposure_ev: Option<f64>,
+    /// pbrt-v4's firefly clamp (`maxcomponentvalue`): the largest X, Y or Z (cd/m²) one
+    /// camera sample's estimate may have; a larger sample is scaled down to it, whole. A
+    /// biased estimator, used to reproduce pbrt-v4's images; None: no clamp.
+    pub max_component: Option<f64>,
     pub loc: Loc,
 }
 

@@ -182,6 +182,7 @@ fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
         filter: crate::film::filter::gaussian::Desc::mitsuba(0.5), // Mitsuba's default
         spectral_bins: 0,
         exposure_ev: None,
+        max_component: None,
         loc: Default::default(),
     };
     let mut integrator = IntegratorDesc {

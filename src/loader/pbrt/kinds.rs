@@ -120,16 +120,20 @@ fn integrator(p: &Params, kind: &str, loc: Loc) -> R<(IntegratorKind, i64, Light
 /// A `Film`'s kind and the settings of its pixel sensor: `rgb`; `gbuffer` (its image; the
 /// extra channels are not written, a note says so); `spectral` (its `nbuckets` over 360–830
 /// nm as spectrace's spectral EXR bins). Its pixel sensor (`sensor`, `iso`, `whitebalance`,
-/// with the camera's exposure time `exposure_s`) is read by `sensor.rs`; a
-/// `maxcomponentvalue` clamp is refused; `savefp16` is a precision choice, ignored. Returns
-/// the spectral bins (0: none) and the sensor (None: pbrt-v4's pass-through).
+/// with the camera's exposure time `exposure_s`) is read by `sensor.rs`; `maxcomponentvalue`,
+/// pbrt-v4's firefly clamp of each sample's sensor RGB (for the CIE sensor, its XYZ times
+/// t·ISO/100 on pbrt-v4's scale, Y = ∫ȳL dλ), becomes the clamp of X, Y, Z in cd/m² at
+/// value·K_m/(t·ISO/100) (refused with a camera's curves); `savefp16` is a precision choice,
+/// ignored. Returns the spectral bins (0: none), the sensor (None: pbrt-v4's pass-through) and
+/// the clamp with its location.
+type FilmRead = (u32, Option<CameraSensorDesc>, Option<(f64, Loc)>);
 fn film(
     p: &Params,
     (kind, loc): (&str, Loc),
     exposure_s: f64,
     file: &std::path::Path,
     notes: &mut Vec<String>,
-) -> R<(u32, Option<CameraSensorDesc>)> {
+) -> R<FilmRead> {
     let bins = match kind {
         "rgb" => 0,
         "gbuffer" => {
@@ -162,13 +166,31 @@ fn film(
         }
     };
     let _ = p.bool("savefp16", true)?;
-    if p.float("maxcomponentvalue", f64::INFINITY)?.is_finite() {
-        return Err(p.err(
-            p.loc_of("maxcomponentvalue"),
-            "a film's \"maxcomponentvalue\" clamp is not read yet (it biases the image)",
-        ));
-    }
     let sensor = super::sensor::sensor(p, exposure_s)?;
+    let max = p.float("maxcomponentvalue", f64::INFINITY)?;
+    let clamp = if max.is_infinite() && max > 0.0 {
+        None
+    } else {
+        let at = p.loc_of("maxcomponentvalue");
+        if !(max > 0.0) {
+            return Err(p.err(at, "\"maxcomponentvalue\" must be positive"));
+        }
+        let ratio = match &sensor {
+            Some(s) if s.curves.is_some() => {
+                return Err(p.err(
+                    at,
+                    "\"maxcomponentvalue\" with a camera's curves is not read yet (spectrace clamps a sample's XYZ, the cie1931 sensor's RGB)",
+                ));
+            }
+            Some(s) => s.iso * s.shutter.get::<crate::units::time::second>() / 100.0,
+            None => 1.0,
+        };
+        notes.push(format!(
+            "{}:{at}: \"maxcomponentvalue\" {max}: each camera sample is clamped as pbrt-v4 clamps it (a biased estimate, reproducing pbrt-v4's image)",
+            file.display()
+        ));
+        Some((max * crate::colour::cie::K_M / ratio, at))
+    };
     if let Some(s) = &sensor {
         notes.push(format!(
             "{}:{loc}: the film's sensor ({}): pbrt-v4's image is in the EXR's sensor.wb.R, G, B channels; X, Y, Z and R, G, B stay the physical radiance",
@@ -176,7 +198,7 @@ fn film(
             s.name
         ));
     }
-    Ok((bins, sensor))
+    Ok((bins, sensor, clamp))
 }
 
 /// The scene: camera, film, sampler and integrator from their directives, and what the world
@@ -192,18 +214,18 @@ pub(super) fn finish(mut r: Reader) -> Result<SceneDesc, LoadError> {
         ));
     };
     let exposure_s = super::sensor::exposure_time(cam, *cam_loc)?;
-    let (width, height, film_loc, spectral_bins, diagonal_mm, sensor) = match &r.film {
+    let (width, height, film_loc, spectral_bins, diagonal_mm, sensor, clamp) = match &r.film {
         Some((p, kind, loc)) => {
-            let (bins, sensor) = film(p, (kind, *loc), exposure_s, &file, &mut r.notes)?;
+            let (bins, sensor, clamp) = film(p, (kind, *loc), exposure_s, &file, &mut r.notes)?;
             let w = p.int("xresolution", 1280)?;
             let h = p.int("yresolution", 720)?;
             let _ = p.string("filename")?;
             // the film's size in mm, which the realistic camera reads
             let diagonal = p.float("diagonal", 35.0)?;
             p.check_unused(&format!("film \"{kind}\""))?;
-            (w, h, *loc, bins, diagonal, sensor)
+            (w, h, *loc, bins, diagonal, sensor, clamp)
         }
-        None => (1280, 720, Loc { line: 0, col: 0 }, 0, 35.0, None),
+        None => (1280, 720, Loc { line: 0, col: 0 }, 0, 35.0, None, None),
     };
     if !(1..=32768).contains(&width) || !(1..=32768).contains(&height) {
         return Err(LoadError::new(
@@ -230,6 +252,14 @@ pub(super) fn finish(mut r: Reader) -> Result<SceneDesc, LoadError> {
         // pbrt-v4's default, `volpath`: `path` where there are no media
         None => (IntegratorKind::Path, 5, LightSelection::Tree),
     };
+    if let (Some((_, at)), IntegratorKind::Light | IntegratorKind::Bdpt) = (clamp, integrator) {
+        return Err(LoadError::new(
+            &file,
+            at,
+            "",
+            "\"maxcomponentvalue\" with a bdpt or lightpath integrator is not read yet (spectrace clamps camera samples only)",
+        ));
+    }
     let size = FilmSize {
         width,
         height,
@@ -252,6 +282,7 @@ pub(super) fn finish(mut r: Reader) -> Result<SceneDesc, LoadError> {
             filter: pixel_filter(&r.filter)?,
             spectral_bins,
             exposure_ev: None,
+            max_component: clamp.map(|c| c.0),
             loc: film_loc,
         },
         integrator: IntegratorDesc {

@@ -17,6 +17,7 @@ pub(super) fn film(cx: &Cx<'_>, f: Option<&S<RawFilm>>) -> R<FilmDesc> {
         filter: gaussian::Desc::native(1.5),
         spectral_bins: 0,
         exposure_ev: None,
+        max_component: None,
         loc: Default::default(),
     };
     let Some(f) = f else { return Ok(d) };
