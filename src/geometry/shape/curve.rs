@@ -207,9 +207,16 @@ pub(crate) fn read_polylines(
     Ok(lines)
 }
 
-/// The entering hit of `ray` with the capsule of radius `r` around the segment `pa`–`pb`, t in
-/// (`t_min`, t_max), and the hit's position s ∈ [0, 1] along the segment (Quílez's capsule test:
-/// the body's quadratic clipped to the segment, else the nearer end's sphere).
+/// The entering hit of `ray` (unit direction) with the capsule of radius `r` around the
+/// segment `pa`–`pb`, t in (`t_min`, t_max), and the hit's position s ∈ [0, 1] along the
+/// segment (Quílez's capsule test: the body's quadratic clipped to the segment, else the
+/// nearer end's sphere).
+///
+/// The quadratics' coefficients are written with cross products, a = |u × d|²,
+/// b = (u × d)·(u × w), and their discriminants as r²·|u × d|² − (u·(d × w))² (over |u|²) and
+/// r² − |d × w|², u = pb − pa, w = o − pa: the same numbers as the dot-product forms, without
+/// the cancellation of |u|²|w|² − (u·w)², which lost thin capsules far from the ray's origin
+/// to f32 rounding (a 5 mm tube seen from 30 m was missed by 80 of 195 rays through it).
 pub(crate) fn capsule_hit(pa: Vec3, pb: Vec3, r: f32, ray: &Ray, t_min: f32) -> Option<(f32, f32)> {
     let (ro, rd) = (ray.o, ray.d);
     let ba = pb - pa;
@@ -217,12 +224,12 @@ pub(crate) fn capsule_hit(pa: Vec3, pb: Vec3, r: f32, ray: &Ray, t_min: f32) -> 
     let baba = ba.dot(ba);
     let bard = ba.dot(rd);
     let baoa = ba.dot(oa);
-    let rdoa = rd.dot(oa);
-    let oaoa = oa.dot(oa);
-    let a = baba - bard * bard;
-    let b = baba * rdoa - baoa * bard;
-    let c = baba * oaoa - baoa * baoa - r * r * baba;
-    let h = b * b - a * c;
+    let (p, q) = (ba.cross(rd), ba.cross(oa));
+    let a = p.dot(p);
+    let b = p.dot(q);
+    let triple = ba.dot(rd.cross(oa));
+    // b² − a·c = |u|²·(r²·|u × d|² − (u·(d × w))²)
+    let h = baba * (r * r * a - triple * triple);
     if h < 0.0 {
         return None;
     }
@@ -238,8 +245,8 @@ pub(crate) fn capsule_hit(pa: Vec3, pb: Vec3, r: f32, ray: &Ray, t_min: f32) -> 
     let y = baoa + ((-b - h.max(0.0).sqrt()) / a.max(f32::MIN_POSITIVE)) * bard;
     let (oc, s) = if y <= 0.0 { (oa, 0.0) } else { (ro - pb, 1.0) };
     let bb = rd.dot(oc);
-    let cc = oc.dot(oc) - r * r;
-    let hh = bb * bb - cc;
+    // bb² − (|oc|² − r²) = r² − |d × oc|²
+    let hh = r * r - rd.cross(oc).length_squared();
     if hh <= 0.0 {
         return None;
     }
