@@ -31,7 +31,7 @@ use glam::{Vec2, Vec3};
 
 use super::fresnel::fresnel_dielectric;
 use super::hair_terms::{
-    i0_series, lobe_weights, log_i0_exact, log_i0_series, logistic, logistic_cdf, poly_from_nm,
+    azimuth, finite_or_zero, lobe_weights, logistic, logistic_cdf, longitudinal, poly_from_nm,
     trimmed_logistic_sample,
 };
 use super::{BsdfSample, TransportMode};
@@ -389,81 +389,5 @@ impl Hair {
     }
 }
 
-/// M_p (d'Eon et al. 2011, eq. 7; rad⁻¹ over θ_o, normalised with the cos θ_o of the
-/// sphere's measure): e^{−sinθᵢ sinθₒ/v}·I₀(cosθᵢ cosθₒ/v)/(2v·sinh(1/v)), in log form for
-/// v < 0.1 (Jakob 2013), as Mitsuba and pbrt-v4 arrange it; I₀ by `terms` terms of its series
-/// (None: exact).
-fn longitudinal(
-    sin_i: f32,
-    cos_i: f32,
-    sin_o: f32,
-    cos_o: f32,
-    v: f32,
-    terms: Option<usize>,
-) -> f32 {
-    let kappa = 1.0 / v;
-    let c = cos_i * cos_o * kappa;
-    let s = sin_i * sin_o * kappa;
-    if let Some(n) = terms {
-        if kappa > 10.0 {
-            // Mitsuba and pbrt-v4 write ln 2 as 0.6931
-            #[allow(clippy::approx_constant)]
-            let ln2 = 0.6931;
-            (-s + log_i0_series(c, n) - kappa + ln2 + (0.5 * kappa).ln()).exp()
-        } else {
-            (-s).exp() * i0_series(c, n) * kappa / (2.0 * kappa.sinh())
-        }
-    } else {
-        // κ/(2 sinh κ) = κ e^{−κ}/(1 − e^{−2κ})
-        let norm = kappa.ln() - kappa - (-(-2.0 * kappa).exp()).ln_1p();
-        (-s + log_i0_exact(c) + norm).exp()
-    }
-}
-
-/// The azimuth φ = atan2(z, x) of a direction, rad.
-fn azimuth(w: Vec3) -> f32 {
-    w.z.atan2(w.x)
-}
-
-fn finite_or_zero<const N: usize>(f: SampledSpectrum<N>) -> SampledSpectrum<N> {
-    if f.is_finite() {
-        f
-    } else {
-        SampledSpectrum::zero()
-    }
-}
-
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The pigment curves in normalised wavelength equal Mitsuba's in nm.
-    #[test]
-    fn pigment_polynomials_change_variable_exactly() {
-        let s = Hair::pigments(1.0, 1.0);
-        for l in [360.0f64, 450.0, 600.0, 830.0] {
-            let x = (EUMELANIN_NM[0] * l + EUMELANIN_NM[1]) * l + EUMELANIN_NM[2];
-            let want = 0.5 + x / (2.0 * (1.0 + x * x).sqrt());
-            assert!((s[0].eval(l as f32) as f64 - want).abs() < 1e-4, "{l}");
-        }
-    }
-
-    /// Without absorption the lobes' attenuations sum to 1 (Chiang's A_p series is a partition
-    /// of the light that enters: f + (1 − f)²(1 + f) + (1 − f)f² = 1).
-    #[test]
-    fn attenuations_partition_the_light() {
-        let hair = Hair::new(
-            [Spectrum::Constant(0.0), Spectrum::Constant(0.0)],
-            1.55,
-            0.3,
-            0.3,
-            0.0,
-        );
-        for view in [Vec3::new(0.3, 0.2, 0.9), Vec3::new(-0.8, -0.5, 0.3)] {
-            let inc = hair.incident(view.normalize(), 0.0);
-            let a = hair.attenuation::<4>(&inc, SampledSpectrum::zero());
-            let sum: f32 = a.iter().map(|a| a[0]).sum();
-            assert!((sum - 1.0).abs() < 1e-5, "{sum}");
-        }
-    }
-}
+mod tests;

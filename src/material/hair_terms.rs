@@ -7,6 +7,8 @@ use std::f32::consts::{PI, TAU};
 
 use crate::colour::cie::cmf;
 use crate::spectrum::rgb2spec::SigmoidPolynomial;
+use glam::Vec3;
+
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
 /// ln I₀(x) to f32 precision: the power series Σ (x²/4)ᵏ/(k!)² up to 15 (at most 30 terms),
@@ -114,6 +116,50 @@ pub(super) fn poly_from_nm(c: [f64; 3]) -> SigmoidPolynomial {
             ((2.0 * c[0] * l0 + c[1]) * dl) as f32,
             (c[0] * l0 * l0 + c[1] * l0 + c[2]) as f32,
         ],
+    }
+}
+
+/// M_p (d'Eon et al. 2011, eq. 7; rad⁻¹ over θ_o, normalised with the cos θ_o of the
+/// sphere's measure): e^{−sinθᵢ sinθₒ/v}·I₀(cosθᵢ cosθₒ/v)/(2v·sinh(1/v)), in log form for
+/// v < 0.1 (Jakob 2013), as Mitsuba and pbrt-v4 arrange it; I₀ by `terms` terms of its series
+/// (None: exact).
+pub(super) fn longitudinal(
+    sin_i: f32,
+    cos_i: f32,
+    sin_o: f32,
+    cos_o: f32,
+    v: f32,
+    terms: Option<usize>,
+) -> f32 {
+    let kappa = 1.0 / v;
+    let c = cos_i * cos_o * kappa;
+    let s = sin_i * sin_o * kappa;
+    if let Some(n) = terms {
+        if kappa > 10.0 {
+            // Mitsuba and pbrt-v4 write ln 2 as 0.6931
+            #[allow(clippy::approx_constant)]
+            let ln2 = 0.6931;
+            (-s + log_i0_series(c, n) - kappa + ln2 + (0.5 * kappa).ln()).exp()
+        } else {
+            (-s).exp() * i0_series(c, n) * kappa / (2.0 * kappa.sinh())
+        }
+    } else {
+        // κ/(2 sinh κ) = κ e^{−κ}/(1 − e^{−2κ})
+        let norm = kappa.ln() - kappa - (-(-2.0 * kappa).exp()).ln_1p();
+        (-s + log_i0_exact(c) + norm).exp()
+    }
+}
+
+/// The azimuth φ = atan2(z, x) of a direction, rad.
+pub(super) fn azimuth(w: Vec3) -> f32 {
+    w.z.atan2(w.x)
+}
+
+pub(super) fn finite_or_zero<const N: usize>(f: SampledSpectrum<N>) -> SampledSpectrum<N> {
+    if f.is_finite() {
+        f
+    } else {
+        SampledSpectrum::zero()
     }
 }
 

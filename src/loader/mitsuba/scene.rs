@@ -172,10 +172,9 @@ fn splice_includes(
     Ok(())
 }
 
-/// The scene's top-level elements, each handed to its plugin family, as a description.
-fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
-    let cx = &owned;
-    let mut film = FilmDesc {
+/// Mitsuba's film before its `<film>` is read: 768 × 576, 4 samples, its Gaussian filter.
+fn default_film() -> FilmDesc {
+    FilmDesc {
         width: 768,
         height: 576,
         spp: 4,
@@ -184,7 +183,13 @@ fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
         exposure_ev: None,
         max_component: None,
         loc: Default::default(),
-    };
+    }
+}
+
+/// The scene's top-level elements, each handed to its plugin family, as a description.
+fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
+    let cx = &owned;
+    let mut film = default_film();
     let mut integrator = IntegratorDesc {
         kind: IntegratorKind::Path,
         max_depth: 1024,

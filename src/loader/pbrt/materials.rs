@@ -67,6 +67,23 @@ impl Named<'_> {
 }
 
 /// A `Material` or `MakeNamedMaterial` of `kind`.
+/// A `thindielectric`: its `eta` a number (a spectral one is refused).
+fn thin_dielectric(p: &Params) -> R<MaterialKind> {
+    let eta = match spectra::ior(p, "eta", 1.5)? {
+        crate::spectrum::ior::Ior::Constant(e) => e as f64,
+        _ => {
+            return Err(p.err(
+                p.loc_of("eta"),
+                "a thindielectric's spectral \"eta\" is not read yet (give a float)",
+            ));
+        }
+    };
+    Ok(MaterialKind::ThinDielectric {
+        int_ior: eta,
+        exterior_ior: 1.0,
+    })
+}
+
 pub(super) fn material(
     kind: &str,
     p: &Params,
@@ -78,21 +95,7 @@ pub(super) fn material(
         // a surface that only bounds media: light passes straight through (media are not read
         // yet; spectrace counts the crossing as a scattering event, pbrt-v4 does not)
         "interface" | "" | "none" => MaterialKind::Null,
-        "thindielectric" => {
-            let eta = match spectra::ior(p, "eta", 1.5)? {
-                crate::spectrum::ior::Ior::Constant(e) => e as f64,
-                _ => {
-                    return Err(p.err(
-                        p.loc_of("eta"),
-                        "a thindielectric's spectral \"eta\" is not read yet (give a float)",
-                    ));
-                }
-            };
-            MaterialKind::ThinDielectric {
-                int_ior: eta,
-                exterior_ior: 1.0,
-            }
-        }
+        "thindielectric" => thin_dielectric(p)?,
         // pbrt-v4 picks the second material with probability `amount` per hit, whose
         // expectation is the blend (1 − amount)·f₀ + amount·f₁
         "mix" => mix(p, &named)?,
