@@ -19,13 +19,12 @@ use glam::{DMat3, DVec3};
 use crate::colour::cie::cmf;
 use crate::spectrum::{PiecewiseLinear, Spectrum};
 
-/// A pbrt-v4 table extended with its end values to 359 and 831 nm, as pbrt-v4's
-/// `PiecewiseLinearSpectrum::FromInterleaved` extends it.
-fn extended(l: &[f64], v: &[f64]) -> Option<Spectrum> {
-    let (mut l, mut v): (Vec<f32>, Vec<f32>) = (
-        l.iter().map(|&x| x as f32).collect(),
-        v.iter().map(|&x| x as f32).collect(),
-    );
+/// A pbrt-v4 table (nm, value) extended with its end values to 359 and 831 nm, as pbrt-v4's
+/// `PiecewiseLinearSpectrum::FromInterleaved` extends it; None if it is not a valid table.
+pub fn extended_table(mut l: Vec<f32>, mut v: Vec<f32>) -> Option<PiecewiseLinear> {
+    if l.is_empty() || l.len() != v.len() {
+        return None;
+    }
     if l[0] > 360.0 {
         l.insert(0, 359.0);
         v.insert(0, v[0]);
@@ -34,9 +33,13 @@ fn extended(l: &[f64], v: &[f64]) -> Option<Spectrum> {
         l.push(831.0);
         v.push(v[v.len() - 1]);
     }
-    PiecewiseLinear::new(l, v)
-        .ok()
-        .map(|c| Spectrum::Piecewise(Arc::new(c)))
+    PiecewiseLinear::new(l, v).ok()
+}
+
+/// [`extended_table`] of f64 columns as a spectrum.
+fn extended(l: &[f64], v: &[f64]) -> Option<Spectrum> {
+    let f = |c: &[f64]| c.iter().map(|&x| x as f32).collect();
+    extended_table(f(l), f(v)).map(|c| Spectrum::Piecewise(Arc::new(c)))
 }
 
 /// The r, g, b sensitivities of one of pbrt-v4's named camera sensors (`canon_eos_5d_mkiv`, …;
@@ -76,15 +79,7 @@ pub fn daylight(t_k: f64) -> Option<Spectrum> {
         let peak = v.iter().cloned().fold(0.0, f64::max);
         return extended(&l, &v.iter().map(|x| x / peak).collect::<Vec<_>>());
     }
-    let x = if cct <= 7000.0 {
-        -4.607e9 / cct.powi(3) + 2.9678e6 / cct.powi(2) + 0.09911e3 / cct + 0.244063
-    } else {
-        -2.0064e9 / cct.powi(3) + 1.9018e6 / cct.powi(2) + 0.24748e3 / cct + 0.23704
-    };
-    let y = -3.0 * x * x + 2.870 * x - 0.275;
-    let m = 0.0241 + 0.2562 * x - 0.7341 * y;
-    let m1 = (-1.3515 - 1.7703 * x + 5.9114 * y) / m;
-    let m2 = (0.0300 - 31.4424 * x + 30.0717 * y) / m;
+    let [m1, m2] = crate::spectrum::named::daylight_m1_m2(cct);
     let b = crate::data::embedded_table(crate::spectrum::data::embedded::CIE_DAYLIGHT_BASIS);
     let (l, s0, s1, s2) = (b.column(0), b.column(1), b.column(2), b.column(3));
     let v: Vec<f64> = (0..l.len())

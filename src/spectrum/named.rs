@@ -321,6 +321,22 @@ pub fn lookup(name: &str) -> Result<Named, UnknownSpectrum> {
     })
 }
 
+/// M1 and M2 of CIE daylight at the correlated colour temperature `t` (K), unrounded: from the
+/// chromaticity x_D(T) of CIE 015:2018 eq. 4.7/4.8 and y_D = −3 x_D² + 2.87 x_D − 0.275.
+pub fn daylight_m1_m2(t: f64) -> [f64; 2] {
+    let xd = if t <= 7000.0 {
+        -4.6070e9 / t.powi(3) + 2.9678e6 / t.powi(2) + 0.09911e3 / t + 0.244063
+    } else {
+        -2.0064e9 / t.powi(3) + 1.9018e6 / t.powi(2) + 0.24748e3 / t + 0.237040
+    };
+    let yd = -3.0 * xd * xd + 2.870 * xd - 0.275;
+    let m = 0.0241 + 0.2562 * xd - 0.7341 * yd;
+    [
+        (-1.3515 - 1.7703 * xd + 5.9114 * yd) / m,
+        (0.0300 - 31.4424 * xd + 30.0717 * yd) / m,
+    ]
+}
+
 /// CIE daylight of correlated colour temperature `t` (K, 4000–25000): S0 + M1·S1 + M2·S2 with
 /// the chromaticity x_D(T) of CIE 015:2018 eq. 4.7/4.8, y_D = −3 x_D² + 2.87 x_D − 0.275, M1 and
 /// M2 rounded to three decimals, tabulated at 5 nm over 300–830 nm and scaled to 100 at 560 nm.
@@ -329,16 +345,8 @@ pub fn cie_daylight(t: f64) -> Option<Spectrum> {
     if !(4000.0..=25000.0).contains(&t) {
         return None;
     }
-    let xd = if t <= 7000.0 {
-        -4.6070e9 / t.powi(3) + 2.9678e6 / t.powi(2) + 0.09911e3 / t + 0.244063
-    } else {
-        -2.0064e9 / t.powi(3) + 1.9018e6 / t.powi(2) + 0.24748e3 / t + 0.237040
-    };
-    let yd = -3.0 * xd * xd + 2.870 * xd - 0.275;
-    let m = 0.0241 + 0.2562 * xd - 0.7341 * yd;
     let round3 = |v: f64| (v * 1000.0).round() / 1000.0;
-    let m1 = round3((-1.3515 - 1.7703 * xd + 5.9114 * yd) / m);
-    let m2 = round3((0.0300 - 31.4424 * xd + 30.0717 * yd) / m);
+    let [m1, m2] = daylight_m1_m2(t).map(round3);
     let b = embedded_table(crate::spectrum::data::embedded::CIE_DAYLIGHT_BASIS);
     let (l, s0, s1, s2) = (b.column(0), b.column(1), b.column(2), b.column(3));
     let v: Vec<f64> = (0..l.len())

@@ -35,16 +35,8 @@ fn pbrt_table(name: &str) -> Option<Arc<PiecewiseLinear>> {
         .find(|(n, _)| *n == name)?;
     let t = crate::data::embedded_table(*file);
     let curve = crate::spectrum::data::table_to_curve(&t, 0, 1, file.0).ok()?;
-    let (mut l, mut v) = (curve.wavelengths().to_vec(), curve.values().to_vec());
-    if l[0] > 360.0 {
-        l.insert(0, 359.0);
-        v.insert(0, v[0]);
-    }
-    if l[l.len() - 1] < 830.0 {
-        l.push(831.0);
-        v.push(v[v.len() - 1]);
-    }
-    PiecewiseLinear::new(l, v).ok().map(Arc::new)
+    let (l, v) = (curve.wavelengths().to_vec(), curve.values().to_vec());
+    crate::sensor::pbrt::extended_table(l, v).map(Arc::new)
 }
 
 /// A `"spectrum"` parameter's λ/value pairs as a table (0 outside it, as pbrt-v4).

@@ -146,32 +146,44 @@ fn pbrt_ribbon_turns_with_its_normals() {
     assert!(two.with_ribbon_normals(vec![[Vec3::Z, Vec3::Y]]).is_err());
 }
 
-/// A pbrt-v4 curve 5 mm wide seen from 30 m: rays passing within 0.98 of its half width of
-/// the centre line hit it and rays at 1.02 miss, on every piece of the segment (a capsule
-/// prefilter in squared f32 distances lost such hits to rounding).
-#[test]
-fn thin_far_pbrt_curve_keeps_its_width() {
+/// A straight segment 5 mm wide (radius 2.5 mm) from (0.4, 3, 0) to (0.5, 6, 0), and whether a
+/// ray from 30 m away through its centre line's point at s, offset across it by `off` (m),
+/// hits it.
+fn thin_far_curve(pbrt: bool) -> (f32, impl Fn(f32, f32) -> bool) {
     let r = 0.0025;
     let pts: Vec<(Vec3, f32)> = (0..4)
         .map(|k| (Vec3::new(0.3 + 0.1 * k as f32, 3.0 * k as f32, 0.0), r))
         .collect();
-    let c = BSplineCurve::new(&[pts])
-        .unwrap()
-        .with_pbrt_shading(PbrtCurve::Flat);
-    // segment 0 runs from c(0) = (0.4, 3, 0) to c(1) = (0.5, 6, 0): across it is ±x (nearly)
-    let axis = Vec3::new(0.1, 3.0, 0.0).normalize();
-    let across = axis.cross(Vec3::Z);
-    for k in 1..40 {
-        let s = k as f32 / 40.0;
-        let at = Vec3::new(0.4 + 0.1 * s, 3.0 + 3.0 * s, 0.0);
+    let c = BSplineCurve::new(&[pts]).unwrap();
+    let c = if pbrt {
+        c.with_pbrt_shading(PbrtCurve::Flat)
+    } else {
+        c
+    };
+    let across = Vec3::new(0.1, 3.0, 0.0).normalize().cross(Vec3::Z);
+    let hit = move |s: f32, off: f32| {
+        let at = Vec3::new(0.4 + 0.1 * s, 3.0 + 3.0 * s, 0.0) + across * off;
         let o = Vec3::new(0.0, 4.5, 30.0);
-        let hit = |off: f32| {
-            let target = at + across * off;
-            c.intersect(0, &Ray::new(o, (target - o).normalize()))
-                .is_some()
-        };
-        assert!(hit(0.98 * r) && hit(-0.98 * r), "s {s}: missed inside");
-        assert!(!hit(1.02 * r) && !hit(-1.02 * r), "s {s}: hit outside");
+        c.intersect(0, &Ray::new(o, (at - o).normalize())).is_some()
+    };
+    (r, hit)
+}
+
+/// A pbrt-v4 curve 5 mm wide seen from 30 m: rays passing within 0.98 of its half width of
+/// the centre line hit it and rays at 1.02 miss, along the segment (a capsule prefilter in
+/// squared f32 distances lost such hits to rounding).
+#[test]
+fn thin_far_pbrt_curve_keeps_its_width() {
+    let (r, hit) = thin_far_curve(true);
+    for s in (1..40).map(|k| k as f32 / 40.0) {
+        assert!(
+            hit(s, 0.98 * r) && hit(s, -0.98 * r),
+            "s {s}: missed inside"
+        );
+        assert!(
+            !hit(s, 1.02 * r) && !hit(s, -1.02 * r),
+            "s {s}: hit outside"
+        );
     }
 }
 
@@ -180,25 +192,14 @@ fn thin_far_pbrt_curve_keeps_its_width() {
 /// distances, missed 80 of these 195 rays).
 #[test]
 fn thin_far_tube_keeps_its_width() {
-    let r = 0.0025;
-    let pts: Vec<(Vec3, f32)> = (0..4)
-        .map(|k| (Vec3::new(0.3 + 0.1 * k as f32, 3.0 * k as f32, 0.0), r))
-        .collect();
-    let c = BSplineCurve::new(&[pts]).unwrap();
-    let axis = Vec3::new(0.1, 3.0, 0.0).normalize();
-    let across = axis.cross(Vec3::Z);
-    for k in 1..40 {
-        let s = k as f32 / 40.0;
-        let at = Vec3::new(0.4 + 0.1 * s, 3.0 + 3.0 * s, 0.0);
-        let o = Vec3::new(0.0, 4.5, 30.0);
-        let hit = |off: f32| {
-            let target = at + across * off;
-            c.intersect(0, &Ray::new(o, (target - o).normalize()))
-                .is_some()
-        };
+    let (r, hit) = thin_far_curve(false);
+    for s in (1..40).map(|k| k as f32 / 40.0) {
         for f in [0.0, 0.5, 0.9, -0.5, -0.9] {
-            assert!(hit(f * r), "s {s}, offset {f}: missed");
+            assert!(hit(s, f * r), "s {s}, offset {f}: missed");
         }
-        assert!(!hit(1.05 * r) && !hit(-1.05 * r), "s {s}: hit outside");
+        assert!(
+            !hit(s, 1.05 * r) && !hit(s, -1.05 * r),
+            "s {s}: hit outside"
+        );
     }
 }
