@@ -80,10 +80,7 @@ impl CameraSensor {
         white_balance: Option<(String, Spectrum, Adaptation)>,
     ) -> Result<Self, String> {
         let (iso, shutter_s, f_number, calibration) = exposure;
-        let d65 = match crate::spectrum::named::lookup("cie-d65") {
-            Ok(crate::spectrum::named::Named::Curve { spectrum, .. }) => spectrum,
-            _ => return Err("the D65 table is missing".into()),
-        };
+        let d65 = d65()?;
         let norm = match &curves {
             _ if calibration == Calibration::PbrtV4 => 1.0 / K_M,
             None => 1.0,
@@ -167,7 +164,7 @@ impl CameraSensor {
         let cie = |f: &dyn Fn(f32) -> f64| -> [f64; 3] {
             [0, 1, 2].map(|k| K_M * integrate(|l| f(l) * cmf().eval(l)[k] as f64))
         };
-        let (mut a, mut b) = (DMat3::ZERO, DMat3::ZERO);
+        let mut pairs = Vec::new();
         for (name, _) in crate::spectrum::named::names() {
             if !name.starts_with("colorchecker:") {
                 continue;
@@ -178,15 +175,9 @@ impl CameraSensor {
                 continue;
             };
             let lit = |l: f32| illum.eval(l) as f64 * refl.eval(l) as f64;
-            let raw = DVec3::from(self.response_fn(&lit));
-            let xyz = DVec3::from(cie(&lit));
-            a += outer(raw, raw);
-            b += outer(xyz, raw);
+            pairs.push((DVec3::from(self.response_fn(&lit)), DVec3::from(cie(&lit))));
         }
-        if a.determinant().abs() < 1e-12 * a.x_axis.length().powi(3) {
-            return Err("the ColorChecker fit of the camera's matrix is singular".into());
-        }
-        Ok(b * a.inverse())
+        least_squares(pairs)
     }
 
     /// Raw value per unit of [`response`](Self::response) at a pixel whose chief ray makes
@@ -237,6 +228,31 @@ impl CameraSensor {
 
 fn outer(a: DVec3, b: DVec3) -> DMat3 {
     DMat3::from_cols(a * b.x, a * b.y, a * b.z)
+}
+
+/// The 3 × 3 least-squares fit M = (Σ xyz rawᵀ)(Σ raw rawᵀ)⁻¹ carrying each pair's raw to
+/// its XYZ (the ColorChecker fit of a camera's matrix); fails when the patches' raw values do
+/// not span three dimensions.
+pub(crate) fn least_squares(
+    pairs: impl IntoIterator<Item = (DVec3, DVec3)>,
+) -> Result<DMat3, String> {
+    let (mut a, mut b) = (DMat3::ZERO, DMat3::ZERO);
+    for (raw, xyz) in pairs {
+        a += outer(raw, raw);
+        b += outer(xyz, raw);
+    }
+    if a.determinant().abs() < 1e-12 * a.x_axis.length().powi(3) {
+        return Err("the ColorChecker fit of the camera's matrix is singular".into());
+    }
+    Ok(b * a.inverse())
+}
+
+/// CIE D65 (`cie-d65`, the embedded table), relative.
+pub(crate) fn d65() -> Result<Spectrum, String> {
+    match crate::spectrum::named::lookup("cie-d65") {
+        Ok(crate::spectrum::named::Named::Curve { spectrum, .. }) => Ok(spectrum),
+        _ => Err("the D65 table is missing".into()),
+    }
 }
 
 /// A camera's named curves: `nikon-d5100` or `sigma-sd-merrill` (Darrodi et al. 2015, NPL).

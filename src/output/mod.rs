@@ -76,8 +76,6 @@ pub fn sensor_channels(
     for i in 0..n {
         let e = sensor.exposure_per_radiance(cos_theta[i] as f64);
         h[i] = (img.xyz[i][1] as f64 * e) as f32;
-        // the CIE sensor's response is the film's XYZ times the sensor's norm
-        let cie = img.xyz[i].map(|v| v as f64 * sensor.norm);
         let r: [f64; 3] = match (&sensor.curves, &weights) {
             (Some(_), Some(w)) => {
                 let mut r = [0.0; 3];
@@ -88,7 +86,8 @@ pub fn sensor_channels(
                 }
                 r
             }
-            _ => cie,
+            // the CIE sensor's response: the film's XYZ times the sensor's norm
+            _ => img.xyz[i].map(|v| v as f64 * sensor.norm),
         };
         let scale = sensor.raw_scale(cos_theta[i] as f64);
         let r = r.map(|v| v * scale);

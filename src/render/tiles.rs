@@ -152,6 +152,12 @@ fn trace_tile(
         tile = tile.with_stokes();
     }
     let (mut nan, mut inf) = (0, 0);
+    // pbrt-v4's firefly clamp, when the scene asks for it
+    let max_component = ctx.integrator.scene.film.max_component;
+    let clamp = |wl: &_, l| match max_component {
+        Some(m) => crate::film::clamp_max_component(wl, l, m),
+        None => l,
+    };
     for y in y0..y0 + th {
         for x in x0..x0 + tw {
             for i in a..b {
@@ -164,12 +170,6 @@ fn trace_tile(
                     y,
                     i,
                 );
-                // pbrt-v4's firefly clamp, when the scene asks for it
-                let max_component = ctx.integrator.scene.film.max_component;
-                let clamp = |wl: &_, l| match max_component {
-                    Some(m) => crate::film::clamp_max_component(wl, l, m),
-                    None => l,
-                };
                 let (l, added) = if polarised {
                     let st = ctx.integrator.stokes(ray, &mut wl, &mut s);
                     (st[0], tile.add_stokes(x, y, &wl, &st, bins))

@@ -104,13 +104,6 @@ fn xyz_of_xy(c: [f64; 2]) -> [f64; 3] {
     [c[0] / c[1], 1.0, (1.0 - c[0] - c[1]) / c[1]]
 }
 
-fn d65() -> Result<Spectrum, String> {
-    match crate::spectrum::named::lookup("cie-d65") {
-        Ok(crate::spectrum::named::Named::Curve { spectrum, .. }) => Ok(spectrum),
-        _ => Err("the D65 table is missing".into()),
-    }
-}
-
 /// pbrt-v4's RGB film matrix, linear sRGB from sensor RGB (see the module doc): `curves` None
 /// for `cie1931`; `illum` the white-balance daylight (None: `cie1931` without white balance).
 /// Fails if the camera fit is singular.
@@ -119,7 +112,7 @@ pub fn output_matrix(
     illum: Option<&Spectrum>,
 ) -> Result<DMat3, String> {
     let rgb_from_xyz = crate::colour::spaces::SRGB.xyz_to_rgb();
-    let d65 = d65()?;
+    let d65 = super::d65()?;
     let white = xy(&d65);
     let (curves, illum) = match (curves, illum) {
         (None, None) => return Ok(rgb_from_xyz),
@@ -141,7 +134,7 @@ pub fn output_matrix(
             "the camera's green channel does not respond to the white-balance daylight".into(),
         );
     }
-    let (mut ata, mut atb) = (DMat3::ZERO, DMat3::ZERO);
+    let mut pairs = Vec::new();
     for k in 1..sw.columns.len() {
         let refl = extended(&l, &sw.column(k)).ok_or("a swatch table is not increasing")?;
         let lit = |x: f32| refl.eval(x) as f64 * ill(x);
@@ -149,14 +142,9 @@ pub fn output_matrix(
         let xyz = [0, 1, 2]
             .map(|c| sum(|x| cmf().eval(x)[c] as f64 * refl.eval(x) as f64 * d65.eval(x) as f64));
         let xyz = DVec3::from(xyz) / y_d65 * (y_white / g_white);
-        let cam = cam / g_white;
-        ata += DMat3::from_cols(cam * cam.x, cam * cam.y, cam * cam.z);
-        atb += DMat3::from_cols(xyz * cam.x, xyz * cam.y, xyz * cam.z);
+        pairs.push((cam / g_white, xyz));
     }
-    if ata.determinant().abs() < 1e-12 * ata.x_axis.length().powi(3) {
-        return Err("the ColorChecker fit of the camera's matrix is singular".into());
-    }
-    Ok(rgb_from_xyz * atb * ata.inverse())
+    Ok(rgb_from_xyz * super::least_squares(pairs)?)
 }
 
 #[cfg(test)]
@@ -180,7 +168,7 @@ mod tests {
         let m = output_matrix(None, None).unwrap();
         let s = crate::colour::spaces::SRGB.xyz_to_rgb();
         assert!((m - s).abs().to_cols_array().iter().all(|&d| d < 1e-12));
-        let m = output_matrix(None, Some(&d65().unwrap())).unwrap();
+        let m = output_matrix(None, Some(&crate::sensor::d65().unwrap())).unwrap();
         assert!((m - s).abs().to_cols_array().iter().all(|&d| d < 1e-9));
     }
 

@@ -63,8 +63,13 @@ impl WavelengthRange {
 /// sum of the CIE colour-matching functions (Radziszewski et al. 2009, as used in pbrt-v4 §4.6.2),
 /// plus a floor of 2% of its peak so that ultraviolet and infrared ranges are still sampled.
 fn visible_importance(lambda: f64) -> f64 {
+    pbrt_visible_importance(lambda) + 0.02
+}
+
+/// pbrt-v4's `VisibleWavelengthsPDF` up to its normalisation: sech²(0.0072 nm⁻¹ · (λ − 538 nm)).
+fn pbrt_visible_importance(lambda: f64) -> f64 {
     let c = (0.0072 * (lambda - 538.0)).cosh();
-    1.0 / (c * c) + 0.02
+    1.0 / (c * c)
 }
 
 /// Hero-wavelength sampler over a [`WavelengthRange`].
@@ -105,10 +110,7 @@ impl WavelengthSampler {
     /// without [`WavelengthSampler::visible`]'s floor: for estimates that must be distributed
     /// per sample as pbrt-v4's are (its firefly clamp, [`crate::film::clamp_max_component`]).
     pub fn pbrt_visible(range: WavelengthRange) -> Self {
-        Self::tabulate(range, |l| {
-            let c = (0.0072 * (l - 538.0)).cosh();
-            1.0 / (c * c)
-        })
+        Self::tabulate(range, pbrt_visible_importance)
     }
 
     /// Uniform density 1/(max − min).

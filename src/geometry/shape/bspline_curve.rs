@@ -67,6 +67,17 @@ pub enum PbrtCurve {
     Ribbon,
 }
 
+/// One of a segment's [`PIECES`] chords: its parameters s0 and s0 + ds, its end points, and the
+/// largest radius along it plus a bound on the curve's distance from the chord (|c''|·Δs²/8,
+/// |c''| linear in s, so largest at an end).
+struct Piece {
+    s0: f32,
+    ds: f32,
+    a: Vec3,
+    b: Vec3,
+    bound: f32,
+}
+
 /// A segment's centre line and radius at s, with their first and second derivatives in s.
 struct Eval {
     c: Vec3,
@@ -213,23 +224,38 @@ impl BSplineCurve {
         let scale = radii.into_iter().fold(0.0, f32::max);
         let t_min = 1e-4 * scale;
         let mut best: Option<(f32, f32)> = None;
+        for p in self.pieces(i) {
+            let mut shrunk = *ray;
+            shrunk.t_max = best.map_or(ray.t_max, |b| b.0);
+            let bound = p.bound + 1e-4 * scale;
+            let hit = capsule_hit(p.a, p.b, bound, &shrunk, f32::NEG_INFINITY)
+                .and_then(|(t0, f)| self.newton(i, ray, t0.max(0.0), p.s0 + f * p.ds, t_min));
+            if let Some(h) = hit.filter(|h| best.is_none_or(|b| h.0 < b.0)) {
+                best = Some(h);
+            }
+        }
+        best
+    }
+
+    /// Segment `i`'s [`PIECES`] chords with their bounds (module docs, step 1), each end
+    /// evaluated once.
+    fn pieces(&self, i: usize) -> impl Iterator<Item = Piece> + '_ {
         let mut prev = self.eval(i, 0.0);
-        for k in 0..PIECES {
+        (0..PIECES).map(move |k| {
             let (s0, s1) = (k as f32 / PIECES as f32, (k + 1) as f32 / PIECES as f32);
             let next = self.eval(i, s1);
             let ds = s1 - s0;
             let sag = prev.ddc.length().max(next.ddc.length()) * ds * ds / 8.0;
-            let bound = prev.r.max(next.r) + sag + 1e-4 * scale;
-            let mut shrunk = *ray;
-            shrunk.t_max = best.map_or(ray.t_max, |b| b.0);
-            let hit = capsule_hit(prev.c, next.c, bound, &shrunk, f32::NEG_INFINITY)
-                .and_then(|(t0, f)| self.newton(i, ray, t0.max(0.0), s0 + f * ds, t_min));
-            if let Some(h) = hit.filter(|h| best.is_none_or(|b| h.0 < b.0)) {
-                best = Some(h);
-            }
+            let piece = Piece {
+                s0,
+                ds,
+                a: prev.c,
+                b: next.c,
+                bound: prev.r.max(next.r) + sag,
+            };
             prev = next;
-        }
-        best
+            piece
+        })
     }
 
     /// Newton's method on (t, s) from (t, s) (module docs, step 2); the hit if it converges

@@ -117,6 +117,9 @@ fn integrator(p: &Params, kind: &str, loc: Loc) -> R<(IntegratorKind, i64, Light
     Ok((k, depth, selection))
 }
 
+/// What [`film`] reads: the spectral bins, the sensor, the clamp (cd/m²) and where it was set.
+type FilmRead = (u32, Option<CameraSensorDesc>, Option<(f64, Loc)>);
+
 /// A `Film`'s kind and the settings of its pixel sensor: `rgb`; `gbuffer` (its image; the
 /// extra channels are not written, a note says so); `spectral` (its `nbuckets` over 360–830
 /// nm as spectrace's spectral EXR bins). Its pixel sensor (`sensor`, `iso`, `whitebalance`,
@@ -126,7 +129,6 @@ fn integrator(p: &Params, kind: &str, loc: Loc) -> R<(IntegratorKind, i64, Light
 /// value·K_m/(t·ISO/100) (refused with a camera's curves); `savefp16` is a precision choice,
 /// ignored. Returns the spectral bins (0: none), the sensor (None: pbrt-v4's pass-through) and
 /// the clamp with its location.
-type FilmRead = (u32, Option<CameraSensorDesc>, Option<(f64, Loc)>);
 fn film(
     p: &Params,
     (kind, loc): (&str, Loc),

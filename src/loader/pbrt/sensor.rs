@@ -65,10 +65,7 @@ pub(super) fn sensor(p: &Params, exposure_s: f64) -> R<Option<CameraSensorDesc>>
         (format!("pbrt-v4's daylight at {wb} K"), d)
     } else {
         // no white balance: pbrt-v4's matrix is sRGB's, which balancing from D65 to D65 keeps
-        let d65 = match crate::spectrum::named::lookup("cie-d65") {
-            Ok(crate::spectrum::named::Named::Curve { spectrum, .. }) => spectrum,
-            _ => return Err(p.err(p.loc_of("sensor"), "the D65 table is missing")),
-        };
+        let d65 = crate::sensor::d65().map_err(|m| p.err(p.loc_of("sensor"), m))?;
         ("none".to_string(), d65)
     };
     Ok(Some(CameraSensorDesc {
