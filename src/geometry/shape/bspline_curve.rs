@@ -333,40 +333,6 @@ impl BSplineCurve {
             .then_some(s.clamp(0.0, 1.0))
     }
 
-    /// These curves hit as pbrt-v4 hits its `cylinder` curves (`Curve::RecursiveIntersect`,
-    /// src/pbrt/shapes.cpp): a ribbon through the centre line facing the ray, whose outline is
-    /// the tube's but whose ends are where the centre line ends as seen along the ray; the hit
-    /// point is where the ray crosses the centre line's depth (pbrt-v4's tHit), with pbrt-v4's
-    /// error bound, the width, and its normal is pbrt-v4's: the ribbon's, turned about the
-    /// tangent by θ = π·(v − ½), v ∈ [0, 1] the hit's place across the width, linear in the
-    /// offset from the centre line (a true tube's angle is its arcsine), and turned the way
-    /// pbrt-v4 turns it, away from the hit's side (`Rotate(-theta, dpdu)` applied to ∂p/∂v):
-    /// pbrt-v4's cylinders are lit on the side away from a light, as a trough would be.
-    /// A [`PbrtCurve::Flat`] curve keeps the ribbon's own normal.
-    pub fn with_pbrt_shading(mut self, kind: PbrtCurve) -> Self {
-        self.pbrt = Some(kind);
-        self
-    }
-
-    /// A [`PbrtCurve::Ribbon`]'s normals, one pair (start, end; world space, any length) per
-    /// segment in order. Fails on a count other than the segments' or a zero normal.
-    pub fn with_ribbon_normals(mut self, normals: Vec<[Vec3; 2]>) -> Result<Self, GeometryError> {
-        if normals.len() != self.segments.len() {
-            return Err(GeometryError::Curve(format!(
-                "{} normal pairs for {} segments",
-                normals.len(),
-                self.segments.len()
-            )));
-        }
-        self.ribbon_normals = normals
-            .iter()
-            .map(|[a, b]| Some([a.try_normalize()?, b.try_normalize()?]))
-            .collect::<Option<_>>()
-            .ok_or_else(|| GeometryError::Curve("a ribbon normal is zero".into()))?;
-        self.pbrt = Some(PbrtCurve::Ribbon);
-        Ok(self)
-    }
-
     /// The surface point at `p_approx` on segment `i`, its closest centre-line point at `s`
     /// (Mitsuba's normal: (|c'|² − q·c'')·q − r·r'·c', q = p − c), hit by `ray` (which only
     /// pbrt-v4's curves read).
