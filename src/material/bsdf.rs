@@ -81,6 +81,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo, w).0,
             Material::PPlastic(m) => m.eval_pdf(wo, wi, self.albedo).0,
             Material::MeasuredPolarized(m) => m.eval(wo, wi, w, mode),
+            Material::Measured(m) => m.eval(wo, wi, w),
             Material::Mask(m) => self.masked(m).eval(wo, wi, w, mode) * self.weight,
             Material::Blend(m) => self.blend_eval_pdf(m, wo, wi, w, mode).0,
             Material::NormalMap(_) | Material::BumpMap(_) => {
@@ -114,6 +115,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo, w).1,
             Material::PPlastic(m) => m.eval_pdf(wo, wi, self.albedo).1,
             Material::MeasuredPolarized(m) => m.pdf(wo, wi),
+            Material::Measured(m) => m.pdf(wo, wi),
             Material::Mask(m) => self.masked(m).pdf(wo, wi, w, _mode) * self.weight,
             Material::Blend(m) => self.blend_eval_pdf(m, wo, wi, w, _mode).1,
             Material::NormalMap(_) | Material::BumpMap(_) => {
@@ -154,6 +156,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo, w),
             Material::PPlastic(m) => m.eval_pdf(wo, wi, self.albedo),
             Material::MeasuredPolarized(m) => (m.eval(wo, wi, w, mode), m.pdf(wo, wi)),
+            Material::Measured(m) => (m.eval(wo, wi, w), m.pdf(wo, wi)),
             Material::Mask(m) => {
                 let (f, pdf) = self.masked(m).eval_pdf(wo, wi, w, mode);
                 (f * self.weight, pdf * self.weight)
@@ -203,6 +206,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             Material::Plastic(m) => m.sample(wo, self.albedo, w, uc, u),
             Material::PPlastic(m) => m.sample(wo, self.albedo, uc, u),
             Material::MeasuredPolarized(m) => m.sample(wo, uc, u, w, mode),
+            Material::Measured(m) => m.sample(wo, u, w),
             Material::ThinFilm(m) => m.sample(wo, w, uc),
             Material::ThinDielectric { eta } => {
                 let c = wo.z.abs();

@@ -119,6 +119,7 @@ impl super::Material {
             | M::Conductor(_)
             | M::RoughConductor(_)
             | M::Plastic(_)
+            | M::Measured(_)
             | M::ThinDielectric { .. }
             | M::ThinFilm(_)
             | M::Null => false,

@@ -50,6 +50,7 @@ mod layer_interfaces;
 mod layered;
 mod layered_walk;
 mod mask;
+mod measured;
 mod measured_polarized;
 pub mod microfacet;
 mod null;
@@ -78,6 +79,7 @@ pub use hair::Hair;
 pub use lambert::Lambert;
 pub use layered::{Layered, LayeredBase};
 pub use mask::Mask;
+pub use measured::{Measured, Warp2D};
 pub use measured_polarized::MeasuredPolarized;
 pub use null::thin_reflectance;
 pub use perturb::{BumpMap, LocalSurface, NormalMap};
@@ -153,6 +155,9 @@ pub enum Material {
     PPlastic(PPlastic),
     /// Mitsuba's `measured_polarized`: a measured pBRDF (see [`MeasuredPolarized`]).
     MeasuredPolarized(Box<MeasuredPolarized>),
+    /// pbrt-v4's and Mitsuba's `measured`: an RGL measured BRDF (see [`Measured`]), its
+    /// tables shared by every material that reads the same file.
+    Measured(std::sync::Arc<Measured>),
     /// Mitsuba's `thindielectric`: a sheet of index `eta` (relative to the outside) too thin to
     /// offset a ray. Reflectance with the sheet's inner reflections, R = 2F/(1 + F) for the
     /// Fresnel reflectance F at the incidence angle, else straight through: two delta lobes
@@ -308,6 +313,7 @@ impl Material {
             | Material::ThinFilm(_)
             | Material::Element(_)
             | Material::MeasuredPolarized(_)
+            | Material::Measured(_)
             | Material::Null => SampledSpectrum::zero(),
         };
         Bsdf::plain(self, albedo)
@@ -388,7 +394,8 @@ impl Material {
             | Material::RoughConductor(_)
             | Material::Plastic(_)
             | Material::PPlastic(_)
-            | Material::MeasuredPolarized(_) => false,
+            | Material::MeasuredPolarized(_)
+            | Material::Measured(_) => false,
         }
     }
 }

@@ -104,7 +104,8 @@ fn of<const N: usize>(
         | Material::Principled(_)
         | Material::Hair(_)
         | Material::Layered(_)
-        | Material::DiffuseTransmission(_) => Polarising::Depolarise,
+        | Material::DiffuseTransmission(_)
+        | Material::Measured(_) => Polarising::Depolarise,
         Material::Null => Polarising::Keep,
         Material::Mask(_) | Material::ThinDielectric { .. } if straight => Polarising::Keep,
         Material::Mask(k) => of(&k.inner, frame, perturb, (wo, wi), rho, w),

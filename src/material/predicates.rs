@@ -35,6 +35,8 @@ impl Material {
             | Material::ThinDielectric { .. }
             | Material::ThinFilm(_)
             | Material::Null => false,
+            // an anisotropic file's azimuths are in the frame of ∂p/∂u
+            Material::Measured(m) => !m.isotropic,
         }
     }
 
@@ -55,6 +57,7 @@ impl Material {
             | Material::Plastic(_)
             | Material::PPlastic(_)
             | Material::MeasuredPolarized(_)
+            | Material::Measured(_)
             | Material::ThinDielectric { .. }
             | Material::ThinFilm(_)
             | Material::Null
@@ -97,7 +100,8 @@ impl Material {
             | Material::RoughConductor(_)
             | Material::Plastic(_)
             | Material::PPlastic(_)
-            | Material::MeasuredPolarized(_) => false,
+            | Material::MeasuredPolarized(_)
+            | Material::Measured(_) => false,
         }
     }
 
@@ -130,7 +134,8 @@ impl Material {
             | Material::RoughConductor(_)
             | Material::Plastic(_)
             | Material::PPlastic(_)
-            | Material::MeasuredPolarized(_) => false,
+            | Material::MeasuredPolarized(_)
+            | Material::Measured(_) => false,
         }
     }
 }

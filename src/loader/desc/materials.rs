@@ -124,6 +124,11 @@ pub enum MaterialKind {
         alpha_sample: f64,
         wavelength: Option<f64>,
     },
+    /// pbrt-v4's and Mitsuba's `measured`: an RGL measured BRDF (Dupuy & Jakob 2018), shared
+    /// by every material reading the same file.
+    Measured {
+        table: std::sync::Arc<RglTable>,
+    },
     /// A smooth dielectric or a conductor under thin-film layers (`coating = [...]`), the
     /// layers listed from the outside in.
     Coated {
@@ -245,6 +250,27 @@ pub struct PbsdfTable {
     pub theta_h: Vec<f32>,
     pub wavelengths: Vec<f32>,
     pub m: std::sync::Arc<Vec<f32>>,
+}
+
+/// An RGL measured BRDF as its `.bsdf` file holds it (`loader::mitsuba::rgl`): the grids of
+/// θ_i and φ_i (radians) and wavelengths (nm), and tables in C order, each `[columns, rows]`
+/// in its `_size`: `ndf` and `sigma` (on u of the half vector and of ω_o), `vndf` (φ_i × θ_i
+/// slices), `luminance` (φ_i × θ_i slices of `sample_size`) and `spectra` (φ_i × θ_i × λ
+/// slices of `sample_size`, dimensionless reflectance factors).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RglTable {
+    pub theta_i: Vec<f32>,
+    pub phi_i: Vec<f32>,
+    pub wavelengths: Vec<f32>,
+    pub ndf: Vec<f32>,
+    pub ndf_size: [usize; 2],
+    pub sigma: Vec<f32>,
+    pub sigma_size: [usize; 2],
+    pub vndf: Vec<f32>,
+    pub vndf_size: [usize; 2],
+    pub luminance: Vec<f32>,
+    pub sample_size: [usize; 2],
+    pub spectra: Vec<f32>,
 }
 
 /// A spectral quantity that may vary over a surface (see `crate::texture`).

@@ -26,6 +26,7 @@ mod integrator;
 mod media;
 mod params;
 mod plugins;
+pub mod rgl;
 mod scene;
 mod sensor;
 mod shapes;

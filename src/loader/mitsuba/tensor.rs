@@ -13,10 +13,10 @@ use std::sync::Arc;
 
 use crate::loader::desc::PbsdfTable;
 
-/// One field: its type code, extents and raw bytes.
-struct Field<'a> {
-    dtype: u8,
-    shape: Vec<u64>,
+/// One field: its type code (1 u8, 3 u16, 10 f32, …), extents and raw bytes.
+pub(super) struct Field<'a> {
+    pub(super) dtype: u8,
+    pub(super) shape: Vec<u64>,
     data: &'a [u8],
 }
 
@@ -60,7 +60,7 @@ impl Reader<'_> {
 }
 
 /// The fields of a tensor file's bytes, by name.
-fn fields(bytes: &[u8]) -> Result<HashMap<String, Field<'_>>, String> {
+pub(super) fn fields(bytes: &[u8]) -> Result<HashMap<String, Field<'_>>, String> {
     let mut r = Reader { bytes, at: 0 };
     if r.take(12).ok() != Some(b"tensor_file\0".as_slice()) {
         return Err("not a Mitsuba tensor file (no `tensor_file` magic)".into());
@@ -104,7 +104,10 @@ fn fields(bytes: &[u8]) -> Result<HashMap<String, Field<'_>>, String> {
 }
 
 /// The values of field `name`, which must be f32 (type 10) or u16 (type 3), as f32.
-fn values(f: &HashMap<String, Field<'_>>, name: &str) -> Result<(Vec<f32>, Vec<u64>), String> {
+pub(super) fn values(
+    f: &HashMap<String, Field<'_>>,
+    name: &str,
+) -> Result<(Vec<f32>, Vec<u64>), String> {
     let field = f.get(name).ok_or_else(|| {
         format!("no field `{name}` (a pBSDF has phi_d, theta_d, theta_h, wvls, M)")
     })?;

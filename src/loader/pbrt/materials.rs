@@ -177,10 +177,11 @@ pub(super) fn material(
             }))
         }
         "hair" => super::hair::hair(p)?,
+        "measured" => measured(p, &named, loc)?,
         other => {
             return Err(p.err(
                 loc,
-                format!("the material \"{other}\" is not read yet (spectrace reads diffuse, diffusetransmission, dielectric, thindielectric, conductor, coateddiffuse, coatedconductor, hair, mix and interface)"),
+                format!("the material \"{other}\" is not read yet (spectrace reads diffuse, diffusetransmission, dielectric, thindielectric, conductor, coateddiffuse, coatedconductor, hair, measured, mix and interface)"),
             ));
         }
     };
@@ -260,6 +261,22 @@ impl Reader {
         }
         Ok(())
     }
+}
+
+/// pbrt-v4's `measured`: the RGL `.bsdf` file `filename` (relative to the scene's directory).
+fn measured(p: &Params, named: &Named<'_>, loc: Loc) -> R<MaterialKind> {
+    let Some(file) = p.string("filename")? else {
+        return Err(p.err(
+            loc,
+            "a measured material needs \"string filename\" (an RGL .bsdf file)",
+        ));
+    };
+    let path = named.resolve(&file);
+    let table = crate::loader::mitsuba::rgl::read_rgl_bsdf(&path)
+        .map_err(|e| p.err(p.loc_of("filename"), e))?;
+    Ok(MaterialKind::Measured {
+        table: std::sync::Arc::new(table),
+    })
 }
 
 /// pbrt-v4's `mix`: two named materials defined before it, blended by `amount` (0.5), a
