@@ -22,10 +22,7 @@ fn f32_field(
     rank: usize,
 ) -> Result<(Vec<f32>, Vec<usize>), String> {
     let Some(field) = f.get(name) else {
-        return Err(format!(
-            "no field `{name}` (an RGL BRDF has theta_i, phi_i, wavelengths, ndf, sigma, vndf, \
-             luminance, spectra, description and jacobian)"
-        ));
+        return Err(format!("no field `{name}`"));
     };
     if field.dtype != 10 || field.shape.len() != rank {
         return Err(format!(
@@ -54,6 +51,24 @@ pub(crate) fn read_rgl_bsdf(path: &Path) -> Result<RglTable, String> {
     let bytes = std::fs::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
     let at = |e: String| format!("{}: {e}", path.display());
     let f = fields(&bytes).map_err(at)?;
+    let names = [
+        "theta_i",
+        "phi_i",
+        "wavelengths",
+        "ndf",
+        "sigma",
+        "vndf",
+        "luminance",
+        "spectra",
+        "description",
+        "jacobian",
+    ];
+    if let Some(missing) = names.iter().find(|n| !f.contains_key(**n)) {
+        return Err(at(format!(
+            "not an RGL BRDF file: no field `{missing}` (it needs {})",
+            names.join(", ")
+        )));
+    }
     for (name, rank) in [("description", None), ("jacobian", Some(1))] {
         match f.get(name) {
             Some(x)
@@ -146,4 +161,51 @@ pub(crate) fn read_rgl_bsdf(path: &Path) -> Result<RglTable, String> {
         sample_size: [ls[3], ls[2]],
         spectra,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::loader::mitsuba::tensor::write_tensor_file;
+
+    /// The fields of a small valid file: 2 incidence angles, 1 azimuth, 2 wavelengths,
+    /// 3 × 3 tables, with `spectra` given the shape `spectra_shape`.
+    fn file(spectra_shape: Vec<u64>, drop: Option<&str>) -> Vec<u8> {
+        let ones = |s: &[u64]| vec![1.0; s.iter().product::<u64>() as usize];
+        let fields: Vec<(&str, u8, Vec<u64>, Vec<f32>)> = vec![
+            ("description", 1, vec![3], vec![65.0, 66.0, 67.0]),
+            ("jacobian", 1, vec![1], vec![1.0]),
+            ("theta_i", 10, vec![2], vec![0.0, 1.0]),
+            ("phi_i", 10, vec![1], vec![0.0]),
+            ("wavelengths", 10, vec![2], vec![400.0, 700.0]),
+            ("ndf", 10, vec![3, 3], ones(&[3, 3])),
+            ("sigma", 10, vec![3, 3], ones(&[3, 3])),
+            ("vndf", 10, vec![1, 2, 3, 3], ones(&[1, 2, 3, 3])),
+            ("luminance", 10, vec![1, 2, 3, 3], ones(&[1, 2, 3, 3])),
+            ("spectra", 10, spectra_shape.clone(), ones(&spectra_shape)),
+        ];
+        let kept: Vec<_> = fields.into_iter().filter(|f| Some(f.0) != drop).collect();
+        write_tensor_file(&kept)
+    }
+
+    /// A valid file reads with its sizes; a missing field, a `spectra` whose wavelength count
+    /// disagrees with `wavelengths`, and a truncated file are refused naming what is wrong.
+    #[test]
+    fn rgl_files_are_read_or_refused_with_the_field() {
+        let dir = std::env::temp_dir().join(format!("spectrace-rgl-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let p = dir.join("t.bsdf");
+        std::fs::write(&p, file(vec![1, 2, 2, 3, 3], None)).unwrap();
+        let t = read_rgl_bsdf(&p).expect("reads");
+        assert_eq!((t.theta_i.len(), t.sample_size, t.vndf_size), (2, [3, 3], [3, 3]));
+        std::fs::write(&p, file(vec![1, 2, 2, 3, 3], Some("sigma"))).unwrap();
+        assert!(read_rgl_bsdf(&p).unwrap_err().contains("no field `sigma`"));
+        std::fs::write(&p, file(vec![1, 2, 5, 3, 3], None)).unwrap();
+        let e = read_rgl_bsdf(&p).unwrap_err();
+        assert!(e.contains("`spectra` has shape [1, 2, 5, 3, 3]"), "{e}");
+        let bytes = file(vec![1, 2, 2, 3, 3], None);
+        std::fs::write(&p, &bytes[..bytes.len() - 8]).unwrap();
+        assert!(read_rgl_bsdf(&p).unwrap_err().contains("runs past the file's end"));
+        std::fs::remove_dir_all(&dir).ok();
+    }
 }

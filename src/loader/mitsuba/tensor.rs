@@ -183,7 +183,7 @@ pub(crate) fn read_pbsdf(path: &Path) -> Result<PbsdfTable, String> {
     })
 }
 
-/// The bytes of a tensor file holding `fields` (name, type code 3 or 10, shape, values), as
+/// The bytes of a tensor file holding `fields` (name, type code 1, 3 or 10, shape, values), as
 /// Mitsuba's `tensor_io.write` lays them out (data aligned to 8 bytes): for tests and tools
 /// that make pBSDF files.
 pub fn write_tensor_file(fields: &[(&str, u8, Vec<u64>, Vec<f32>)]) -> Vec<u8> {
@@ -209,6 +209,7 @@ pub fn write_tensor_file(fields: &[(&str, u8, Vec<u64>, Vec<f32>)]) -> Vec<u8> {
         let mut bytes = Vec::new();
         for &x in v {
             match dtype {
+                1 => bytes.push(x as u8),
                 3 => bytes.extend((x as u16).to_le_bytes()),
                 _ => bytes.extend(x.to_le_bytes()),
             }
