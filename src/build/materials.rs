@@ -121,7 +121,9 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
         MaterialKind::Principled(p) => super::materials_mitsuba::principled(p)?,
         MaterialKind::Hair(h) => super::materials_mitsuba::hair(h),
         MaterialKind::Layered(d) => super::materials_pbrt::layered(d)?,
-        MaterialKind::Measured { table } => super::materials_pbrt::measured(table)?,
+        MaterialKind::Measured { table, jacobian } => {
+            super::materials_pbrt::measured(table, *jacobian)?
+        }
         MaterialKind::DiffuseTransmission {
             reflectance,
             transmittance,

@@ -42,8 +42,9 @@ pub(super) fn layered(d: &LayeredDesc) -> Result<Material, String> {
 
 /// pbrt-v4's and Mitsuba's `measured` from the file's tables (pbrt-v4's `MeasuredBxDFData`):
 /// `ndf`, `sigma` and `spectra` as interpolants, `vndf` and `luminance` as normalised warps
-/// over (φ_i, θ_i); isotropic when φ_i has at most two nodes.
-pub(super) fn measured(t: &RglTable) -> Result<Material, String> {
+/// over (φ_i, θ_i); isotropic when φ_i has at most two nodes; `jacobian` as
+/// [`Measured::jacobian`].
+pub(super) fn measured(t: &RglTable, jacobian: bool) -> Result<Material, String> {
     let angles = || vec![t.phi_i.clone(), t.theta_i.clone()];
     let size = |s: [usize; 2]| (s[0], s[1]);
     let warp = |name: &str, v: &[f32], s, params, normalize| {
@@ -62,6 +63,7 @@ pub(super) fn measured(t: &RglTable) -> Result<Material, String> {
             false,
         )?,
         isotropic: t.phi_i.len() <= 2,
+        jacobian,
     })))
 }
 
@@ -80,7 +82,7 @@ mod tests {
             "/tests/reference/pbrt/measured/ggx.bsdf"
         );
         let t = crate::loader::mitsuba::rgl::read_rgl_bsdf(path.as_ref()).expect("reads");
-        match super::measured(&t).expect("builds") {
+        match super::measured(&t, true).expect("builds") {
             Material::Measured(m) => m,
             _ => unreachable!(),
         }

@@ -126,8 +126,11 @@ pub enum MaterialKind {
     },
     /// pbrt-v4's and Mitsuba's `measured`: an RGL measured BRDF (Dupuy & Jakob 2018), shared
     /// by every material reading the same file.
+    /// `jacobian`: whether `spectra` is multiplied by D/(4σ) (pbrt-v4 always; Mitsuba 3 as
+    /// the file's flag says).
     Measured {
         table: std::sync::Arc<RglTable>,
+        jacobian: bool,
     },
     /// A smooth dielectric or a conductor under thin-film layers (`coating = [...]`), the
     /// layers listed from the outside in.
@@ -259,6 +262,9 @@ pub struct PbsdfTable {
 /// slices of `sample_size`, dimensionless reflectance factors).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RglTable {
+    /// The file's `jacobian` flag: whether `spectra` holds R of f = R·D/(4σ cos θ_i) (set) or
+    /// f·cos θ_i itself.
+    pub jacobian: bool,
     pub theta_i: Vec<f32>,
     pub phi_i: Vec<f32>,
     pub wavelengths: Vec<f32>,

@@ -4,7 +4,8 @@
 //! - `ndf` and `sigma`, 2-D f32 (rows of u_φ, columns of u_θ);
 //! - `vndf` and `luminance`, 4-D f32: φ_i × θ_i × rows × columns;
 //! - `spectra`, 5-D f32: φ_i × θ_i × λ × rows × columns, on luminance's square grid;
-//! - `description` (1-D u8) and `jacobian` (one u8), which pbrt-v4 requires and does not use.
+//! - `description` (1-D u8) and `jacobian` (one u8: whether `spectra` is to be multiplied by
+//!   D/(4σ), which Mitsuba 3 heeds and pbrt-v4 assumes).
 //!
 //! The structure is checked as pbrt-v4 checks it (`MeasuredBxDFData::Create`), with an error
 //! naming the file and the field in place of its "invalid BRDF file structure".
@@ -147,7 +148,9 @@ pub(crate) fn read_rgl_bsdf(path: &Path) -> Result<RglTable, String> {
     ] {
         finite(name, v)?;
     }
+    let jacobian = values(&f, "jacobian").map_err(at)?.0[0] != 0.0;
     Ok(RglTable {
+        jacobian,
         theta_i,
         phi_i,
         wavelengths,
@@ -197,7 +200,10 @@ mod tests {
         let p = dir.join("t.bsdf");
         std::fs::write(&p, file(vec![1, 2, 2, 3, 3], None)).unwrap();
         let t = read_rgl_bsdf(&p).expect("reads");
-        assert_eq!((t.theta_i.len(), t.sample_size, t.vndf_size), (2, [3, 3], [3, 3]));
+        assert_eq!(
+            (t.theta_i.len(), t.sample_size, t.vndf_size),
+            (2, [3, 3], [3, 3])
+        );
         std::fs::write(&p, file(vec![1, 2, 2, 3, 3], Some("sigma"))).unwrap();
         assert!(read_rgl_bsdf(&p).unwrap_err().contains("no field `sigma`"));
         std::fs::write(&p, file(vec![1, 2, 5, 3, 3], None)).unwrap();
@@ -205,7 +211,11 @@ mod tests {
         assert!(e.contains("`spectra` has shape [1, 2, 5, 3, 3]"), "{e}");
         let bytes = file(vec![1, 2, 2, 3, 3], None);
         std::fs::write(&p, &bytes[..bytes.len() - 8]).unwrap();
-        assert!(read_rgl_bsdf(&p).unwrap_err().contains("runs past the file's end"));
+        assert!(
+            read_rgl_bsdf(&p)
+                .unwrap_err()
+                .contains("runs past the file's end")
+        );
         std::fs::remove_dir_all(&dir).ok();
     }
 }

@@ -103,7 +103,8 @@ pub(super) fn fields(bytes: &[u8]) -> Result<HashMap<String, Field<'_>>, String>
     Ok(out)
 }
 
-/// The values of field `name`, which must be f32 (type 10) or u16 (type 3), as f32.
+/// The values of field `name`, which must be f32 (type 10), u16 (type 3) or u8 (type 1), as
+/// f32.
 pub(super) fn values(
     f: &HashMap<String, Field<'_>>,
     name: &str,
@@ -122,9 +123,10 @@ pub(super) fn values(
             .chunks_exact(2)
             .map(|c| u16::from_le_bytes(c.try_into().expect("2 bytes")) as f32)
             .collect(),
+        1 => field.data.iter().map(|&b| b as f32).collect(),
         t => {
             return Err(format!(
-                "field `{name}` has type code {t}, expected f32 (10) or u16 (3)"
+                "field `{name}` has type code {t}, expected f32 (10), u16 (3) or u8 (1)"
             ));
         }
     };

@@ -274,8 +274,10 @@ fn measured(p: &Params, named: &Named<'_>, loc: Loc) -> R<MaterialKind> {
     let path = named.resolve(&file);
     let table = crate::loader::mitsuba::rgl::read_rgl_bsdf(&path)
         .map_err(|e| p.err(p.loc_of("filename"), e))?;
+    // pbrt-v4 multiplies by D/(4σ) whatever the file's `jacobian` flag says
     Ok(MaterialKind::Measured {
         table: std::sync::Arc::new(table),
+        jacobian: true,
     })
 }
 

@@ -47,6 +47,9 @@ pub struct Measured {
     pub spectra: Warp2D,
     /// Whether the file is isotropic (φ of the half vector relative to φ_o).
     pub isotropic: bool,
+    /// Whether R is multiplied by D/(4σ) (pbrt-v4 always; Mitsuba 3 when the file's
+    /// `jacobian` flag is set); without, f = R / cos θ_i (R holds f·cos θ_i).
+    pub jacobian: bool,
 }
 
 fn theta2u(theta: f32) -> f32 {
@@ -79,7 +82,11 @@ impl Measured {
         w: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
         let u_o = [theta2u(theta_o), phi2u(phi_o)];
-        let scale = self.ndf.eval(u_m, &[]) / (4.0 * self.sigma.eval(u_o, &[]) * cos_i);
+        let scale = if self.jacobian {
+            self.ndf.eval(u_m, &[]) / (4.0 * self.sigma.eval(u_o, &[]) * cos_i)
+        } else {
+            1.0 / cos_i
+        };
         if !scale.is_finite() {
             return SampledSpectrum::zero();
         }

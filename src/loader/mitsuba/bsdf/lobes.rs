@@ -221,3 +221,25 @@ pub(super) fn measured_polarized(cx: &Cx<'_>, b: &Element) -> R<MaterialKind> {
         wavelength,
     })
 }
+
+/// `measured`: `filename` (an RGL `.bsdf` file, Dupuy & Jakob 2018), read as Mitsuba 3.9.1
+/// reads it: R·D/(4σ) when the file's `jacobian` flag is set, else R as f·cos θ. Files
+/// covering a half or a quarter of the azimuths (Mitsuba's `reduction` 2 and 4) are refused.
+pub(super) fn measured(cx: &Cx<'_>, b: &Element) -> R<MaterialKind> {
+    let at = |key: &str| cx.child(b, key).unwrap_or(b);
+    let name = cx
+        .string(b, "filename")
+        .ok_or_else(|| cx.err(b, "measured needs a filename (an RGL .bsdf file)"))?;
+    let path = cx.resolve_file(&name);
+    if !path.is_file() {
+        return Err(cx.err(
+            at("filename"),
+            format!("RGL BSDF file {} does not exist", path.display()),
+        ));
+    }
+    let table = super::super::rgl::read_rgl_bsdf(&path).map_err(|e| cx.err(at("filename"), e))?;
+    Ok(MaterialKind::Measured {
+        jacobian: table.jacobian,
+        table: std::sync::Arc::new(table),
+    })
+}

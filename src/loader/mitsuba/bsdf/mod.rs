@@ -14,7 +14,7 @@ mod nested;
 mod principled;
 
 use crate::spectrum::PiecewiseLinear;
-use lobes::{conductor, measured_polarized, plastic, pplastic};
+use lobes::{conductor, measured, measured_polarized, plastic, pplastic};
 use nested::{blend, mask, perturbed};
 
 /// Mitsuba's named indices of refraction (constants, as Mitsuba tabulates them).
@@ -117,6 +117,8 @@ pub(in crate::loader::mitsuba) const BSDFS: &[(&str, Reader)] = &[
     ("measured_polarized", |cx, b, n, _| {
         plain(cx, b, n, measured_polarized(cx, b)?)
     }),
+    // an RGL measured BRDF (`.bsdf`), as pbrt-v4's `measured` reads it
+    ("measured", |cx, b, n, _| plain(cx, b, n, measured(cx, b)?)),
     // light passes straight through; each crossing still counts toward max_depth
     ("null", |cx, b, n, _| plain(cx, b, n, MaterialKind::Null)),
     ("thindielectric", thindielectric),
