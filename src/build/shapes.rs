@@ -4,7 +4,7 @@ use glam::{Mat4, Vec3};
 use std::sync::Arc;
 
 use super::v3;
-use crate::geometry::shape::{Cylinder, Disk, Mesh, PbrtCurve, Shape, Sphere};
+use crate::geometry::shape::{Clip, Cylinder, Disk, Mesh, PbrtCurve, Shape, Sphere};
 use crate::geometry::transform::Transform;
 use crate::loader::desc::{MeshNormals, ShapeDesc, ShapeKind, TransformStep};
 use crate::units::plain;
@@ -157,6 +157,20 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
         }
         ShapeKind::Disk => {
             Shape::Disk(Disk::new(&transform(s, true)?, 1.0).map_err(|e| e.to_string())?)
+        }
+        ShapeKind::PartialDisk { inner, phi_max } => {
+            let disk = Disk::new(&transform(s, true)?, 1.0).map_err(|e| e.to_string())?;
+            let degrees = super::materials::radians(phi_max).to_degrees();
+            Shape::Disk(disk.clipped(Clip::disk(1.0, *inner as f32, degrees)))
+        }
+        ShapeKind::PartialSphere { radius, z, phi_max } => {
+            let r = plain::metres(*radius);
+            let sphere = Sphere::with_transform(&transform(s, false)?, r).map_err(|_| {
+                "a sphere's transform must scale uniformly (non-uniform scale would make an ellipsoid)".to_string()
+            })?;
+            let degrees = super::materials::radians(phi_max).to_degrees();
+            let (z0, z1) = (plain::metres(z[0]), plain::metres(z[1]));
+            Shape::Sphere(sphere.clipped(Clip::sphere(r, z0, z1, degrees)))
         }
         ShapeKind::Obj { path, normals } => {
             let mesh = Mesh::load_obj(path, &transform(s, true)?).map_err(|e| e.to_string())?;

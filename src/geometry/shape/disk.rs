@@ -29,6 +29,9 @@ pub struct Disk {
     /// is rounded, m.
     plane_slack: f32,
     area: f32,
+    /// pbrt-v4's partial disk (`innerradius`, `phimax`): the part kept, on (a, b); None: whole.
+    /// Area and sampling stay the whole disk's (a partial disk cannot emit).
+    clip: Option<super::Clip>,
 }
 
 impl Disk {
@@ -63,7 +66,16 @@ impl Disk {
             v_dual,
             plane_slack,
             area,
+            clip: None,
         })
+    }
+
+    /// The disk cut to `clip` (pbrt-v4's `innerradius`, `phimax`, on the unit disk).
+    pub fn clipped(self, clip: super::Clip) -> Disk {
+        Disk {
+            clip: Some(clip),
+            ..self
+        }
     }
 
     /// Centre, m.
@@ -119,7 +131,8 @@ impl Disk {
             return None;
         }
         let (a, b) = self.local_coords(ray.at(t));
-        (a * a + b * b <= 1.0).then_some((t, PrimHit::Disk { a, b }))
+        let kept = self.clip.is_none_or(|c| c.keeps(a, b, 0.0));
+        (a * a + b * b <= 1.0 && kept).then_some((t, PrimHit::Disk { a, b }))
     }
 
     /// The surface point at local coordinates (a, b), reprojected onto the disk.

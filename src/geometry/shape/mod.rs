@@ -10,6 +10,7 @@
 //! front-face normal and is *not* flipped toward the ray. All intersection tests are two-sided.
 
 mod bspline_curve;
+mod clip;
 mod curve;
 mod cylinder;
 mod disk;
@@ -29,6 +30,7 @@ mod triangle;
 mod triangle4;
 
 pub use bspline_curve::{BSplineCurve, PbrtCurve};
+pub use clip::Clip;
 pub use curve::LinearCurve;
 pub use cylinder::Cylinder;
 pub use disk::Disk;

@@ -15,8 +15,11 @@ use std::f32::consts::PI;
 pub struct Sphere {
     center: Vec3,
     radius: f32,
-    /// Object-to-world rotation (orthonormal columns), used only for uv.
+    /// Object-to-world rotation (orthonormal columns), used for uv and the clip.
     frame: Mat3,
+    /// pbrt-v4's partial sphere: the part kept (None: the whole sphere). Area, bounds and
+    /// sampling stay the whole sphere's (a partial sphere cannot emit).
+    clip: Option<super::Clip>,
 }
 
 impl Sphere {
@@ -29,6 +32,7 @@ impl Sphere {
             center,
             radius,
             frame: Mat3::IDENTITY,
+            clip: None,
         })
     }
 
@@ -55,6 +59,24 @@ impl Sphere {
             center,
             radius,
             frame: lin * (1.0 / s),
+            clip: None,
+        })
+    }
+
+    /// The sphere cut to `clip` (pbrt-v4's `zmin`, `zmax`, `phimax`, in its object frame).
+    pub fn clipped(self, clip: super::Clip) -> Sphere {
+        Sphere {
+            clip: Some(clip),
+            ..self
+        }
+    }
+
+    /// Whether the hit at `t` along `ray` is on the kept part.
+    #[inline]
+    fn kept(&self, ray: &Ray, t: f32) -> bool {
+        self.clip.is_none_or(|c| {
+            let l = self.frame.transpose() * ((ray.at(t) - self.center) / self.radius);
+            c.keeps(l.x, l.y, l.z)
         })
     }
 
@@ -110,20 +132,16 @@ impl Sphere {
                 return None;
             }
             let t = q / a;
-            return (t > 0.0 && t < ray.t_max).then_some(t);
+            return (t > 0.0 && t < ray.t_max && self.kept(ray, t)).then_some(t);
         }
         if q == 0.0 {
             return None;
         }
         let (t0, t1) = (q / a, c / q);
         let (near, far) = if t0 <= t1 { (t0, t1) } else { (t1, t0) };
-        if near > 0.0 {
-            (near < ray.t_max).then_some(near)
-        } else if far > 0.0 {
-            (far < ray.t_max).then_some(far)
-        } else {
-            None
-        }
+        // the near root, else (behind the origin, or cut away) the far one
+        let accept = |t: f32| (t > 0.0 && t < ray.t_max && self.kept(ray, t)).then_some(t);
+        accept(near).or_else(|| accept(far))
     }
 
     /// The surface point in direction `p_obj` from the centre (any non-zero length), its error

@@ -31,6 +31,19 @@ pub enum ShapeKind {
     Box,
     /// The unit disk in the object's z = 0 plane, normal +z, scaled by the length unit.
     Disk,
+    /// pbrt-v4's partial sphere: the sphere of `radius` about the object origin, the part at
+    /// heights `z` (either order) and azimuths [0, `phi_max`] from object +x toward +y.
+    PartialSphere {
+        radius: Length,
+        z: [Length; 2],
+        phi_max: crate::units::Angle,
+    },
+    /// pbrt-v4's partial disk: [`ShapeKind::Disk`] without the disk of radius `inner` (a
+    /// fraction of the disk's radius) and beyond azimuth `phi_max`.
+    PartialDisk {
+        inner: f64,
+        phi_max: crate::units::Angle,
+    },
     /// The open tube of `radius` around the segment `p0`–`p1` (Mitsuba's `cylinder`), normals
     /// away from the axis unless `flipped`.
     Cylinder {

@@ -42,6 +42,11 @@ pub(super) fn look_at(v: &[f64]) -> Result<DMat4, String> {
     Ok(world_from_camera.inverse())
 }
 
+/// An angle of `x` degrees.
+fn degrees(x: f64) -> crate::units::Angle {
+    crate::units::Angle::new::<crate::units::angle::degree>(x)
+}
+
 pub(super) fn len(x: f64) -> Length {
     Length::new::<meter>(x)
 }
@@ -88,17 +93,24 @@ pub(super) fn shape(
             if !(radius > 0.0) {
                 return Err(p.err(p.loc_of("radius"), "a sphere's radius must be positive"));
             }
-            for partial in ["zmin", "zmax", "phimax"] {
-                if p.get(partial).is_some() {
-                    return Err(p.err(
-                        p.loc_of(partial),
-                        format!("a partial sphere (\"{partial}\") is not read yet"),
-                    ));
+            let partial = ["zmin", "zmax", "phimax"]
+                .iter()
+                .any(|k| p.get(k).is_some());
+            if partial {
+                // pbrt-v4's defaults: the whole sphere
+                ShapeKind::PartialSphere {
+                    radius: len(radius),
+                    z: [
+                        len(p.float("zmin", -radius)?),
+                        len(p.float("zmax", radius)?),
+                    ],
+                    phi_max: degrees(p.float("phimax", 360.0)?),
                 }
-            }
-            ShapeKind::Sphere {
-                center: [len(0.0), len(0.0), len(0.0)],
-                radius: len(radius),
+            } else {
+                ShapeKind::Sphere {
+                    center: [len(0.0), len(0.0), len(0.0)],
+                    radius: len(radius),
+                }
             }
         }
         // pbrt-v4's cylinder: around z from zmin to zmax, open at both ends, normals outwards
@@ -161,14 +173,19 @@ pub(super) fn shape(
         "disk" => {
             let radius = p.float("radius", 1.0)?;
             let height = p.float("height", 0.0)?;
-            if p.get("innerradius").is_some() || p.get("phimax").is_some() {
-                return Err(p.err(loc, "a partial disk (innerradius, phimax) is not read yet"));
-            }
+            let kind = if p.get("innerradius").is_some() || p.get("phimax").is_some() {
+                ShapeKind::PartialDisk {
+                    inner: p.float("innerradius", 0.0)? / radius,
+                    phi_max: degrees(p.float("phimax", 360.0)?),
+                }
+            } else {
+                ShapeKind::Disk
+            };
             // the unit disk in z = 0, scaled to `radius` and raised to `height`, before the CTM
             let m = r.state.ctm
                 * DMat4::from_translation(DVec3::new(0.0, 0.0, height))
                 * DMat4::from_scale(DVec3::splat(radius));
-            return finish_shape(ShapeKind::Disk, m, area, p, loc, r).map(|s| vec![s]);
+            return finish_shape(kind, m, area, p, loc, r).map(|s| vec![s]);
         }
         other => {
             return Err(p.err(
@@ -281,6 +298,8 @@ fn finish_shape(
         }
         ShapeKind::Sphere { .. }
         | ShapeKind::Disk
+        | ShapeKind::PartialSphere { .. }
+        | ShapeKind::PartialDisk { .. }
         | ShapeKind::Cylinder { .. }
         | ShapeKind::BSplinePoints { .. }
             if textured =>
@@ -296,6 +315,17 @@ fn finish_shape(
     // area light: which side emits after `ReverseOrientation` and mirroring transforms
     // (pbrt-v4 flips quadrics and meshes differently) is not read yet
     let mirrored = m.determinant() < 0.0;
+    if r.state.area_light.is_some()
+        && matches!(
+            kind,
+            ShapeKind::PartialSphere { .. } | ShapeKind::PartialDisk { .. }
+        )
+    {
+        return Err(p.err(
+            loc,
+            "an area light on a partial sphere or disk is not read yet (zmin, zmax, phimax, innerradius)",
+        ));
+    }
     if let Some(a) = &r.state.area_light
         && !a.two_sided
         && (r.state.reverse_orientation || mirrored)
