@@ -242,10 +242,11 @@ fn place(
     }
 }
 
-/// Whether a texture looks an image up by uv.
+/// Whether a texture looks an image (or checks) up by uv.
 fn image(t: &TextureDesc) -> bool {
     match t {
         TextureDesc::Bitmap { .. } | TextureDesc::PbrtImage(_) => true,
+        TextureDesc::Checkerboard { .. } => true,
         TextureDesc::Scaled(t) => t.iter().any(image),
         TextureDesc::Mix(t) => t.iter().any(image),
         _ => false,
@@ -306,7 +307,7 @@ fn finish_shape(
         {
             return Err(p.err(
                 loc,
-                "an image texture on a sphere, disk, cylinder or curve is not read yet (pbrt-v4's uv of these differ from spectrace's)",
+                "an image or checkerboard texture on a sphere, disk, cylinder or curve is not read yet (pbrt-v4's uv of these differ from spectrace's)",
             ));
         }
         k => k,

@@ -60,6 +60,7 @@ pub(super) fn texture(ty: &str, class: &str, p: &Params, loc: Loc, r: &Reader) -
             }
             (t, k) => TextureDesc::Scaled(Box::new([t, k])),
         }),
+        "checkerboard" => checkerboard(p, value("tex1", 1.0)?, value("tex2", 0.0)?),
         "mix" => Ok(TextureDesc::Mix(Box::new([
             value("tex1", 0.0)?,
             value("tex2", 1.0)?,
@@ -68,9 +69,61 @@ pub(super) fn texture(ty: &str, class: &str, p: &Params, loc: Loc, r: &Reader) -
         other => Err(p.err(
             loc,
             format!(
-                "the texture \"{other}\" is not read yet (spectrace reads imagemap, constant, scale and mix)"
+                "the texture \"{other}\" is not read yet (spectrace reads imagemap, checkerboard, constant, scale and mix)"
             ),
         )),
+    }
+}
+
+/// pbrt-v4's 2D `checkerboard`: `tex1` where ⌊s⌋ + ⌊t⌋ is even, else `tex2`, with (s, t) =
+/// (uscale·u + udelta, vscale·v + vdelta): Mitsuba's checks (`a` where the fractional parts
+/// of the halved coordinates are on the same side of ½) of (s/2, t/2). Point-sampled: pbrt-v4
+/// blurs the edges over the ray's footprint (a box-filtered triangle of 1.5 texel widths),
+/// which moves no mean. `tex1` and `tex2` must be numbers or spectra.
+fn checkerboard(p: &Params, tex1: TextureDesc, tex2: TextureDesc) -> R<TextureDesc> {
+    let dim = p.int("dimension", 2)?;
+    if dim != 2 {
+        return Err(p.err(
+            p.loc_of("dimension"),
+            format!("a {dim}-dimensional checkerboard is not read yet (spectrace reads 2)"),
+        ));
+    }
+    let (TextureDesc::Uniform(a), TextureDesc::Uniform(b)) = (tex1, tex2) else {
+        let at = if p.get("tex1").is_some_and(|q| q.ty == "texture") {
+            "tex1"
+        } else {
+            "tex2"
+        };
+        return Err(p.err(
+            p.loc_of(at),
+            "a checkerboard of textures is not read yet (tex1 and tex2 must be values)",
+        ));
+    };
+    uv_mapping_only(p)?;
+    let (su, sv) = (p.float("uscale", 1.0)?, p.float("vscale", 1.0)?);
+    let (du, dv) = (p.float("udelta", 0.0)?, p.float("vdelta", 0.0)?);
+    #[rustfmt::skip]
+    let halved = TransformStep::Matrix([
+        su / 2.0, 0.0, 0.0, du / 2.0,
+        0.0, sv / 2.0, 0.0, dv / 2.0,
+        0.0, 0.0, 1.0, 0.0,
+        0.0, 0.0, 0.0, 1.0,
+    ]);
+    Ok(TextureDesc::Checkerboard {
+        a,
+        b,
+        to_uv: vec![halved],
+    })
+}
+
+/// Err unless the texture's `mapping` is pbrt-v4's default, `uv`.
+fn uv_mapping_only(p: &Params) -> R<()> {
+    match p.string("mapping")? {
+        Some(m) if m != "uv" => Err(p.err(
+            p.loc_of("mapping"),
+            format!("the mapping \"{m}\" is not read yet (spectrace reads uv)"),
+        )),
+        _ => Ok(()),
     }
 }
 
@@ -124,14 +177,7 @@ fn imagemap(p: &Params, loc: Loc, r: &Reader, grey: bool) -> R<TextureDesc> {
             ));
         }
     };
-    if let Some(m) = p.string("mapping")?
-        && m != "uv"
-    {
-        return Err(p.err(
-            p.loc_of("mapping"),
-            format!("the mapping \"{m}\" is not read yet (spectrace reads uv)"),
-        ));
-    }
+    uv_mapping_only(p)?;
     // EWA's anisotropy: no mipmaps here
     let _ = p.float("maxanisotropy", 8.0)?;
     let (su, sv) = (p.float("uscale", 1.0)?, p.float("vscale", 1.0)?);
