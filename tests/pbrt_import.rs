@@ -268,6 +268,45 @@ Shape "sphere"
     assert_eq!(radii, [0.5, 2.0, 1.0]);
 }
 
+/// `ActiveTransform`: transformations apply to the active CTMs only; a shape under two equal
+/// CTMs is placed by them (here, after StartTime and EndTime each moved by 1 along x, at
+/// x = 1), `CoordSysTransform` sets both, and a shape under two different CTMs (motion blur)
+/// is an error naming the directive.
+#[test]
+fn active_transforms_apply_to_their_ctm() {
+    use spectrace::loader::desc::{ShapeKind, TransformStep};
+    let head = r#"LookAt 0 0 5  0 0 0  0 1 0
+Camera "perspective" "float fov" [30]
+WorldBegin
+TransformTimes 0 1
+ActiveTransform StartTime
+Translate 1 0 0
+ActiveTransform EndTime
+Translate 1 0 0
+ActiveTransform All
+"#;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/pbrt/inline.pbrt");
+    let desc = spectrace::loader::pbrt::load_str(&format!("{head}Shape \"sphere\"\n"), &path)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let s = &desc.shapes[0];
+    assert!(matches!(s.kind, ShapeKind::Sphere { .. }));
+    match s.transform.as_slice() {
+        [TransformStep::Matrix(m)] => assert_eq!((m[3], m[7], m[11]), (1.0, 0.0, 0.0)),
+        t => panic!("{t:?}"),
+    }
+    let moving = format!("{head}ActiveTransform EndTime\nTranslate 0 1 0\nShape \"sphere\"\n");
+    let e = spectrace::loader::pbrt::load_str(&moving, &path).expect_err("motion blur");
+    assert!(
+        e.to_string()
+            .contains("Shape under an animated transformation"),
+        "{e}"
+    );
+    let back = format!(
+        "{head}CoordinateSystem \"here\"\nActiveTransform EndTime\nTranslate 0 1 0\nCoordSysTransform \"here\"\nShape \"sphere\"\n"
+    );
+    spectrace::loader::pbrt::load_str(&back, &path).unwrap_or_else(|e| panic!("{e}"));
+}
+
 /// gzip-compressed scene and mesh files, as pbrt-v4 reads them (`.pbrt.gz`, `.ply.gz`): a
 /// compressed scene includes a compressed PLY square (ρ = 0.5) under a uniform sky of Y = 2,
 /// which an orthographic camera sees filling the frame at Y = ρ · 2 (683 cd/m² per unit).

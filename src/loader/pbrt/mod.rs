@@ -67,6 +67,11 @@ struct State {
     /// The current transformation: object (or camera) space to world, pbrt's CTM inverted at
     /// use (pbrt stores world-from-object as its CTM).
     ctm: DMat4,
+    /// The CTM at the shutter's close, which `ActiveTransform EndTime` changes alone; a
+    /// consumer of the CTM refuses a scene where it differs from `ctm` (motion blur).
+    ctm_end: DMat4,
+    /// Which of (`ctm`, `ctm_end`) the transformation directives change (`ActiveTransform`).
+    active: [bool; 2],
     reverse_orientation: bool,
     /// Index into the scene's materials (`None`: pbrt-v4's default diffuse, made on first use).
     material: Option<usize>,
@@ -94,7 +99,8 @@ struct Reader {
     state: State,
     stack: Vec<(State, Loc)>,
     named_materials: HashMap<String, usize>,
-    coordinate_systems: HashMap<String, DMat4>,
+    /// Named coordinate systems: the CTM at the shutter's opening and close.
+    coordinate_systems: HashMap<String, [DMat4; 2]>,
     in_world: bool,
     camera: Option<(DMat4, Params, String, Loc)>,
     film: Option<(Params, String, Loc)>,
@@ -127,6 +133,8 @@ impl Reader {
             root: root.to_path_buf(),
             state: State {
                 ctm: DMat4::IDENTITY,
+                ctm_end: DMat4::IDENTITY,
+                active: [true; 2],
                 reverse_orientation: false,
                 material: None,
                 area_light: None,
@@ -190,6 +198,20 @@ impl Reader {
         depth: u32,
     ) -> R<()> {
         let err = |m: String| LoadError::new(file, loc, "", m);
+        // the directives that use the CTM: a static scene's two CTMs are the same
+        let consumes = [
+            "Shape",
+            "LightSource",
+            "Camera",
+            "ObjectInstance",
+            "Texture",
+            "MakeNamedMedium",
+        ];
+        if consumes.contains(&d) && self.state.ctm != self.state.ctm_end {
+            return Err(err(format!(
+                "{d} under an animated transformation (ActiveTransform: the transformations at the shutter's opening and close differ) is not read yet: spectrace renders no motion blur"
+            )));
+        }
         match d {
             "Identity" | "Translate" | "Scale" | "Rotate" | "LookAt" | "Transform"
             | "ConcatTransform" | "CoordinateSystem" | "CoordSysTransform" => {
@@ -202,7 +224,8 @@ impl Reader {
                     return Err(err(format!("{d} without a matching begin")));
                 };
                 if d == "TransformEnd" {
-                    self.state.ctm = s.ctm;
+                    (self.state.ctm, self.state.ctm_end) = (s.ctm, s.ctm_end);
+                    self.state.active = s.active;
                 } else {
                     self.state = s;
                 }
@@ -210,8 +233,9 @@ impl Reader {
             "WorldBegin" => {
                 self.in_world = true;
                 self.coordinate_systems
-                    .insert("world".into(), DMat4::IDENTITY);
-                self.state.ctm = DMat4::IDENTITY;
+                    .insert("world".into(), [DMat4::IDENTITY; 2]);
+                (self.state.ctm, self.state.ctm_end) = (DMat4::IDENTITY, DMat4::IDENTITY);
+                self.state.active = [true; 2];
             }
             "Include" | "Import" => {
                 let name = Self::string_arg(toks, i, file, d, loc)?;
@@ -291,19 +315,27 @@ impl Reader {
             "MakeNamedMedium" | "MediumInterface" => {
                 self.medium_directive(d, toks, i, file, loc)?;
             }
-            "TransformTimes" | "ActiveTransform" => {
-                return Err(err(format!(
-                    "the directive {d} is not read yet (spectrace's pbrt-v4 reader: see the README's pbrt-v4 table)"
-                )));
-            }
+            "TransformTimes" | "ActiveTransform" => self.transform(d, toks, i, file, loc)?,
             other => return Err(err(format!("unknown directive \"{other}\""))),
         }
         Ok(())
     }
 
-    /// pbrt's CTM times `m` (post-multiplied: `m` acts first, in object space).
+    /// pbrt's CTMs times `m` (post-multiplied: `m` acts first, in object space), those
+    /// `ActiveTransform` made active.
     fn concat(&mut self, m: DMat4) {
-        self.state.ctm *= m;
+        self.set_ctm(|c| c * m);
+    }
+
+    /// The active CTMs replaced by `f` of themselves.
+    fn set_ctm(&mut self, f: impl Fn(DMat4) -> DMat4) {
+        let s = &mut self.state;
+        if s.active[0] {
+            s.ctm = f(s.ctm);
+        }
+        if s.active[1] {
+            s.ctm_end = f(s.ctm_end);
+        }
     }
 
     /// The named materials defined so far, by name (for `mix`).
@@ -336,8 +368,10 @@ impl Reader {
         let slot = match d {
             "Camera" => {
                 // the camera's space is where the CTM stands; pbrt names it "camera"
-                self.coordinate_systems
-                    .insert("camera".into(), self.state.ctm.inverse());
+                self.coordinate_systems.insert(
+                    "camera".into(),
+                    [self.state.ctm.inverse(), self.state.ctm_end.inverse()],
+                );
                 self.camera = Some((self.state.ctm, p, kind, loc));
                 self.camera_medium = self.state.media.1;
                 return Ok(());

@@ -100,7 +100,7 @@ impl Reader {
         let err = |m: String| LoadError::new(file, loc, "", m);
         let nums = |i: &mut usize, n: usize| Self::numbers(toks, i, file, d, loc, n);
         match d {
-            "Identity" => self.state.ctm = DMat4::IDENTITY,
+            "Identity" => self.set_ctm(|_| DMat4::IDENTITY),
             "Translate" => {
                 let v = nums(i, 3)?;
                 self.concat(DMat4::from_translation([v[0], v[1], v[2]].into()));
@@ -127,21 +127,44 @@ impl Reader {
                 // pbrt lists the matrix column by column (its `Transpose` of the row-major read)
                 let m = DMat4::from_cols_slice(&v);
                 if d == "Transform" {
-                    self.state.ctm = m;
+                    self.set_ctm(|_| m);
                 } else {
                     self.concat(m);
                 }
             }
             "CoordinateSystem" => {
                 let n = Self::string_arg(toks, i, file, d, loc)?;
-                self.coordinate_systems.insert(n, self.state.ctm);
+                let s = &self.state;
+                self.coordinate_systems.insert(n, [s.ctm, s.ctm_end]);
             }
             "CoordSysTransform" => {
                 let n = Self::string_arg(toks, i, file, d, loc)?;
                 match self.coordinate_systems.get(&n) {
-                    Some(m) => self.state.ctm = *m,
+                    // both, whatever is active (pbrt-v4's `CoordSysTransform`)
+                    Some(&[a, b]) => (self.state.ctm, self.state.ctm_end) = (a, b),
                     None => return Err(err(format!("no coordinate system named \"{n}\""))),
                 }
+            }
+            // the shutter times of the two CTMs: only motion blur would use them
+            "TransformTimes" => {
+                nums(i, 2)?;
+            }
+            "ActiveTransform" => {
+                let which = match toks.get(*i) {
+                    Some(Token {
+                        kind: Tok::Word(w), ..
+                    }) => w.clone(),
+                    _ => String::new(),
+                };
+                self.state.active = match which.as_str() {
+                    "StartTime" => [true, false],
+                    "EndTime" => [false, true],
+                    "All" => [true, true],
+                    _ => {
+                        return Err(err("ActiveTransform takes StartTime, EndTime or All".into()));
+                    }
+                };
+                *i += 1;
             }
             _ => unreachable!("only transformation directives are passed here"),
         }
