@@ -106,6 +106,38 @@ pub(super) fn steps(
     Ok(t)
 }
 
+/// The tube of `radius` around the object-space segment `ends` under the shape's transform,
+/// and the transform. The cross-section must stay a circle perpendicular to the axis: the
+/// transform may stretch along the axis (as Mitsuba's scenes do) but not across it.
+fn cylinder(
+    s: &ShapeDesc,
+    (p0, p1): (Vec3, Vec3),
+    radius: crate::units::Length,
+    flipped: bool,
+) -> Result<(Cylinder, Transform), String> {
+    let t = transform(s, false)?;
+    let axis = (p1 - p0).normalize_or_zero();
+    let e1 = axis.any_orthonormal_vector();
+    let (w1, w2, wa) = (t.vector(e1), t.vector(axis.cross(e1)), t.vector(axis));
+    let scale = w1.length();
+    let tol = 1e-5 * scale * scale;
+    if (w1.length() - w2.length()).abs() > 1e-5 * scale
+        || w1.dot(w2).abs() > tol
+        || w1.dot(wa).abs() > tol * wa.length() / scale.max(f32::MIN_POSITIVE)
+        || w2.dot(wa).abs() > tol * wa.length() / scale.max(f32::MIN_POSITIVE)
+    {
+        return Err("a cylinder's transform must scale its cross-section uniformly and keep it perpendicular to the axis (else the tube would be elliptic or oblique)".into());
+    }
+    let c = Cylinder::new(
+        t.point(p0),
+        t.point(p1),
+        plain::metres(radius) * scale,
+        flipped,
+    )
+    .map_err(|e| e.to_string())?;
+    Ok((c, t))
+}
+
 /// Builds one shape in world space.
 pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
     let shape = match &s.kind {
@@ -129,31 +161,14 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
             p1,
             radius,
             flipped,
-        } => {
-            let t = transform(s, false)?;
-            // the cross-section must stay a circle perpendicular to the axis: the transform
-            // may stretch along the axis (as Mitsuba's scenes do) but not across it
-            let axis = (v3(p1) - v3(p0)).normalize_or_zero();
-            let e1 = axis.any_orthonormal_vector();
-            let (w1, w2, wa) = (t.vector(e1), t.vector(axis.cross(e1)), t.vector(axis));
-            let scale = w1.length();
-            let tol = 1e-5 * scale * scale;
-            if (w1.length() - w2.length()).abs() > 1e-5 * scale
-                || w1.dot(w2).abs() > tol
-                || w1.dot(wa).abs() > tol * wa.length() / scale.max(f32::MIN_POSITIVE)
-                || w2.dot(wa).abs() > tol * wa.length() / scale.max(f32::MIN_POSITIVE)
-            {
-                return Err("a cylinder's transform must scale its cross-section uniformly and keep it perpendicular to the axis (else the tube would be elliptic or oblique)".into());
-            }
-            Shape::Cylinder(
-                Cylinder::new(
-                    t.point(v3(p0)),
-                    t.point(v3(p1)),
-                    plain::metres(*radius) * scale,
-                    *flipped,
-                )
-                .map_err(|e| e.to_string())?,
-            )
+        } => Shape::Cylinder(cylinder(s, (v3(p0), v3(p1)), *radius, *flipped)?.0),
+        ShapeKind::PartialCylinder { radius, z, phi_max } => {
+            let (z0, z1) = (plain::metres(z[0]), plain::metres(z[1]));
+            let ends = (Vec3::new(0.0, 0.0, z0), Vec3::new(0.0, 0.0, z1));
+            let (c, t) = cylinder(s, ends, *radius, false)?;
+            let degrees = super::materials::radians(phi_max).to_degrees();
+            let (x, y) = (t.vector(Vec3::X), t.vector(Vec3::Y));
+            Shape::Cylinder(c.clipped(Clip::disk(1.0, 0.0, degrees), x, y))
         }
         ShapeKind::Disk => {
             Shape::Disk(Disk::new(&transform(s, true)?, 1.0).map_err(|e| e.to_string())?)

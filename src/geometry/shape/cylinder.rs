@@ -20,6 +20,10 @@ pub struct Cylinder {
     length: f32,
     radius: f32,
     flipped: bool,
+    /// pbrt-v4's partial cylinder (`phimax`): the azimuths kept, from `frame.x_axis` toward
+    /// `frame.y_axis`; None: the whole tube. Area and sampling stay the whole tube's (a partial
+    /// cylinder cannot emit).
+    clip: Option<super::Clip>,
 }
 
 impl Cylinder {
@@ -38,7 +42,24 @@ impl Cylinder {
             length,
             radius,
             flipped,
+            clip: None,
         })
+    }
+
+    /// The tube cut to the azimuths of `clip`, measured from `x` toward `y` (pbrt-v4's object
+    /// x and y, carried to world space: made orthonormal to the axis, `y` only giving the
+    /// sense of rotation, so a mirroring transform turns the azimuths the other way).
+    pub fn clipped(self, clip: super::Clip, x: Vec3, y: Vec3) -> Cylinder {
+        let z = self.frame.z_axis;
+        let x = (x - z * x.dot(z))
+            .try_normalize()
+            .unwrap_or(self.frame.x_axis);
+        let y = z.cross(x) * if z.cross(x).dot(y) < 0.0 { -1.0 } else { 1.0 };
+        Cylinder {
+            frame: Mat3::from_cols(x, y, z),
+            clip: Some(clip),
+            ..self
+        }
     }
 
     /// Lateral area 2πrℓ, m².
@@ -90,7 +111,11 @@ impl Cylinder {
         let q = if b > 0.0 { -(b + sq) } else { sq - b };
         let height_ok = |t: f32| {
             let h = o.z + t * d.z;
-            (0.0..=self.length).contains(&h)
+            let kept = self.clip.is_none_or(|c| {
+                let (x, y) = (o.x + t * d.x, o.y + t * d.y);
+                c.keeps(x / r, y / r, 0.0)
+            });
+            (0.0..=self.length).contains(&h) && kept
         };
         let accept = |t: f32| (t > 0.0 && t < ray.t_max && height_ok(t)).then_some(t);
         if c.abs() <= c_err {

@@ -38,6 +38,13 @@ pub enum ShapeKind {
         z: [Length; 2],
         phi_max: crate::units::Angle,
     },
+    /// pbrt-v4's partial cylinder: the open tube of `radius` around object z between the
+    /// heights `z`, at azimuths [0, `phi_max`] from object +x toward +y.
+    PartialCylinder {
+        radius: Length,
+        z: [Length; 2],
+        phi_max: crate::units::Angle,
+    },
     /// pbrt-v4's partial disk: [`ShapeKind::Disk`] without the disk of radius `inner` (a
     /// fraction of the disk's radius) and beyond azimuth `phi_max`.
     PartialDisk {

@@ -117,20 +117,22 @@ pub(super) fn shape(
         "cylinder" => {
             let radius = p.float("radius", 1.0)?;
             let (z0, z1) = (p.float("zmin", -1.0)?, p.float("zmax", 1.0)?);
-            if p.get("phimax").is_some() {
-                return Err(p.err(
-                    p.loc_of("phimax"),
-                    "a partial cylinder (\"phimax\") is not read yet",
-                ));
-            }
             if !(radius > 0.0) || z0 == z1 {
                 return Err(p.err(loc, "a cylinder needs a positive radius and zmin ≠ zmax"));
             }
-            ShapeKind::Cylinder {
-                p0: [len(0.0), len(0.0), len(z0.min(z1))],
-                p1: [len(0.0), len(0.0), len(z0.max(z1))],
-                radius: len(radius),
-                flipped: false,
+            if p.get("phimax").is_some() {
+                ShapeKind::PartialCylinder {
+                    radius: len(radius),
+                    z: [len(z0.min(z1)), len(z0.max(z1))],
+                    phi_max: degrees(p.float("phimax", 360.0)?),
+                }
+            } else {
+                ShapeKind::Cylinder {
+                    p0: [len(0.0), len(0.0), len(z0.min(z1))],
+                    p1: [len(0.0), len(0.0), len(z0.max(z1))],
+                    radius: len(radius),
+                    flipped: false,
+                }
             }
         }
         "trianglemesh" => meshes::triangle_mesh(p, loc, r.state.reverse_orientation)?,
@@ -301,6 +303,7 @@ fn finish_shape(
         | ShapeKind::Disk
         | ShapeKind::PartialSphere { .. }
         | ShapeKind::PartialDisk { .. }
+        | ShapeKind::PartialCylinder { .. }
         | ShapeKind::Cylinder { .. }
         | ShapeKind::BSplinePoints { .. }
             if textured =>
@@ -319,12 +322,14 @@ fn finish_shape(
     if r.state.area_light.is_some()
         && matches!(
             kind,
-            ShapeKind::PartialSphere { .. } | ShapeKind::PartialDisk { .. }
+            ShapeKind::PartialSphere { .. }
+                | ShapeKind::PartialDisk { .. }
+                | ShapeKind::PartialCylinder { .. }
         )
     {
         return Err(p.err(
             loc,
-            "an area light on a partial sphere or disk is not read yet (zmin, zmax, phimax, innerradius)",
+            "an area light on a partial sphere, disk or cylinder is not read yet (zmin, zmax, phimax, innerradius)",
         ));
     }
     if let Some(a) = &r.state.area_light
