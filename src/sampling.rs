@@ -147,6 +147,21 @@ pub fn power_heuristic(nf: f32, f_pdf: f32, ng: f32, g_pdf: f32) -> f32 {
     }
 }
 
+/// The unit direction a point of the unit square maps to by Clarberg's equal-area octahedral
+/// mapping (pbrt-v4's `EqualAreaSquareToSphere`; its inverse is
+/// `crate::light::sphere_to_square`): equal areas of the square to equal solid angles.
+pub fn equal_area_square_to_sphere(p: Vec2) -> Vec3 {
+    let (u, v) = (2.0 * p.x - 1.0, 2.0 * p.y - 1.0);
+    let (up, vp) = (u.abs(), v.abs());
+    let signed = 1.0 - (up + vp);
+    let r = 1.0 - signed.abs();
+    let phi = if r == 0.0 { 1.0 } else { (vp - up) / r + 1.0 } * FRAC_PI_4;
+    let z = (1.0 - r * r).copysign(signed);
+    let (cos_phi, sin_phi) = (phi.cos().copysign(u), phi.sin().copysign(v));
+    let s = r * (2.0 - r * r).max(0.0).sqrt();
+    Vec3::new(cos_phi * s, sin_phi * s, z)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

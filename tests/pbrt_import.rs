@@ -377,3 +377,27 @@ fn spectral_and_gbuffer_films_are_read() {
     .unwrap_err();
     assert!(e.to_string().contains("360–830"), "{e}");
 }
+
+/// Light tracing and BDPT refuse pbrt-v4's spherical camera (its importance is not modelled,
+/// nor is it in pbrt-v4): an error naming the camera, not an image.
+#[test]
+fn light_tracing_and_bdpt_refuse_a_spherical_camera() {
+    let text = r#"Camera "spherical"
+Film "rgb" "integer xresolution" 8 "integer yresolution" 8
+WorldBegin
+LightSource "infinite" "rgb L" [ 1 1 1 ]
+"#;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/pbrt/inline.pbrt");
+    let desc = spectrace::loader::pbrt::load_str(text, &path).unwrap_or_else(|e| panic!("{e}"));
+    let scene = spectrace::build::build(&desc).unwrap_or_else(|e| panic!("{e}"));
+    for kind in [
+        spectrace::integrator::IntegratorKind::Light,
+        spectrace::integrator::IntegratorKind::Bdpt,
+    ] {
+        let mut o = spectrace::render::RenderOptions::from_scene(&scene);
+        o.integrator = kind;
+        let cancel = std::sync::atomic::AtomicBool::new(false);
+        let e = spectrace::render::render(&scene, &o, &cancel, &|_, _| {}).expect_err("refused");
+        assert!(e.to_string().contains("spherical camera"), "{e}");
+    }
+}

@@ -1,11 +1,11 @@
-//! The scene's pinhole, thin-lens or orthographic camera made render-ready, and every
+//! The scene's pinhole, thin-lens, orthographic or spherical camera made render-ready, and every
 //! camera's placement (the realistic camera's lens is built in `lens.rs`).
 
 use glam::Vec3;
 
 use super::v3;
 use crate::geometry::Transform;
-use crate::geometry::camera::{Camera, FovAxis as CamAxis};
+use crate::geometry::camera::{Camera, FovAxis as CamAxis, Spherical};
 use crate::loader::desc::{CameraKind, FovAxis, Projection, SceneDesc};
 use crate::units::plain;
 
@@ -91,6 +91,9 @@ pub(super) fn camera(desc: &SceneDesc) -> Result<Camera, String> {
         }
         CameraKind::Orthographic { view_width } => {
             Camera::orthographic(to_world, plain::metres(*view_width), w, h)
+        }
+        CameraKind::Spherical { equal_area } => {
+            Spherical::new(to_world, *equal_area, w, h).map(Camera::Spherical)
         }
         // built in `build`, where its lens file's errors are located
         CameraKind::Realistic { .. } => return Err("a realistic camera needs its lens file".into()),

@@ -1,5 +1,5 @@
-//! Cameras: pinhole perspective, thin lens, orthographic and realistic (a traced lens system,
-//! `camera/realistic.rs`).
+//! Cameras: pinhole perspective, thin lens, orthographic, realistic (a traced lens system,
+//! `camera/realistic.rs`) and pbrt-v4's spherical (`camera/spherical.rs`).
 //!
 //! Camera space follows Mitsuba (and is right-handed): the camera looks along **+z**, **+y** is
 //! up and **+x** points to the camera's *left*; see [`Transform::look_at`]. Raster space is in
@@ -17,7 +17,9 @@ use glam::{Vec2, Vec3};
 use std::f32::consts::PI;
 
 mod realistic;
+mod spherical;
 pub use realistic::{Realistic, RealisticError};
+pub use spherical::Spherical;
 
 /// Which image axis a field of view spans.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -177,6 +179,7 @@ pub enum Camera {
     ThinLens(ThinLens),
     Orthographic(Orthographic),
     Realistic(Box<Realistic>),
+    Spherical(Spherical),
 }
 
 impl Camera {
@@ -284,6 +287,7 @@ impl Camera {
             // at the d line; where the lens blocks that ray, the ray from the film point through
             // the lens's axial point (for probes and previews, never for rendering)
             Camera::Realistic(c) => c.preview_ray(raster, lens),
+            Camera::Spherical(c) => c.ray(raster),
         }
     }
 
@@ -301,7 +305,7 @@ impl Camera {
                 &c.film,
                 Some((concentric_disk(u_lens) * c.lens_radius, c.focus_distance)),
             ),
-            Camera::Orthographic(_) | Camera::Realistic(_) => return None,
+            Camera::Orthographic(_) | Camera::Realistic(_) | Camera::Spherical(_) => return None,
         };
         let pc = to_world.inverse().point(p);
         let pl = lens.map_or(Vec2::ZERO, |(l, _)| l).extend(0.0);
@@ -335,7 +339,7 @@ impl Camera {
         let (to_world, film, focus) = match self {
             Camera::Perspective(c) => (&c.to_world, &c.film, None),
             Camera::ThinLens(c) => (&c.to_world, &c.film, Some(c.focus_distance)),
-            Camera::Orthographic(_) | Camera::Realistic(_) => return 0.0,
+            Camera::Orthographic(_) | Camera::Realistic(_) | Camera::Spherical(_) => return 0.0,
         };
         let inv = to_world.inverse();
         let v = inv.vector(dir);
@@ -356,6 +360,7 @@ impl Camera {
             Camera::ThinLens(c) => (&c.to_world, &c.film),
             Camera::Orthographic(c) => (&c.to_world, &c.film),
             Camera::Realistic(c) => (&c.to_world, &c.film),
+            Camera::Spherical(c) => (&c.to_world, &c.film),
         }
     }
 

@@ -13,7 +13,7 @@
 //! - **Sampling**: a pixel ∝ its luminance, then a point uniform in it; the solid-angle pdf is
 //!   p(pixel)·N²/(4π).
 
-use std::f32::consts::{FRAC_PI_2, FRAC_PI_4, PI};
+use std::f32::consts::{FRAC_PI_2, PI};
 
 use glam::{Mat3, Vec2, Vec3};
 
@@ -53,18 +53,8 @@ pub fn sphere_to_square(d: Vec3) -> Vec2 {
 }
 
 /// The unit direction a point of the unit square maps to (the inverse of [`sphere_to_square`],
-/// pbrt-v4's `EqualAreaSquareToSphere`).
-pub fn square_to_sphere(p: Vec2) -> Vec3 {
-    let (u, v) = (2.0 * p.x - 1.0, 2.0 * p.y - 1.0);
-    let (up, vp) = (u.abs(), v.abs());
-    let signed = 1.0 - (up + vp);
-    let r = 1.0 - signed.abs();
-    let phi = if r == 0.0 { 1.0 } else { (vp - up) / r + 1.0 } * FRAC_PI_4;
-    let z = (1.0 - r * r).copysign(signed);
-    let (cos_phi, sin_phi) = (phi.cos().copysign(u), phi.sin().copysign(v));
-    let s = r * (2.0 - r * r).max(0.0).sqrt();
-    Vec3::new(cos_phi * s, sin_phi * s, z)
-}
+/// pbrt-v4's `EqualAreaSquareToSphere`), shared with the spherical camera.
+pub use crate::sampling::equal_area_square_to_sphere as square_to_sphere;
 
 #[derive(Clone, Debug)]
 pub struct OctahedralMapLight {

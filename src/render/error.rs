@@ -21,6 +21,11 @@ pub enum RenderError {
          (nor does pbrt-v4's); use path, whitted or direct"
     )]
     LensCamera(&'static str, &'static str),
+    #[error(
+        "the `{0}` integrator connects paths to the camera, whose importance the spherical \
+         camera does not model (nor does pbrt-v4's); use path, whitted or direct"
+    )]
+    SphericalCamera(&'static str),
     #[error("cannot resume: {0}")]
     Resume(String),
     #[error("--target-error needs passes of camera samples; the light integrator has none")]
@@ -56,6 +61,14 @@ pub(super) fn check_integrator(scene: &Scene, opts: &RenderOptions) -> Result<()
         if let Some(why) = why {
             return Err(RenderError::LensCamera(opts.integrator.name(), why));
         }
+    }
+    if matches!(scene.camera, crate::geometry::Camera::Spherical(_))
+        && matches!(
+            opts.integrator,
+            IntegratorKind::Light | IntegratorKind::Bdpt
+        )
+    {
+        return Err(RenderError::SphericalCamera(opts.integrator.name()));
     }
     if !scene.media.is_empty()
         && !matches!(

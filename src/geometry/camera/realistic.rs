@@ -106,7 +106,10 @@ impl Camera {
     pub fn disperses(&self) -> bool {
         match self {
             Camera::Realistic(c) => c.dispersive(),
-            Camera::Perspective(_) | Camera::ThinLens(_) | Camera::Orthographic(_) => false,
+            Camera::Perspective(_)
+            | Camera::ThinLens(_)
+            | Camera::Orthographic(_)
+            | Camera::Spherical(_) => false,
         }
     }
 }

@@ -91,6 +91,11 @@ pub enum CameraKind {
     Orthographic {
         view_width: Length,
     },
+    /// pbrt-v4's `spherical` camera: every direction on one image, by the equal-area
+    /// octahedral mapping or the equirectangular one (`geometry/camera/spherical.rs`).
+    Spherical {
+        equal_area: bool,
+    },
     /// A lens system traced in front of a film (`geometry/camera/realistic.rs`).
     Realistic {
         lens: crate::loader::lens::LensDesc,

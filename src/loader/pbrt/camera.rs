@@ -1,5 +1,5 @@
 //! pbrt-v4's cameras (`src/pbrt/cameras.cpp`): `perspective` (with its thin lens),
-//! `orthographic` and `realistic`, each reading its own parameters with pbrt-v4's names and
+//! `orthographic`, `realistic` and `spherical`, each reading its own parameters with pbrt-v4's names and
 //! defaults. Lengths are read as metres (pbrt's files have no unit).
 
 use std::path::Path;
@@ -85,6 +85,22 @@ pub(super) fn camera(
                 view_width: len(2.0 * aspect.max(1.0) * unit),
             }
         }
+        // pbrt-v4 reads a spherical camera's lens and leaves it unused
+        "spherical" => {
+            p.float("lensradius", 0.0)?;
+            p.float("focaldistance", 1e30)?;
+            let equal_area = match p.string("mapping")?.as_deref().unwrap_or("equalarea") {
+                "equalarea" => true,
+                "equirectangular" => false,
+                other => {
+                    return Err(p.err(
+                        p.loc_of("mapping"),
+                        format!("a spherical camera's mapping is \"equalarea\" or \"equirectangular\", not \"{other}\""),
+                    ));
+                }
+            };
+            CameraKind::Spherical { equal_area }
+        }
         "realistic" => realistic(
             p,
             loc,
@@ -95,7 +111,7 @@ pub(super) fn camera(
         other => {
             return Err(p.err(
                 loc,
-                format!("the camera \"{other}\" is not read yet (spectrace reads perspective, orthographic and realistic)"),
+                format!("the camera \"{other}\" is not read yet (spectrace reads perspective, orthographic, realistic and spherical)"),
             ));
         }
     };
