@@ -261,7 +261,7 @@ Shape "sphere"
         .shapes
         .iter()
         .map(|s| match &s.kind {
-            ShapeKind::Sphere { radius, .. } => radius.get::<spectrace::units::length::meter>(),
+            ShapeKind::PbrtSphere { radius, .. } => radius.get::<spectrace::units::length::meter>(),
             k => panic!("{k:?}"),
         })
         .collect();
@@ -289,7 +289,7 @@ ActiveTransform All
     let desc = spectrace::loader::pbrt::load_str(&format!("{head}Shape \"sphere\"\n"), &path)
         .unwrap_or_else(|e| panic!("{e}"));
     let s = &desc.shapes[0];
-    assert!(matches!(s.kind, ShapeKind::Sphere { .. }));
+    assert!(matches!(s.kind, ShapeKind::PbrtSphere { .. }));
     match s.transform.as_slice() {
         [TransformStep::Matrix(m)] => assert_eq!((m[3], m[7], m[11]), (1.0, 0.0, 0.0)),
         t => panic!("{t:?}"),

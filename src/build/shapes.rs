@@ -162,7 +162,7 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
             radius,
             flipped,
         } => Shape::Cylinder(cylinder(s, (v3(p0), v3(p1)), *radius, *flipped)?.0),
-        ShapeKind::PartialCylinder { radius, z, phi_max } => {
+        ShapeKind::PbrtCylinder { radius, z, phi_max } => {
             let (z0, z1) = (plain::metres(z[0]), plain::metres(z[1]));
             let ends = (Vec3::new(0.0, 0.0, z0), Vec3::new(0.0, 0.0, z1));
             let (c, t) = cylinder(s, ends, *radius, false)?;
@@ -173,12 +173,12 @@ pub(super) fn shape(s: &ShapeDesc) -> Result<Shape, String> {
         ShapeKind::Disk => {
             Shape::Disk(Disk::new(&transform(s, true)?, 1.0).map_err(|e| e.to_string())?)
         }
-        ShapeKind::PartialDisk { inner, phi_max } => {
+        ShapeKind::PbrtDisk { inner, phi_max } => {
             let disk = Disk::new(&transform(s, true)?, 1.0).map_err(|e| e.to_string())?;
             let degrees = super::materials::radians(phi_max).to_degrees();
             Shape::Disk(disk.clipped(Clip::disk(1.0, *inner as f32, degrees)))
         }
-        ShapeKind::PartialSphere { radius, z, phi_max } => {
+        ShapeKind::PbrtSphere { radius, z, phi_max } => {
             let r = plain::metres(*radius);
             let sphere = Sphere::with_transform(&transform(s, false)?, r).map_err(|_| {
                 "a sphere's transform must scale uniformly (non-uniform scale would make an ellipsoid)".to_string()

@@ -1,6 +1,8 @@
-//! pbrt-v4's partial quadrics: the part of a sphere (`zmin`, `zmax`, `phimax`) or a disk
-//! (`innerradius`, `phimax`) that is kept, tested on a hit's object-frame coordinates in units
-//! of the radius (pbrt-v4's `Sphere::BasicIntersect` and `Disk::BasicIntersect`).
+//! pbrt-v4's quadrics: the part of a sphere (`zmin`, `zmax`, `phimax`), a disk (`innerradius`,
+//! `phimax`) or a cylinder (`phimax`) that is kept, tested on a hit's object-frame coordinates
+//! in units of the radius (pbrt-v4's `Sphere::BasicIntersect`, `Disk::BasicIntersect`,
+//! `Cylinder::BasicIntersect`), and the ranges pbrt-v4's uv span (u = φ/φ_max; v over θ, the
+//! radius or the height). A quadric with a `Clip` has pbrt-v4's uv and ∂p/∂u, ∂p/∂v.
 
 use std::f32::consts::PI;
 
@@ -37,6 +39,24 @@ impl Clip {
             phi_max: phi_max_deg.clamp(0.0, 360.0).to_radians(),
             rho_min: (inner / radius).max(0.0),
         }
+    }
+
+    /// The whole quadric read as pbrt-v4's (its uv), nothing cut away.
+    pub fn whole() -> Clip {
+        Clip {
+            z: [f32::NEG_INFINITY, f32::INFINITY],
+            phi_max: 2.0 * PI,
+            rho_min: 0.0,
+        }
+    }
+
+    /// The polar angles θ (radians, from object +z) at the sphere's lower and upper cut (π and
+    /// 0 uncut): pbrt-v4's `thetaZMin`, `thetaZMax`, between which its v runs from 0 to 1.
+    pub fn theta_range(&self) -> (f32, f32) {
+        (
+            self.z[0].max(-1.0).min(1.0).acos(),
+            self.z[1].min(1.0).max(-1.0).acos(),
+        )
     }
 
     /// Whether the point (x, y, z) (object frame, unit radius) is on the kept part.

@@ -20,9 +20,9 @@ pub struct Cylinder {
     length: f32,
     radius: f32,
     flipped: bool,
-    /// pbrt-v4's partial cylinder (`phimax`): the azimuths kept, from `frame.x_axis` toward
-    /// `frame.y_axis`; None: the whole tube. Area and sampling stay the whole tube's (a partial
-    /// cylinder cannot emit).
+    /// pbrt-v4's cylinder (`phimax`): the azimuths kept, from `frame.x_axis` toward
+    /// `frame.y_axis`, and pbrt-v4's uv (u = φ/φ_max, v = h/ℓ); None: the whole tube with
+    /// Mitsuba's uv. Area and sampling stay the whole tube's (a cut cylinder cannot emit).
     clip: Option<super::Clip>,
 }
 
@@ -46,7 +46,7 @@ impl Cylinder {
         })
     }
 
-    /// The tube cut to the azimuths of `clip`, measured from `x` toward `y` (pbrt-v4's object
+    /// pbrt-v4's tube, cut to the azimuths of `clip`, measured from `x` toward `y` (its object
     /// x and y, carried to world space: made orthonormal to the axis, `y` only giving the
     /// sense of rotation, so a mirroring transform turns the azimuths the other way).
     pub fn clipped(self, clip: super::Clip, x: Vec3, y: Vec3) -> Cylinder {
@@ -60,6 +60,12 @@ impl Cylinder {
             clip: Some(clip),
             ..self
         }
+    }
+
+    /// The azimuth u = 1 stands for: 2π, or pbrt-v4's φ_max.
+    #[inline]
+    fn phi_max(&self) -> f32 {
+        self.clip.map_or(2.0 * PI, |c| c.phi_max)
     }
 
     /// Lateral area 2πrℓ, m².
@@ -159,9 +165,11 @@ impl Cylinder {
             p_error,
             n_geom: n,
             n_shading: n,
-            uv: Vec2::new(phi / (2.0 * PI), h / self.length),
-            // ∂p/∂u = 2π·r·(−sin φ, cos φ, 0) in the cylinder's frame
-            dpdu: self.frame * Vec3::new(-phi.sin(), phi.cos(), 0.0) * (2.0 * PI * self.radius),
+            uv: Vec2::new(phi / self.phi_max(), h / self.length),
+            // ∂p/∂u = φ_max·r·(−sin φ, cos φ, 0) in the cylinder's frame
+            dpdu: self.frame
+                * Vec3::new(-phi.sin(), phi.cos(), 0.0)
+                * (self.phi_max() * self.radius),
             // ∂p/∂v = length·axis
             dpdv: self.frame.z_axis * self.length,
             shape: 0,
@@ -207,7 +215,7 @@ impl Cylinder {
             p_error,
             n,
             pdf_area: 1.0 / (2.0 * half * self.radius * self.length),
-            uv: Vec2::new(phi / (2.0 * PI), u.y),
+            uv: Vec2::new(phi / self.phi_max(), u.y),
         })
     }
 
@@ -226,7 +234,7 @@ impl Cylinder {
             p_error,
             n,
             pdf_area: 1.0 / self.area(),
-            uv: u,
+            uv: Vec2::new(2.0 * PI * u.x / self.phi_max(), u.y),
         }
     }
 }

@@ -29,8 +29,9 @@ pub struct Disk {
     /// is rounded, m.
     plane_slack: f32,
     area: f32,
-    /// pbrt-v4's partial disk (`innerradius`, `phimax`): the part kept, on (a, b); None: whole.
-    /// Area and sampling stay the whole disk's (a partial disk cannot emit).
+    /// pbrt-v4's disk (`innerradius`, `phimax`): the part kept, on (a, b), and pbrt-v4's uv
+    /// (u = φ/φ_max, v = (1 − ρ)/(1 − ρ_inner)); None: the whole disk with Mitsuba's uv. Area
+    /// and sampling stay the whole disk's (a cut disk cannot emit).
     clip: Option<super::Clip>,
 }
 
@@ -70,7 +71,8 @@ impl Disk {
         })
     }
 
-    /// The disk cut to `clip` (pbrt-v4's `innerradius`, `phimax`, on the unit disk).
+    /// pbrt-v4's disk cut to `clip` (its `innerradius`, `phimax`, on the unit disk), with
+    /// pbrt-v4's uv.
     pub fn clipped(self, clip: super::Clip) -> Disk {
         Disk {
             clip: Some(clip),
@@ -144,23 +146,43 @@ impl Disk {
         (p, p_error)
     }
 
+    /// The uv at radius `rho` (unit disk) and azimuth `phi`: Mitsuba's (ρ, φ/2π), or
+    /// pbrt-v4's with a clip.
+    #[inline]
+    fn uv(&self, rho: f32, phi: f32) -> Vec2 {
+        match &self.clip {
+            None => Vec2::new(rho, phi / (2.0 * PI)),
+            Some(c) => Vec2::new(phi / c.phi_max, (1.0 - rho) / (1.0 - c.rho_min)),
+        }
+    }
+
     pub(crate) fn interaction(&self, a: f32, b: f32) -> Intersection {
         let (p, p_error) = self.surface_point(a, b);
         let mut phi = b.atan2(a);
         if phi < 0.0 {
             phi += 2.0 * PI;
         }
+        let rho = (a * a + b * b).sqrt();
+        let radial = self.u * a + self.v * b;
+        let around = self.v * a - self.u * b;
+        let (dpdu, dpdv) = match &self.clip {
+            // ∂p/∂ρ radial (as Mitsuba's disk, zero at the centre); ∂p/∂v = 2π·(−b, a)
+            None => (radial.normalize_or_zero(), around * (2.0 * PI)),
+            // pbrt-v4's: ∂p/∂u = φ_max·(−b, a), ∂p/∂v = (ρ_inner − 1)·(a, b)/ρ
+            Some(c) => (
+                around * c.phi_max,
+                radial.normalize_or_zero() * (c.rho_min - 1.0),
+            ),
+        };
         Intersection {
             t: 0.0,
             p,
             p_error,
             n_geom: self.n,
             n_shading: self.n,
-            uv: Vec2::new((a * a + b * b).sqrt(), phi / (2.0 * PI)),
-            // ∂p/∂ρ: radial, as Mitsuba's disk (zero at the centre)
-            dpdu: (self.u * a + self.v * b).normalize_or_zero(),
-            // ∂p/∂v = 2π·(−b, a) in the disk's axes
-            dpdv: (self.v * a - self.u * b) * (2.0 * PI),
+            uv: self.uv(rho, phi),
+            dpdu,
+            dpdv,
             shape: 0,
             prim: 0,
         }
@@ -176,7 +198,7 @@ impl Disk {
             p_error,
             n: self.n,
             pdf_area: 1.0 / self.area,
-            uv: Vec2::new(d.length(), phi / (2.0 * PI)),
+            uv: self.uv(d.length(), phi),
         }
     }
 }

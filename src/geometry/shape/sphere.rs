@@ -17,8 +17,9 @@ pub struct Sphere {
     radius: f32,
     /// Object-to-world rotation (orthonormal columns), used for uv and the clip.
     frame: Mat3,
-    /// pbrt-v4's partial sphere: the part kept (None: the whole sphere). Area, bounds and
-    /// sampling stay the whole sphere's (a partial sphere cannot emit).
+    /// pbrt-v4's sphere: the part kept, and pbrt-v4's uv (u = φ/φ_max, v = (θ − θ_zmin) /
+    /// (θ_zmax − θ_zmin)); None: the whole sphere with Mitsuba's uv. Area, bounds and sampling
+    /// stay the whole sphere's (a cut sphere cannot emit).
     clip: Option<super::Clip>,
 }
 
@@ -63,7 +64,8 @@ impl Sphere {
         })
     }
 
-    /// The sphere cut to `clip` (pbrt-v4's `zmin`, `zmax`, `phimax`, in its object frame).
+    /// pbrt-v4's sphere cut to `clip` (its `zmin`, `zmax`, `phimax`, in its object frame), with
+    /// pbrt-v4's uv.
     pub fn clipped(self, clip: super::Clip) -> Sphere {
         Sphere {
             clip: Some(clip),
@@ -170,22 +172,37 @@ impl Sphere {
         (local, phi, local.z.clamp(-1.0, 1.0).acos())
     }
 
+    /// The uv at (φ, θ) and the rates (dφ/du, dθ/dv): Mitsuba's (φ/2π, θ/π), or pbrt-v4's
+    /// with a clip.
+    #[inline]
+    fn uv(&self, phi: f32, theta: f32) -> (Vec2, f32, f32) {
+        match &self.clip {
+            None => (Vec2::new(phi / (2.0 * PI), theta / PI), 2.0 * PI, PI),
+            Some(c) => {
+                let (t0, t1) = c.theta_range();
+                let v = (theta - t0) / (t1 - t0);
+                (Vec2::new(phi / c.phi_max, v), c.phi_max, t1 - t0)
+            }
+        }
+    }
+
     pub(crate) fn interaction(&self, p_approx: Vec3) -> Intersection {
         let (p, p_error, n) = self.surface_point(p_approx - self.center);
         let (local, phi, theta) = self.angles(n);
+        let (uv, du, dv) = self.uv(phi, theta);
         Intersection {
             t: 0.0,
             p,
             p_error,
             n_geom: n,
             n_shading: n,
-            uv: Vec2::new(phi / (2.0 * PI), theta / PI),
-            // ∂p/∂u = 2π·(−y, x, 0) in the object frame, scaled by the radius
-            dpdu: self.frame * Vec3::new(-local.y, local.x, 0.0) * (2.0 * PI * self.radius),
-            // ∂p/∂v = π·r·(cos θ cos φ, cos θ sin φ, −sin θ) in the object frame
+            uv,
+            // ∂p/∂u = dφ/du·(−y, x, 0) in the object frame, scaled by the radius
+            dpdu: self.frame * Vec3::new(-local.y, local.x, 0.0) * (du * self.radius),
+            // ∂p/∂v = dθ/dv·r·(cos θ cos φ, cos θ sin φ, −sin θ) in the object frame
             dpdv: self.frame
                 * Vec3::new(local.z * phi.cos(), local.z * phi.sin(), -theta.sin())
-                * (PI * self.radius),
+                * (dv * self.radius),
             shape: 0,
             prim: 0,
         }
@@ -199,7 +216,7 @@ impl Sphere {
             p_error,
             n,
             pdf_area: 1.0 / self.area(),
-            uv: Vec2::new(phi / (2.0 * PI), theta / PI),
+            uv: self.uv(phi, theta).0,
         }
     }
 
@@ -264,7 +281,7 @@ impl Sphere {
             p_error,
             n,
             pdf_area: 1.0 / self.area(),
-            uv: Vec2::new(phi_s / (2.0 * PI), theta_s / PI),
+            uv: self.uv(phi_s, theta_s).0,
         };
         (pdf.is_finite() && t.is_finite()).then_some((s, pdf))
     }

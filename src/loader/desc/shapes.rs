@@ -31,23 +31,24 @@ pub enum ShapeKind {
     Box,
     /// The unit disk in the object's z = 0 plane, normal +z, scaled by the length unit.
     Disk,
-    /// pbrt-v4's partial sphere: the sphere of `radius` about the object origin, the part at
-    /// heights `z` (either order) and azimuths [0, `phi_max`] from object +x toward +y.
-    PartialSphere {
+    /// pbrt-v4's sphere: the sphere of `radius` about the object origin, the part at heights
+    /// `z` (either order) and azimuths [0, `phi_max`] from object +x toward +y, with pbrt-v4's
+    /// uv (whole: z = ±radius, φ_max = 360°).
+    PbrtSphere {
         radius: Length,
         z: [Length; 2],
         phi_max: crate::units::Angle,
     },
-    /// pbrt-v4's partial cylinder: the open tube of `radius` around object z between the
-    /// heights `z`, at azimuths [0, `phi_max`] from object +x toward +y.
-    PartialCylinder {
+    /// pbrt-v4's cylinder: the open tube of `radius` around object z between the heights `z`,
+    /// at azimuths [0, `phi_max`] from object +x toward +y, with pbrt-v4's uv.
+    PbrtCylinder {
         radius: Length,
         z: [Length; 2],
         phi_max: crate::units::Angle,
     },
-    /// pbrt-v4's partial disk: [`ShapeKind::Disk`] without the disk of radius `inner` (a
-    /// fraction of the disk's radius) and beyond azimuth `phi_max`.
-    PartialDisk {
+    /// pbrt-v4's disk: [`ShapeKind::Disk`] without the disk of radius `inner` (a fraction of
+    /// the disk's radius) and beyond azimuth `phi_max`, with pbrt-v4's uv.
+    PbrtDisk {
         inner: f64,
         phi_max: crate::units::Angle,
     },

@@ -93,24 +93,14 @@ pub(super) fn shape(
             if !(radius > 0.0) {
                 return Err(p.err(p.loc_of("radius"), "a sphere's radius must be positive"));
             }
-            let partial = ["zmin", "zmax", "phimax"]
-                .iter()
-                .any(|k| p.get(k).is_some());
-            if partial {
-                // pbrt-v4's defaults: the whole sphere
-                ShapeKind::PartialSphere {
-                    radius: len(radius),
-                    z: [
-                        len(p.float("zmin", -radius)?),
-                        len(p.float("zmax", radius)?),
-                    ],
-                    phi_max: degrees(p.float("phimax", 360.0)?),
-                }
-            } else {
-                ShapeKind::Sphere {
-                    center: [len(0.0), len(0.0), len(0.0)],
-                    radius: len(radius),
-                }
+            // pbrt-v4's defaults: the whole sphere
+            ShapeKind::PbrtSphere {
+                radius: len(radius),
+                z: [
+                    len(p.float("zmin", -radius)?),
+                    len(p.float("zmax", radius)?),
+                ],
+                phi_max: degrees(p.float("phimax", 360.0)?),
             }
         }
         // pbrt-v4's cylinder: around z from zmin to zmax, open at both ends, normals outwards
@@ -120,19 +110,10 @@ pub(super) fn shape(
             if !(radius > 0.0) || z0 == z1 {
                 return Err(p.err(loc, "a cylinder needs a positive radius and zmin ≠ zmax"));
             }
-            if p.get("phimax").is_some() {
-                ShapeKind::PartialCylinder {
-                    radius: len(radius),
-                    z: [len(z0.min(z1)), len(z0.max(z1))],
-                    phi_max: degrees(p.float("phimax", 360.0)?),
-                }
-            } else {
-                ShapeKind::Cylinder {
-                    p0: [len(0.0), len(0.0), len(z0.min(z1))],
-                    p1: [len(0.0), len(0.0), len(z0.max(z1))],
-                    radius: len(radius),
-                    flipped: false,
-                }
+            ShapeKind::PbrtCylinder {
+                radius: len(radius),
+                z: [len(z0.min(z1)), len(z0.max(z1))],
+                phi_max: degrees(p.float("phimax", 360.0)?),
             }
         }
         "trianglemesh" => meshes::triangle_mesh(p, loc, r.state.reverse_orientation)?,
@@ -175,13 +156,9 @@ pub(super) fn shape(
         "disk" => {
             let radius = p.float("radius", 1.0)?;
             let height = p.float("height", 0.0)?;
-            let kind = if p.get("innerradius").is_some() || p.get("phimax").is_some() {
-                ShapeKind::PartialDisk {
-                    inner: p.float("innerradius", 0.0)? / radius,
-                    phi_max: degrees(p.float("phimax", 360.0)?),
-                }
-            } else {
-                ShapeKind::Disk
+            let kind = ShapeKind::PbrtDisk {
+                inner: p.float("innerradius", 0.0)? / radius,
+                phi_max: degrees(p.float("phimax", 360.0)?),
             };
             // the unit disk in z = 0, scaled to `radius` and raised to `height`, before the CTM
             let m = r.state.ctm
@@ -244,6 +221,22 @@ fn place(
     }
 }
 
+/// Whether a pbrt-v4 quadric is cut (`zmin`, `zmax`, `phimax`, `innerradius`): then it cannot
+/// emit, whose sampling would need the part kept.
+fn cut(kind: &ShapeKind) -> bool {
+    let m = |l: &crate::units::Length| l.get::<meter>();
+    let whole = |a: &crate::units::Angle| a.get::<crate::units::angle::degree>() >= 360.0;
+    match kind {
+        ShapeKind::PbrtSphere { radius, z, phi_max } => {
+            let r = m(radius);
+            z[0].min(z[1]).get::<meter>() > -r || m(&z[0]).max(m(&z[1])) < r || !whole(phi_max)
+        }
+        ShapeKind::PbrtDisk { inner, phi_max } => *inner > 0.0 || !whole(phi_max),
+        ShapeKind::PbrtCylinder { phi_max, .. } => !whole(phi_max),
+        _ => false,
+    }
+}
+
 /// Whether a texture looks an image (or checks) up by uv.
 fn image(t: &TextureDesc) -> bool {
     match t {
@@ -299,18 +292,10 @@ fn finish_shape(
                 format!("an image texture on a PLY mesh without uv ({}) is not read yet (pbrt-v4 gives each triangle its own default uv)", path.display()),
             ));
         }
-        ShapeKind::Sphere { .. }
-        | ShapeKind::Disk
-        | ShapeKind::PartialSphere { .. }
-        | ShapeKind::PartialDisk { .. }
-        | ShapeKind::PartialCylinder { .. }
-        | ShapeKind::Cylinder { .. }
-        | ShapeKind::BSplinePoints { .. }
-            if textured =>
-        {
+        ShapeKind::BSplinePoints { .. } if textured => {
             return Err(p.err(
                 loc,
-                "an image or checkerboard texture on a sphere, disk, cylinder or curve is not read yet (pbrt-v4's uv of these differ from spectrace's)",
+                "an image or checkerboard texture on a curve is not read yet (pbrt-v4's uv of curves differ from spectrace's)",
             ));
         }
         k => k,
@@ -319,14 +304,7 @@ fn finish_shape(
     // area light: which side emits after `ReverseOrientation` and mirroring transforms
     // (pbrt-v4 flips quadrics and meshes differently) is not read yet
     let mirrored = m.determinant() < 0.0;
-    if r.state.area_light.is_some()
-        && matches!(
-            kind,
-            ShapeKind::PartialSphere { .. }
-                | ShapeKind::PartialDisk { .. }
-                | ShapeKind::PartialCylinder { .. }
-        )
-    {
+    if r.state.area_light.is_some() && cut(&kind) {
         return Err(p.err(
             loc,
             "an area light on a partial sphere, disk or cylinder is not read yet (zmin, zmax, phimax, innerradius)",
