@@ -54,8 +54,8 @@ impl Clip {
     /// 0 uncut): pbrt-v4's `thetaZMin`, `thetaZMax`, between which its v runs from 0 to 1.
     pub fn theta_range(&self) -> (f32, f32) {
         (
-            self.z[0].max(-1.0).min(1.0).acos(),
-            self.z[1].min(1.0).max(-1.0).acos(),
+            self.z[0].clamp(-1.0, 1.0).acos(),
+            self.z[1].clamp(-1.0, 1.0).acos(),
         )
     }
 
