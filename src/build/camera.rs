@@ -21,7 +21,13 @@ pub(super) fn camera_to_world(c: &crate::loader::desc::CameraDesc) -> Result<Tra
 pub(super) fn camera(desc: &SceneDesc) -> Result<Camera, String> {
     let c = &desc.camera;
     let to_world = camera_to_world(c)?;
-    let (w, h) = (desc.film.width, desc.film.height);
+    // a crop window's camera frames the full image
+    let (w, h) = desc
+        .film
+        .crop
+        .map_or((desc.film.width, desc.film.height), |c| {
+            (c.full[0], c.full[1])
+        });
     let axis = |a: FovAxis| match a {
         FovAxis::X => CamAxis::X,
         FovAxis::Y => CamAxis::Y,
@@ -98,5 +104,9 @@ pub(super) fn camera(desc: &SceneDesc) -> Result<Camera, String> {
         // built in `build`, where its lens file's errors are located
         CameraKind::Realistic { .. } => return Err("a realistic camera needs its lens file".into()),
     };
-    r.map_err(|e| e.to_string())
+    let r = r.map_err(|e| e.to_string())?;
+    match desc.film.crop {
+        Some(c) => r.with_window((c.at[0], c.at[1]), (desc.film.width, desc.film.height)),
+        None => Ok(r),
+    }
 }

@@ -18,6 +18,7 @@ use std::f32::consts::PI;
 
 mod realistic;
 mod spherical;
+mod window;
 pub use realistic::{Realistic, RealisticError};
 pub use spherical::Spherical;
 
@@ -37,11 +38,17 @@ pub enum FovAxis {
 /// Raster → camera-plane mapping shared by all cameras.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Film {
+    /// The full image the camera frames, pixels.
     width: u32,
     height: u32,
     /// Half extents of the image on the camera plane: at z = 1 for perspective cameras
     /// (tangents of the half angles), at z = 0 in metres for the orthographic camera.
     half: Vec2,
+    /// The part of the full image rendered (pbrt-v4's `cropwindow`, `pixelbounds`): its
+    /// top-left pixel and size. Raster positions the camera takes and gives are the window's
+    /// (its pixel (0, 0) is the full image's `window_at`).
+    window_at: Vec2,
+    window: (u32, u32),
 }
 
 impl Film {
@@ -54,7 +61,15 @@ impl Film {
             width,
             height,
             half: Vec2::ONE,
+            window_at: Vec2::ZERO,
+            window: (width, height),
         })
+    }
+
+    /// The full image's raster position of the window's `raster`.
+    #[inline]
+    fn full(&self, raster: Vec2) -> Vec2 {
+        raster + self.window_at
     }
 
     /// Sets the half extents from a full field of view on `axis`.
@@ -88,7 +103,7 @@ impl Film {
     #[inline]
     fn raster(&self, xy: Vec2) -> Vec2 {
         let ndc = -xy / self.half;
-        (ndc + Vec2::ONE) * 0.5 * Vec2::new(self.width as f32, self.height as f32)
+        (ndc + Vec2::ONE) * 0.5 * Vec2::new(self.width as f32, self.height as f32) - self.window_at
     }
 
     /// Where a ray from the lens point `pl` (camera space, on z = 0) along `v` (camera space,
@@ -103,13 +118,13 @@ impl Film {
         })
     }
 
-    /// Whether `raster` lies in the image grown by `margin` pixels on every side.
+    /// Whether `raster` lies in the rendered window grown by `margin` pixels on every side.
     #[inline]
     fn contains(&self, raster: Vec2, margin: f32) -> bool {
         raster.x >= -margin
             && raster.y >= -margin
-            && raster.x < self.width as f32 + margin
-            && raster.y < self.height as f32 + margin
+            && raster.x < self.window.0 as f32 + margin
+            && raster.y < self.window.1 as f32 + margin
     }
 
     /// Area of the image on the plane z = 1 (perspective cameras), m² per m² of distance.
@@ -121,7 +136,8 @@ impl Film {
     /// Camera-plane (x, y) of a raster position.
     #[inline]
     fn plane(&self, raster: Vec2) -> Vec2 {
-        let ndc = raster / Vec2::new(self.width as f32, self.height as f32) * 2.0 - Vec2::ONE;
+        let full = self.full(raster);
+        let ndc = full / Vec2::new(self.width as f32, self.height as f32) * 2.0 - Vec2::ONE;
         -ndc * self.half
     }
 }
@@ -379,9 +395,8 @@ impl Camera {
         self.parts().0.vector(Vec3::Y).normalize_or_zero()
     }
 
-    /// Image size in pixels (width, height).
+    /// Image size in pixels (width, height): the rendered window's.
     pub fn resolution(&self) -> (u32, u32) {
-        let film = self.parts().1;
-        (film.width, film.height)
+        self.parts().1.window
     }
 }

@@ -47,7 +47,8 @@ impl Spherical {
     /// The world ray through `raster` (pixels, (0, 0) the image's top-left corner).
     #[inline]
     pub(super) fn ray(&self, raster: Vec2) -> Ray {
-        let uv = raster / Vec2::new(self.film.width as f32, self.film.height as f32);
+        let uv =
+            self.film.full(raster) / Vec2::new(self.film.width as f32, self.film.height as f32);
         let d = if self.equal_area {
             equal_area_square_to_sphere(uv.clamp(Vec2::ZERO, Vec2::ONE))
         } else {

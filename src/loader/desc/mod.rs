@@ -171,7 +171,17 @@ pub struct FilmDesc {
     /// camera sample's estimate may have; a larger sample is scaled down to it, whole. A
     /// biased estimator, used to reproduce pbrt-v4's images; None: no clamp.
     pub max_component: Option<f64>,
+    /// pbrt-v4's `cropwindow` / `pixelbounds`: the film (`width` × `height`) is the window at
+    /// pixel `at` of a `full`-sized image, which the camera frames; None: the whole image.
+    pub crop: Option<CropDesc>,
     pub loc: Loc,
+}
+
+/// A rendered window of a larger image (see [`FilmDesc::crop`]), pixels.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CropDesc {
+    pub at: [u32; 2],
+    pub full: [u32; 2],
 }
 
 #[derive(Clone, Debug)]

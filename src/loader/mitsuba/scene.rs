@@ -182,6 +182,7 @@ fn default_film() -> FilmDesc {
         spectral_bins: 0,
         exposure_ev: None,
         max_component: None,
+        crop: None,
         loc: Default::default(),
     }
 }

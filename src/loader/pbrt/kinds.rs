@@ -203,6 +203,67 @@ fn film(
     Ok((bins, sensor, clamp))
 }
 
+/// pbrt-v4's `cropwindow` (fractions of the image, [x0 x1 y0 y1], rounded up to pixels as
+/// pbrt-v4 rounds them) or `pixelbounds` ([x0 x1 y0 y1] pixels; the crop window wins, as in
+/// pbrt-v4) on a `w` × `h` film: the window's top-left pixel and size, or None for the whole.
+#[allow(clippy::type_complexity)]
+fn crop(p: &Params, w: i64, h: i64) -> R<Option<([u32; 2], [u32; 2])>> {
+    let four = |name: &str, ty: &str| -> R<Option<Vec<f64>>> {
+        match p.nums(name, &[ty])? {
+            None => Ok(None),
+            Some(v) if v.len() == 4 => Ok(Some(v.to_vec())),
+            Some(v) => Err(p.err(
+                p.loc_of(name),
+                format!("\"{name}\" takes 4 values, not {}", v.len()),
+            )),
+        }
+    };
+    let (cw, pb) = (
+        four("cropwindow", "float")?,
+        four("pixelbounds", "integer")?,
+    );
+    let bounds = if let Some(c) = cw {
+        let (x0, x1) = (
+            c[0].min(c[1]).clamp(0.0, 1.0),
+            c[0].max(c[1]).clamp(0.0, 1.0),
+        );
+        let (y0, y1) = (
+            c[2].min(c[3]).clamp(0.0, 1.0),
+            c[2].max(c[3]).clamp(0.0, 1.0),
+        );
+        let (w, h) = (w as f64, h as f64);
+        [
+            (w * x0).ceil(),
+            (w * x1).ceil(),
+            (h * y0).ceil(),
+            (h * y1).ceil(),
+        ]
+    } else if let Some(b) = pb {
+        // pbrt-v4 clamps the bounds to the image
+        [
+            b[0].clamp(0.0, w as f64),
+            b[1].clamp(0.0, w as f64),
+            b[2].clamp(0.0, h as f64),
+            b[3].clamp(0.0, h as f64),
+        ]
+    } else {
+        return Ok(None);
+    };
+    let at = if p.get("cropwindow").is_some() {
+        "cropwindow"
+    } else {
+        "pixelbounds"
+    };
+    if !(bounds[1] > bounds[0] && bounds[3] > bounds[2]) {
+        return Err(p.err(
+            p.loc_of(at),
+            format!("\"{at}\" leaves no pixel of the image"),
+        ));
+    }
+    let [x0, x1, y0, y1] = bounds.map(|v| v as u32);
+    Ok(Some(([x0, y0], [x1 - x0, y1 - y0])))
+}
+
 /// The scene: camera, film, sampler and integrator from their directives, and what the world
 /// block made.
 pub(super) fn finish(mut r: Reader) -> Result<SceneDesc, LoadError> {
@@ -216,18 +277,28 @@ pub(super) fn finish(mut r: Reader) -> Result<SceneDesc, LoadError> {
         ));
     };
     let exposure_s = super::sensor::exposure_time(cam, *cam_loc)?;
-    let (width, height, film_loc, spectral_bins, diagonal_mm, sensor, clamp) = match &r.film {
+    let (width, height, film_loc, spectral_bins, diagonal_mm, sensor, clamp, crop) = match &r.film {
         Some((p, kind, loc)) => {
             let (bins, sensor, clamp) = film(p, (kind, *loc), exposure_s, &file, &mut r.notes)?;
             let w = p.int("xresolution", 1280)?;
             let h = p.int("yresolution", 720)?;
+            let crop = crop(p, w, h)?;
             let _ = p.string("filename")?;
             // the film's size in mm, which the realistic camera reads
             let diagonal = p.float("diagonal", 35.0)?;
             p.check_unused(&format!("film \"{kind}\""))?;
-            (w, h, *loc, bins, diagonal, sensor, clamp)
+            (w, h, *loc, bins, diagonal, sensor, clamp, crop)
         }
-        None => (1280, 720, Loc { line: 0, col: 0 }, 0, 35.0, None, None),
+        None => (
+            1280,
+            720,
+            Loc { line: 0, col: 0 },
+            0,
+            35.0,
+            None,
+            None,
+            None,
+        ),
     };
     if !(1..=32768).contains(&width) || !(1..=32768).contains(&height) {
         return Err(LoadError::new(
@@ -278,13 +349,17 @@ pub(super) fn finish(mut r: Reader) -> Result<SceneDesc, LoadError> {
         wavelength_range: [nm(360.0), nm(830.0)],
         camera,
         film: FilmDesc {
-            width: width as u32,
-            height: height as u32,
+            width: crop.map_or(width as u32, |c| c.1[0]),
+            height: crop.map_or(height as u32, |c| c.1[1]),
             spp: spp.clamp(1, 1 << 24) as u32,
             filter: pixel_filter(&r.filter)?,
             spectral_bins,
             exposure_ev: None,
             max_component: clamp.map(|c| c.0),
+            crop: crop.map(|(at, _)| CropDesc {
+                at,
+                full: [width as u32, height as u32],
+            }),
             loc: film_loc,
         },
         integrator: IntegratorDesc {

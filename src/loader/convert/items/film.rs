@@ -18,6 +18,7 @@ pub(super) fn film(cx: &Cx<'_>, f: Option<&S<RawFilm>>) -> R<FilmDesc> {
         spectral_bins: 0,
         exposure_ev: None,
         max_component: None,
+        crop: None,
         loc: Default::default(),
     };
     let Some(f) = f else { return Ok(d) };
