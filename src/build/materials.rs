@@ -5,9 +5,8 @@ use super::textures;
 use crate::loader::desc::{MaterialKind, TextureDesc};
 use crate::material::microfacet::Microfacet;
 use crate::material::{
-    Blend, BumpMap, Conductor, Dielectric, DiffuseTransmission, Element, Lambert, Mask, Material,
-    MeasuredPolarized, NormalMap, PPlastic, Phong, Plastic, RoughConductor, RoughDielectric,
-    TexturedLobes,
+    Blend, BumpMap, Conductor, Dielectric, Element, Lambert, Mask, Material, MeasuredPolarized,
+    NormalMap, PPlastic, Phong, Plastic, RoughConductor, RoughDielectric, TexturedLobes,
 };
 
 /// The render-side material for `k`; an error (for the user, without a location) if a
@@ -127,10 +126,7 @@ pub(super) fn material(k: &MaterialKind) -> Result<Material, String> {
         MaterialKind::DiffuseTransmission {
             reflectance,
             transmittance,
-        } => Material::DiffuseTransmission(Box::new(DiffuseTransmission {
-            reflectance: textures::texture(reflectance)?,
-            transmittance: textures::texture(transmittance)?,
-        })),
+        } => super::materials_pbrt::diffuse_transmission(reflectance, transmittance)?,
     })
 }
 

@@ -40,6 +40,19 @@ pub(super) fn layered(d: &LayeredDesc) -> Result<Material, String> {
     })))
 }
 
+/// pbrt-v4's `diffusetransmission`: its reflectance and transmittance textures.
+pub(super) fn diffuse_transmission(
+    reflectance: &crate::loader::desc::TextureDesc,
+    transmittance: &crate::loader::desc::TextureDesc,
+) -> Result<Material, String> {
+    Ok(Material::DiffuseTransmission(Box::new(
+        crate::material::DiffuseTransmission {
+            reflectance: textures::texture(reflectance)?,
+            transmittance: textures::texture(transmittance)?,
+        },
+    )))
+}
+
 /// pbrt-v4's and Mitsuba's `measured` from the file's tables (pbrt-v4's `MeasuredBxDFData`):
 /// `ndf`, `sigma` and `spectra` as interpolants, `vndf` and `luminance` as normalised warps
 /// over (φ_i, θ_i); isotropic when φ_i has at most two nodes; `jacobian` as

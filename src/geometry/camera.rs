@@ -66,12 +66,6 @@ impl Film {
         })
     }
 
-    /// The full image's raster position of the window's `raster`.
-    #[inline]
-    fn full(&self, raster: Vec2) -> Vec2 {
-        raster + self.window_at
-    }
-
     /// Sets the half extents from a full field of view on `axis`.
     fn with_fov(mut self, fov_rad: f32, axis: FovAxis) -> Result<Film, GeometryError> {
         check_finite("field of view", fov_rad)?;
@@ -116,15 +110,6 @@ impl Film {
             None => v.truncate() / v.z,
             Some(f) => (pl + v.truncate() * (f / v.z)) / f,
         })
-    }
-
-    /// Whether `raster` lies in the rendered window grown by `margin` pixels on every side.
-    #[inline]
-    fn contains(&self, raster: Vec2, margin: f32) -> bool {
-        raster.x >= -margin
-            && raster.y >= -margin
-            && raster.x < self.window.0 as f32 + margin
-            && raster.y < self.window.1 as f32 + margin
     }
 
     /// Area of the image on the plane z = 1 (perspective cameras), m² per m² of distance.

@@ -155,8 +155,7 @@ pub enum Material {
     PPlastic(PPlastic),
     /// Mitsuba's `measured_polarized`: a measured pBRDF (see [`MeasuredPolarized`]).
     MeasuredPolarized(Box<MeasuredPolarized>),
-    /// pbrt-v4's and Mitsuba's `measured`: an RGL measured BRDF (see [`Measured`]), its
-    /// tables shared by every material that reads the same file.
+    /// pbrt-v4's and Mitsuba's `measured`: an RGL measured BRDF (see [`Measured`]), shared.
     Measured(std::sync::Arc<Measured>),
     /// Mitsuba's `thindielectric`: a sheet of index `eta` (relative to the outside) too thin to
     /// offset a ray. Reflectance with the sheet's inner reflections, R = 2F/(1 + F) for the

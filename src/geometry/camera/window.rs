@@ -4,7 +4,24 @@
 
 use glam::Vec2;
 
-use super::Camera;
+use super::{Camera, Film};
+
+impl Film {
+    /// The full image's raster position of the window's `raster`.
+    #[inline]
+    pub(super) fn full(&self, raster: Vec2) -> Vec2 {
+        raster + self.window_at
+    }
+
+    /// Whether `raster` lies in the rendered window grown by `margin` pixels on every side.
+    #[inline]
+    pub(super) fn contains(&self, raster: Vec2, margin: f32) -> bool {
+        raster.x >= -margin
+            && raster.y >= -margin
+            && raster.x < self.window.0 as f32 + margin
+            && raster.y < self.window.1 as f32 + margin
+    }
+}
 
 impl Camera {
     /// The camera rendering only the window of `size` pixels at `at` (its top-left pixel) of

@@ -19,6 +19,7 @@ mod media;
 mod meshes;
 mod objects;
 mod params;
+mod quadrics;
 mod roughness;
 mod sensor;
 mod shapes;
@@ -198,20 +199,7 @@ impl Reader {
         depth: u32,
     ) -> R<()> {
         let err = |m: String| LoadError::new(file, loc, "", m);
-        // the directives that use the CTM: a static scene's two CTMs are the same
-        let consumes = [
-            "Shape",
-            "LightSource",
-            "Camera",
-            "ObjectInstance",
-            "Texture",
-            "MakeNamedMedium",
-        ];
-        if consumes.contains(&d) && self.state.ctm != self.state.ctm_end {
-            return Err(err(format!(
-                "{d} under an animated transformation (ActiveTransform: the transformations at the shutter's opening and close differ) is not read yet: spectrace renders no motion blur"
-            )));
-        }
+        self.check_static(d, file, loc)?;
         match d {
             "Identity" | "Translate" | "Scale" | "Rotate" | "LookAt" | "Transform"
             | "ConcatTransform" | "CoordinateSystem" | "CoordSysTransform" => {
@@ -319,23 +307,6 @@ impl Reader {
             other => return Err(err(format!("unknown directive \"{other}\""))),
         }
         Ok(())
-    }
-
-    /// pbrt's CTMs times `m` (post-multiplied: `m` acts first, in object space), those
-    /// `ActiveTransform` made active.
-    fn concat(&mut self, m: DMat4) {
-        self.set_ctm(|c| c * m);
-    }
-
-    /// The active CTMs replaced by `f` of themselves.
-    fn set_ctm(&mut self, f: impl Fn(DMat4) -> DMat4) {
-        let s = &mut self.state;
-        if s.active[0] {
-            s.ctm = f(s.ctm);
-        }
-        if s.active[1] {
-            s.ctm_end = f(s.ctm_end);
-        }
     }
 
     /// The named materials defined so far, by name (for `mix`).

@@ -8,6 +8,7 @@ use std::path::Path;
 use glam::{DMat4, DVec3};
 
 use super::params::{Params, R};
+use super::quadrics::{cut, degrees};
 use super::{Reader, meshes};
 use crate::loader::Loc;
 use crate::loader::desc::*;
@@ -40,11 +41,6 @@ pub(super) fn look_at(v: &[f64]) -> Result<DMat4, String> {
         eye.extend(1.0),
     );
     Ok(world_from_camera.inverse())
-}
-
-/// An angle of `x` degrees.
-fn degrees(x: f64) -> crate::units::Angle {
-    crate::units::Angle::new::<crate::units::angle::degree>(x)
 }
 
 pub(super) fn len(x: f64) -> Length {
@@ -218,22 +214,6 @@ fn place(
             "an area light's \"power\" on a plymesh is not read yet (pbrt-v4 applies it per triangle)",
         )),
         g => finish_shape(g, m, area, p, loc, r).map(|s| vec![s]),
-    }
-}
-
-/// Whether a pbrt-v4 quadric is cut (`zmin`, `zmax`, `phimax`, `innerradius`): then it cannot
-/// emit, whose sampling would need the part kept.
-fn cut(kind: &ShapeKind) -> bool {
-    let m = |l: &crate::units::Length| l.get::<meter>();
-    let whole = |a: &crate::units::Angle| a.get::<crate::units::angle::degree>() >= 360.0;
-    match kind {
-        ShapeKind::PbrtSphere { radius, z, phi_max } => {
-            let r = m(radius);
-            z[0].min(z[1]).get::<meter>() > -r || m(&z[0]).max(m(&z[1])) < r || !whole(phi_max)
-        }
-        ShapeKind::PbrtDisk { inner, phi_max } => *inner > 0.0 || !whole(phi_max),
-        ShapeKind::PbrtCylinder { phi_max, .. } => !whole(phi_max),
-        _ => false,
     }
 }
 

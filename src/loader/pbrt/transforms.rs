@@ -88,6 +88,47 @@ impl Reader {
         Ok(v)
     }
 
+    /// pbrt's CTMs times `m` (post-multiplied: `m` acts first, in object space), those
+    /// `ActiveTransform` made active.
+    pub(super) fn concat(&mut self, m: DMat4) {
+        self.set_ctm(|c| c * m);
+    }
+
+    /// The active CTMs replaced by `f` of themselves.
+    pub(super) fn set_ctm(&mut self, f: impl Fn(DMat4) -> DMat4) {
+        let s = &mut self.state;
+        if s.active[0] {
+            s.ctm = f(s.ctm);
+        }
+        if s.active[1] {
+            s.ctm_end = f(s.ctm_end);
+        }
+    }
+
+    /// Err if directive `d` uses the CTM while the CTMs at the shutter's opening and close
+    /// differ (motion blur, which spectrace does not render).
+    pub(super) fn check_static(&self, d: &str, file: &Path, loc: Loc) -> R<()> {
+        let consumes = [
+            "Shape",
+            "LightSource",
+            "Camera",
+            "ObjectInstance",
+            "Texture",
+            "MakeNamedMedium",
+        ];
+        if consumes.contains(&d) && self.state.ctm != self.state.ctm_end {
+            return Err(LoadError::new(
+                file,
+                loc,
+                "",
+                format!(
+                    "{d} under an animated transformation (ActiveTransform: the transformations at the shutter's opening and close differ) is not read yet: spectrace renders no motion blur"
+                ),
+            ));
+        }
+        Ok(())
+    }
+
     /// The directives that change the current transformation.
     pub(super) fn transform(
         &mut self,
