@@ -20,10 +20,13 @@ transport) and `pdf` go into tests/reference/rgl/vectors.txt, one line per query
 (`wi` is Mitsuba's si.wi, the view direction.)
 """
 import os
-import struct
+import sys
 
 import numpy as np
 import mitsuba as mi
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gen_rgl_bsdf import tensor_file  # noqa: E402  (the same tensor-file writer)
 
 mi.set_variant("scalar_spectral")
 
@@ -31,23 +34,6 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUT_DIR = os.path.join(ROOT, "tests", "reference", "rgl")
 GGX = os.path.join(ROOT, "tests", "reference", "pbrt", "measured", "ggx.bsdf")
 ASYM = os.path.join(OUT_DIR, "asym.bsdf")
-
-
-def tensor_file(fields):
-    """The bytes of a tensor file: (name, type code, array) per field, data 8-byte aligned."""
-    head = b"tensor_file\0" + bytes([1, 0]) + struct.pack("<I", len(fields))
-    header_len = len(head) + sum(2 + len(n) + 2 + 1 + 8 + 8 * a.ndim for n, _, a in fields)
-    offset = -(-header_len // 8) * 8
-    blobs = []
-    for name, code, a in fields:
-        head += struct.pack("<H", len(name)) + name.encode() + struct.pack("<HBQ", a.ndim, code, offset)
-        head += b"".join(struct.pack("<Q", d) for d in a.shape)
-        blob = a.tobytes()
-        blob += b"\0" * (-len(blob) % 8)
-        blobs.append(blob)
-        offset += len(blob)
-    head += b"\0" * (-len(head) % 8)
-    return head + b"".join(blobs)
 
 
 def write_asym():

@@ -269,19 +269,7 @@ fn light_tracing_and_bdpt_refuse_a_realistic_camera() {
          radius = 1\nemission = {{ radiance = \"1 W/m^2/sr\" }}\n",
         lens_path()
     ));
-    for kind in [
-        spectrace::integrator::IntegratorKind::Light,
-        spectrace::integrator::IntegratorKind::Bdpt,
-    ] {
-        let mut o = spectrace::render::RenderOptions::from_scene(&scene);
-        o.integrator = kind;
-        let cancel = std::sync::atomic::AtomicBool::new(false);
-        let e = spectrace::render::render(&scene, &o, &cancel, &|_, _| {}).expect_err("refused");
-        assert!(
-            e.to_string().contains("realistic (lens-system) camera"),
-            "{e}"
-        );
-    }
+    support::render::assert_light_and_bdpt_refuse(&scene, "realistic (lens-system) camera");
 }
 
 /// The mean direction (unit, camera space) of the rays from raster position `raster` at

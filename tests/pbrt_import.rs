@@ -390,14 +390,5 @@ LightSource "infinite" "rgb L" [ 1 1 1 ]
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/pbrt/inline.pbrt");
     let desc = spectrace::loader::pbrt::load_str(text, &path).unwrap_or_else(|e| panic!("{e}"));
     let scene = spectrace::build::build(&desc).unwrap_or_else(|e| panic!("{e}"));
-    for kind in [
-        spectrace::integrator::IntegratorKind::Light,
-        spectrace::integrator::IntegratorKind::Bdpt,
-    ] {
-        let mut o = spectrace::render::RenderOptions::from_scene(&scene);
-        o.integrator = kind;
-        let cancel = std::sync::atomic::AtomicBool::new(false);
-        let e = spectrace::render::render(&scene, &o, &cancel, &|_, _| {}).expect_err("refused");
-        assert!(e.to_string().contains("spherical camera"), "{e}");
-    }
+    support::render::assert_light_and_bdpt_refuse(&scene, "spherical camera");
 }

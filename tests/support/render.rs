@@ -23,6 +23,22 @@ pub fn render_with(scene: &Scene, f: impl FnOnce(&mut RenderOptions)) -> (Image,
     (film.image(), stats)
 }
 
+/// Light tracing and BDPT refuse to render `scene` (a camera whose importance is not
+/// modelled), with an error containing `needle`.
+#[allow(dead_code)]
+pub fn assert_light_and_bdpt_refuse(scene: &Scene, needle: &str) {
+    for kind in [
+        spectrace::integrator::IntegratorKind::Light,
+        spectrace::integrator::IntegratorKind::Bdpt,
+    ] {
+        let mut o = RenderOptions::from_scene(scene);
+        o.integrator = kind;
+        let cancel = AtomicBool::new(false);
+        let e = render(scene, &o, &cancel, &|_, _| {}).expect_err("refused");
+        assert!(e.to_string().contains(needle), "{e}");
+    }
+}
+
 /// Mean of a per-pixel quantity over the image.
 pub fn mean(v: impl Iterator<Item = f32>) -> f64 {
     let (mut s, mut n) = (0.0, 0usize);

@@ -186,17 +186,12 @@ fn grey(cx: &Cx<'_>, c: &Element) -> R<Option<f64>> {
 /// wavelength in nm used for all), as Mitsuba 3.9.1 reads them.
 pub(super) fn measured_polarized(cx: &Cx<'_>, b: &Element) -> R<MaterialKind> {
     let at = |key: &str| cx.child(b, key).unwrap_or(b);
-    let name = cx
-        .string(b, "filename")
-        .ok_or_else(|| cx.err(b, "measured_polarized needs a filename (a .pbsdf file)"))?;
-    let path = cx.resolve_file(&name);
-    if !path.is_file() {
-        return Err(cx.err(
-            at("filename"),
-            format!("pBSDF file {} does not exist", path.display()),
-        ));
-    }
-    let table = super::super::tensor::read_pbsdf(&path).map_err(|e| cx.err(at("filename"), e))?;
+    let table = table_file(
+        cx,
+        b,
+        ("measured_polarized", "a .pbsdf file", "pBSDF"),
+        |p| super::super::tensor::read_pbsdf(p),
+    )?;
     let alpha_sample = cx.opt_float(b, "alpha_sample")?.unwrap_or(0.1);
     if !(alpha_sample > 0.0 && alpha_sample.is_finite()) {
         return Err(cx.err(
@@ -226,20 +221,31 @@ pub(super) fn measured_polarized(cx: &Cx<'_>, b: &Element) -> R<MaterialKind> {
 /// reads it: R·D/(4σ) when the file's `jacobian` flag is set, else R as f·cos θ. Files
 /// covering a half or a quarter of the azimuths (Mitsuba's `reduction` 2 and 4) are refused.
 pub(super) fn measured(cx: &Cx<'_>, b: &Element) -> R<MaterialKind> {
-    let at = |key: &str| cx.child(b, key).unwrap_or(b);
-    let name = cx
-        .string(b, "filename")
-        .ok_or_else(|| cx.err(b, "measured needs a filename (an RGL .bsdf file)"))?;
-    let path = cx.resolve_file(&name);
-    if !path.is_file() {
-        return Err(cx.err(
-            at("filename"),
-            format!("RGL BSDF file {} does not exist", path.display()),
-        ));
-    }
-    let table = super::super::rgl::read_rgl_bsdf(&path).map_err(|e| cx.err(at("filename"), e))?;
+    let table = table_file(cx, b, ("measured", "an RGL .bsdf file", "RGL BSDF"), |p| {
+        super::super::rgl::read_rgl_bsdf(p)
+    })?;
     Ok(MaterialKind::Measured {
         jacobian: table.jacobian,
         table: std::sync::Arc::new(table),
     })
+}
+
+/// The table a measured BSDF's `filename` names (found as Mitsuba's file resolver finds it),
+/// read by `read`; errors located at the BSDF or its `filename`. `names`: the plugin, what
+/// its file is, and what the file is called in an error.
+fn table_file<T>(
+    cx: &Cx<'_>,
+    b: &Element,
+    (plugin, what, kind): (&str, &str, &str),
+    read: impl Fn(&std::path::Path) -> Result<T, String>,
+) -> R<T> {
+    let at = cx.child(b, "filename").unwrap_or(b);
+    let name = cx
+        .string(b, "filename")
+        .ok_or_else(|| cx.err(b, format!("{plugin} needs a filename ({what})")))?;
+    let path = cx.resolve_file(&name);
+    if !path.is_file() {
+        return Err(cx.err(at, format!("{kind} file {} does not exist", path.display())));
+    }
+    read(&path).map_err(|e| cx.err(at, e))
 }
