@@ -190,7 +190,7 @@ pub(super) fn measured_polarized(cx: &Cx<'_>, b: &Element) -> R<MaterialKind> {
         cx,
         b,
         ("measured_polarized", "a .pbsdf file", "pBSDF"),
-        |p| super::super::tensor::read_pbsdf(p),
+        super::super::tensor::read_pbsdf,
     )?;
     let alpha_sample = cx.opt_float(b, "alpha_sample")?.unwrap_or(0.1);
     if !(alpha_sample > 0.0 && alpha_sample.is_finite()) {
@@ -221,9 +221,12 @@ pub(super) fn measured_polarized(cx: &Cx<'_>, b: &Element) -> R<MaterialKind> {
 /// reads it: R·D/(4σ) when the file's `jacobian` flag is set, else R as f·cos θ. Files
 /// covering a half or a quarter of the azimuths (Mitsuba's `reduction` 2 and 4) are refused.
 pub(super) fn measured(cx: &Cx<'_>, b: &Element) -> R<MaterialKind> {
-    let table = table_file(cx, b, ("measured", "an RGL .bsdf file", "RGL BSDF"), |p| {
-        super::super::rgl::read_rgl_bsdf(p)
-    })?;
+    let table = table_file(
+        cx,
+        b,
+        ("measured", "an RGL .bsdf file", "RGL BSDF"),
+        super::super::rgl::read_rgl_bsdf,
+    )?;
     Ok(MaterialKind::Measured {
         jacobian: table.jacobian,
         table: std::sync::Arc::new(table),
@@ -237,7 +240,7 @@ fn table_file<T>(
     cx: &Cx<'_>,
     b: &Element,
     (plugin, what, kind): (&str, &str, &str),
-    read: impl Fn(&std::path::Path) -> Result<T, String>,
+    read: fn(&std::path::Path) -> Result<T, String>,
 ) -> R<T> {
     let at = cx.child(b, "filename").unwrap_or(b);
     let name = cx
