@@ -16,7 +16,9 @@
 //! cosine, with s the sample coordinates of the half vector (`vndf` inverted). Sampling draws
 //! s from `luminance`, u_m from `vndf`, and reflects ω_o about the half vector; its density in
 //! sr⁻¹ of ω_i is p_lum(s) · p_vndf(u_m) / (4 (ω_o·m) · max(2π² u_m,x sin θ_m, 10⁻⁶)), the last
-//! factor the Jacobian of u_m to solid angle of m (pbrt-v4's, with its floor). Wavelengths
+//! factor the Jacobian of u_m to solid angle of m (pbrt-v4's, with its floor). A file whose
+//! `jacobian` flag is clear holds f·cos θ_i in R, which Mitsuba 3 reads as such
+//! ([`Measured::jacobian`]). Like pbrt-v4's, f ignores the transport mode. Wavelengths
 //! outside the file's range take its end values (as pbrt-v4). The surface is one-sided in
 //! data but the shading frame faces the ray (a reflecting material), as pbrt-v4 flips ω_o.
 
