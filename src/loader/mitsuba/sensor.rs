@@ -284,6 +284,45 @@ fn hdrfilm(cx: &Cx<'_>, c: &Element, film: &mut FilmDesc) -> R<()> {
     for f in c.children.iter().filter(|f| f.tag == "rfilter") {
         film.filter = read_kind(cx, KINDS, "rfilter", f)?;
     }
+    crop(cx, c, film)
+}
+
+/// An `hdrfilm`'s crop window (`crop_offset_x`, `crop_offset_y`, `crop_width`,
+/// `crop_height`; by default the whole film): only it is rendered and written, as Mitsuba
+/// writes it, each pixel as in the whole image.
+fn crop(cx: &Cx<'_>, c: &Element, film: &mut FilmDesc) -> R<()> {
+    let names = [
+        "crop_offset_x",
+        "crop_offset_y",
+        "crop_width",
+        "crop_height",
+    ];
+    if names.iter().all(|n| cx.child(c, n).is_none()) {
+        return Ok(());
+    }
+    let (w, h) = (film.width, film.height);
+    let mut v = [0u32, 0, w, h];
+    for (name, slot) in names.iter().zip(&mut v) {
+        let Some(e) = cx.child(c, name) else { continue };
+        let x = cx.float(e)?;
+        if !(x.fract() == 0.0 && (0.0..=32768.0).contains(&x)) {
+            return Err(cx.err(e, format!("expected a whole number of pixels, found {x}")));
+        }
+        *slot = x as u32;
+    }
+    let [x0, y0, cw, ch] = v;
+    if cw == 0 || ch == 0 || x0 + cw > w || y0 + ch > h {
+        let at = cx.child(c, "crop_width").unwrap_or(c);
+        return Err(cx.err(
+            at,
+            format!("the crop window of {cw} × {ch} pixels at ({x0}, {y0}) is not inside the {w} × {h} film"),
+        ));
+    }
+    (film.width, film.height) = (cw, ch);
+    film.crop = Some(crate::loader::desc::CropDesc {
+        at: [x0, y0],
+        full: [w, h],
+    });
     Ok(())
 }
 
