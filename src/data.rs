@@ -145,6 +145,7 @@ pub mod embedded {
         CIE_DAYLIGHT_BASIS = "spectra/illuminants/cie_daylight_basis.csv";
         CAMERA_NIKON_D5100 = "spectra/cameras/nikon_d5100.csv";
         PBRT_SWATCHES = "spectra/pbrt/swatches_babelcolor.csv";
+        PBRT_MEDIA_PRESETS = "spectra/pbrt/media_presets.csv";
         CAMERA_SIGMA_SD_MERRILL = "spectra/cameras/sigma_sd_merrill.csv";
     }
 

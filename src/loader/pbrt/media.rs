@@ -5,7 +5,8 @@
 //! `homogeneous` is read as pbrt-v4 reads it: `sigma_a` and `sigma_s` (1 each; `rgb` values
 //! uplifted as unbounded spectra) per unit of scene length (a metre here), both times `scale`;
 //! Henyey–Greenstein `g` (0); emission `Le` (none) normalised as pbrt-v4 normalises a light's
-//! spectrum, times `Lescale`. spectrace's volumetric path tracer renders them (`volpath`).
+//! spectrum, times `Lescale`; or a `preset`, one of pbrt-v4's measured media (its σ_s′ and σ_a,
+//! `spectra/pbrt/media_presets.csv`). spectrace's volumetric path tracer renders them (`volpath`).
 
 use std::path::Path;
 
@@ -36,6 +37,24 @@ pub(super) fn coefficient(p: &Params, name: &str, default: f32) -> R<Spectrum> {
     }
 }
 
+/// pbrt-v4's medium preset `name`: its (σ_s′, σ_a), RGB per unit of scene length (the
+/// measurements of Jensen et al. 2001 and Narasimhan et al. 2006 in mm⁻¹, as pbrt-v4 reads
+/// them), from `spectra/pbrt/media_presets.csv`; None if pbrt-v4 has no such preset.
+fn preset(name: &str) -> Option<([f32; 3], [f32; 3])> {
+    let (_, text) = crate::data::embedded::PBRT_MEDIA_PRESETS;
+    text.lines()
+        .filter(|l| !l.starts_with('#'))
+        .skip(1)
+        .find_map(|l| {
+            let mut f = l.split(',');
+            if f.next()? != name {
+                return None;
+            }
+            let v: Vec<f32> = f.map(|x| x.trim().parse().ok()).collect::<Option<_>>()?;
+            (v.len() == 6).then(|| ([v[0], v[1], v[2]], [v[3], v[4], v[5]]))
+        })
+}
+
 /// A `MakeNamedMedium`'s description.
 fn medium(name: &str, p: &Params, loc: Loc) -> R<MediumDesc> {
     let ty = p.string("type")?.ok_or_else(|| {
@@ -50,14 +69,27 @@ fn medium(name: &str, p: &Params, loc: Loc) -> R<MediumDesc> {
             format!("the medium \"{ty}\" is not read yet (spectrace reads homogeneous)"),
         ));
     }
-    if p.get("preset").is_some() {
-        return Err(p.err(p.loc_of("preset"), "a medium's \"preset\" is not read yet"));
-    }
     let scale = p.float("scale", 1.0)? as f32;
-    let (sigma_a, sigma_s) = (
-        coefficient(p, "sigma_a", 1.0)?.scaled(scale),
-        coefficient(p, "sigma_s", 1.0)?.scaled(scale),
-    );
+    let (sigma_a, sigma_s) = match p.string("preset")? {
+        // pbrt-v4 then reads neither coefficient (one given too is unused)
+        Some(name) => {
+            let Some((s, a)) = preset(&name) else {
+                return Err(p.err(
+                    p.loc_of("preset"),
+                    format!("no medium preset \"{name}\" (pbrt-v4's are listed in spectra/pbrt/media_presets.csv)"),
+                ));
+            };
+            let uplift = |rgb: [f32; 3]| {
+                rgb2spec::unbounded(rgb).map_err(|e| p.err(p.loc_of("preset"), e.to_string()))
+            };
+            (uplift(a)?, uplift(s)?)
+        }
+        None => (
+            coefficient(p, "sigma_a", 1.0)?,
+            coefficient(p, "sigma_s", 1.0)?,
+        ),
+    };
+    let (sigma_a, sigma_s) = (sigma_a.scaled(scale), sigma_s.scaled(scale));
     let g = p.float("g", 0.0)?;
     if !(g > -1.0 && g < 1.0) {
         return Err(p.err(p.loc_of("g"), "\"g\" must lie in (−1, 1)"));
@@ -138,5 +170,28 @@ impl Reader {
             }
         };
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// Every row of the table reads (pbrt-v4 has 47 presets), with pbrt-v4's numbers: Skin1's
+    /// σ_s′ (0.74, 0.88, 1.01) and σ_a (0.032, 0.17, 0.48) mm⁻¹ (Jensen et al. 2001, table 2).
+    #[test]
+    fn presets_are_pbrts_table() {
+        let (_, text) = crate::data::embedded::PBRT_MEDIA_PRESETS;
+        let names: Vec<&str> = text
+            .lines()
+            .filter(|l| !l.starts_with('#'))
+            .skip(1)
+            .filter_map(|l| l.split(',').next())
+            .collect();
+        assert_eq!(names.len(), 47);
+        assert!(names.iter().all(|n| super::preset(n).is_some()));
+        assert_eq!(
+            super::preset("Skin1"),
+            Some(([0.74, 0.88, 1.01], [0.032, 0.17, 0.48]))
+        );
+        assert_eq!(super::preset("skin1"), None);
     }
 }
