@@ -168,11 +168,12 @@ impl Disk {
         let (dpdu, dpdv) = match &self.clip {
             // ∂p/∂ρ radial (as Mitsuba's disk, zero at the centre); ∂p/∂v = 2π·(−b, a)
             None => (radial.normalize_or_zero(), around * (2.0 * PI)),
-            // pbrt-v4's: ∂p/∂u = φ_max·(−b, a), ∂p/∂v = (ρ_inner − 1)·(a, b)/ρ
-            Some(c) => (
-                around * c.phi_max,
-                radial.normalize_or_zero() * (c.rho_min - 1.0),
-            ),
+            // pbrt-v4's: ∂p/∂u = φ_max·(−b, a), ∂p/∂v = (ρ_inner − 1)·(a, b)/ρ (in the disk's
+            // axes, each the radius long; along the u axis at the centre)
+            Some(c) => {
+                let unit = if rho > 0.0 { radial / rho } else { self.u };
+                (around * c.phi_max, unit * (c.rho_min - 1.0))
+            }
         };
         Intersection {
             t: 0.0,
@@ -221,6 +222,32 @@ mod tests {
         assert!(
             d.intersect(&Ray::new(Vec3::new(0.0, 1.4, -1.0), Vec3::Z))
                 .is_some()
+        );
+    }
+
+    /// pbrt-v4's disk: at radius ρ, u = φ/φ_max and v = (r − ρ)/(r − r_inner), so ∂p/∂v points
+    /// to the centre with length r − r_inner and ∂p/∂u along the circle with length φ_max·ρ.
+    #[test]
+    fn pbrt_disk_derivatives_follow_its_uv() {
+        let d = Disk::new(&Transform::identity(), 2.0)
+            .unwrap()
+            .clipped(super::super::Clip::disk(1.0, 0.25, 180.0));
+        let it = d.interaction(0.5, 0.0);
+        assert!((it.p - Vec3::new(1.0, 0.0, 0.0)).length() < 1e-6);
+        assert!(
+            (it.uv - Vec2::new(0.0, 0.5 / 0.75)).length() < 1e-6,
+            "{}",
+            it.uv
+        );
+        assert!(
+            (it.dpdv - Vec3::new(-1.5, 0.0, 0.0)).length() < 1e-5,
+            "{}",
+            it.dpdv
+        );
+        assert!(
+            (it.dpdu - Vec3::new(0.0, PI, 0.0)).length() < 1e-5,
+            "{}",
+            it.dpdu
         );
     }
 
