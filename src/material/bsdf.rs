@@ -156,7 +156,7 @@ impl<'a, const N: usize> Bsdf<'a, N> {
             Material::Plastic(m) => m.eval_pdf(wo, wi, self.albedo, w),
             Material::PPlastic(m) => m.eval_pdf(wo, wi, self.albedo),
             Material::MeasuredPolarized(m) => (m.eval(wo, wi, w, mode), m.pdf(wo, wi)),
-            Material::Measured(m) => (m.eval(wo, wi, w), m.pdf(wo, wi)),
+            Material::Measured(m) => m.eval_pdf(wo, wi, w),
             Material::Mask(m) => {
                 let (f, pdf) = self.masked(m).eval_pdf(wo, wi, w, mode);
                 (f * self.weight, pdf * self.weight)

@@ -59,6 +59,14 @@ impl Clip {
         )
     }
 
+    /// Whether nothing is cut away (every point is kept).
+    #[inline]
+    pub fn is_whole(&self) -> bool {
+        self.z == [f32::NEG_INFINITY, f32::INFINITY]
+            && self.phi_max >= 2.0 * PI
+            && self.rho_min <= 0.0
+    }
+
     /// Whether the point (x, y, z) (object frame, unit radius) is on the kept part.
     #[inline]
     pub fn keeps(&self, x: f32, y: f32, z: f32) -> bool {

@@ -76,9 +76,12 @@ impl Sphere {
     /// Whether the hit at `t` along `ray` is on the kept part.
     #[inline]
     fn kept(&self, ray: &Ray, t: f32) -> bool {
+        // a whole pbrt-v4 sphere (every pbrt-v4 sphere has a clip, for its uv) skips the test
         self.clip.is_none_or(|c| {
-            let l = self.frame.transpose() * ((ray.at(t) - self.center) / self.radius);
-            c.keeps(l.x, l.y, l.z)
+            c.is_whole() || {
+                let l = self.frame.transpose() * ((ray.at(t) - self.center) / self.radius);
+                c.keeps(l.x, l.y, l.z)
+            }
         })
     }
 

@@ -61,6 +61,16 @@ fn phi2u(phi: f32) -> f32 {
     phi * (0.5 / PI) + 0.5
 }
 
+/// What `eval` and `pdf` share for a pair of directions (see [`Measured::half`]).
+struct Half {
+    /// (φ_o, θ_o), radians.
+    o: (f32, f32),
+    u_m: [f32; 2],
+    s: [f32; 2],
+    vndf_pdf: f32,
+    jacobian: f32,
+}
+
 /// (θ, φ) of a unit vector, θ ∈ [0, π], φ ∈ (−π, π].
 fn angles(v: Vec3) -> (f32, f32) {
     (v.z.clamp(-1.0, 1.0).acos(), v.y.atan2(v.x))
@@ -98,6 +108,35 @@ impl Measured {
         }))
     }
 
+    /// The half vector's sample coordinates for the pair (wo, wi): (φ_o, θ_o), u_m, the sample
+    /// coordinates s (`vndf` inverted) and the VNDF's density there, and the Jacobian to sr⁻¹
+    /// of wi; None unless both are above the surface.
+    #[inline]
+    fn half(&self, wo: Vec3, wi: Vec3) -> Option<Half> {
+        if wo.z <= 0.0 || wi.z <= 0.0 {
+            return None;
+        }
+        let m = (wo + wi).try_normalize()?;
+        let (theta_o, phi_o) = angles(wo);
+        let u_m = self.u_m(m, phi_o);
+        let (s, vndf_pdf) = self.vndf.invert(u_m, &[phi_o, theta_o]);
+        let jacobian = Self::jacobian(wo, m, u_m);
+        Some(Half {
+            o: (phi_o, theta_o),
+            u_m,
+            s,
+            vndf_pdf,
+            jacobian,
+        })
+    }
+
+    /// The density (sr⁻¹ of wi) of [`Measured::sample`] at the pair `h` describes.
+    #[inline]
+    fn density(&self, h: &Half) -> f32 {
+        let lum_pdf = self.luminance.eval(h.s, &[h.o.0, h.o.1]);
+        h.vndf_pdf * lum_pdf / h.jacobian
+    }
+
     /// f(wo, wi) per wavelength, sr⁻¹ without the cosine; 0 unless both are above the surface.
     pub fn eval<const N: usize>(
         &self,
@@ -105,16 +144,9 @@ impl Measured {
         wi: Vec3,
         w: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return SampledSpectrum::zero();
-        }
-        let Some(m) = (wo + wi).try_normalize() else {
-            return SampledSpectrum::zero();
-        };
-        let (theta_o, phi_o) = angles(wo);
-        let u_m = self.u_m(m, phi_o);
-        let (s, _) = self.vndf.invert(u_m, &[phi_o, theta_o]);
-        self.value(s, (phi_o, theta_o), (u_m, wi.z), w)
+        self.half(wo, wi).map_or(SampledSpectrum::zero(), |h| {
+            self.value(h.s, h.o, (h.u_m, wi.z), w)
+        })
     }
 
     /// The Jacobian 4 (ω_o·m) · max(2π² u_m,x sin θ_m, 10⁻⁶) from density on u_m to density
@@ -126,17 +158,20 @@ impl Measured {
 
     /// Density (sr⁻¹ of `wi`) of [`Measured::sample`] from `wo`.
     pub fn pdf(&self, wo: Vec3, wi: Vec3) -> f32 {
-        if wo.z <= 0.0 || wi.z <= 0.0 {
-            return 0.0;
-        }
-        let Some(m) = (wo + wi).try_normalize() else {
-            return 0.0;
-        };
-        let (theta_o, phi_o) = angles(wo);
-        let u_m = self.u_m(m, phi_o);
-        let (s, vndf_pdf) = self.vndf.invert(u_m, &[phi_o, theta_o]);
-        let lum_pdf = self.luminance.eval(s, &[phi_o, theta_o]);
-        vndf_pdf * lum_pdf / Self::jacobian(wo, m, u_m)
+        self.half(wo, wi).map_or(0.0, |h| self.density(&h))
+    }
+
+    /// [`Measured::eval`] and [`Measured::pdf`] together, the VNDF inverted once.
+    pub fn eval_pdf<const N: usize>(
+        &self,
+        wo: Vec3,
+        wi: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> (SampledSpectrum<N>, f32) {
+        self.half(wo, wi)
+            .map_or((SampledSpectrum::zero(), 0.0), |h| {
+                (self.value(h.s, h.o, (h.u_m, wi.z), w), self.density(&h))
+            })
     }
 
     /// Samples `wi` from `wo` with the direction sample `u` (see the module doc); None when

@@ -325,6 +325,18 @@ mod tests {
         assert!((integral - 1.0).abs() < 1e-3, "{integral}");
     }
 
+    /// A table that cannot be a density (a slice zero everywhere, or negative somewhere) and
+    /// sizes that do not match are refused with the reason, not normalised into NaNs.
+    #[test]
+    fn tables_that_are_no_density_are_refused() {
+        let zero = Warp2D::new(&[0.0; 8], (2, 2), vec![vec![1.0, 2.0]], true).unwrap_err();
+        assert!(zero.contains("zero everywhere"), "{zero}");
+        let neg = Warp2D::new(&[1.0, -1.0, 1.0, 1.0], (2, 2), vec![], true).unwrap_err();
+        assert!(neg.contains("negative"), "{neg}");
+        assert!(Warp2D::new(&[1.0; 5], (2, 2), vec![], true).is_err());
+        assert!(Warp2D::new(&[1.0; 2], (1, 2), vec![], false).is_err());
+    }
+
     /// Without normalisation the interpolant returns the stored values at the nodes and is
     /// bilinear between them, blending slices linearly in a parameter.
     #[test]
