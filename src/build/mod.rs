@@ -135,6 +135,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
             polarised,
             split_dispersion: desc.integrator.split_dispersion,
             aovs: desc.integrator.aovs.clone(),
+            skip_null: desc.integrator.skip_null,
         },
         wavelengths: range,
         bounds,

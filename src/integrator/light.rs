@@ -19,7 +19,7 @@
 use glam::{Vec2, Vec3};
 
 use super::carrier::{scatter_stokes, to_camera_frame};
-use super::{Integrator, Splatted};
+use super::{Integrator, MAX_CROSSINGS, Splatted};
 use crate::geometry::{Ray, spawn_ray, spawn_ray_to};
 use crate::material::TransportMode;
 use crate::polarisation::Stokes;
@@ -86,10 +86,22 @@ pub fn trace<const N: usize>(
     } else {
         spawn_ray(e.o, e.o_error, e.n, e.d)
     };
-    for depth in 0..it.max_depth {
+    let mut depth = 0;
+    let mut crossings = 0;
+    while depth < it.max_depth {
         let Some(hit) = scene.accel.intersect(&scene.shapes, &ray) else {
             break;
         };
+        // a medium boundary pbrt-v4 skips (`interface`; pbrt-v4's `LightPathIntegrator`)
+        if let Some(next) = it.skip_null(&hit, ray.d) {
+            crossings += 1;
+            if crossings > MAX_CROSSINGS {
+                break;
+            }
+            ray = next;
+            continue;
+        }
+        crossings = 0;
         let Some(sh) = it.shading(&hit, ray.d, w) else {
             break;
         };
@@ -141,6 +153,7 @@ pub fn trace<const N: usize>(
             }
             beta /= 1.0 - q;
         }
+        depth += 1;
     }
 }
 

@@ -11,6 +11,7 @@
 
 use glam::{Vec2, Vec3};
 
+use super::MAX_CROSSINGS;
 use super::volpath::ShadowTarget;
 use super::{Integrator, Splatted};
 use crate::geometry::{Ray, spawn_ray};
@@ -18,10 +19,6 @@ use crate::material::{Material, TransportMode};
 use crate::medium::live_average;
 use crate::sampler::Sampler;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
-
-/// Crossings of `null` or sheet surfaces between two scattering events before a particle is
-/// given up.
-const MAX_CROSSINGS: u32 = 256;
 
 /// A particle between events.
 struct Particle<const N: usize> {

@@ -19,6 +19,10 @@ mod whitted;
 
 pub use crate::scene::{IntegratorKind, LightSelection};
 
+/// Surfaces a shadow ray or a run of `null` crossings may pass before it is given up (a ray
+/// caught between coincident surfaces must end).
+pub(crate) const MAX_CROSSINGS: u32 = 256;
+
 use glam::Vec3;
 
 use crate::geometry::{Frame, Intersection, Ray, spawn_ray, spawn_ray_to};
@@ -361,6 +365,25 @@ impl Integrator<'_> {
             frame,
             n_geom: ng,
         })
+    }
+
+    /// The ray going on past `hit` along `d` when the path tracers pass it without a bounce:
+    /// a `null` surface in a scene whose integrator skips them (pbrt-v4's `interface`,
+    /// [`crate::scene::IntegratorSettings::skip_null`]); None for any other hit, which
+    /// scatters. Reads no sample.
+    #[inline]
+    pub(crate) fn skip_null(&self, hit: &Intersection, d: Vec3) -> Option<Ray> {
+        if !self.scene.integrator.skip_null {
+            return None;
+        }
+        let m = self.scene.surfaces[hit.shape as usize].material?;
+        if !matches!(
+            self.scene.materials[m as usize],
+            crate::material::Material::Null
+        ) {
+            return None;
+        }
+        Some(spawn_ray(hit.p, hit.p_error, hit.n_geom_toward(d), d))
     }
 
     /// Whether the light sample `ls` is blocked as seen from `hit`.

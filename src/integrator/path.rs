@@ -11,7 +11,7 @@
 use glam::Vec3;
 
 use super::carrier::{Carrier, Polarised, to_camera_frame};
-use super::{Integrator, Shading};
+use super::{Integrator, MAX_CROSSINGS, Shading};
 use crate::geometry::Ray;
 use crate::geometry::shape::Intersection;
 use crate::material::TransportMode;
@@ -99,6 +99,8 @@ fn trace<const N: usize, C: Carrier<N>>(
     let mut all_specular = first.is_none();
     let mut eta_scale = 1.0f32;
     let mut depth = 0u32;
+    // `null` surfaces skipped since the last bounce (`Integrator::skip_null`)
+    let mut crossings = 0u32;
     // Every bounce reads the same dimensions whatever happened before (pbrt-v4 §8.3: a fixed
     // layout keeps each bounce's samples stratified across the pixel's samples): light 2D
     // (its first coordinate also chooses the light and, on a mesh, the triangle, by sample
@@ -129,6 +131,19 @@ fn trace<const N: usize, C: Carrier<N>>(
                 beta.add_unpolarised(&mut l, le * wgt);
             }
         }
+        // A medium boundary pbrt-v4 skips (`interface`): no bounce, no sample read, and the
+        // emitter hit after it unweighted, as light sampling's shadow rays stop at it
+        // (pbrt-v4 §13.4, `PathIntegrator::Li` calling `SkipIntersection`).
+        if let Some(next) = it.skip_null(&hit, ray.d) {
+            crossings += 1;
+            if crossings > MAX_CROSSINGS {
+                break;
+            }
+            specular_bounce = true;
+            ray = next;
+            continue;
+        }
+        crossings = 0;
         if depth == it.max_depth {
             break;
         }

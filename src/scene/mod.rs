@@ -70,6 +70,9 @@ pub struct IntegratorSettings {
     pub split_dispersion: bool,
     /// First-hit quantities to write beside the image (see [`crate::render::aov`]).
     pub aovs: Vec<Aov>,
+    /// `null` surfaces passed without a bounce (see
+    /// [`crate::loader::desc::IntegratorDesc::skip_null`]).
+    pub skip_null: bool,
 }
 
 /// A render-ready scene. Shapes are in world space, metres.

@@ -138,6 +138,18 @@ pub struct Intersection {
     pub prim: u32,
 }
 
+impl Intersection {
+    /// The geometric normal flipped to the side of `dir`, for offsetting rays that leave there.
+    #[inline]
+    pub fn n_geom_toward(&self, dir: Vec3) -> Vec3 {
+        if self.n_geom.dot(dir) < 0.0 {
+            -self.n_geom
+        } else {
+            self.n_geom
+        }
+    }
+}
+
 impl Shape {
     /// Surface area, m².
     pub fn area(&self) -> f32 {

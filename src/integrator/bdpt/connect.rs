@@ -8,7 +8,7 @@ use glam::{Vec2, Vec3};
 use super::media;
 use super::vertex::{Kind, Vertex};
 use crate::geometry::{spawn_ray, spawn_ray_to};
-use crate::integrator::Integrator;
+use crate::integrator::{Integrator, MAX_CROSSINGS};
 use crate::material::TransportMode;
 use crate::sampler::Sampler;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
@@ -139,15 +139,31 @@ fn reach<const N: usize>(
 }
 
 /// Whether nothing blocks the segment between `a` and `b` (either may be at infinity, but not
-/// both).
+/// both). Where the scene skips `null` surfaces ([`Integrator::skip_null`]) they do not block
+/// it, as pbrt-v4's `Integrator::Tr` lets its connections through `interface` surfaces.
 fn visible<const N: usize>(it: &Integrator<'_>, a: &Vertex<'_, N>, b: &Vertex<'_, N>) -> bool {
     let scene = it.scene;
-    let ray = if b.at_infinity(it) {
-        spawn_ray(a.p, a.p_error, a.ng, b.d)
-    } else if a.at_infinity(it) {
-        spawn_ray(b.p, b.p_error, b.ng, a.d)
-    } else {
-        spawn_ray_to(a.p, a.p_error, a.ng, b.p, b.p_error, b.ng)
+    // the segment from (p, p_error, ng) on toward the far end
+    let (from, to) = if a.at_infinity(it) { (b, a) } else { (a, b) };
+    let ray_from = |p, p_error, n| {
+        if to.at_infinity(it) {
+            spawn_ray(p, p_error, n, to.d)
+        } else {
+            spawn_ray_to(p, p_error, n, to.p, to.p_error, to.ng)
+        }
     };
-    !scene.accel.occluded(&scene.shapes, &ray)
+    let mut ray = ray_from(from.p, from.p_error, from.ng);
+    if !scene.integrator.skip_null {
+        return !scene.accel.occluded(&scene.shapes, &ray);
+    }
+    for _ in 0..MAX_CROSSINGS {
+        let Some(hit) = scene.accel.intersect(&scene.shapes, &ray) else {
+            return true;
+        };
+        if it.skip_null(&hit, ray.d).is_none() {
+            return false;
+        }
+        ray = ray_from(hit.p, hit.p_error, hit.n_geom_toward(ray.d));
+    }
+    false
 }

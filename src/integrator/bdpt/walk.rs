@@ -9,7 +9,7 @@ use glam::Vec2;
 use super::media::{self, Glow};
 use super::vertex::{Kind, Vertex};
 use crate::geometry::{Ray, spawn_ray};
-use crate::integrator::Integrator;
+use crate::integrator::{Integrator, MAX_CROSSINGS};
 use crate::material::TransportMode;
 use crate::sampler::Sampler;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
@@ -191,6 +191,7 @@ fn walk<'a, const N: usize>(
     let mut eta_scale = 1.0f32;
     let base = s.dimension();
     let mut bounce = 0u32;
+    let mut crossings = 0u32;
     while path.len() < max_vertices {
         let prev = path.len() - 1;
         let Some(hit) = scene.accel.intersect(&scene.shapes, &ray) else {
@@ -202,6 +203,17 @@ fn walk<'a, const N: usize>(
             }
             return;
         };
+        // a medium boundary pbrt-v4 skips (`interface`): no vertex (pbrt-v4's `RandomWalk`);
+        // the next hit's density is still `pdf_dir`, its direction unchanged
+        if let Some(next) = it.skip_null(&hit, ray.d) {
+            crossings += 1;
+            if crossings > MAX_CROSSINGS {
+                return;
+            }
+            ray = next;
+            continue;
+        }
+        crossings = 0;
         let surf = &scene.surfaces[hit.shape as usize];
         let shading = it.shading(&hit, ray.d, w);
         let mut v = Vertex::new(

@@ -32,9 +32,7 @@ use crate::medium::live_average;
 use crate::sampler::Sampler;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
 
-/// Surfaces a shadow ray or a run of `null` crossings may pass before it is given up (a ray
-/// caught between coincident surfaces must end).
-pub(super) const MAX_CROSSINGS: u32 = 256;
+use super::MAX_CROSSINGS;
 
 mod nee;
 

@@ -210,6 +210,12 @@ pub struct IntegratorDesc {
     pub split_dispersion: bool,
     /// First-hit quantities written beside the image (Mitsuba's `aov`).
     pub aovs: Vec<crate::scene::Aov>,
+    /// A `null` surface is a medium boundary that the path, light and bidirectional tracers
+    /// pass without a bounce, as pbrt-v4's `interface` (its `SkipIntersection` in `path`,
+    /// `lightpath` and BDPT's random walks; BDPT's connections pass it too, pbrt-v4's `Tr`).
+    /// False: a delta transmission counted toward `max_depth`, as Mitsuba 3's `null`.
+    /// (`volpath` passes them either way.)
+    pub skip_null: bool,
 }
 
 /// Default `rr_depth`, Mitsuba 3's: paths keep their first five surface hits.

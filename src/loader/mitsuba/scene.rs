@@ -200,6 +200,7 @@ fn contents(owned: Cx<'_>, root: &Element, path: &Path) -> R<SceneDesc> {
         polarised: false,
         split_dispersion: true,
         aovs: Vec::new(),
+        skip_null: false,
     };
     let mut camera = None;
     let mut materials: Vec<MaterialDesc> = Vec::new();

@@ -371,6 +371,8 @@ pub(super) fn finish(mut r: Reader) -> Result<SceneDesc, LoadError> {
             polarised: false,
             split_dispersion: true,
             aovs: Vec::new(),
+            // pbrt-v4's integrators skip `interface` surfaces without a bounce
+            skip_null: true,
         },
         materials: r.materials,
         shapes: r.shapes,

@@ -12,6 +12,7 @@ pub(super) fn integrator(cx: &Cx<'_>, i: Option<&S<RawIntegrator>>) -> R<Integra
         polarised: false,
         split_dispersion: true,
         aovs: Vec::new(),
+        skip_null: false,
     };
     let Some(i) = i else { return Ok(d) };
     let i = i.get_ref();
