@@ -4,8 +4,9 @@ use std::fs;
 use std::path::{Path, PathBuf};
 
 use spectrace::image_io::{
-    AttrValue, Channel, ImageError, read_exr, spectral_channels, write_atomically, write_exr,
-    write_png_linear, write_png_srgb8, write_spectral_exr,
+    AttrValue, Channel, DataWindow, Extras, ImageError, read_exr, spectral_channels,
+    write_atomically, write_exr, write_exr_words, write_png_linear, write_png_srgb8,
+    write_spectral_exr,
 };
 
 /// A fresh, empty scratch folder for one test.
@@ -160,6 +161,46 @@ fn plain_exr_round_trips_channels_and_attributes() {
         attrs.into_iter().map(|(n, v)| (n.to_string(), v)).collect();
     assert_eq!(img.attributes, want);
     assert!(spectral_channels(&img).is_empty());
+}
+
+/// A window of a larger image is written as OpenEXR's data window inside the full display
+/// window and read back with its place; one that does not fit is refused before the disk is
+/// touched; a whole image has no window.
+#[test]
+fn a_data_window_round_trips() {
+    let dir = scratch("window");
+    let (w, h) = (3, 2);
+    let y = values(w * h, 5);
+    let path = dir.join("win.exr");
+    let window = DataWindow {
+        at: [13, 22],
+        full: [64, 48],
+    };
+    let extras = Extras {
+        words: &[],
+        window: Some(window),
+    };
+    write_exr_words(&path, w, h, &[ch("Y", &y)], &extras, &[]).unwrap();
+    let img = read_exr(&path).unwrap();
+    assert_eq!((img.width, img.height), (w, h));
+    assert_eq!(img.window, Some(window));
+    assert_bits_eq("Y", img.channel("Y").unwrap(), &y);
+
+    let bad = dir.join("bad.exr");
+    let too_far = Extras {
+        words: &[],
+        window: Some(DataWindow {
+            at: [62, 0],
+            full: [64, 48],
+        }),
+    };
+    let e = write_exr_words(&bad, w, h, &[ch("Y", &y)], &too_far, &[]).unwrap_err();
+    assert!(e.to_string().contains("does not fit"), "{e}");
+    assert!(!bad.exists());
+
+    let whole = dir.join("whole.exr");
+    write_y(&whole, w, h, &y).unwrap();
+    assert_eq!(read_exr(&whole).unwrap().window, None);
 }
 
 #[test]

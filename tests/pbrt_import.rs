@@ -392,3 +392,34 @@ LightSource "infinite" "rgb L" [ 1 1 1 ]
     let scene = spectrace::build::build(&desc).unwrap_or_else(|e| panic!("{e}"));
     support::render::assert_light_and_bdpt_refuse(&scene, "spherical camera");
 }
+
+/// A cropped render is written as pbrt-v4 writes it: the window as the EXR's data window in
+/// a display window of the full image. pbrt-v4's own render of the `crop` reference scene
+/// (`cropwindow` [0.2, 0.7] × [0.45, 0.95] of 64 × 48) has its pixel data at (13, 22), 32 × 24
+/// pixels, in a 64 × 48 display window (`oiiotool --info -v` on its output).
+#[test]
+fn a_cropped_render_is_written_as_a_data_window() {
+    let dir = support::cli::tmpdir("pbrt-crop-window");
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference/pbrt/crop/scene.pbrt");
+    let exr = dir.join("crop.exr");
+    let (ok, err) = support::cli::spectrace(
+        &dir,
+        &[
+            "render",
+            scene.to_str().unwrap(),
+            "--spp",
+            "1",
+            "--quiet",
+            "-o",
+            exr.to_str().unwrap(),
+        ],
+    );
+    assert!(ok, "{err}");
+    let img = spectrace::image_io::read_exr(&exr).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!((img.width, img.height), (32, 24));
+    let want = spectrace::image_io::DataWindow {
+        at: [13, 22],
+        full: [64, 48],
+    };
+    assert_eq!(img.window, Some(want));
+}

@@ -47,6 +47,7 @@ fn spectral_exr_reads_back_with_the_same_bins_and_values() {
         stop: "complete",
         rel_error: stats.rel_error,
         aovs: &[],
+        window: None,
     };
     spectrace::output::write_exr(&path, &img, &info).unwrap();
     let back = read_exr(&path).unwrap();

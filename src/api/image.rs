@@ -103,6 +103,7 @@ impl Image {
             rel_error: stats.rel_error,
             sensor: None,
             aovs: &[],
+            window: None,
         };
         let metadata = crate::output::header(&info)
             .into_iter()

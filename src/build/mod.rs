@@ -125,6 +125,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
             spectral_bins: f.spectral_bins,
             exposure_ev: f.exposure_ev.map(|e| e as f32),
             max_component: f.max_component.map(|m| m as f32),
+            data_window: f.crop.filter(|c| c.data_window).map(|c| (c.at, c.full)),
         },
         integrator: IntegratorSettings {
             kind: desc.integrator.kind,

@@ -51,6 +51,8 @@ struct PartKey {
     moment: bool,
     mitsuba_units: bool,
     scene: String,
+    /// Where a cropped render's parts lie in its full image.
+    window: Option<crate::image_io::DataWindow>,
 }
 
 pub fn merge(args: MergeArgs) -> Result<(), CliError> {
@@ -147,6 +149,7 @@ pub fn merge(args: MergeArgs) -> Result<(), CliError> {
         moment: key.moment,
         stop: &stop,
         rel_error: None,
+        window: key.window,
     };
     crate::output::write_exr(&args.output, &image, &info)?;
     let png = args
@@ -189,6 +192,7 @@ fn part_key(img: &ExrImage, path: &Path) -> Result<(u32, u32, PartKey), CliError
         moment: num_attr::<i32>(img, path, "spectrace:moment")? != 0,
         mitsuba_units: num_attr::<i32>(img, path, "spectrace:mitsubaUnits")? != 0,
         scene: text_attr(img, path, "spectrace:scene")?,
+        window: img.window,
     };
     Ok((i, n, k))
 }
@@ -211,6 +215,6 @@ fn difference(a: &PartKey, b: &PartKey) -> String {
     } else if a.spp != b.spp {
         format!("{} against {} samples per pixel in all", b.spp, a.spp)
     } else {
-        "other film settings (wavelength range, spectral bins, moments or Mitsuba units)".into()
+        "other film settings (wavelength range, spectral bins, moments, Mitsuba units or data window)".into()
     }
 }

@@ -160,6 +160,10 @@ fn run_scene(
         rel_error: None,
         sensor: scene.camera_sensor.as_ref().zip(cos_theta.as_deref()),
         aovs: &[],
+        window: scene
+            .film
+            .data_window
+            .map(|(at, full)| crate::image_io::DataWindow { at, full }),
     };
     let (snapshot, started) =
         resume_or_start(args, scene_path, scene, opts.spectral_bins, &resume, &hash)?;

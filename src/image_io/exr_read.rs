@@ -6,7 +6,7 @@ use std::path::Path;
 use exr::prelude::{FlatSamples, ReadChannels, ReadLayers, read};
 
 use super::exr_attrs::{from_text, read_attributes};
-use super::{ExrImage, ImageError, invalid};
+use super::{DataWindow, ExrImage, ImageError, invalid};
 
 /// Reads a single-layer float EXR (any file [`super::write_exr`] or
 /// [`super::write_spectral_exr`] writes, and most scanline or tiled single-part files): all
@@ -14,7 +14,8 @@ use super::{ExrImage, ImageError, invalid};
 /// double and int header attributes.
 ///
 /// Unsigned-integer channels are returned apart, in [`ExrImage::words`]. The data window's size
-/// is the image size; its offset is ignored. Fails with an error naming the file if it cannot
+/// is the image size; where it is not the display window, [`ExrImage::window`] says where in
+/// it the image lies (a data window reaching outside the display window reads as None). Fails with an error naming the file if it cannot
 /// be opened or decoded, holds several layers (parts) or deep data, or a subsampled channel. A panic inside the decoder on a corrupt file
 /// is caught and reported as an error too.
 pub fn read_exr(path: &Path) -> Result<ExrImage, ImageError> {
@@ -100,11 +101,23 @@ pub fn read_exr(path: &Path) -> Result<ExrImage, ImageError> {
         channels.push((name, values));
     }
     let attributes = read_attributes(&layer.attributes, image.attributes.other.iter());
+    let display = image.attributes.display_window;
+    let at = layer.attributes.layer_position - display.position;
+    let inside = at.0 >= 0
+        && at.1 >= 0
+        && at.0 as usize + width <= display.size.0
+        && at.1 as usize + height <= display.size.1;
+    let own = at.0 == 0 && at.1 == 0 && (width, height) == (display.size.0, display.size.1);
+    let window = (inside && !own).then_some(DataWindow {
+        at: [at.0 as u32, at.1 as u32],
+        full: [display.size.0 as u32, display.size.1 as u32],
+    });
     Ok(ExrImage {
         width,
         height,
         channels,
         words,
         attributes,
+        window,
     })
 }

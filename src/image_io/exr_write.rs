@@ -4,8 +4,8 @@ use std::collections::HashSet;
 use std::path::Path;
 
 use exr::prelude::{
-    AnyChannel, AnyChannels, Blocks, Compression, Encoding, FlatSamples, Image, Layer, LineOrder,
-    SmallVec, WritableImage,
+    AnyChannel, AnyChannels, Blocks, Compression, Encoding, FlatSamples, Image, IntegerBounds,
+    Layer, LineOrder, SmallVec, Vec2, WritableImage,
 };
 
 use super::exr_attrs::{check_name, layer_attributes, to_text};
@@ -35,20 +35,49 @@ pub fn write_exr(
     channels: &[Channel],
     attributes: &[(&str, AttrValue)],
 ) -> Result<(), ImageError> {
-    write_exr_words(path, width, height, channels, &[], attributes)
+    write_exr_words(
+        path,
+        width,
+        height,
+        channels,
+        &Extras::default(),
+        attributes,
+    )
 }
 
-/// [`write_exr`] with unsigned 32-bit integer channels `words` beside the float channels
-/// (OpenEXR's `UINT` pixel type: exact data such as a film's sums, which viewers list but do
-/// not show as colour). Names must differ from every float channel's.
+/// What a render's EXR may hold beside its float channels and attributes.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Extras<'a> {
+    /// Unsigned 32-bit integer channels (OpenEXR's `UINT` pixel type: exact data such as a
+    /// film's sums, which viewers list but do not show as colour). Names must differ from
+    /// every float channel's.
+    pub words: &'a [WordChannel<'a>],
+    /// The image as a window of a larger one (None: the whole image).
+    pub window: Option<DataWindow>,
+}
+
+/// An image that is the window of `width` × `height` pixels at `at` (its top-left pixel,
+/// counted from the top-left of the full image) of a `full`-sized image: written as
+/// OpenEXR's data window within a display window of the full image, as pbrt-v4 writes a
+/// cropped render, so viewers place it where it belongs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DataWindow {
+    pub at: [u32; 2],
+    pub full: [u32; 2],
+}
+
+/// [`write_exr`] with the [`Extras`]: integer channels, a data window.
+///
+/// Fails as [`write_exr`] does, and also if the window does not fit in the full image.
 pub fn write_exr_words(
     path: &Path,
     width: usize,
     height: usize,
     channels: &[Channel],
-    words: &[WordChannel],
+    extras: &Extras,
     attributes: &[(&str, AttrValue)],
 ) -> Result<(), ImageError> {
+    let words = extras.words;
     let pixels = pixel_count(path, width, height)?;
     if i32::try_from(width).is_err() || i32::try_from(height).is_err() {
         return Err(invalid(
@@ -87,13 +116,31 @@ pub fn write_exr_words(
                 .map(|c| AnyChannel::new(to_text(c.name), FlatSamples::U32(c.data.to_vec()))),
         )
         .collect();
-    let layer = Layer::new(
+    let mut layer = Layer::new(
         (width, height),
         layer_attributes,
         ENCODING,
         AnyChannels::sort(list),
     );
-    let image = Image::from_layer(layer);
+    let display = match extras.window {
+        None => IntegerBounds::from_dimensions((width, height)),
+        Some(DataWindow { at, full }) => {
+            let fits = |a: u32, n: usize, f: u32| (a as u64 + n as u64) <= f as u64;
+            if !fits(at[0], width, full[0]) || !fits(at[1], height, full[1]) {
+                return Err(invalid(
+                    path,
+                    format!(
+                        "a data window of {width}×{height} at ({}, {}) does not fit in the {}×{} image",
+                        at[0], at[1], full[0], full[1]
+                    ),
+                ));
+            }
+            layer.attributes.layer_position = Vec2(at[0] as i32, at[1] as i32);
+            IntegerBounds::from_dimensions((full[0] as usize, full[1] as usize))
+        }
+    };
+    let mut image = Image::from_layer(layer);
+    image.attributes.display_window = display;
     write_atomically(path, |out| {
         image
             .write()
@@ -137,7 +184,15 @@ pub fn write_spectral_exr(
         wavelengths_nm,
         bins,
     };
-    write_spectral_exr_words(path, width, height, &spectral, extra, &[], attributes)
+    write_spectral_exr_words(
+        path,
+        width,
+        height,
+        &spectral,
+        extra,
+        &Extras::default(),
+        attributes,
+    )
 }
 
 /// The spectral channels of [`write_spectral_exr_words`]: bin centres (nm) and the mean
@@ -147,14 +202,14 @@ pub struct Spectral<'a> {
     pub bins: &'a [&'a [f32]],
 }
 
-/// [`write_spectral_exr`] with unsigned-integer channels `words`, as [`write_exr_words`].
+/// [`write_spectral_exr`] with the [`Extras`], as [`write_exr_words`].
 pub fn write_spectral_exr_words(
     path: &Path,
     width: usize,
     height: usize,
     spectral: &Spectral,
     extra: &[Channel],
-    words: &[WordChannel],
+    extras: &Extras,
     attributes: &[(&str, AttrValue)],
 ) -> Result<(), ImageError> {
     let (wavelengths_nm, bins) = (spectral.wavelengths_nm, spectral.bins);
@@ -221,7 +276,7 @@ pub fn write_spectral_exr_words(
         ("emissiveUnits", AttrValue::Text(EMISSIVE_UNITS.into())),
     ];
     all_attributes.extend(attributes.iter().cloned());
-    write_exr_words(path, width, height, &channels, words, &all_attributes)
+    write_exr_words(path, width, height, &channels, extras, &all_attributes)
 }
 
 /// Checks that every value of a channel is finite.

@@ -34,7 +34,8 @@ use std::path::{Path, PathBuf};
 pub use atomic::write_atomically;
 pub use exr_read::read_exr;
 pub use exr_write::{
-    Spectral, write_exr, write_exr_words, write_spectral_exr, write_spectral_exr_words,
+    DataWindow, Extras, Spectral, write_exr, write_exr_words, write_spectral_exr,
+    write_spectral_exr_words,
 };
 pub use png_out::{write_png_linear, write_png_srgb8};
 pub use rgb_in::{Encoding, RgbImage, read_rgb};
@@ -81,6 +82,10 @@ pub struct ExrImage {
     /// Text, float, double and int header attributes, sorted by name. Structural attributes
     /// (`channels`, `dataWindow`, `compression`, …) are not listed.
     pub attributes: Vec<(String, AttrValue)>,
+    /// Where the pixels lie in the display window, if it is not their own (a cropped render):
+    /// the data window's offset from the display window's top-left and the display window's
+    /// size. None when the data window is the display window.
+    pub window: Option<DataWindow>,
 }
 
 impl ExrImage {

@@ -51,6 +51,9 @@ pub struct RenderInfo<'a> {
     pub sensor: Option<(&'a crate::sensor::CameraSensor, &'a [f32])>,
     /// First-hit channels written after the image's (see [`crate::render::aov`]).
     pub aovs: &'a [crate::render::aov::AovChannel],
+    /// The image is a window of the camera's full image (pbrt-v4's `cropwindow`): written as
+    /// the EXR's data window within the full display window. None: the whole image.
+    pub window: Option<image_io::DataWindow>,
 }
 
 /// The sensor's channels of `img`: `sensor.H` (photometric exposure, lx·s; not for pbrt-v4's
@@ -323,6 +326,10 @@ pub fn write_exr_state(
     if let Some(s) = state {
         attrs.extend(s.attributes.iter().cloned());
     }
+    let extras = image_io::Extras {
+        words: &words,
+        window: info.window,
+    };
     match &img.bins {
         Some(bins) => {
             let lambdas: Vec<f32> = (0..bins.count).map(|i| bins.centre(i)).collect();
@@ -332,10 +339,10 @@ pub fn write_exr_state(
                 bins: &planes,
             };
             image_io::write_spectral_exr_words(
-                path, img.width, img.height, &spectral, &channels, &words, &attrs,
+                path, img.width, img.height, &spectral, &channels, &extras, &attrs,
             )
         }
-        None => image_io::write_exr_words(path, img.width, img.height, &channels, &words, &attrs),
+        None => image_io::write_exr_words(path, img.width, img.height, &channels, &extras, &attrs),
     }
 }
 

@@ -46,6 +46,10 @@ pub struct FilmSettings {
     /// The largest X, Y or Z (cd/m²) of one camera sample's estimate (pbrt-v4's
     /// `maxcomponentvalue`, see [`crate::film::clamp_max_component`]); None: no clamp.
     pub max_component: Option<f32>,
+    /// The image is the window at pixel `.0` of a `.1`-sized image (pixels), to be written as
+    /// the EXR's data window inside that display window (pbrt-v4's cropped renders); None: an
+    /// image of its own.
+    pub data_window: Option<([u32; 2], [u32; 2])>,
 }
 
 /// Integrator settings.

@@ -182,6 +182,9 @@ pub struct FilmDesc {
 pub struct CropDesc {
     pub at: [u32; 2],
     pub full: [u32; 2],
+    /// Written as OpenEXR's data window at `at` inside a display window of the full image, as
+    /// pbrt-v4 writes a cropped render; false: an image of its own, as Mitsuba 3 writes one.
+    pub data_window: bool,
 }
 
 #[derive(Clone, Debug)]

@@ -322,6 +322,8 @@ fn crop(cx: &Cx<'_>, c: &Element, film: &mut FilmDesc) -> R<()> {
     film.crop = Some(crate::loader::desc::CropDesc {
         at: [x0, y0],
         full: [w, h],
+        // Mitsuba 3.9.1 writes a cropped film as an image of its own (no data window offset)
+        data_window: false,
     });
     Ok(())
 }

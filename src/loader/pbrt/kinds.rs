@@ -359,6 +359,7 @@ pub(super) fn finish(mut r: Reader) -> Result<SceneDesc, LoadError> {
             crop: crop.map(|(at, _)| CropDesc {
                 at,
                 full: [width as u32, height as u32],
+                data_window: true,
             }),
             loc: film_loc,
         },
