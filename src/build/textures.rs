@@ -3,12 +3,13 @@
 
 use std::sync::Arc;
 
-use glam::Vec3;
+use glam::{Mat4, Vec3};
 
 use crate::image_io::{Encoding, read_rgb};
-use crate::loader::desc::{PbrtImageDesc, TextureDesc, TransformStep};
+use crate::loader::desc::{MappingDesc, PbrtImageDesc, TextureDesc, TransformStep};
 use crate::texture::{
-    AttributeTexture, Bitmap, Checkerboard, Mix, Scaled, TexFilter, Texture, UvTransform, Wrap,
+    AttributeTexture, Bitmap, Checkerboard, Mapped, Mapping, Mix, Scaled, TexFilter, Texture,
+    UvTransform, Wrap,
 };
 
 /// The 2D affine part of `to_uv` (Mitsuba keeps the x, y rows and the translation column).
@@ -90,7 +91,39 @@ pub(super) fn texture(t: &TextureDesc) -> Result<Texture, String> {
             b: texture(&t[1])?,
             amount: texture(&t[2])?,
         })),
+        TextureDesc::Mapped { mapping, inner } => Texture::Mapped(Arc::new(Mapped {
+            mapping: self::mapping(mapping),
+            inner: texture(inner)?,
+        })),
     })
+}
+
+/// A position mapping in plain `f32` (world metres to texture space).
+fn mapping(m: &MappingDesc) -> Mapping {
+    // row-major in the description, column-major in glam
+    let mat = |a: &[f64; 16]| Mat4::from_cols_array(&a.map(|x| x as f32)).transpose();
+    let v = |a: &[f64; 3]| Vec3::new(a[0] as f32, a[1] as f32, a[2] as f32);
+    match m {
+        MappingDesc::Spherical { to_texture } => Mapping::Spherical {
+            to_texture: mat(to_texture),
+        },
+        MappingDesc::Cylindrical { to_texture } => Mapping::Cylindrical {
+            to_texture: mat(to_texture),
+        },
+        MappingDesc::Planar {
+            to_texture,
+            vs,
+            vt,
+            ds,
+            dt,
+        } => Mapping::Planar {
+            to_texture: mat(to_texture),
+            vs: v(vs),
+            vt: v(vt),
+            ds: *ds as f32,
+            dt: *dt as f32,
+        },
+    }
 }
 
 /// pbrt-v4's `imagemap` ([`PbrtImageDesc`]): decoded, scaled, inverted and, for a float
@@ -220,6 +253,7 @@ pub(super) fn is_grey(t: &Texture) -> bool {
         Texture::Attribute(a) => !a.is_colour(),
         Texture::Scaled(s) => is_grey(&s.tex) && is_grey(&s.scale),
         Texture::Mix(m) => is_grey(&m.a) && is_grey(&m.b),
+        Texture::Mapped(m) => is_grey(&m.inner),
     }
 }
 

@@ -351,6 +351,7 @@ impl Integrator<'_> {
             };
             LocalSurface {
                 uv: hit.uv,
+                p: hit.p,
                 dpdu: frame.to_local(hit.dpdu),
                 dpdv: frame.to_local(hit.dpdv),
                 n_geom: frame.to_local(ng),
@@ -358,7 +359,10 @@ impl Integrator<'_> {
                 bary,
             }
         } else {
-            LocalSurface::flat(hit.uv)
+            LocalSurface {
+                p: hit.p,
+                ..LocalSurface::flat(hit.uv)
+            }
         };
         Some(Shading {
             bsdf: material.at_surface(&local, w),

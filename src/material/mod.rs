@@ -215,7 +215,7 @@ impl Material {
         w: &SampledWavelengths<N>,
     ) -> Bsdf<'_, N> {
         let uv = s.uv;
-        let at = |t: &crate::texture::Texture| t.sample_at(uv, s.prim, s.bary, w);
+        let at = |t: &crate::texture::Texture| t.sample_at(uv, s.p, s.prim, s.bary, w);
         let albedo = match self {
             Material::Diffuse(m) => at(&m.reflectance),
             Material::Plastic(m) => at(&m.diffuse),
@@ -263,7 +263,7 @@ impl Material {
             Material::Layered(m) => {
                 let (a, b) = m.base_at(at(&m.reflectance), w);
                 let alpha = match &m.alpha_texture {
-                    Some(([u, v], remap)) => textured::roughness_at([u, v], *remap, uv, w),
+                    Some(([u, v], remap)) => textured::roughness_at([u, v], *remap, uv, s.p, w),
                     None => [0.0; 2],
                 };
                 return Bsdf {
@@ -296,7 +296,7 @@ impl Material {
             }
             Material::Textured(m) => {
                 return Bsdf {
-                    alpha: m.alpha_at(uv, w),
+                    alpha: m.alpha_at(uv, s.p, w),
                     spec_r: at(&m.reflectance),
                     spec_t: at(&m.transmittance),
                     ..m.inner.at_surface(s, w).with_material(self)

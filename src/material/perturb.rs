@@ -61,10 +61,11 @@ pub struct BumpMap {
 /// A hit's surface derivatives in its own local shading frame (normal +z), for the perturbed
 /// frames: ∂p/∂u and ∂p/∂v in m per unit u and v, and the unit geometric normal; and where
 /// the hit is on a mesh (triangle `prim`, barycentric weights `bary` of its stored corners),
-/// for mesh attributes.
+/// for mesh attributes; and the hit's world position `p` (m), for textures mapped by position.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LocalSurface {
     pub uv: Vec2,
+    pub p: Vec3,
     pub dpdu: Vec3,
     pub dpdv: Vec3,
     pub n_geom: Vec3,
@@ -77,6 +78,7 @@ impl LocalSurface {
     pub fn flat(uv: Vec2) -> Self {
         Self {
             uv,
+            p: Vec3::ZERO,
             dpdu: Vec3::X,
             dpdv: Vec3::Y,
             n_geom: Vec3::Z,

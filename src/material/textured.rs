@@ -30,13 +30,18 @@ pub struct TexturedLobes {
 impl TexturedLobes {
     /// The roughness at `uv`: the textures', else the inner material's (0 for smooth ones).
     #[inline]
-    pub(super) fn alpha_at<const N: usize>(&self, uv: Vec2, w: &SampledWavelengths<N>) -> [f32; 2] {
+    pub(super) fn alpha_at<const N: usize>(
+        &self,
+        uv: Vec2,
+        p: Vec3,
+        w: &SampledWavelengths<N>,
+    ) -> [f32; 2] {
         match (&self.alpha, &self.inner) {
             // kept off 0, where a microfacet lobe degenerates (pbrt-v4 turns it specular)
             (Some([u, v]), _) if self.remap => {
-                roughness_at([u, v], true, uv, w).map(|a| a.max(1e-3))
+                roughness_at([u, v], true, uv, p, w).map(|a| a.max(1e-3))
             }
-            (Some([u, v]), _) => roughness_at([u, v], false, uv, w),
+            (Some([u, v]), _) => roughness_at([u, v], false, uv, p, w),
             (None, Material::RoughConductor(m)) => [m.alpha_u, m.alpha_v],
             (None, Material::RoughDielectric(m)) => [m.alpha_u, m.alpha_v],
             _ => [0.0; 2],
@@ -44,16 +49,17 @@ impl TexturedLobes {
     }
 }
 
-/// α [α_u, α_v] from grey textures at `uv`: their values, or with `remap` (pbrt-v4's
+/// α [α_u, α_v] from grey textures at `uv` and the world position `p` (m): their values, or with `remap` (pbrt-v4's
 /// `remaproughness`) their square roots.
 #[inline]
 pub fn roughness_at<const N: usize>(
     [u, v]: [&Texture; 2],
     remap: bool,
     uv: Vec2,
+    p: Vec3,
     w: &SampledWavelengths<N>,
 ) -> [f32; 2] {
-    let a = [u.sample(uv, w)[0], v.sample(uv, w)[0]];
+    let a = [u.sample_p(uv, p, w)[0], v.sample_p(uv, p, w)[0]];
     if remap {
         a.map(|r| r.max(0.0).sqrt())
     } else {

@@ -1,7 +1,7 @@
 //! Textures made of textures: pbrt-v4's `scale` (a product) and `mix` (a blend by a grey
 //! amount), for reflectances, masks and bump heights alike.
 
-use glam::Vec2;
+use glam::{Vec2, Vec3};
 
 use super::Texture;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
@@ -37,9 +37,10 @@ impl Scaled {
     pub fn sample<const N: usize>(
         &self,
         uv: Vec2,
+        p: Vec3,
         w: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
-        self.tex.sample(uv, w) * self.scale.sample(uv, w)
+        self.tex.sample_p(uv, p, w) * self.scale.sample_p(uv, p, w)
     }
 
     /// ∇(tex·scale) = ∇tex·scale + tex·∇scale, for grey textures.
@@ -58,10 +59,11 @@ impl Mix {
     pub fn sample<const N: usize>(
         &self,
         uv: Vec2,
+        p: Vec3,
         w: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
-        let t = self.amount.sample(uv, w).0[0];
-        self.a.sample(uv, w) * (1.0 - t) + self.b.sample(uv, w) * t
+        let t = self.amount.sample_p(uv, p, w).0[0];
+        self.a.sample_p(uv, p, w) * (1.0 - t) + self.b.sample_p(uv, p, w) * t
     }
 
     /// ∇((1 − t)a + t·b) = (1 − t)∇a + t∇b + (b − a)∇t, for grey textures.
@@ -95,14 +97,14 @@ mod tests {
             tex: c(0.4),
             scale: c(0.5),
         };
-        assert_eq!(s.sample(Vec2::ZERO, &w).0, [0.2, 0.2]);
+        assert_eq!(s.sample(Vec2::ZERO, Vec3::ZERO, &w).0, [0.2, 0.2]);
         assert!((s.mean() - 0.2).abs() < 1e-6);
         let m = Mix {
             a: c(0.2),
             b: c(0.6),
             amount: c(0.25),
         };
-        assert!((m.sample(Vec2::ZERO, &w).0[1] - 0.3).abs() < 1e-6);
+        assert!((m.sample(Vec2::ZERO, Vec3::ZERO, &w).0[1] - 0.3).abs() < 1e-6);
         assert!((m.mean() - 0.3).abs() < 1e-6);
         assert_eq!(m.gradient(Vec2::ZERO), Vec2::ZERO);
     }

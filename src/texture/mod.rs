@@ -18,20 +18,28 @@
 //! | `bitmap.rs` | [`Bitmap`]: images with nearest or bilinear filtering and wrap modes |
 //! | `attribute.rs` | [`AttributeTexture`]: a mesh's vertex or face values (Mitsuba's `mesh_attribute`) |
 //! | `combine.rs` | [`Scaled`] and [`Mix`]: textures of textures (pbrt-v4's `scale` and `mix`) |
+//! | `mapping.rs` | [`Mapped`]: a texture looked up by position (pbrt-v4's `spherical`, `cylindrical`, `planar` mappings) |
+//!
+//! A lookup takes the hit's surface coordinates `uv` and its world position `p` (m); only
+//! [`Mapped`] textures read `p`. [`Texture::sample`] looks up by `uv` alone, for the places
+//! that have no position (a shape's alpha, a bump map's gradient, an emitter's image), where
+//! the loaders refuse mapped textures.
 
 mod attribute;
 mod bitmap;
 mod checkerboard;
 mod combine;
+mod mapping;
 
 use std::sync::Arc;
 
-use glam::Vec2;
+use glam::{Vec2, Vec3};
 
 pub use attribute::AttributeTexture;
 pub use bitmap::{Bitmap, BitmapError, TexFilter, Wrap};
 pub use checkerboard::Checkerboard;
 pub use combine::{Mix, Scaled};
+pub use mapping::{Mapped, Mapping};
 
 use crate::spectrum::{SampledSpectrum, SampledWavelengths, Spectrum};
 
@@ -71,6 +79,8 @@ pub enum Texture {
     Scaled(Arc<Scaled>),
     /// A blend of two textures by a third.
     Mix(Arc<Mix>),
+    /// A texture looked up at coordinates given by the hit's position.
+    Mapped(Arc<Mapped>),
 }
 
 impl From<Spectrum> for Texture {
@@ -80,11 +90,25 @@ impl From<Spectrum> for Texture {
 }
 
 impl Texture {
-    /// The value at surface coordinates `uv` for the wavelengths `w`.
+    /// The value at surface coordinates `uv` for the wavelengths `w`, where there is no
+    /// position: a [`Mapped`] texture is looked up at the world's origin (the loaders refuse
+    /// mapped textures where this is called).
     #[inline]
     pub fn sample<const N: usize>(
         &self,
         uv: Vec2,
+        w: &SampledWavelengths<N>,
+    ) -> SampledSpectrum<N> {
+        self.sample_p(uv, Vec3::ZERO, w)
+    }
+
+    /// The value at surface coordinates `uv` and world position `p` (m) for the wavelengths
+    /// `w`.
+    #[inline]
+    pub fn sample_p<const N: usize>(
+        &self,
+        uv: Vec2,
+        p: Vec3,
         w: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
         match self {
@@ -92,24 +116,27 @@ impl Texture {
             Texture::Checkerboard(c) => c.sample(uv, w),
             Texture::Bitmap(b) => b.sample(uv, w),
             Texture::Attribute(a) => SampledSpectrum::splat(a.mean()),
-            Texture::Scaled(s) => s.sample(uv, w),
-            Texture::Mix(m) => m.sample(uv, w),
+            Texture::Scaled(s) => s.sample(uv, p, w),
+            Texture::Mix(m) => m.sample(uv, p, w),
+            Texture::Mapped(m) => m.sample(p, w),
         }
     }
 
-    /// The value at a hit: surface coordinates `uv`, triangle `prim` and its barycentric
-    /// weights `bary` (which only mesh attributes read), for the wavelengths `w`.
+    /// The value at a hit: surface coordinates `uv`, world position `p` (m), triangle `prim`
+    /// and its barycentric weights `bary` (which only mesh attributes read), for the
+    /// wavelengths `w`.
     #[inline]
     pub fn sample_at<const N: usize>(
         &self,
         uv: Vec2,
+        p: Vec3,
         prim: u32,
         bary: [f32; 3],
         w: &SampledWavelengths<N>,
     ) -> SampledSpectrum<N> {
         match self {
             Texture::Attribute(a) => a.sample(prim, bary, w),
-            _ => self.sample(uv, w),
+            _ => self.sample_p(uv, p, w),
         }
     }
 
@@ -153,6 +180,9 @@ impl Texture {
             Texture::Attribute(a) => a.mean(),
             Texture::Scaled(s) => s.mean(),
             Texture::Mix(m) => m.mean(),
+            // the inner texture's mean over its coordinates (exact for a planar mapping
+            // whose surface covers whole periods of a repeating image)
+            Texture::Mapped(m) => m.inner.mean(),
         }
     }
 }

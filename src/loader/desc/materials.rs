@@ -315,6 +315,33 @@ pub enum TextureDesc {
     Scaled(Box<[TextureDesc; 2]>),
     /// pbrt-v4's `mix`: `[a, b, amount]`, (1 − amount)·a + amount·b.
     Mix(Box<[TextureDesc; 3]>),
+    /// `inner` looked up at coordinates given by the hit's position (pbrt-v4's `spherical`,
+    /// `cylindrical` and `planar` mappings, [`crate::texture::Mapping`]).
+    Mapped {
+        mapping: MappingDesc,
+        inner: Box<TextureDesc>,
+    },
+}
+
+/// A map from positions to texture coordinates (see [`crate::texture::Mapping`]);
+/// `to_texture` takes world points (in the scene's length unit) to the texture's space, a
+/// row-major 4 × 4 matrix.
+#[derive(Clone, Debug)]
+pub enum MappingDesc {
+    Spherical {
+        to_texture: [f64; 16],
+    },
+    Cylindrical {
+        to_texture: [f64; 16],
+    },
+    /// s = `ds` + `vs`·p, t = `dt` + `vt`·p of the texture-space point p.
+    Planar {
+        to_texture: [f64; 16],
+        vs: [f64; 3],
+        vt: [f64; 3],
+        ds: f64,
+        dt: f64,
+    },
 }
 
 /// An image as pbrt-v4's `imagemap` reads it (`src/pbrt/textures.cpp`), read when the scene is
@@ -338,6 +365,17 @@ pub struct PbrtImageDesc {
 }
 
 impl TextureDesc {
+    /// Whether a lookup reads the hit's position (a [`TextureDesc::Mapped`] in it), which
+    /// only materials' reflectances, roughnesses and amounts can give it.
+    pub fn reads_position(&self) -> bool {
+        match self {
+            TextureDesc::Mapped { .. } => true,
+            TextureDesc::Scaled(t) => t.iter().any(TextureDesc::reads_position),
+            TextureDesc::Mix(t) => t.iter().any(TextureDesc::reads_position),
+            _ => false,
+        }
+    }
+
     /// The same texture with an image's values read as stored (`raw`), for images of numbers
     /// (normals, heights, roughness) rather than colours; other textures unchanged.
     pub fn raw(self) -> TextureDesc {

@@ -324,6 +324,15 @@ fn perturbed(kind: MaterialKind, p: &Params, named: &Named<'_>) -> R<MaterialKin
     // mapped as pbrt-v4 does (by the texture's gradient, not pbrt-v4's finite differences);
     // else its `normalmap`, an image read linearly at (u, 1 − v), repeated, bilinear
     let displacement = named.float(p, "displacement")?;
+    if displacement
+        .as_ref()
+        .is_some_and(TextureDesc::reads_position)
+    {
+        return Err(p.err(
+            p.loc_of("displacement"),
+            "a displacement texture of a spherical, cylindrical or planar mapping is not read yet (spectrace reads uv there)",
+        ));
+    }
     let normal_map = p.string("normalmap")?;
     Ok(match (displacement, normal_map) {
         _ if matches!(kind, MaterialKind::Null) => kind,

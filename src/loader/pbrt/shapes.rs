@@ -374,6 +374,12 @@ fn alpha(p: &Params, r: &Reader) -> R<Option<TextureDesc>> {
             "an alpha test inside ObjectBegin is not read yet",
         ));
     }
+    if alpha.reads_position() {
+        return Err(p.err(
+            p.loc_of("alpha"),
+            "an alpha texture of a spherical, cylindrical or planar mapping is not read yet (spectrace reads uv there)",
+        ));
+    }
     let zero = matches!(alpha, TextureDesc::Uniform(Spectrum::Constant(a)) if a <= 0.0);
     if r.state.area_light.is_some() && !zero {
         return Err(p.err(

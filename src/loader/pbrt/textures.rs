@@ -17,7 +17,7 @@ use super::Reader;
 use super::lexer::Token;
 use super::params::{Params, R};
 use crate::loader::Loc;
-use crate::loader::desc::{PbrtImageDesc, TextureDesc, TransformStep};
+use crate::loader::desc::{MappingDesc, PbrtImageDesc, TextureDesc, TransformStep};
 use crate::spectrum::Spectrum;
 use crate::texture::{TexFilter, Wrap};
 
@@ -60,7 +60,7 @@ pub(super) fn texture(ty: &str, class: &str, p: &Params, loc: Loc, r: &Reader) -
             }
             (t, k) => TextureDesc::Scaled(Box::new([t, k])),
         }),
-        "checkerboard" => checkerboard(p, value("tex1", 1.0)?, value("tex2", 0.0)?),
+        "checkerboard" => checkerboard(p, r, value("tex1", 1.0)?, value("tex2", 0.0)?),
         "mix" => Ok(TextureDesc::Mix(Box::new([
             value("tex1", 0.0)?,
             value("tex2", 1.0)?,
@@ -80,7 +80,7 @@ pub(super) fn texture(ty: &str, class: &str, p: &Params, loc: Loc, r: &Reader) -
 /// of the halved coordinates are on the same side of ½) of (s/2, t/2). Point-sampled: pbrt-v4
 /// blurs the edges over the ray's footprint (a box-filtered triangle of 1.5 texel widths),
 /// which moves no mean. `tex1` and `tex2` must be numbers or spectra.
-fn checkerboard(p: &Params, tex1: TextureDesc, tex2: TextureDesc) -> R<TextureDesc> {
+fn checkerboard(p: &Params, r: &Reader, tex1: TextureDesc, tex2: TextureDesc) -> R<TextureDesc> {
     let dim = p.int("dimension", 2)?;
     if dim != 2 {
         return Err(p.err(
@@ -99,9 +99,7 @@ fn checkerboard(p: &Params, tex1: TextureDesc, tex2: TextureDesc) -> R<TextureDe
             "a checkerboard of textures is not read yet (tex1 and tex2 must be values)",
         ));
     };
-    uv_mapping_only(p)?;
-    let (su, sv) = (p.float("uscale", 1.0)?, p.float("vscale", 1.0)?);
-    let (du, dv) = (p.float("udelta", 0.0)?, p.float("vdelta", 0.0)?);
+    let (mapping, [su, sv, du, dv]) = st_map(p, r)?;
     #[rustfmt::skip]
     let halved = TransformStep::Matrix([
         su / 2.0, 0.0, 0.0, du / 2.0,
@@ -109,21 +107,76 @@ fn checkerboard(p: &Params, tex1: TextureDesc, tex2: TextureDesc) -> R<TextureDe
         0.0, 0.0, 1.0, 0.0,
         0.0, 0.0, 0.0, 1.0,
     ]);
-    Ok(TextureDesc::Checkerboard {
-        a,
-        b,
-        to_uv: vec![halved],
+    Ok(mapped(
+        mapping,
+        TextureDesc::Checkerboard {
+            a,
+            b,
+            to_uv: vec![halved],
+        },
+    ))
+}
+
+/// The texture's `mapping` when it is not pbrt-v4's default, `uv` (pbrt-v4's
+/// `TextureMapping2D::Create`): `spherical` and `cylindrical` about the texture space's origin
+/// and z axis, `planar` with `v1` ((1, 0, 0)), `v2` ((0, 1, 0)), `udelta`, `vdelta` (0); the
+/// texture space is the one in force at the `Texture` directive. None: `uv`, whose `uscale`,
+/// `vscale`, `udelta` and `vdelta` the caller reads.
+fn position_mapping(p: &Params, r: &Reader) -> R<Option<MappingDesc>> {
+    // row-major: the transpose's columns
+    let to_texture = || r.state.ctm.inverse().transpose().to_cols_array();
+    Ok(Some(match p.string("mapping")?.as_deref() {
+        None | Some("uv") => return Ok(None),
+        Some("spherical") => MappingDesc::Spherical {
+            to_texture: to_texture(),
+        },
+        Some("cylindrical") => MappingDesc::Cylindrical {
+            to_texture: to_texture(),
+        },
+        Some("planar") => MappingDesc::Planar {
+            to_texture: to_texture(),
+            vs: p.vec3("v1", [1.0, 0.0, 0.0])?,
+            vt: p.vec3("v2", [0.0, 1.0, 0.0])?,
+            ds: p.float("udelta", 0.0)?,
+            dt: p.float("vdelta", 0.0)?,
+        },
+        Some(m) => {
+            return Err(p.err(
+                p.loc_of("mapping"),
+                format!(
+                    "the mapping \"{m}\" is not one of pbrt-v4's (uv, spherical, cylindrical, planar)"
+                ),
+            ));
+        }
+    }))
+}
+
+/// The coordinates `(s, t)` of pbrt-v4's texture lookups: a uv mapping's affine map of (u, v)
+/// (from `uscale`, `vscale`, `udelta`, `vdelta`) in a row-major 4 × 4 matrix, or a position
+/// mapping with the identity (the texture then wraps itself in [`TextureDesc::Mapped`]).
+fn st_map(p: &Params, r: &Reader) -> R<(Option<MappingDesc>, [f64; 4])> {
+    Ok(match position_mapping(p, r)? {
+        Some(m) => (Some(m), [1.0, 1.0, 0.0, 0.0]),
+        None => (
+            None,
+            [
+                p.float("uscale", 1.0)?,
+                p.float("vscale", 1.0)?,
+                p.float("udelta", 0.0)?,
+                p.float("vdelta", 0.0)?,
+            ],
+        ),
     })
 }
 
-/// Err unless the texture's `mapping` is pbrt-v4's default, `uv`.
-fn uv_mapping_only(p: &Params) -> R<()> {
-    match p.string("mapping")? {
-        Some(m) if m != "uv" => Err(p.err(
-            p.loc_of("mapping"),
-            format!("the mapping \"{m}\" is not read yet (spectrace reads uv)"),
-        )),
-        _ => Ok(()),
+/// `t` looked up through `mapping` if it is a position mapping.
+fn mapped(mapping: Option<MappingDesc>, t: TextureDesc) -> TextureDesc {
+    match mapping {
+        Some(mapping) => TextureDesc::Mapped {
+            mapping,
+            inner: Box::new(t),
+        },
+        None => t,
     }
 }
 
@@ -177,11 +230,9 @@ fn imagemap(p: &Params, loc: Loc, r: &Reader, grey: bool) -> R<TextureDesc> {
             ));
         }
     };
-    uv_mapping_only(p)?;
     // EWA's anisotropy: no mipmaps here
     let _ = p.float("maxanisotropy", 8.0)?;
-    let (su, sv) = (p.float("uscale", 1.0)?, p.float("vscale", 1.0)?);
-    let (du, dv) = (p.float("udelta", 0.0)?, p.float("vdelta", 0.0)?);
+    let (mapping, [su, sv, du, dv]) = st_map(p, r)?;
     // (u, v) → (s, 1 − t): spectrace's images have v = 0 at the first row
     let to_uv = vec![TransformStep::Matrix([
         su,
@@ -201,7 +252,7 @@ fn imagemap(p: &Params, loc: Loc, r: &Reader, grey: bool) -> R<TextureDesc> {
         0.0,
         1.0,
     ])];
-    Ok(TextureDesc::PbrtImage(Box::new(PbrtImageDesc {
+    let image = TextureDesc::PbrtImage(Box::new(PbrtImageDesc {
         path,
         filter,
         wrap,
@@ -212,7 +263,8 @@ fn imagemap(p: &Params, loc: Loc, r: &Reader, grey: bool) -> R<TextureDesc> {
         invert: p.bool("invert", false)?,
         unbounded: false,
         loc,
-    })))
+    }));
+    Ok(mapped(mapping, image))
 }
 
 impl Reader {
