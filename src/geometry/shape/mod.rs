@@ -22,7 +22,7 @@ mod ply;
 mod ply_attributes;
 mod sdf_cubic;
 mod sdf_grid;
-pub use ply::UV_NAMES;
+pub use ply::{PlyPolygons, UV_NAMES, read_ply_polygons};
 pub use ply_attributes::MeshAttribute;
 mod serialized;
 mod sphere;

@@ -131,119 +131,193 @@ impl Mesh {
         path: &Path,
         transform: &Transform,
     ) -> Result<(Mesh, Vec<MeshAttribute>), GeometryError> {
-        let bad = |m: &str| GeometryError::MeshParse {
+        let (raw, attributes) = parse_raw(bytes, path)?;
+        let mesh = Mesh::new(
+            raw.positions,
+            raw.normals,
+            raw.uvs,
+            raw.triangles,
+            transform,
+        )
+        .map_err(|e| GeometryError::MeshParse {
             path: path.to_path_buf(),
-            message: m.to_string(),
-        };
-        let end = bytes
-            .windows(10)
-            .position(|w| w == b"end_header")
-            .ok_or_else(|| bad("no end_header"))?;
-        let header =
-            std::str::from_utf8(&bytes[..end]).map_err(|_| bad("the header is not text"))?;
-        let mut body_start = end + 10;
-        while body_start < bytes.len() && (bytes[body_start] == b'\r' || bytes[body_start] == b'\n')
-        {
-            body_start += 1;
-            if bytes[body_start - 1] == b'\n' {
-                break;
-            }
-        }
-        let (format, elems) = parse_header(header, &bad)?;
-        let text = if format == Format::Ascii {
-            std::str::from_utf8(&bytes[body_start..]).map_err(|_| bad("ASCII body is not text"))?
-        } else {
-            ""
-        };
-        let mut body = Body {
-            data: &bytes[body_start..],
-            pos: 0,
-            format,
-            tokens: text.split_ascii_whitespace(),
-        };
-        let (mut positions, mut normals, mut uvs, mut indices) =
-            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-        let truncated = || bad("the file ends early or has a bad value");
-        let mut vertex_extra = Columns::new("vertex_", &elems, "vertex");
-        let mut face_extra = Columns::new("face_", &elems, "face");
-        let body_len = bytes.len() - body_start;
-        for e in &elems {
-            if e.props.is_empty() {
-                // nothing to read; a vertex needs a position
-                if e.name == "vertex" && e.count > 0 {
-                    return Err(bad("element vertex has no properties (x, y, z)"));
-                }
-                continue;
-            }
-            // every entry reads at least one byte per property (a token and its separator in
-            // ASCII): a declared count the data cannot hold is refused before looping
-            if e.count.saturating_mul(e.props.len()) > body_len {
-                return Err(bad(&format!(
-                    "element {} declares {} entries, more than the {body_len} bytes after the header can hold",
-                    e.name, e.count
-                )));
-            }
-            for _ in 0..e.count {
-                let mut v = [0.0f64; 8]; // x y z nx ny nz u v
-                let mut face: Vec<u32> = Vec::new();
-                let mut face_values = Vec::new();
-                for (pi, p) in e.props.iter().enumerate() {
-                    match p.list {
-                        Some(ct) => {
-                            let n = body.read(ct).ok_or_else(truncated)? as usize;
-                            for _ in 0..n {
-                                let x = body.read(p.ty).ok_or_else(truncated)?;
-                                if e.name == "face"
-                                    && (p.name == "vertex_indices" || p.name == "vertex_index")
-                                {
-                                    if !(x >= 0.0 && x <= u32::MAX as f64 && x.fract() == 0.0) {
-                                        return Err(bad(&format!(
-                                            "face {}: vertex index {x} is not a vertex",
-                                            indices.len()
-                                        )));
-                                    }
-                                    face.push(x as u32);
-                                }
-                            }
-                        }
-                        None => {
-                            let x = body.read(p.ty).ok_or_else(truncated)?;
-                            match (slot(&p.name), e.name.as_str()) {
-                                (Some(k), _) => v[k] = x,
-                                (None, "vertex") => vertex_extra.push(pi, x),
-                                (None, "face") => face_values.push((pi, x)),
-                                (None, _) => {}
-                            }
-                        }
-                    }
-                }
-                if e.name == "vertex" {
-                    positions.push(Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32));
-                    normals.push(Vec3::new(v[3] as f32, v[4] as f32, v[5] as f32));
-                    uvs.push(Vec2::new(v[6] as f32, v[7] as f32));
-                } else if e.name == "face" {
-                    for k in 1..face.len().saturating_sub(1) {
-                        indices.push([face[0], face[k], face[k + 1]]);
-                        for &(pi, x) in &face_values {
-                            face_extra.push(pi, x);
-                        }
-                    }
-                }
-            }
-        }
-        let has = |name: &str| {
-            elems
-                .iter()
-                .any(|e| e.name == "vertex" && e.props.iter().any(|p| p.name == name))
-        };
-        let normals = has("nx").then_some(normals);
-        let uvs = UV_NAMES.iter().any(|n| has(n)).then_some(uvs);
-        let mut attributes = vertex_extra.attributes(false);
-        attributes.extend(face_extra.attributes(true));
-        let mesh = Mesh::new(positions, normals, uvs, indices, transform)
-            .map_err(|e| bad(&e.to_string()))?;
+            message: e.to_string(),
+        })?;
         Ok((mesh, attributes))
     }
+}
+
+/// A PLY file's polygons as stored, untransformed (object space, the file's length unit):
+/// for readers that treat triangles and quads apart (pbrt-v4 makes bilinear patches of quads).
+#[derive(Clone, Debug)]
+pub struct PlyPolygons {
+    pub positions: Vec<Vec3>,
+    pub normals: Option<Vec<Vec3>>,
+    pub uvs: Option<Vec<Vec2>>,
+    /// Each face's vertex indices, in the file's order.
+    pub faces: Vec<Vec<u32>>,
+}
+
+/// Reads a PLY file (gzip-compressed or not) as its polygons. Errors name the path, as
+/// [`Mesh::load_ply`]'s.
+pub fn read_ply_polygons(path: &Path) -> Result<PlyPolygons, GeometryError> {
+    let bytes =
+        crate::files::read_bytes_gz(path, crate::files::MAX_MESH_BYTES).map_err(|source| {
+            GeometryError::MeshOpen {
+                path: path.to_path_buf(),
+                source,
+            }
+        })?;
+    let (raw, _) = parse_raw(&bytes, path)?;
+    // a face of n vertices is the fan of n − 2 triangles [f₀, f_k, f_k+1], consecutive
+    let mut faces = Vec::with_capacity(raw.sizes.len());
+    let mut next = 0;
+    for &n in &raw.sizes {
+        let fan = &raw.triangles[next..next + n.saturating_sub(2)];
+        next += fan.len();
+        let mut face = Vec::with_capacity(n);
+        if let Some(first) = fan.first() {
+            face.extend_from_slice(&first[..2]);
+            face.extend(fan.iter().map(|t| t[2]));
+        }
+        faces.push(face);
+    }
+    Ok(PlyPolygons {
+        positions: raw.positions,
+        normals: raw.normals,
+        uvs: raw.uvs,
+        faces,
+    })
+}
+
+/// A PLY file's vertex data, its faces as fans of triangles and each face's vertex count.
+struct Raw {
+    positions: Vec<Vec3>,
+    normals: Option<Vec<Vec3>>,
+    uvs: Option<Vec<Vec2>>,
+    triangles: Vec<[u32; 3]>,
+    sizes: Vec<usize>,
+}
+
+/// Parses PLY data as stored; `path` names it in errors.
+fn parse_raw(bytes: &[u8], path: &Path) -> Result<(Raw, Vec<MeshAttribute>), GeometryError> {
+    let bad = |m: &str| GeometryError::MeshParse {
+        path: path.to_path_buf(),
+        message: m.to_string(),
+    };
+    let end = bytes
+        .windows(10)
+        .position(|w| w == b"end_header")
+        .ok_or_else(|| bad("no end_header"))?;
+    let header = std::str::from_utf8(&bytes[..end]).map_err(|_| bad("the header is not text"))?;
+    let mut body_start = end + 10;
+    while body_start < bytes.len() && (bytes[body_start] == b'\r' || bytes[body_start] == b'\n') {
+        body_start += 1;
+        if bytes[body_start - 1] == b'\n' {
+            break;
+        }
+    }
+    let (format, elems) = parse_header(header, &bad)?;
+    let text = if format == Format::Ascii {
+        std::str::from_utf8(&bytes[body_start..]).map_err(|_| bad("ASCII body is not text"))?
+    } else {
+        ""
+    };
+    let mut body = Body {
+        data: &bytes[body_start..],
+        pos: 0,
+        format,
+        tokens: text.split_ascii_whitespace(),
+    };
+    let (mut positions, mut normals, mut uvs, mut indices) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let mut sizes = Vec::new();
+    let truncated = || bad("the file ends early or has a bad value");
+    let mut vertex_extra = Columns::new("vertex_", &elems, "vertex");
+    let mut face_extra = Columns::new("face_", &elems, "face");
+    let body_len = bytes.len() - body_start;
+    for e in &elems {
+        if e.props.is_empty() {
+            // nothing to read; a vertex needs a position
+            if e.name == "vertex" && e.count > 0 {
+                return Err(bad("element vertex has no properties (x, y, z)"));
+            }
+            continue;
+        }
+        // every entry reads at least one byte per property (a token and its separator in
+        // ASCII): a declared count the data cannot hold is refused before looping
+        if e.count.saturating_mul(e.props.len()) > body_len {
+            return Err(bad(&format!(
+                "element {} declares {} entries, more than the {body_len} bytes after the header can hold",
+                e.name, e.count
+            )));
+        }
+        for _ in 0..e.count {
+            let mut v = [0.0f64; 8]; // x y z nx ny nz u v
+            let mut face: Vec<u32> = Vec::new();
+            let mut face_values = Vec::new();
+            for (pi, p) in e.props.iter().enumerate() {
+                match p.list {
+                    Some(ct) => {
+                        let n = body.read(ct).ok_or_else(truncated)? as usize;
+                        for _ in 0..n {
+                            let x = body.read(p.ty).ok_or_else(truncated)?;
+                            if e.name == "face"
+                                && (p.name == "vertex_indices" || p.name == "vertex_index")
+                            {
+                                if !(x >= 0.0 && x <= u32::MAX as f64 && x.fract() == 0.0) {
+                                    return Err(bad(&format!(
+                                        "face {}: vertex index {x} is not a vertex",
+                                        indices.len()
+                                    )));
+                                }
+                                face.push(x as u32);
+                            }
+                        }
+                    }
+                    None => {
+                        let x = body.read(p.ty).ok_or_else(truncated)?;
+                        match (slot(&p.name), e.name.as_str()) {
+                            (Some(k), _) => v[k] = x,
+                            (None, "vertex") => vertex_extra.push(pi, x),
+                            (None, "face") => face_values.push((pi, x)),
+                            (None, _) => {}
+                        }
+                    }
+                }
+            }
+            if e.name == "vertex" {
+                positions.push(Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32));
+                normals.push(Vec3::new(v[3] as f32, v[4] as f32, v[5] as f32));
+                uvs.push(Vec2::new(v[6] as f32, v[7] as f32));
+            } else if e.name == "face" {
+                sizes.push(face.len());
+                for k in 1..face.len().saturating_sub(1) {
+                    indices.push([face[0], face[k], face[k + 1]]);
+                    for &(pi, x) in &face_values {
+                        face_extra.push(pi, x);
+                    }
+                }
+            }
+        }
+    }
+    let has = |name: &str| {
+        elems
+            .iter()
+            .any(|e| e.name == "vertex" && e.props.iter().any(|p| p.name == name))
+    };
+    let normals = has("nx").then_some(normals);
+    let uvs = UV_NAMES.iter().any(|n| has(n)).then_some(uvs);
+    let mut attributes = vertex_extra.attributes(false);
+    attributes.extend(face_extra.attributes(true));
+    let raw = Raw {
+        positions,
+        normals,
+        uvs,
+        triangles: indices,
+        sizes,
+    };
+    Ok((raw, attributes))
 }
 
 /// The names a vertex's first texture coordinate goes by (pbrt-v4's and Mitsuba's readers

@@ -184,6 +184,22 @@ pub(super) fn bilinear_mesh(p: &Params, loc: Loc, reverse: bool) -> R<Bilinear> 
 }
 
 impl Bilinear {
+    /// Patches of `vertices` (corners p₀₀, p₁₀, p₀₁, p₁₁ as `bilinearmesh` orders them), with
+    /// per-vertex `uvs` and `normals` if given.
+    pub(super) fn new(
+        vertices: Vec<[f64; 3]>,
+        patches: Vec<[u32; 4]>,
+        uvs: Option<Vec<[f64; 2]>>,
+        normals: Option<Vec<[f64; 3]>>,
+    ) -> Bilinear {
+        Bilinear {
+            vertices,
+            patches,
+            uvs,
+            normals,
+        }
+    }
+
     pub(super) fn len(&self) -> usize {
         self.patches.len()
     }

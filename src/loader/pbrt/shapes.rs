@@ -197,7 +197,10 @@ fn place(
             faces
                 .iter()
                 .map(|f| {
-                    let a = 0.5 * (world(f[1]) - world(f[0])).cross(world(f[2]) - world(f[0])).length();
+                    let a = 0.5
+                        * (world(f[1]) - world(f[0]))
+                            .cross(world(f[2]) - world(f[0]))
+                            .length();
                     let [i, j, k] = pick(f);
                     let tri = ShapeKind::Inline {
                         vertices: vec![vertices[i], vertices[j], vertices[k]],
@@ -209,12 +212,76 @@ fn place(
                 })
                 .collect()
         }
-        ShapeKind::Ply { .. } if power.is_some() => Err(p.err(
-            loc,
-            "an area light's \"power\" on a plymesh is not read yet (pbrt-v4 applies it per triangle)",
-        )),
+        ShapeKind::Ply { path, .. } if power.is_some() => ply_lights(&path, m, p, loc, r),
         g => finish_shape(g, m, area, p, loc, r).map(|s| vec![s]),
     }
+}
+
+/// A `plymesh` under an area light's `power`, which pbrt-v4 gives each of its triangles and
+/// quads (bilinear patches, corners (q₀, q₁, q₃, q₂)) whole: the file read here, a shape per
+/// triangle and per quad (each emitting over its own area), as a `trianglemesh`'s and a
+/// `bilinearmesh`'s. Faces of other sizes are refused, as pbrt-v4 skips them.
+fn ply_lights(path: &Path, m: DMat4, p: &Params, loc: Loc, r: &mut Reader) -> R<Vec<ShapeDesc>> {
+    let ply =
+        crate::geometry::shape::read_ply_polygons(path).map_err(|e| p.err(loc, e.to_string()))?;
+    let sign = if r.state.reverse_orientation {
+        -1.0
+    } else {
+        1.0
+    };
+    let vertices: Vec<[f64; 3]> = ply
+        .positions
+        .iter()
+        .map(|v| v.as_dvec3().to_array())
+        .collect();
+    let normals: Option<Vec<[f64; 3]>> = ply
+        .normals
+        .as_ref()
+        .map(|n| n.iter().map(|v| (sign * v.as_dvec3()).to_array()).collect());
+    let uvs: Option<Vec<[f64; 2]>> = ply
+        .uvs
+        .as_ref()
+        .map(|t| t.iter().map(|v| v.as_dvec2().to_array()).collect());
+    let (mut triangles, mut quads) = (Vec::new(), Vec::new());
+    for f in &ply.faces {
+        match f.as_slice() {
+            &[a, b, c] => triangles.push([a, b, c]),
+            &[a, b, c, d] => quads.push([a, b, d, c]),
+            other => {
+                return Err(p.err(
+                    loc,
+                    format!(
+                        "{}: a face of {} vertices under an area light's \"power\" (pbrt-v4 reads triangles and quads)",
+                        path.display(),
+                        other.len()
+                    ),
+                ));
+            }
+        }
+    }
+    let mut shapes = Vec::new();
+    if !triangles.is_empty() {
+        let tris = ShapeKind::Inline {
+            vertices: vertices.clone(),
+            faces: triangles,
+            normals: normals.clone(),
+            uvs: uvs.clone(),
+        };
+        shapes.extend(place(tris, m, None, p, loc, r)?);
+    }
+    let patches = meshes::Bilinear::new(vertices, quads, uvs, normals);
+    for i in 0..patches.len() {
+        let area = patches.area(i, &m);
+        shapes.push(finish_shape(
+            patches.triangles(std::iter::once(i)),
+            m,
+            Some(area),
+            p,
+            loc,
+            r,
+        )?);
+    }
+    Ok(shapes)
 }
 
 /// Whether a texture looks an image (or checks) up by uv.
