@@ -431,4 +431,29 @@ mod tests {
         assert!(Mesh::load_ply(&p, &Transform::identity()).is_err());
         assert!(Mesh::load_ply(&dir.join("missing.ply"), &Transform::identity()).is_err());
     }
+
+    /// The polygons come back as stored: a triangle, a quad and a pentagon, each with its
+    /// vertices in the file's order (not as the fan of triangles the mesh holds).
+    #[test]
+    fn polygons_keep_the_file_s_faces() {
+        let dir = std::env::temp_dir().join(format!("spectrace-plyfaces-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut text = String::from(
+            "ply\nformat ascii 1.0\nelement vertex 7\nproperty float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\nelement face 3\nproperty list uchar int vertex_indices\nend_header\n",
+        );
+        for i in 0..7 {
+            text.push_str(&format!("{i} {} 0 0.{i} 0.5\n", i * i));
+        }
+        text.push_str("3 0 1 2\n4 3 4 5 6\n5 6 5 4 3 0\n");
+        let p = dir.join("faces.ply");
+        std::fs::write(&p, text).unwrap();
+        let ply = read_ply_polygons(&p).unwrap();
+        assert_eq!(
+            ply.faces,
+            vec![vec![0, 1, 2], vec![3, 4, 5, 6], vec![6, 5, 4, 3, 0]]
+        );
+        assert_eq!(ply.positions[3], Vec3::new(3.0, 9.0, 0.0));
+        assert_eq!(ply.uvs.as_ref().unwrap()[2], Vec2::new(0.2, 0.5));
+        assert!(ply.normals.is_none());
+    }
 }
