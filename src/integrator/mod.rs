@@ -374,8 +374,9 @@ impl Integrator<'_> {
     /// The ray going on past `hit` along `d` when the path tracers pass it without a bounce:
     /// a `null` surface in a scene whose integrator skips them (pbrt-v4's `interface`,
     /// [`crate::scene::IntegratorSettings::skip_null`]); None for any other hit, which
-    /// scatters. Reads no sample.
-    #[inline]
+    /// scatters. Reads no sample. (Inlined: on every hit of every path, and the scene's flag
+    /// alone decides for Mitsuba's and TOML scenes.)
+    #[inline(always)]
     pub(crate) fn skip_null(&self, hit: &Intersection, d: Vec3) -> Option<Ray> {
         if !self.scene.integrator.skip_null {
             return None;

@@ -99,8 +99,10 @@ fn trace<const N: usize, C: Carrier<N>>(
     let mut all_specular = first.is_none();
     let mut eta_scale = 1.0f32;
     let mut depth = 0u32;
-    // `null` surfaces skipped since the last bounce (`Integrator::skip_null`)
+    // `null` surfaces skipped since the last bounce (`Integrator::skip_null`), and whether
+    // the scene skips them (read once, not per hit)
     let mut crossings = 0u32;
+    let skip_null = scene.integrator.skip_null;
     // Every bounce reads the same dimensions whatever happened before (pbrt-v4 §8.3: a fixed
     // layout keeps each bounce's samples stratified across the pixel's samples): light 2D
     // (its first coordinate also chooses the light and, on a mesh, the triangle, by sample
@@ -134,7 +136,7 @@ fn trace<const N: usize, C: Carrier<N>>(
         // A medium boundary pbrt-v4 skips (`interface`): no bounce, no sample read, and the
         // emitter hit after it unweighted, as light sampling's shadow rays stop at it
         // (pbrt-v4 §13.4, `PathIntegrator::Li` calling `SkipIntersection`).
-        if let Some(next) = it.skip_null(&hit, ray.d) {
+        if skip_null && let Some(next) = it.skip_null(&hit, ray.d) {
             crossings += 1;
             if crossings > MAX_CROSSINGS {
                 break;
