@@ -243,7 +243,17 @@ fn ply_lights(path: &Path, m: DMat4, p: &Params, loc: Loc, r: &mut Reader) -> R<
         .as_ref()
         .map(|t| t.iter().map(|v| v.as_dvec2().to_array()).collect());
     let (mut triangles, mut quads) = (Vec::new(), Vec::new());
-    for f in &ply.faces {
+    for (i, f) in ply.faces.iter().enumerate() {
+        if let Some(k) = f.iter().find(|&&k| k as usize >= vertices.len()) {
+            return Err(p.err(
+                loc,
+                format!(
+                    "{}: face {i} names vertex {k}, the file has {}",
+                    path.display(),
+                    vertices.len()
+                ),
+            ));
+        }
         match f.as_slice() {
             &[a, b, c] => triangles.push([a, b, c]),
             &[a, b, c, d] => quads.push([a, b, d, c]),
