@@ -27,6 +27,20 @@ use crate::units::plain;
 
 /// Builds the render-ready scene. Errors (a missing or malformed mesh, a zero-area emitter, a
 /// singular transform) name the scene file, the item's line and the field.
+/// The film's settings in plain units.
+fn film_settings(f: &crate::loader::desc::FilmDesc) -> FilmSettings {
+    FilmSettings {
+        width: f.width,
+        height: f.height,
+        spp: f.spp,
+        filter: crate::film::Filter::from_desc(&f.filter),
+        spectral_bins: f.spectral_bins,
+        exposure_ev: f.exposure_ev.map(|e| e as f32),
+        max_component: f.max_component.map(|m| m as f32),
+        data_window: f.crop.filter(|c| c.data_window).map(|c| (c.at, c.full)),
+    }
+}
+
 pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
     let err = |loc: Loc, field: String, msg: String| LoadError::new(&desc.path, loc, field, msg);
     let range = WavelengthRange::new(
@@ -117,16 +131,7 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
         light_power,
         light_tree,
         camera,
-        film: FilmSettings {
-            width: f.width,
-            height: f.height,
-            spp: f.spp,
-            filter: crate::film::Filter::from_desc(&f.filter),
-            spectral_bins: f.spectral_bins,
-            exposure_ev: f.exposure_ev.map(|e| e as f32),
-            max_component: f.max_component.map(|m| m as f32),
-            data_window: f.crop.filter(|c| c.data_window).map(|c| (c.at, c.full)),
-        },
+        film: film_settings(f),
         integrator: IntegratorSettings {
             kind: desc.integrator.kind,
             max_depth: desc.integrator.max_depth,

@@ -126,11 +126,7 @@ fn run_scene(
         IntegratorKind::Light | IntegratorKind::Bdpt
     );
     let cos_theta = scene.camera_sensor.as_ref().map(|_| pixel_cos_theta(scene));
-    let hash = if args.part.is_some() || args.checkpoint.is_some() {
-        super::farm::scene_hash(scene_path, &args.define)?
-    } else {
-        String::new()
-    };
+    let hash = args.scene_hash(scene_path)?;
     let every = match &args.checkpoint {
         Some(_) => Some(super::farm::parse_duration(
             &args.checkpoint_every,

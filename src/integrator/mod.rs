@@ -13,11 +13,13 @@ pub mod light;
 mod light_media;
 pub mod meter;
 mod path;
+mod selector;
 pub mod split;
 mod volpath;
 mod whitted;
 
 pub use crate::scene::{IntegratorKind, LightSelection};
+pub use selector::LightSelector;
 
 /// Surfaces a shadow ray or a run of `null` crossings may pass before it is given up (a ray
 /// caught between coincident surfaces must end).
@@ -31,64 +33,6 @@ use crate::material::{Bsdf, BsdfSample, LocalSurface, TransportMode};
 use crate::sampler::Sampler;
 use crate::scene::Scene;
 use crate::spectrum::{SampledSpectrum, SampledWavelengths};
-
-/// Chooses lights with probability proportional to their emitted power.
-#[derive(Clone, Debug)]
-pub struct LightSelector {
-    cdf: Vec<f64>,
-    prob: Vec<f32>,
-}
-
-impl LightSelector {
-    pub fn new(power: &[f64]) -> Self {
-        let total: f64 = power.iter().map(|p| p.max(0.0)).sum();
-        let n = power.len();
-        let weights: Vec<f64> = if total > 0.0 {
-            power.iter().map(|p| p.max(0.0) / total).collect()
-        } else {
-            vec![1.0 / n.max(1) as f64; n]
-        };
-        let mut cdf = Vec::with_capacity(n);
-        let mut acc = 0.0;
-        for w in &weights {
-            acc += w;
-            cdf.push(acc);
-        }
-        Self {
-            cdf,
-            prob: weights.iter().map(|&w| w as f32).collect(),
-        }
-    }
-
-    /// A light index and its probability, from `u` in [0, 1); None if there are no lights.
-    #[inline]
-    pub fn pick(&self, u: f32) -> Option<(usize, f32)> {
-        if self.cdf.is_empty() {
-            return None;
-        }
-        let i = self
-            .cdf
-            .partition_point(|&c| c <= u as f64)
-            .min(self.cdf.len() - 1);
-        (self.prob[i] > 0.0).then_some((i, self.prob[i]))
-    }
-
-    /// [`LightSelector::pick`], and `u` rescaled within the chosen light's CDF interval to a
-    /// fresh uniform number in [0, 1) ([`crate::sampling::reuse`]), so that one stratified
-    /// coordinate both chooses the light and samples it.
-    #[inline]
-    pub fn pick_reuse(&self, u: f32) -> Option<(usize, f32, f32)> {
-        let (i, p) = self.pick(u)?;
-        let lo = if i == 0 { 0.0 } else { self.cdf[i - 1] as f32 };
-        Some((i, p, crate::sampling::reuse(u, lo, self.cdf[i] as f32)))
-    }
-
-    /// Probability of choosing light `i`.
-    #[inline]
-    pub fn prob(&self, i: usize) -> f32 {
-        self.prob[i]
-    }
-}
 
 /// Everything an integrator reads: the scene and its light selectors.
 pub struct Integrator<'a> {
@@ -374,8 +318,10 @@ impl Integrator<'_> {
     /// The ray going on past `hit` along `d` when the path tracers pass it without a bounce:
     /// a `null` surface in a scene whose integrator skips them (pbrt-v4's `interface`,
     /// [`crate::scene::IntegratorSettings::skip_null`]); None for any other hit, which
-    /// scatters. Reads no sample. (Inlined: on every hit of every path, and the scene's flag
-    /// alone decides for Mitsuba's and TOML scenes.)
+    /// scatters. Reads no sample. The path tracer then counts no bounce and weighs an emitter
+    /// hit after it by 1, as light sampling's shadow rays stop at it (pbrt-v4 §13.4,
+    /// `PathIntegrator::Li` calling `SkipIntersection`). (Inlined: on every hit of every path,
+    /// and the scene's flag alone decides for Mitsuba's and TOML scenes.)
     #[inline(always)]
     pub(crate) fn skip_null(&self, hit: &Intersection, d: Vec3) -> Option<Ray> {
         if !self.scene.integrator.skip_null {
@@ -404,24 +350,5 @@ impl Integrator<'_> {
             spawn_ray(hit.p, hit.p_error, n, ls.wi)
         };
         self.scene.accel.occluded(&self.scene.shapes, &ray)
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn selector_is_proportional_to_power() {
-        let s = LightSelector::new(&[1.0, 3.0, 0.0]);
-        assert_eq!(s.pick(0.1), Some((0, 0.25)));
-        assert_eq!(s.pick(0.5), Some((1, 0.75)));
-        assert_eq!(s.pick(0.999), Some((1, 0.75)));
-        assert_eq!(s.prob(2), 0.0);
-        assert!(LightSelector::new(&[]).pick(0.3).is_none());
-        // reuse: the rest of u within the chosen interval, rescaled to [0, 1)
-        assert_eq!(s.pick_reuse(0.125), Some((0, 0.25, 0.5)));
-        assert_eq!(s.pick_reuse(0.625), Some((1, 0.75, 0.5)));
-        assert_eq!(s.pick_reuse(0.25), Some((1, 0.75, 0.0)));
     }
 }

@@ -99,8 +99,7 @@ fn trace<const N: usize, C: Carrier<N>>(
     let mut all_specular = first.is_none();
     let mut eta_scale = 1.0f32;
     let mut depth = 0u32;
-    // `null` surfaces skipped since the last bounce (`Integrator::skip_null`), and whether
-    // the scene skips them (read once, not per hit)
+    // `null` surfaces skipped since the last bounce, and whether the scene skips them
     let mut crossings = 0u32;
     let skip_null = scene.integrator.skip_null;
     // Every bounce reads the same dimensions whatever happened before (pbrt-v4 §8.3: a fixed
@@ -117,25 +116,10 @@ fn trace<const N: usize, C: Carrier<N>>(
             add_escaped(it, ray.d, prev, beta, w, &mut l);
             break;
         };
-        let surf = scene.surfaces[hit.shape as usize];
         // Emission at the hit, MIS-weighted against light sampling from the previous vertex.
-        if let Some(li) = surf.light {
-            let light = &scene.lights[li as usize];
-            let le = light.emitted(hit.n_geom, -ray.d, hit.uv, w);
-            if !le.is_zero() {
-                let wgt = if specular_bounce {
-                    1.0
-                } else {
-                    let pl = it.light_prob(prev_p, prev_n, li as usize)
-                        * light.pdf_li(&scene.shapes, prev_p, ray.d, hit.p, hit.n_geom);
-                    power_heuristic(1.0, prev_pdf, 1.0, pl)
-                };
-                beta.add_unpolarised(&mut l, le * wgt);
-            }
-        }
-        // A medium boundary pbrt-v4 skips (`interface`): no bounce, no sample read, and the
-        // emitter hit after it unweighted, as light sampling's shadow rays stop at it
-        // (pbrt-v4 §13.4, `PathIntegrator::Li` calling `SkipIntersection`).
+        let prev = (!specular_bounce).then_some((prev_p, prev_n, prev_pdf));
+        add_emitted(it, &hit, ray.d, prev, beta, w, &mut l);
+        // pbrt-v4's `interface`, skipped without a bounce (see `Integrator::skip_null`)
         if skip_null && let Some(next) = it.skip_null(&hit, ray.d) {
             crossings += 1;
             if crossings > MAX_CROSSINGS {
@@ -245,6 +229,38 @@ fn add_escaped<const N: usize, C: Carrier<N>>(
         };
         beta.add_unpolarised(l, le * wgt);
     }
+}
+
+/// Adds the radiance the hit's area light (if any) sends back along `d` to `l`, times `beta`,
+/// MIS-weighted against light sampling at `prev` as [`add_escaped`].
+#[inline(always)]
+fn add_emitted<const N: usize, C: Carrier<N>>(
+    it: &Integrator<'_>,
+    hit: &Intersection,
+    d: Vec3,
+    prev: Option<(Vec3, Vec3, f32)>,
+    beta: C,
+    w: &SampledWavelengths<N>,
+    l: &mut C::Sum,
+) {
+    let scene = it.scene;
+    let Some(li) = scene.surfaces[hit.shape as usize].light else {
+        return;
+    };
+    let light = &scene.lights[li as usize];
+    let le = light.emitted(hit.n_geom, -d, hit.uv, w);
+    if le.is_zero() {
+        return;
+    }
+    let wgt = match prev {
+        None => 1.0,
+        Some((prev_p, prev_n, prev_pdf)) => {
+            let pl = it.light_prob(prev_p, prev_n, li as usize)
+                * light.pdf_li(&scene.shapes, prev_p, d, hit.p, hit.n_geom);
+            power_heuristic(1.0, prev_pdf, 1.0, pl)
+        }
+    };
+    beta.add_unpolarised(l, le * wgt);
 }
 
 /// Next-event estimation at a non-specular hit (Veach 1997 §9.2; pbrt-v4 §13.4): a light

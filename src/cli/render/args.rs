@@ -141,3 +141,15 @@ pub struct RenderArgs {
     #[arg(long, value_name = "FRACTION")]
     pub target_error: Option<f64>,
 }
+
+impl RenderArgs {
+    /// The scene's hash for a farm part or a checkpoint (which must match the scene they
+    /// resume); empty when neither is asked for.
+    pub(super) fn scene_hash(&self, scene: &std::path::Path) -> Result<String, super::CliError> {
+        Ok(if self.part.is_some() || self.checkpoint.is_some() {
+            super::super::farm::scene_hash(scene, &self.define)?
+        } else {
+            String::new()
+        })
+    }
+}

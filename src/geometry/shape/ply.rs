@@ -7,65 +7,10 @@ use glam::{Vec2, Vec3};
 
 use super::Mesh;
 use super::ply_attributes::{Columns, MeshAttribute};
+use super::ply_header::{Format, Ty, parse_header, split_header};
 use crate::geometry::error::GeometryError;
 use crate::geometry::transform::Transform;
 use std::path::Path;
-
-#[derive(Clone, Copy, PartialEq)]
-enum Format {
-    Ascii,
-    Le,
-    Be,
-}
-
-#[derive(Clone, Copy)]
-pub(super) enum Ty {
-    I8,
-    U8,
-    I16,
-    U16,
-    I32,
-    U32,
-    F32,
-    F64,
-}
-
-impl Ty {
-    fn parse(s: &str) -> Option<Ty> {
-        Some(match s {
-            "char" | "int8" => Ty::I8,
-            "uchar" | "uint8" => Ty::U8,
-            "short" | "int16" => Ty::I16,
-            "ushort" | "uint16" => Ty::U16,
-            "int" | "int32" => Ty::I32,
-            "uint" | "uint32" => Ty::U32,
-            "float" | "float32" => Ty::F32,
-            "double" | "float64" => Ty::F64,
-            _ => return None,
-        })
-    }
-    fn size(self) -> usize {
-        match self {
-            Ty::I8 | Ty::U8 => 1,
-            Ty::I16 | Ty::U16 => 2,
-            Ty::I32 | Ty::U32 | Ty::F32 => 4,
-            Ty::F64 => 8,
-        }
-    }
-}
-
-pub(super) struct Prop {
-    pub(super) name: String,
-    ty: Ty,
-    /// Some(count type) for list properties.
-    pub(super) list: Option<Ty>,
-}
-
-pub(super) struct Elem {
-    pub(super) name: String,
-    count: usize,
-    pub(super) props: Vec<Prop>,
-}
 
 /// Reads values one at a time from the body in the file's format.
 struct Body<'a> {
@@ -147,76 +92,25 @@ impl Mesh {
     }
 }
 
-/// A PLY file's polygons as stored, untransformed (object space, the file's length unit):
-/// for readers that treat triangles and quads apart (pbrt-v4 makes bilinear patches of quads).
-#[derive(Clone, Debug)]
-pub struct PlyPolygons {
-    pub positions: Vec<Vec3>,
-    pub normals: Option<Vec<Vec3>>,
-    pub uvs: Option<Vec<Vec2>>,
-    /// Each face's vertex indices, in the file's order.
-    pub faces: Vec<Vec<u32>>,
-}
-
-/// Reads a PLY file (gzip-compressed or not) as its polygons. Errors name the path, as
-/// [`Mesh::load_ply`]'s.
-pub fn read_ply_polygons(path: &Path) -> Result<PlyPolygons, GeometryError> {
-    let bytes =
-        crate::files::read_bytes_gz(path, crate::files::MAX_MESH_BYTES).map_err(|source| {
-            GeometryError::MeshOpen {
-                path: path.to_path_buf(),
-                source,
-            }
-        })?;
-    let (raw, _) = parse_raw(&bytes, path)?;
-    // a face of n vertices is the fan of n − 2 triangles [f₀, f_k, f_k+1], consecutive
-    let mut faces = Vec::with_capacity(raw.sizes.len());
-    let mut next = 0;
-    for &n in &raw.sizes {
-        let fan = &raw.triangles[next..next + n.saturating_sub(2)];
-        next += fan.len();
-        let mut face = Vec::with_capacity(n);
-        if let Some(first) = fan.first() {
-            face.extend_from_slice(&first[..2]);
-            face.extend(fan.iter().map(|t| t[2]));
-        }
-        faces.push(face);
-    }
-    Ok(PlyPolygons {
-        positions: raw.positions,
-        normals: raw.normals,
-        uvs: raw.uvs,
-        faces,
-    })
-}
-
 /// A PLY file's vertex data, its faces as fans of triangles and each face's vertex count.
-struct Raw {
-    positions: Vec<Vec3>,
-    normals: Option<Vec<Vec3>>,
-    uvs: Option<Vec<Vec2>>,
-    triangles: Vec<[u32; 3]>,
-    sizes: Vec<usize>,
+pub(super) struct Raw {
+    pub(super) positions: Vec<Vec3>,
+    pub(super) normals: Option<Vec<Vec3>>,
+    pub(super) uvs: Option<Vec<Vec2>>,
+    pub(super) triangles: Vec<[u32; 3]>,
+    pub(super) sizes: Vec<usize>,
 }
 
 /// Parses PLY data as stored; `path` names it in errors.
-fn parse_raw(bytes: &[u8], path: &Path) -> Result<(Raw, Vec<MeshAttribute>), GeometryError> {
+pub(super) fn parse_raw(
+    bytes: &[u8],
+    path: &Path,
+) -> Result<(Raw, Vec<MeshAttribute>), GeometryError> {
     let bad = |m: &str| GeometryError::MeshParse {
         path: path.to_path_buf(),
         message: m.to_string(),
     };
-    let end = bytes
-        .windows(10)
-        .position(|w| w == b"end_header")
-        .ok_or_else(|| bad("no end_header"))?;
-    let header = std::str::from_utf8(&bytes[..end]).map_err(|_| bad("the header is not text"))?;
-    let mut body_start = end + 10;
-    while body_start < bytes.len() && (bytes[body_start] == b'\r' || bytes[body_start] == b'\n') {
-        body_start += 1;
-        if bytes[body_start - 1] == b'\n' {
-            break;
-        }
-    }
+    let (header, body_start) = split_header(bytes, &bad)?;
     let (format, elems) = parse_header(header, &bad)?;
     let text = if format == Format::Ascii {
         std::str::from_utf8(&bytes[body_start..]).map_err(|_| bad("ASCII body is not text"))?
@@ -339,68 +233,6 @@ fn slot(name: &str) -> Option<usize> {
     })
 }
 
-/// The PLY header's format and elements (with their properties); `bad` makes the error.
-fn parse_header(
-    header: &str,
-    bad: &dyn Fn(&str) -> GeometryError,
-) -> Result<(Format, Vec<Elem>), GeometryError> {
-    let mut lines = header.lines();
-    if lines.next().map(str::trim) != Some("ply") {
-        return Err(bad("not a PLY file (no 'ply' magic)"));
-    }
-    let mut format = None;
-    let mut elems: Vec<Elem> = Vec::new();
-    for line in lines {
-        let w: Vec<&str> = line.split_whitespace().collect();
-        match w.as_slice() {
-            ["format", f, _] => {
-                format = Some(match *f {
-                    "ascii" => Format::Ascii,
-                    "binary_little_endian" => Format::Le,
-                    "binary_big_endian" => Format::Be,
-                    _ => return Err(bad(&format!("unknown format {f}"))),
-                })
-            }
-            ["element", name, count] => elems.push(Elem {
-                name: name.to_string(),
-                count: count
-                    .parse()
-                    .map_err(|_| bad(&format!("bad element count {count}")))?,
-                props: Vec::new(),
-            }),
-            ["property", "list", ct, ty, name] => {
-                let (Some(ct), Some(ty)) = (Ty::parse(ct), Ty::parse(ty)) else {
-                    return Err(bad(&format!("unknown type in '{line}'")));
-                };
-                elems
-                    .last_mut()
-                    .ok_or_else(|| bad("property before element"))?
-                    .props
-                    .push(Prop {
-                        name: name.to_string(),
-                        ty,
-                        list: Some(ct),
-                    });
-            }
-            ["property", ty, name] => {
-                let ty = Ty::parse(ty).ok_or_else(|| bad(&format!("unknown type in '{line}'")))?;
-                elems
-                    .last_mut()
-                    .ok_or_else(|| bad("property before element"))?
-                    .props
-                    .push(Prop {
-                        name: name.to_string(),
-                        ty,
-                        list: None,
-                    });
-            }
-            _ => {}
-        }
-    }
-    let format = format.ok_or_else(|| bad("no format line"))?;
-    Ok((format, elems))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -430,30 +262,5 @@ mod tests {
         std::fs::write(&p, &bin[..bin.len() - 3]).unwrap();
         assert!(Mesh::load_ply(&p, &Transform::identity()).is_err());
         assert!(Mesh::load_ply(&dir.join("missing.ply"), &Transform::identity()).is_err());
-    }
-
-    /// The polygons come back as stored: a triangle, a quad and a pentagon, each with its
-    /// vertices in the file's order (not as the fan of triangles the mesh holds).
-    #[test]
-    fn polygons_keep_the_file_s_faces() {
-        let dir = std::env::temp_dir().join(format!("spectrace-plyfaces-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let mut text = String::from(
-            "ply\nformat ascii 1.0\nelement vertex 7\nproperty float x\nproperty float y\nproperty float z\nproperty float u\nproperty float v\nelement face 3\nproperty list uchar int vertex_indices\nend_header\n",
-        );
-        for i in 0..7 {
-            text.push_str(&format!("{i} {} 0 0.{i} 0.5\n", i * i));
-        }
-        text.push_str("3 0 1 2\n4 3 4 5 6\n5 6 5 4 3 0\n");
-        let p = dir.join("faces.ply");
-        std::fs::write(&p, text).unwrap();
-        let ply = read_ply_polygons(&p).unwrap();
-        assert_eq!(
-            ply.faces,
-            vec![vec![0, 1, 2], vec![3, 4, 5, 6], vec![6, 5, 4, 3, 0]]
-        );
-        assert_eq!(ply.positions[3], Vec3::new(3.0, 9.0, 0.0));
-        assert_eq!(ply.uvs.as_ref().unwrap()[2], Vec2::new(0.2, 0.5));
-        assert!(ply.normals.is_none());
     }
 }

@@ -6,7 +6,7 @@
 //! properties without a postfix are skipped, as Mitsuba skips them. Integer values are kept as
 //! stored (a uchar colour is 0–255, as in Mitsuba).
 
-use super::ply::Elem;
+use super::ply_header::Elem;
 
 /// One attribute: `dim` (1 or 3) values per vertex of the file, or per triangle of the fans a
 /// face is split into (`per_face`), flattened.

@@ -21,11 +21,13 @@ mod lights;
 mod materials;
 mod media;
 mod shapes;
+mod textures;
 
 pub use lights::*;
 pub use materials::*;
 pub use media::*;
 pub use shapes::*;
+pub use textures::*;
 
 /// A point or vector given in the scene's length unit, converted to lengths.
 pub type Point = [Length; 3];

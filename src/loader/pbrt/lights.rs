@@ -213,7 +213,7 @@ fn image_infinite(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> 
     Ok(LightDesc {
         kind: LightKind::OctahedralMap {
             path,
-            transform: vec![super::shapes::matrix_step(ctm)],
+            transform: vec![super::placed::matrix_step(ctm)],
             amount,
         },
         spectrum: Spectrum::Piecewise(crate::spectrum::rgb2spec::d65_unit_luminance()),
@@ -285,7 +285,7 @@ fn projection(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> R<Li
     let d65 = Spectrum::Piecewise(crate::spectrum::rgb2spec::d65_unit_luminance());
     Ok(LightDesc {
         kind: LightKind::Projector {
-            transform: vec![super::shapes::matrix_step(&frame)],
+            transform: vec![super::placed::matrix_step(&frame)],
             fov: Angle::new::<degree>(fov),
             fov_axis: FovAxis::Smaller,
             image,
@@ -339,7 +339,7 @@ fn goniometric(p: &Params, ctm: &DMat4, loc: Loc, r: &Reader, scale: f64) -> R<L
     Ok(LightDesc {
         kind: LightKind::GoniometricMap {
             path,
-            transform: vec![super::shapes::matrix_step(&frame)],
+            transform: vec![super::placed::matrix_step(&frame)],
         },
         spectrum: s.scaled((scale * k) as f32),
         sampling_weight: 1.0,

@@ -19,6 +19,7 @@ mod media;
 mod meshes;
 mod objects;
 mod params;
+mod placed;
 mod quadrics;
 mod roughness;
 mod sensor;

@@ -1,7 +1,7 @@
 //! pbrt-v4's object instancing (`ObjectBegin`, `ObjectEnd`, `ObjectInstance`) and where a
 //! `Shape`'s shapes go: the scene, or the object being defined.
 
-use super::{Reader, shapes};
+use super::Reader;
 use crate::loader::Loc;
 use crate::loader::desc::{GroupDesc, InstanceDesc, ShapeDesc};
 
@@ -48,7 +48,7 @@ impl Reader {
                 };
                 self.instances.push(InstanceDesc {
                     group: g,
-                    transform: vec![shapes::matrix_step(&self.state.ctm)],
+                    transform: vec![super::placed::matrix_step(&self.state.ctm)],
                     unit_m: 1.0,
                     loc,
                 });
