@@ -20,7 +20,7 @@ pub struct PlyPolygons {
 }
 
 /// Reads a PLY file (gzip-compressed or not) as its polygons. Errors name the path, as
-/// [`Mesh::load_ply`]'s.
+/// [`super::Mesh::load_ply`]'s.
 pub fn read_ply_polygons(path: &Path) -> Result<PlyPolygons, GeometryError> {
     let bytes =
         crate::files::read_bytes_gz(path, crate::files::MAX_MESH_BYTES).map_err(|source| {
