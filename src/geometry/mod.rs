@@ -25,7 +25,7 @@ pub use camera::{Camera, FovAxis, Realistic, RealisticError};
 pub use error::GeometryError;
 pub use frame::Frame;
 pub use instance::{Group, Instance};
-pub use ray::{Ray, offset_ray_origin, spawn_ray, spawn_ray_to};
+pub use ray::{Ray, flip_toward, offset_ray_origin, spawn_ray, spawn_ray_to};
 pub use shape::{
     Cylinder, Disk, Intersection, Mesh, PrimHit, Shape, SolidAngleSample, Sphere, SurfaceSample,
 };

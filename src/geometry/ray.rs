@@ -61,6 +61,12 @@ pub fn offset_ray_origin(p: Vec3, p_error: Vec3, n: Vec3, dir: Vec3) -> Vec3 {
     next_float_toward3(p + offset, offset)
 }
 
+/// `n` flipped to the side of `d`, for offsetting a ray that leaves a surface along `d`.
+#[inline]
+pub fn flip_toward(n: Vec3, d: Vec3) -> Vec3 {
+    if n.dot(d) < 0.0 { -n } else { n }
+}
+
 /// A ray leaving the surface point `p` (error bound `p_error`, geometric normal `n`) in
 /// direction `dir` (need not be unit; it is normalised). `t_max` is infinite. A zero `dir`
 /// is replaced by `n`, so the result never contains NaN.

@@ -219,16 +219,29 @@ fn add_escaped<const N: usize, C: Carrier<N>>(
         if le.is_zero() {
             continue;
         }
-        let wgt = match prev {
-            None => 1.0,
-            Some((prev_p, prev_n, prev_pdf)) => {
-                let pl = it.light_prob(prev_p, prev_n, i)
-                    * light.pdf_li(&scene.shapes, prev_p, d, Vec3::ZERO, Vec3::ZERO);
-                power_heuristic(1.0, prev_pdf, 1.0, pl)
-            }
-        };
+        let wgt = emission_weight(it, prev, i, d, (Vec3::ZERO, Vec3::ZERO));
         beta.add_unpolarised(l, le * wgt);
     }
+}
+
+/// The power-heuristic weight of emission from light `li` reached along `d` by BSDF sampling
+/// at `prev` (point, shading normal, the sample's density per sr; None: weight 1) against
+/// light sampling there, for the emitting point and normal `at` (zero for lights at infinity).
+#[inline(always)]
+fn emission_weight(
+    it: &Integrator<'_>,
+    prev: Option<(Vec3, Vec3, f32)>,
+    li: usize,
+    d: Vec3,
+    at: (Vec3, Vec3),
+) -> f32 {
+    let Some((prev_p, prev_n, prev_pdf)) = prev else {
+        return 1.0;
+    };
+    let light = &it.scene.lights[li];
+    let pl =
+        it.light_prob(prev_p, prev_n, li) * light.pdf_li(&it.scene.shapes, prev_p, d, at.0, at.1);
+    power_heuristic(1.0, prev_pdf, 1.0, pl)
 }
 
 /// Adds the radiance the hit's area light (if any) sends back along `d` to `l`, times `beta`,
@@ -252,14 +265,7 @@ fn add_emitted<const N: usize, C: Carrier<N>>(
     if le.is_zero() {
         return;
     }
-    let wgt = match prev {
-        None => 1.0,
-        Some((prev_p, prev_n, prev_pdf)) => {
-            let pl = it.light_prob(prev_p, prev_n, li as usize)
-                * light.pdf_li(&scene.shapes, prev_p, d, hit.p, hit.n_geom);
-            power_heuristic(1.0, prev_pdf, 1.0, pl)
-        }
-    };
+    let wgt = emission_weight(it, prev, li as usize, d, (hit.p, hit.n_geom));
     beta.add_unpolarised(l, le * wgt);
 }
 

@@ -145,11 +145,7 @@ impl Intersection {
     /// The geometric normal flipped to the side of `dir`, for offsetting rays that leave there.
     #[inline]
     pub fn n_geom_toward(&self, dir: Vec3) -> Vec3 {
-        if self.n_geom.dot(dir) < 0.0 {
-            -self.n_geom
-        } else {
-            self.n_geom
-        }
+        crate::geometry::flip_toward(self.n_geom, dir)
     }
 }
 

@@ -141,7 +141,7 @@ impl Integrator<'_> {
                     mi.exterior
                 };
             }
-            let n = flip_toward(hit.n_geom, ray.d);
+            let n = hit.n_geom_toward(ray.d);
             ray = spawn_ray(hit.p, hit.p_error, n, ray.d);
         }
         None
@@ -215,15 +215,9 @@ impl Integrator<'_> {
                 return zero;
             }
             medium = self.medium_after(&hit, ray.d, medium);
-            let n = flip_toward(hit.n_geom, ray.d);
+            let n = hit.n_geom_toward(ray.d);
             ray = toward(hit.p, hit.p_error, n);
         }
         zero
     }
-}
-
-/// `n` flipped to the side of `d`, for offsetting a ray that leaves a surface along `d`.
-#[inline]
-fn flip_toward(n: Vec3, d: Vec3) -> Vec3 {
-    if n.dot(d) < 0.0 { -n } else { n }
 }
