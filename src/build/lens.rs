@@ -120,11 +120,22 @@ pub(super) fn realistic_camera(
         .map_err(|e| err("camera.focus_distance", e))?;
     let to_world = super::camera::camera_to_world(c).map_err(|e| err("camera", e))?;
     let diagonal = crate::units::plain::metres(*film_diagonal);
-    let cam = Camera::realistic(to_world, sys, diagonal, desc.film.width, desc.film.height)
-        .map_err(|e| match e {
+    // a crop window's camera frames the full image
+    let full = desc
+        .film
+        .crop
+        .map_or([desc.film.width, desc.film.height], |c| c.full);
+    let cam =
+        Camera::realistic(to_world, sys, diagonal, full[0], full[1]).map_err(|e| match e {
             RealisticError::Lens(e) => located(lens, &e),
             RealisticError::Geometry(e) => err("camera", e.to_string()),
         })?;
+    let cam = match desc.film.crop {
+        Some(w) => cam
+            .with_window((w.at[0], w.at[1]), (desc.film.width, desc.film.height))
+            .map_err(|e| LoadError::new(&desc.path, desc.film.loc, "film", e))?,
+        None => cam,
+    };
     Ok(if *irradiance_pixels {
         cam.with_irradiance_pixels()
     } else {

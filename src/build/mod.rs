@@ -106,10 +106,6 @@ pub fn build(desc: &SceneDesc) -> Result<Scene, LoadError> {
     let light_tree = crate::light::LightTree::build(&light_bounds, &light_power);
     let camera = match &desc.camera.kind {
         // a lens's errors are located in its own file
-        CameraKind::Realistic { .. } if desc.film.crop.is_some() => {
-            let why = "a crop window on a realistic camera is not rendered yet".to_string();
-            return Err(err(desc.film.loc, "film".into(), why));
-        }
         CameraKind::Realistic { .. } => lens::realistic_camera(desc)?,
         _ => camera::camera(desc).map_err(|e| err(desc.camera.loc, "camera".into(), e))?,
     };

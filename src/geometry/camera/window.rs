@@ -26,17 +26,16 @@ impl Film {
 impl Camera {
     /// The camera rendering only the window of `size` pixels at `at` (its top-left pixel) of
     /// its full image (pbrt-v4's `cropwindow` and `pixelbounds`): every pixel as in the full
-    /// image. Errors for an empty window or one not inside the image, and for the realistic
-    /// camera (whose film is traced through its lens).
+    /// image. Errors for an empty window or one not inside the image.
     pub fn with_window(mut self, at: (u32, u32), size: (u32, u32)) -> Result<Camera, String> {
         let film = match &mut self {
             Camera::Perspective(c) => &mut c.film,
             Camera::ThinLens(c) => &mut c.film,
             Camera::Orthographic(c) => &mut c.film,
             Camera::Spherical(c) => &mut c.film,
-            Camera::Realistic(_) => {
-                return Err("a crop window on a realistic camera is not rendered yet".into());
-            }
+            // its film's raster positions are mapped to the film plane through `Film::plane`,
+            // which takes the window's offset as every camera's does
+            Camera::Realistic(c) => &mut c.film,
         };
         let inside = at.0.checked_add(size.0).is_some_and(|x| x <= film.width)
             && at.1.checked_add(size.1).is_some_and(|y| y <= film.height);
