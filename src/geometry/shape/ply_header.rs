@@ -111,31 +111,34 @@ pub(super) fn parse_header(
                 let (Some(ct), Some(ty)) = (Ty::parse(ct), Ty::parse(ty)) else {
                     return Err(bad(&format!("unknown type in '{line}'")));
                 };
-                elems
-                    .last_mut()
-                    .ok_or_else(|| bad("property before element"))?
-                    .props
-                    .push(Prop {
-                        name: name.to_string(),
-                        ty,
-                        list: Some(ct),
-                    });
+                add_prop(&mut elems, name, ty, Some(ct), bad)?;
             }
             ["property", ty, name] => {
                 let ty = Ty::parse(ty).ok_or_else(|| bad(&format!("unknown type in '{line}'")))?;
-                elems
-                    .last_mut()
-                    .ok_or_else(|| bad("property before element"))?
-                    .props
-                    .push(Prop {
-                        name: name.to_string(),
-                        ty,
-                        list: None,
-                    });
+                add_prop(&mut elems, name, ty, None, bad)?;
             }
             _ => {}
         }
     }
     let format = format.ok_or_else(|| bad("no format line"))?;
     Ok((format, elems))
+}
+
+/// Adds a property to the last element declared; an error if none was.
+fn add_prop(
+    elems: &mut [Elem],
+    name: &str,
+    ty: Ty,
+    list: Option<Ty>,
+    bad: &dyn Fn(&str) -> GeometryError,
+) -> Result<(), GeometryError> {
+    let e = elems
+        .last_mut()
+        .ok_or_else(|| bad("property before element"))?;
+    e.props.push(Prop {
+        name: name.to_string(),
+        ty,
+        list,
+    });
+    Ok(())
 }
