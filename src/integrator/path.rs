@@ -97,11 +97,9 @@ fn trace<const N: usize, C: Carrier<N>>(
     let mut specular_bounce = first.is_none();
     // every scattering so far by a delta lobe (the camera ray counts as one)
     let mut all_specular = first.is_none();
-    let mut eta_scale = 1.0f32;
-    let mut depth = 0u32;
+    let (mut eta_scale, mut depth) = (1.0f32, 0u32);
     // `null` surfaces skipped since the last bounce, and whether the scene skips them
-    let mut crossings = 0u32;
-    let skip_null = scene.integrator.skip_null;
+    let (mut crossings, skip_null) = (0u32, scene.integrator.skip_null);
     // Every bounce reads the same dimensions whatever happened before (pbrt-v4 §8.3: a fixed
     // layout keeps each bounce's samples stratified across the pixel's samples): light 2D
     // (its first coordinate also chooses the light and, on a mesh, the triangle, by sample
@@ -117,8 +115,10 @@ fn trace<const N: usize, C: Carrier<N>>(
             break;
         };
         // Emission at the hit, MIS-weighted against light sampling from the previous vertex.
-        let prev = (!specular_bounce).then_some((prev_p, prev_n, prev_pdf));
-        add_emitted(it, &hit, ray.d, prev, beta, w, &mut l);
+        if let Some(li) = scene.surfaces[hit.shape as usize].light {
+            let prev = (!specular_bounce).then_some((prev_p, prev_n, prev_pdf));
+            add_emitted(it, li as usize, &hit, ray.d, prev, beta, w, &mut l);
+        }
         // pbrt-v4's `interface`, skipped without a bounce (see `Integrator::skip_null`)
         if skip_null && let Some(next) = it.skip_null(&hit, ray.d) {
             crossings += 1;
@@ -244,11 +244,13 @@ fn emission_weight(
     power_heuristic(1.0, prev_pdf, 1.0, pl)
 }
 
-/// Adds the radiance the hit's area light (if any) sends back along `d` to `l`, times `beta`,
+/// Adds the radiance the hit's area light `li` sends back along `d` to `l`, times `beta`,
 /// MIS-weighted against light sampling at `prev` as [`add_escaped`].
 #[inline(always)]
+#[allow(clippy::too_many_arguments)]
 fn add_emitted<const N: usize, C: Carrier<N>>(
     it: &Integrator<'_>,
+    li: usize,
     hit: &Intersection,
     d: Vec3,
     prev: Option<(Vec3, Vec3, f32)>,
@@ -256,16 +258,11 @@ fn add_emitted<const N: usize, C: Carrier<N>>(
     w: &SampledWavelengths<N>,
     l: &mut C::Sum,
 ) {
-    let scene = it.scene;
-    let Some(li) = scene.surfaces[hit.shape as usize].light else {
-        return;
-    };
-    let light = &scene.lights[li as usize];
-    let le = light.emitted(hit.n_geom, -d, hit.uv, w);
+    let le = it.scene.lights[li].emitted(hit.n_geom, -d, hit.uv, w);
     if le.is_zero() {
         return;
     }
-    let wgt = emission_weight(it, prev, li as usize, d, (hit.p, hit.n_geom));
+    let wgt = emission_weight(it, prev, li, d, (hit.p, hit.n_geom));
     beta.add_unpolarised(l, le * wgt);
 }
 
