@@ -4,6 +4,8 @@
 //! a scene with gold and copper spheres must render as Mitsuba renders it
 //! (`tests/reference/conductor_presets/`, Mitsuba 3.9.1 `scalar_spectral` references).
 
+mod support;
+
 use std::path::Path;
 
 use spectrace::loader::desc::MaterialKind;
@@ -172,17 +174,6 @@ fn sphere_mask(center: [f64; 3], w: usize, h: usize) -> Vec<usize> {
         .collect()
 }
 
-fn y_channel(path: &Path) -> (usize, usize, Vec<f64>) {
-    let img = spectrace::image_io::read_exr(path).unwrap_or_else(|e| panic!("{e}"));
-    let y = img
-        .channel("Y")
-        .unwrap_or_else(|| panic!("{}: no Y", path.display()))
-        .iter()
-        .map(|&v| v as f64)
-        .collect();
-    (img.width, img.height, y)
-}
-
 /// (mean of (a + b)/2 over the pixels, its standard error from the a − b differences).
 fn mean_and_se(a: &[f64], b: &[f64], px: &[usize]) -> (f64, f64) {
     let n = px.len() as f64;
@@ -203,19 +194,11 @@ fn gold_and_copper_presets_render_as_in_mitsuba() {
     let mut ours = Vec::new();
     for seed in ["7", "8"] {
         let exr = out.join(format!("seed{seed}.exr"));
-        let o = std::process::Command::new(env!("CARGO_BIN_EXE_spectrace"))
-            .arg("render")
-            .arg(dir.join("scene.xml"))
-            .arg("-o")
-            .arg(&exr)
-            .args(["--quiet", "--mitsuba-units", "--spp", "256", "--seed", seed])
-            .output()
-            .expect("spectrace runs");
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        ours.push(y_channel(&exr));
+        support::cli::render_mitsuba_units(&dir.join("scene.xml"), &exr, seed);
+        ours.push(support::cli::y_channel(&exr));
     }
-    let (w, h, ref_a) = y_channel(&dir.join("ref_a.exr"));
-    let (_, _, ref_b) = y_channel(&dir.join("ref_b.exr"));
+    let (w, h, ref_a) = support::cli::y_channel(&dir.join("ref_a.exr"));
+    let (_, _, ref_b) = support::cli::y_channel(&dir.join("ref_b.exr"));
     assert_eq!((ours[0].0, ours[0].1), (w, h));
     let mut lines = Vec::new();
     let mut ok = true;

@@ -4,19 +4,9 @@
 //! that window of Mitsuba 3.9.1's own full renders (`tests/reference/cornell/ref_a.exr`,
 //! `ref_b.exr`) block by block.
 
-use std::path::Path;
+mod support;
 
-/// The Y channel of an EXR (width, height, values).
-fn y_channel(path: &Path) -> (usize, usize, Vec<f64>) {
-    let img = spectrace::image_io::read_exr(path).unwrap_or_else(|e| panic!("{e}"));
-    let y = img
-        .channel("Y")
-        .expect("a Y channel")
-        .iter()
-        .map(|&v| v as f64)
-        .collect();
-    (img.width, img.height, y)
-}
+use std::path::Path;
 
 /// Each 8 × 8 block of the window: the mean Y of spectrace's two seeds and of Mitsuba's two
 /// references at the same place of the full image, within 5 standard errors of the
@@ -39,24 +29,16 @@ fn a_cropped_film_renders_the_window_of_mitsubas_image() {
     let mut ours = Vec::new();
     for seed in ["7", "8"] {
         let exr = out.join(format!("seed{seed}.exr"));
-        let o = std::process::Command::new(env!("CARGO_BIN_EXE_spectrace"))
-            .arg("render")
-            .arg(&scene)
-            .arg("-o")
-            .arg(&exr)
-            .args(["--quiet", "--mitsuba-units", "--spp", "256", "--seed", seed])
-            .output()
-            .expect("spectrace runs");
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        support::cli::render_mitsuba_units(&scene, &exr, seed);
         // Mitsuba 3.9.1 writes a cropped film as an image of its own, without a data window
         // offset (its `film().write` of a 10 × 8 crop at (5, 7): origin (0, 0), display 10 × 8)
         let read = spectrace::image_io::read_exr(&exr).unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(read.window, None);
-        ours.push(y_channel(&exr));
+        ours.push(support::cli::y_channel(&exr));
     }
     std::fs::remove_file(&scene).ok();
-    let (w, _, ref_a) = y_channel(&dir.join("ref_a.exr"));
-    let (_, _, ref_b) = y_channel(&dir.join("ref_b.exr"));
+    let (w, _, ref_a) = support::cli::y_channel(&dir.join("ref_a.exr"));
+    let (_, _, ref_b) = support::cli::y_channel(&dir.join("ref_b.exr"));
     assert_eq!((ours[0].0, ours[0].1), (48, 32));
     let mut worst = 0.0f64;
     for by in 0..4 {

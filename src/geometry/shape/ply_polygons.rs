@@ -15,7 +15,8 @@ pub struct PlyPolygons {
     pub positions: Vec<Vec3>,
     pub normals: Option<Vec<Vec3>>,
     pub uvs: Option<Vec<Vec2>>,
-    /// Each face's vertex indices, in the file's order.
+    /// Each face's vertex indices, in the file's order (empty for a face of fewer than three,
+    /// which has no triangles).
     pub faces: Vec<Vec<u32>>,
 }
 

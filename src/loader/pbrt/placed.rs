@@ -114,9 +114,13 @@ fn ply_lights(path: &Path, m: DMat4, p: &Params, loc: Loc, r: &mut Reader) -> R<
                 return Err(p.err(
                     loc,
                     format!(
-                        "{}: a face of {} vertices under an area light's \"power\" (pbrt-v4 reads triangles and quads)",
+                        "{}: face {i}, of {} vertices, under an area light's \"power\" (pbrt-v4 reads triangles and quads)",
                         path.display(),
-                        other.len()
+                        if other.is_empty() {
+                            "fewer than three".to_string()
+                        } else {
+                            other.len().to_string()
+                        }
                     ),
                 ));
             }
